@@ -1,0 +1,262 @@
+//! A voxel-based soft robot assembled into a physics world, its actuation and its per-voxel state.
+
+use crate::morphology::Morphology;
+use crate::params::VoxelParams;
+use crate::voxel::{
+    actuated_rest_length, corner_offset, rest_range, spring_layout, SpringKind, NE, NW, SE, SPRINGS_PER_VOXEL, SW,
+};
+use vsrlab_physics::{PartDesc, PartHandle, Polygon, RopeDesc, SpringDesc, SpringHandle, Vec2, World, WorldBuilder};
+
+/// One voxel of an assembled robot.
+#[derive(Debug, Clone)]
+pub struct Voxel {
+    /// Grid cell (x, y), y = 0 at the bottom.
+    pub cell: (usize, usize),
+    /// Corner parts NW, NE, SE, SW.
+    pub corners: [PartHandle; 4],
+}
+
+/// Everything a sensor or an observer may read of one voxel at the current step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VoxelState {
+    /// Outer polygon: NW's top-left, NE's top-right, SE's bottom-right, SW's bottom-left corners.
+    pub polygon: [Vec2; 4],
+    /// Area of the outer polygon divided by L² (1 at rest).
+    pub area_ratio: f64,
+    /// Mean of the four corner centres.
+    pub center: Vec2,
+    /// Mean of the four corner velocities.
+    pub velocity: Vec2,
+    /// Mean direction of the NW→NE and SW→SE vectors (radians; no wrap-around handling, as the
+    /// original).
+    pub angle: f64,
+    /// Whether any corner touches the ground, an obstacle or another robot.
+    pub touching: bool,
+}
+
+/// An assembled robot: its morphology, constants and handles into the world.
+#[derive(Debug, Clone)]
+pub struct Vsr {
+    morphology: Morphology,
+    params: VoxelParams,
+    voxels: Vec<Voxel>,
+    springs: Vec<SpringHandle>,
+    kinds: [SpringKind; SPRINGS_PER_VOXEL],
+    ranges: [(f64, f64, f64); 3],
+}
+
+fn kind_index(k: SpringKind) -> usize {
+    match k {
+        SpringKind::Parallel => 0,
+        SpringKind::SideCross => 1,
+        SpringKind::Central => 2,
+    }
+}
+
+impl Vsr {
+    /// Adds the robot's parts, springs, ropes and welds to `builder`. The grid's lower-left corner
+    /// is placed at `origin`; `group` identifies the robot for touch sensing and self-collision.
+    pub fn assemble(builder: &mut WorldBuilder, morphology: &Morphology, params: &VoxelParams, origin: Vec2, group: u32) -> Vsr {
+        let l = params.side_length;
+        let m = params.corner_side();
+        let density = params.voxel_mass / 4.0 / (m * m);
+        let layout = spring_layout(params);
+        let (w, h) = (morphology.width(), morphology.height());
+        let mut index = vec![usize::MAX; w * h];
+        let mut voxels = Vec::with_capacity(morphology.voxel_count());
+        let mut springs = Vec::with_capacity(morphology.voxel_count() * SPRINGS_PER_VOXEL);
+        for (x, y) in morphology.voxels() {
+            let center = origin + Vec2::new((x as f64 + 0.5) * l, (y as f64 + 0.5) * l);
+            let corners: [PartHandle; 4] = std::array::from_fn(|i| {
+                let desc = PartDesc::new(center + corner_offset(params, i), Polygon::square(Vec2::ZERO, m))
+                    .density(density)
+                    .friction(params.friction)
+                    .restitution(params.restitution)
+                    .damping(params.linear_damping, params.angular_damping)
+                    .group(group, params.self_collision);
+                builder.add_part(desc)
+            });
+            for s in &layout {
+                springs.push(builder.add_spring(SpringDesc {
+                    part_a: corners[s.corner_a],
+                    anchor_a: s.anchor_a,
+                    part_b: corners[s.corner_b],
+                    anchor_b: s.anchor_b,
+                    rest_length: rest_range(params, s.kind).1,
+                    frequency: params.spring_frequency,
+                    damping_ratio: params.spring_damping_ratio,
+                    mass_model: params.spring_mass_model,
+                    collide_connected: params.same_voxel_collision,
+                }));
+            }
+            if params.ropes {
+                for i in 0..4 {
+                    builder.add_rope(RopeDesc {
+                        part_a: corners[i],
+                        anchor_a: Vec2::ZERO,
+                        part_b: corners[(i + 1) % 4],
+                        anchor_b: Vec2::ZERO,
+                        min_length: m,
+                        collide_connected: params.same_voxel_collision,
+                    });
+                }
+            }
+            if x > 0 && morphology.has(x - 1, y) {
+                let left = &voxels[index[y * w + x - 1]] as &Voxel;
+                builder.weld(corners[NW], left.corners[NE]);
+                builder.weld(corners[SW], left.corners[SE]);
+            }
+            if y > 0 && morphology.has(x, y - 1) {
+                let below = &voxels[index[(y - 1) * w + x]] as &Voxel;
+                builder.weld(corners[SW], below.corners[NW]);
+                builder.weld(corners[SE], below.corners[NE]);
+            }
+            index[y * w + x] = voxels.len();
+            voxels.push(Voxel { cell: (x, y), corners });
+        }
+        let kinds = layout.map(|s| s.kind);
+        let ranges = [
+            rest_range(params, SpringKind::Parallel),
+            rest_range(params, SpringKind::SideCross),
+            rest_range(params, SpringKind::Central),
+        ];
+        Vsr {
+            morphology: morphology.clone(),
+            params: params.clone(),
+            voxels,
+            springs,
+            kinds,
+            ranges,
+        }
+    }
+
+    /// The robot's morphology.
+    pub fn morphology(&self) -> &Morphology {
+        &self.morphology
+    }
+    /// The voxel constants.
+    pub fn params(&self) -> &VoxelParams {
+        &self.params
+    }
+    /// Voxels in grid order (row-major from the bottom row).
+    pub fn voxels(&self) -> &[Voxel] {
+        &self.voxels
+    }
+    /// Number of voxels.
+    pub fn voxel_count(&self) -> usize {
+        self.voxels.len()
+    }
+
+    /// Sets every voxel's actuation (grid order; values clipped to [-1, 1], positive contracts).
+    /// Takes effect at the next physics step.
+    pub fn actuate(&self, world: &mut World, values: &[f64]) {
+        for (v, &f) in values.iter().enumerate().take(self.voxels.len()) {
+            let rests = [
+                actuated_rest_length(self.ranges[0], f),
+                actuated_rest_length(self.ranges[1], f),
+                actuated_rest_length(self.ranges[2], f),
+            ];
+            let handles = &self.springs[v * SPRINGS_PER_VOXEL..(v + 1) * SPRINGS_PER_VOXEL];
+            for (h, k) in handles.iter().zip(self.kinds.iter()) {
+                world.set_spring_rest_length(*h, rests[kind_index(*k)]);
+            }
+        }
+    }
+
+    /// The current state of voxel `i` (grid order).
+    pub fn voxel_state(&self, world: &World, i: usize) -> VoxelState {
+        let c = &self.voxels[i].corners;
+        let h = self.params.corner_side() / 2.0;
+        let polygon = [
+            world.part_point(c[NW], Vec2::new(-h, h)),
+            world.part_point(c[NE], Vec2::new(h, h)),
+            world.part_point(c[SE], Vec2::new(h, -h)),
+            world.part_point(c[SW], Vec2::new(-h, -h)),
+        ];
+        let mut twice_area = 0.0;
+        for k in 0..4 {
+            twice_area += polygon[k].cross(polygon[(k + 1) % 4]);
+        }
+        let l = self.params.side_length;
+        let centers = c.map(|p| world.part_position(p));
+        let center = (centers[0] + centers[1] + centers[2] + centers[3]) * 0.25;
+        let velocity = c.iter().fold(Vec2::ZERO, |acc, &p| acc + world.part_velocity(p)) * 0.25;
+        let top = centers[NE] - centers[NW];
+        let bottom = centers[SE] - centers[SW];
+        let angle = (top.y.atan2(top.x) + bottom.y.atan2(bottom.x)) / 2.0;
+        VoxelState {
+            polygon,
+            area_ratio: (0.5 * twice_area).abs() / (l * l),
+            center,
+            velocity,
+            angle,
+            touching: c.iter().any(|&p| world.part_touching(p)),
+        }
+    }
+
+    /// Centre of the robot: unweighted mean of the voxel centres.
+    pub fn center(&self, world: &World) -> Vec2 {
+        let sum = (0..self.voxels.len()).fold(Vec2::ZERO, |acc, i| {
+            let c = &self.voxels[i].corners;
+            acc + c.iter().fold(Vec2::ZERO, |a, &p| a + world.part_position(p)) * 0.25
+        });
+        sum / self.voxels.len() as f64
+    }
+
+    /// Axis-aligned bounding box (min, max) of all voxel polygons.
+    pub fn bounding_box(&self, world: &World) -> (Vec2, Vec2) {
+        let mut min = Vec2::new(f64::INFINITY, f64::INFINITY);
+        let mut max = -min;
+        for i in 0..self.voxels.len() {
+            for p in self.voxel_state(world, i).polygon {
+                min = min.min(p);
+                max = max.max(p);
+            }
+        }
+        (min, max)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::params::Preset;
+    use vsrlab_physics::WorldSettings;
+
+    fn build(shape: &str, preset: Preset) -> (World, Vsr) {
+        let mut b = WorldBuilder::new(WorldSettings::default());
+        let m = Morphology::parse(shape).unwrap();
+        let vsr = Vsr::assemble(&mut b, &m, &VoxelParams::preset(preset), Vec2::new(0.0, 0.0), 1);
+        (b.build().unwrap(), vsr)
+    }
+
+    #[test]
+    fn welds_merge_corners_into_rigid_bodies() {
+        // worm-10x4: 11×5 grid vertices; each vertex's welded corners become one body
+        let (w, vsr) = build("worm-10x4", Preset::Y2021);
+        assert_eq!(vsr.voxel_count(), 40);
+        assert_eq!(w.body_count(), 55);
+        assert_eq!(w.spring_count(), 720);
+        let (w1, _) = build("box-1x1", Preset::Y2021);
+        assert_eq!(w1.body_count(), 4);
+    }
+
+    #[test]
+    fn undeformed_voxel_state_is_nominal() {
+        let (w, vsr) = build("box-1x1", Preset::Y2021);
+        let s = vsr.voxel_state(&w, 0);
+        assert!((s.area_ratio - 1.0).abs() < 1e-12);
+        assert!((s.center - Vec2::new(1.5, 1.5)).length() < 1e-12);
+        assert!(s.angle.abs() < 1e-12);
+        assert_eq!(s.polygon[0], Vec2::new(0.0, 3.0));
+    }
+
+    #[test]
+    fn total_mass_is_voxel_mass_times_voxels() {
+        for preset in [Preset::Y2021, Preset::Y2022] {
+            let (w, vsr) = build("biped-4x3", preset);
+            let expected = VoxelParams::preset(preset).voxel_mass * vsr.voxel_count() as f64;
+            assert!((w.total_mass() - expected).abs() < 1e-9);
+        }
+    }
+}

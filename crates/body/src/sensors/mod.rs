@@ -1,0 +1,1 @@
+//! Sensors (filled in next).

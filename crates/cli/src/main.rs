@@ -1,0 +1,40 @@
+//! `vsrlab`: the command-line front end. It parses arguments, builds the pieces from the library
+//! crates and hands over; it holds no domain logic.
+
+mod bench;
+mod cpu_time;
+mod simulate;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// Simulate, render and benchmark voxel-based soft robots.
+#[derive(Parser)]
+#[command(name = "vsrlab", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run one episode and print its outcome (optionally render a video).
+    Simulate(simulate::SimulateArgs),
+    /// Measure simulation speed on the standard robots, single-threaded and on every core.
+    Bench(bench::BenchArgs),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Simulate(a) => simulate::run(a),
+        Command::Bench(a) => bench::run(a),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

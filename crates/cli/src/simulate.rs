@@ -1,0 +1,110 @@
+//! `vsrlab simulate`: one episode, its outcome, optionally a video.
+
+use clap::Args;
+use serde_json::json;
+use std::path::PathBuf;
+use std::time::Instant;
+use vsrlab_body::sensors::SensorConfig;
+use vsrlab_body::{Morphology, Preset};
+use vsrlab_brain::BrainSpec;
+use vsrlab_tasks::{locomotion, Locomotion, RobotSpec, Terrain, TraceLevel};
+
+/// Default sensors: area ratio, velocity and touch on every voxel (thesis ch. 3), no noise.
+pub const DEFAULT_SENSORS: &str = "uniform-a+vxy+t-0";
+
+/// Arguments of `vsrlab simulate`.
+#[derive(Args, Debug)]
+pub struct SimulateArgs {
+    /// Body: a named shape (biped-4x3, worm-10x4, comb-7x2, box-5x5, tripod-5x3, t-5x4, ball-5) or a
+    /// text grid with rows separated by '/', top row first ('#' voxel, '.' empty), e.g. "###/#.#".
+    #[arg(long, default_value = "biped-4x3")]
+    pub body: String,
+    /// Brain: `phase` (open-loop a = sin(2πt + πx/W)).
+    #[arg(long, default_value = "phase")]
+    pub brain: String,
+    /// Task: locomotion:<terrain>, terrain = flat | hilly-H-W[-SEED] | steppy-H-W[-SEED] | uphill-DEG | downhill-DEG.
+    #[arg(long, default_value = "locomotion:flat")]
+    pub task: String,
+    /// Sensors: uniform-<s1>+<s2>…-<noise σ>, spinedTouch-…, spinedTouchSighted-…, or empty.
+    #[arg(long, default_value = DEFAULT_SENSORS)]
+    pub sensors: String,
+    /// Episode length in simulated seconds.
+    #[arg(long, default_value_t = 30.0)]
+    pub duration: f64,
+    /// Initial seconds excluded from distance and velocity.
+    #[arg(long, default_value_t = 0.0)]
+    pub transient: f64,
+    /// Seed of the episode (random terrains, sensor noise).
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Physical preset: 2021 (thesis era, default) or 2022 (2D-VSR-Sim HEAD).
+    #[arg(long, default_value = "2021")]
+    pub preset: String,
+    /// Print the outcome as JSON.
+    #[arg(long)]
+    pub json: bool,
+    /// Render the episode to this file (.gif, .mp4 with ffmpeg, or .png for the last frame).
+    #[arg(long)]
+    pub video: Option<PathBuf>,
+}
+
+/// Parses `locomotion:<terrain>`.
+pub fn parse_task(s: &str) -> Result<Terrain, String> {
+    let (kind, terrain) = s.split_once(':').unwrap_or((s, "flat"));
+    if kind != "locomotion" {
+        return Err(format!("--task: unknown task '{kind}': expected locomotion:<terrain>"));
+    }
+    terrain.parse().map_err(|e| format!("--task: {e}"))
+}
+
+/// Builds the robot description from command-line strings; errors name the option.
+pub fn robot_from_args(body: &str, preset: &str, sensors: &str, brain: &str) -> Result<RobotSpec, String> {
+    Ok(RobotSpec {
+        body: Morphology::parse(body).map_err(|e| format!("--body: {e}"))?,
+        preset: preset.parse::<Preset>().map_err(|e| format!("--preset: {e}"))?,
+        voxel: None,
+        sensors: SensorConfig::parse(sensors).map_err(|e| format!("--sensors: {e}"))?,
+        brain: BrainSpec::parse(brain).map_err(|e| format!("--brain: {e}"))?,
+    })
+}
+
+/// Runs `vsrlab simulate`.
+pub fn run(a: SimulateArgs) -> Result<(), String> {
+    let robot = robot_from_args(&a.body, &a.preset, &a.sensors, &a.brain)?;
+    let task = Locomotion {
+        terrain: parse_task(&a.task)?,
+        duration: a.duration,
+        transient: a.transient,
+        ..Default::default()
+    };
+    let level = if a.video.is_some() { TraceLevel::Full } else { TraceLevel::None };
+    let start = Instant::now();
+    let outcome = locomotion::run(&robot, &task, a.seed, level).map_err(|e| e.to_string())?;
+    let wall = start.elapsed().as_secs_f64();
+    let mut video_note = None;
+    if let (Some(path), Some(trace)) = (&a.video, &outcome.trace) {
+        let info = vsrlab_render::save_video(trace, &vsrlab_render::RenderOptions::default(), path)
+            .map_err(|e| e.to_string())?;
+        video_note = Some(format!("{} ({} frames)", path.display(), info.frames));
+    }
+    if a.json {
+        let v = json!({
+            "body": a.body, "brain": a.brain, "task": a.task, "sensors": a.sensors, "preset": a.preset,
+            "seed": a.seed, "duration": a.duration, "transient": a.transient,
+            "distance": outcome.distance, "velocity": outcome.velocity, "elapsed": outcome.elapsed,
+            "steps": outcome.steps, "voxels": outcome.voxels, "wall_seconds": wall,
+            "video": a.video.as_ref().map(|p| p.display().to_string()),
+        });
+        println!("{}", serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?);
+    } else {
+        println!("body      {} ({} voxels, preset {})", a.body, outcome.voxels, a.preset);
+        println!("task      {} for {} s (seed {}, transient {} s)", a.task, a.duration, a.seed, a.transient);
+        println!("distance  {:.4}", outcome.distance);
+        println!("velocity  {:.4}", outcome.velocity);
+        println!("steps     {} in {:.3} s wall ({:.0} steps/s)", outcome.steps, wall, outcome.steps as f64 / wall);
+        if let Some(v) = video_note {
+            println!("video     {v}");
+        }
+    }
+    Ok(())
+}

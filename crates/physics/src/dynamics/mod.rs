@@ -1,0 +1,14 @@
+//! Dynamics: bodies, constraints and the solver that moves them.
+//!
+//! A step is a pipeline of named stages (see [`world::World::step`]): integrate forces, detect
+//! contacts, then several sub-steps each solving springs, ropes and contacts and integrating
+//! positions, then restitution and bookkeeping.
+
+pub(crate) mod broad_phase;
+pub mod builder;
+pub(crate) mod contact;
+pub(crate) mod rope;
+pub mod settings;
+pub(crate) mod soft;
+pub(crate) mod spring;
+pub mod world;

@@ -1,0 +1,99 @@
+//! World-wide simulation settings.
+
+use crate::math::Vec2;
+use serde::{Deserialize, Serialize};
+
+/// How a spring's stiffness k = M·ω² and damping c = 2·M·ζ·ω choose the mass M.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum SpringMassModel {
+    /// Effective mass of the constraint along its axis, including the rotational terms of the two
+    /// anchored parts (recomputed every step as the axis turns).
+    #[default]
+    EffectiveMass,
+    /// Reduced mass m₁·m₂/(m₁+m₂) of the two parts, ignoring anchor offsets.
+    ReducedMass,
+}
+
+/// Settings shared by the whole world. Units are the world's nominal units (length, mass, s).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct WorldSettings {
+    /// Time step of one [`crate::World::step`], in seconds.
+    pub dt: f64,
+    /// Number of sub-steps the constraint solver takes inside one step (≥ 1).
+    pub substeps: u32,
+    /// Gravity acceleration (length/s²); zero for a top-down world.
+    pub gravity: Vec2,
+    /// Largest distance a body may travel in one step; faster bodies are slowed down.
+    pub max_translation: f64,
+    /// Largest rotation (radians) a body may turn in one step.
+    pub max_rotation: f64,
+    /// Stiffness of contacts and ropes as a natural frequency, in Hz (capped at a quarter of the
+    /// sub-step rate).
+    pub contact_hertz: f64,
+    /// Damping ratio of contacts and ropes.
+    pub contact_damping_ratio: f64,
+    /// Largest speed (length/s) at which overlapping bodies are pushed apart.
+    pub contact_push_max: f64,
+    /// Relative normal speed (length/s) below which contacts do not bounce.
+    pub restitution_threshold: f64,
+    /// Gap (length) under which contacts are created before shapes actually touch.
+    pub speculative_distance: f64,
+    /// Gap (length) under which a shape counts as touching another.
+    pub touch_tolerance: f64,
+}
+
+impl Default for WorldSettings {
+    fn default() -> Self {
+        WorldSettings {
+            dt: 1.0 / 60.0,
+            substeps: 4,
+            gravity: Vec2::new(0.0, -9.8),
+            max_translation: 2.0,
+            max_rotation: std::f64::consts::FRAC_PI_2,
+            contact_hertz: 30.0,
+            contact_damping_ratio: 10.0,
+            contact_push_max: 3.0,
+            restitution_threshold: 1.0,
+            speculative_distance: 0.1,
+            touch_tolerance: 0.005,
+        }
+    }
+}
+
+impl WorldSettings {
+    /// Checks that every field is in range; the error names the field.
+    pub fn validate(&self) -> Result<(), String> {
+        let positive = [
+            ("dt", self.dt),
+            ("max_translation", self.max_translation),
+            ("max_rotation", self.max_rotation),
+            ("contact_hertz", self.contact_hertz),
+            ("contact_damping_ratio", self.contact_damping_ratio),
+            ("contact_push_max", self.contact_push_max),
+        ];
+        for (name, v) in positive {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(format!("{name} must be a positive number, got {v}"));
+            }
+        }
+        let non_negative = [
+            ("restitution_threshold", self.restitution_threshold),
+            ("speculative_distance", self.speculative_distance),
+            ("touch_tolerance", self.touch_tolerance),
+        ];
+        for (name, v) in non_negative {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(format!("{name} must be a non-negative number, got {v}"));
+            }
+        }
+        if self.substeps == 0 || self.substeps > 64 {
+            return Err(format!("substeps must be in 1..=64, got {}", self.substeps));
+        }
+        if !self.gravity.is_finite() {
+            return Err("gravity must be finite".into());
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,706 @@
+//! The world: simulated state, the step pipeline and queries.
+
+use super::broad_phase::{StaticIndex, SweepAndPrune};
+use super::builder::WorldBuilder;
+use super::contact::{apply_restitution, solve_contacts, ContactConstraint, ContactPass};
+use super::rope::{solve_ropes, Rope};
+use super::settings::WorldSettings;
+use super::soft::Softness;
+use super::spring::{prepare_springs, solve_springs, Spring, SpringModel};
+use crate::geometry::aabb::Aabb;
+use crate::geometry::collide::collide_polygons;
+use crate::geometry::raycast::ray_cast_polygon;
+use crate::geometry::shape::Polygon;
+use crate::math::{Rot, Vec2};
+use crate::PhysicsError;
+
+/// Handle to a part added with [`WorldBuilder::add_part`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct PartHandle(pub u32);
+/// Handle to a spring added with [`WorldBuilder::add_spring`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct SpringHandle(pub u32);
+/// Handle to a rope added with [`WorldBuilder::add_rope`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct RopeHandle(pub u32);
+
+const NONE: u32 = u32::MAX;
+
+/// Position, velocity and inverse mass of one body: everything the solver touches, together.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct BodyState {
+    pub pos: Vec2,
+    pub rot: Rot,
+    pub vel: Vec2,
+    pub omega: f64,
+    pub inv_mass: f64,
+    pub inv_inertia: f64,
+}
+
+/// Simulated rigid bodies. Body 0 is the static world (infinite mass, never moves).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Bodies {
+    pub state: Vec<BodyState>,
+    pub mass: Vec<f64>,
+    pub lin_damp: Vec<f64>,
+    pub ang_damp: Vec<f64>,
+    pub force: Vec<Vec2>,
+    pub torque: Vec<f64>,
+}
+
+impl Bodies {
+    fn push(&mut self, pos: Vec2, mass: f64, inertia: f64, lin_damp: f64, ang_damp: f64) {
+        self.state.push(BodyState {
+            pos,
+            rot: Rot::IDENTITY,
+            vel: Vec2::ZERO,
+            omega: 0.0,
+            inv_mass: if mass > 0.0 { 1.0 / mass } else { 0.0 },
+            inv_inertia: if inertia > 0.0 { 1.0 / inertia } else { 0.0 },
+        });
+        self.mass.push(mass);
+        self.lin_damp.push(lin_damp);
+        self.ang_damp.push(ang_damp);
+        self.force.push(Vec2::ZERO);
+        self.torque.push(0.0);
+    }
+
+    /// Number of bodies, the static world included.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.state.len()
+    }
+
+    /// Applies impulse `p` at arm `rb` of body b and −p at arm `ra` of body a.
+    #[inline(always)]
+    pub fn apply_impulse_pair(&mut self, a: usize, b: usize, ra: Vec2, rb: Vec2, p: Vec2) {
+        let sa = &mut self.state[a];
+        sa.vel -= p * sa.inv_mass;
+        sa.omega -= sa.inv_inertia * ra.cross(p);
+        let sb = &mut self.state[b];
+        sb.vel += p * sb.inv_mass;
+        sb.omega += sb.inv_inertia * rb.cross(p);
+    }
+}
+
+/// A simulated part: which body it belongs to and where it sits in that body.
+#[derive(Debug, Clone, Copy)]
+struct Part {
+    body: u32,
+    /// Part frame origin relative to the body's centre of mass, in body frame.
+    local: Vec2,
+    touching: bool,
+}
+
+/// A dynamic collision shape (one per part).
+#[derive(Debug, Clone, Copy)]
+struct Shape {
+    part: u32,
+    body: u32,
+    /// Polygon relative to the body's centre of mass, in body frame.
+    local: Polygon,
+    friction: f64,
+    restitution: f64,
+    group: u32,
+    collide_within_group: bool,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct StaticShape {
+    polygon: Polygon,
+    aabb: Aabb,
+    friction: f64,
+    restitution: f64,
+}
+
+/// A 2D world of rigid bodies, springs, ropes, contacts and static geometry.
+#[derive(Debug, Clone)]
+pub struct World {
+    settings: WorldSettings,
+    pub(crate) bodies: Bodies,
+    parts: Vec<Part>,
+    shapes: Vec<Shape>,
+    statics: Vec<StaticShape>,
+    static_index: StaticIndex,
+    springs: Vec<Spring>,
+    spring_models: Vec<SpringModel>,
+    spring_slot: Vec<u32>,
+    ropes: Vec<Rope>,
+    rope_slot: Vec<u32>,
+    /// Sorted keys (min part, max part) of part pairs that never collide.
+    excluded: Vec<u64>,
+    contacts: Vec<ContactConstraint>,
+    world_polys: Vec<Polygon>,
+    aabbs: Vec<Aabb>,
+    /// Bounding box of each dynamic body (index = body − 1).
+    body_aabbs: Vec<Aabb>,
+    /// Range of `shapes` owned by each body (shapes are sorted by body).
+    body_shapes: Vec<(u32, u32)>,
+    sap: SweepAndPrune,
+    step_count: u64,
+    time: f64,
+}
+
+fn pair_key(a: u32, b: u32) -> u64 {
+    ((a.min(b) as u64) << 32) | a.max(b) as u64
+}
+
+/// A permutation of constraints (given as body pairs) grouped by greedy colour, and the range of
+/// each colour in it: within a colour no two constraints share a dynamic body. Colours keep the
+/// original order inside them.
+fn color_order(pairs: &[(u32, u32)]) -> (Vec<usize>, Vec<(u32, u32)>) {
+    let n_bodies = pairs.iter().map(|&(a, b)| a.max(b) as usize + 1).max().unwrap_or(0);
+    // used[body] = bitset of colours already taken at that body (up to 64·k colours)
+    let mut used: Vec<Vec<u64>> = vec![Vec::new(); n_bodies];
+    let mut colors = Vec::with_capacity(pairs.len());
+    for &(a, b) in pairs {
+        let (a, b) = (a as usize, b as usize);
+        let mut c = 0;
+        loop {
+            let (w, bit) = (c / 64, 1u64 << (c % 64));
+            let taken = |v: &Vec<u64>| v.get(w).is_some_and(|x| x & bit != 0);
+            // the static world (body 0) never moves, so it does not constrain the order
+            if !(a != 0 && taken(&used[a]) || b != 0 && taken(&used[b])) {
+                break;
+            }
+            c += 1;
+        }
+        for body in [a, b] {
+            let v = &mut used[body];
+            if v.len() <= c / 64 {
+                v.resize(c / 64 + 1, 0);
+            }
+            v[c / 64] |= 1 << (c % 64);
+        }
+        colors.push(c);
+    }
+    let mut order: Vec<usize> = (0..pairs.len()).collect();
+    order.sort_by_key(|&i| colors[i]);
+    let mut ranges: Vec<(u32, u32)> = Vec::new();
+    for (k, &i) in order.iter().enumerate() {
+        match ranges.last_mut() {
+            Some(r) if colors[order[r.0 as usize]] == colors[i] => r.1 = k as u32 + 1,
+            _ => ranges.push((k as u32, k as u32 + 1)),
+        }
+    }
+    (order, ranges)
+}
+
+/// Rewrites handle → slot maps after constraints were permuted by `order` (new → old).
+fn remap_slots(slots: &mut [u32], order: &[usize]) {
+    let mut new_of_old = vec![0u32; order.len()];
+    for (new, &old) in order.iter().enumerate() {
+        new_of_old[old] = new as u32;
+    }
+    for s in slots.iter_mut().filter(|s| **s != NONE) {
+        *s = new_of_old[*s as usize];
+    }
+}
+
+/// Union–find root with path halving.
+fn find(parent: &mut [usize], mut i: usize) -> usize {
+    while parent[i] != i {
+        parent[i] = parent[parent[i]];
+        i = parent[i];
+    }
+    i
+}
+
+impl World {
+    pub(crate) fn from_builder(b: WorldBuilder) -> World {
+        let n = b.parts.len();
+        let mut parent: Vec<usize> = (0..n).collect();
+        for &(x, y) in &b.welds {
+            let (rx, ry) = (find(&mut parent, x.0 as usize), find(&mut parent, y.0 as usize));
+            if rx != ry {
+                parent[rx.max(ry)] = rx.min(ry);
+            }
+        }
+        // part mass properties in world frame (all parts start unrotated)
+        let props: Vec<(f64, Vec2, f64)> = b
+            .parts
+            .iter()
+            .map(|p| {
+                let (area, c, i) = p.shape.mass_properties();
+                (area * p.density, p.position + c, i * p.density)
+            })
+            .collect();
+        // one body per weld group, in order of first part
+        let mut bodies = Bodies::default();
+        bodies.push(Vec2::ZERO, 0.0, 0.0, 0.0, 0.0); // body 0: the static world
+        let roots: Vec<usize> = (0..n).map(|i| find(&mut parent, i)).collect();
+        let mut body_of_root = vec![NONE; n];
+        let mut part_body = vec![0u32; n];
+        for i in 0..n {
+            let r = roots[i];
+            if body_of_root[r] == NONE {
+                let members: Vec<usize> = (0..n).filter(|&j| roots[j] == r).collect();
+                let mass: f64 = members.iter().map(|&j| props[j].0).sum();
+                let com = members.iter().fold(Vec2::ZERO, |acc, &j| acc + props[j].1 * props[j].0) / mass;
+                let inertia: f64 = members
+                    .iter()
+                    .map(|&j| props[j].2 + props[j].0 * (props[j].1 - com).length_squared())
+                    .sum();
+                let lin = members.iter().map(|&j| b.parts[j].linear_damping * props[j].0).sum::<f64>() / mass;
+                let ang = members.iter().map(|&j| b.parts[j].angular_damping * props[j].0).sum::<f64>() / mass;
+                body_of_root[r] = bodies.len() as u32;
+                bodies.push(com, mass, inertia, lin, ang);
+            }
+            part_body[i] = body_of_root[r];
+        }
+        let parts: Vec<Part> = (0..n)
+            .map(|i| Part {
+                body: part_body[i],
+                local: b.parts[i].position - bodies.state[part_body[i] as usize].pos,
+                touching: false,
+            })
+            .collect();
+        let shapes: Vec<Shape> = (0..n)
+            .map(|i| {
+                let p = &b.parts[i];
+                Shape {
+                    part: i as u32,
+                    body: part_body[i],
+                    local: p.shape.transformed(Rot::IDENTITY, parts[i].local),
+                    friction: p.friction,
+                    restitution: p.restitution,
+                    group: p.group,
+                    collide_within_group: p.collide_within_group,
+                }
+            })
+            .collect();
+        let mut statics: Vec<StaticShape> = b
+            .statics
+            .iter()
+            .map(|s| StaticShape {
+                polygon: s.polygon,
+                aabb: Aabb::of_points(s.polygon.verts()),
+                friction: s.friction,
+                restitution: s.restitution,
+            })
+            .collect();
+        statics.sort_by(|x, y| x.aabb.min.x.total_cmp(&y.aabb.min.x));
+        let static_aabbs: Vec<Aabb> = statics.iter().map(|s| s.aabb).collect();
+        let mut excluded: Vec<u64> = b.excluded.iter().map(|&(x, y)| pair_key(x.0, y.0)).collect();
+        let mut springs = Vec::new();
+        let mut spring_models = Vec::new();
+        let mut spring_slot = Vec::new();
+        for s in &b.springs {
+            if !s.collide_connected {
+                excluded.push(pair_key(s.part_a.0, s.part_b.0));
+            }
+            let (pa, pb) = (s.part_a.0 as usize, s.part_b.0 as usize);
+            let (ba, bb) = (part_body[pa], part_body[pb]);
+            if ba == bb {
+                spring_slot.push(NONE);
+                continue;
+            }
+            let (ma, mb) = (props[pa].0, props[pb].0);
+            let world_a = b.parts[pa].position + s.anchor_a;
+            let world_b = b.parts[pb].position + s.anchor_b;
+            spring_slot.push(springs.len() as u32);
+            springs.push(Spring {
+                a: ba,
+                b: bb,
+                local_a: world_a - bodies.state[ba as usize].pos,
+                local_b: world_b - bodies.state[bb as usize].pos,
+                rest: s.rest_length,
+                bias_coef: 0.0,
+                mass: 0.0,
+            });
+            spring_models.push(SpringModel {
+                arm_a: world_a - props[pa].1,
+                arm_b: world_b - props[pb].1,
+                part_inv_mass_a: 1.0 / ma,
+                part_inv_inertia_a: 1.0 / props[pa].2,
+                part_inv_mass_b: 1.0 / mb,
+                part_inv_inertia_b: 1.0 / props[pb].2,
+                omega: 2.0 * std::f64::consts::PI * s.frequency,
+                zeta: s.damping_ratio,
+                model: s.mass_model,
+                reduced_mass: ma * mb / (ma + mb),
+            });
+        }
+        let mut ropes = Vec::new();
+        let mut rope_slot = Vec::new();
+        for r in &b.ropes {
+            if !r.collide_connected {
+                excluded.push(pair_key(r.part_a.0, r.part_b.0));
+            }
+            let (pa, pb) = (r.part_a.0 as usize, r.part_b.0 as usize);
+            let (ba, bb) = (part_body[pa], part_body[pb]);
+            if ba == bb {
+                rope_slot.push(NONE);
+                continue;
+            }
+            rope_slot.push(ropes.len() as u32);
+            ropes.push(Rope {
+                a: ba,
+                b: bb,
+                local_a: b.parts[pa].position + r.anchor_a - bodies.state[ba as usize].pos,
+                local_b: b.parts[pb].position + r.anchor_b - bodies.state[bb as usize].pos,
+                min_length: r.min_length,
+                impulse: 0.0,
+            });
+        }
+        excluded.sort_unstable();
+        excluded.dedup();
+        // order constraints so that neighbours in the solver loop touch different bodies: the
+        // result is the same Gauss–Seidel sweep, but the CPU can overlap independent constraints
+        let (order, _) = color_order(&springs.iter().map(|s| (s.a, s.b)).collect::<Vec<_>>());
+        let springs: Vec<Spring> = order.iter().map(|&i| springs[i]).collect();
+        let spring_models: Vec<SpringModel> = order.iter().map(|&i| spring_models[i]).collect();
+        remap_slots(&mut spring_slot, &order);
+        let (order, _) = color_order(&ropes.iter().map(|r| (r.a, r.b)).collect::<Vec<_>>());
+        let ropes: Vec<Rope> = order.iter().map(|&i| ropes[i].clone()).collect();
+        remap_slots(&mut rope_slot, &order);
+        let mut shapes = shapes;
+        shapes.sort_by_key(|s| s.body);
+        let mut body_shapes = vec![(0u32, 0u32); bodies.len()];
+        for (k, sh) in shapes.iter().enumerate() {
+            let r = &mut body_shapes[sh.body as usize];
+            if r.1 == 0 {
+                r.0 = k as u32;
+            }
+            r.1 = k as u32 + 1;
+        }
+        let n_bodies = bodies.len();
+        World {
+            settings: b.settings,
+            bodies,
+            world_polys: shapes.iter().map(|s| s.local).collect(),
+            aabbs: vec![Aabb { min: Vec2::ZERO, max: Vec2::ZERO }; shapes.len()],
+            sap: SweepAndPrune::new(n_bodies - 1),
+            body_aabbs: vec![Aabb { min: Vec2::ZERO, max: Vec2::ZERO }; n_bodies - 1],
+            body_shapes,
+            parts,
+            shapes,
+            static_index: StaticIndex::new(&static_aabbs),
+            statics,
+            springs,
+            spring_models,
+            spring_slot,
+            ropes,
+            rope_slot,
+            excluded,
+            contacts: Vec::new(),
+            step_count: 0,
+            time: 0.0,
+        }
+    }
+
+    /// The settings this world runs with.
+    pub fn settings(&self) -> &WorldSettings {
+        &self.settings
+    }
+    /// Simulated time so far, in seconds.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+    /// Number of steps taken so far.
+    pub fn step_count(&self) -> u64 {
+        self.step_count
+    }
+    /// Number of simulated rigid bodies (welded parts count once; the static world is excluded).
+    pub fn body_count(&self) -> usize {
+        self.bodies.len() - 1
+    }
+    /// Number of active springs (those joining two different bodies).
+    pub fn spring_count(&self) -> usize {
+        self.springs.len()
+    }
+    /// Number of contact manifolds found in the last step.
+    pub fn contact_count(&self) -> usize {
+        self.contacts.len()
+    }
+
+    /// Advances the world by one time step `dt`.
+    pub fn step(&mut self) -> Result<(), PhysicsError> {
+        self.integrate_velocities();
+        self.detect_contacts();
+        self.solve_substeps();
+        apply_restitution(&mut self.contacts, &mut self.bodies, self.settings.restitution_threshold);
+        self.update_touching();
+        self.step_count += 1;
+        self.time += self.settings.dt;
+        self.check_finite()
+    }
+
+    /// Gravity, external forces and damping, once per step (semi-implicit Euler).
+    fn integrate_velocities(&mut self) {
+        let dt = self.settings.dt;
+        let g = self.settings.gravity;
+        let b = &mut self.bodies;
+        for i in 1..b.len() {
+            let lin = (1.0 - dt * b.lin_damp[i]).clamp(0.0, 1.0);
+            let ang = (1.0 - dt * b.ang_damp[i]).clamp(0.0, 1.0);
+            b.state[i].vel = (b.state[i].vel + (g + b.force[i] * b.state[i].inv_mass) * dt) * lin;
+            b.state[i].omega = (b.state[i].omega + b.torque[i] * b.state[i].inv_inertia * dt) * ang;
+            b.force[i] = Vec2::ZERO;
+            b.torque[i] = 0.0;
+        }
+    }
+
+    /// Finds touching (or nearly touching) shape pairs and turns them into contact constraints.
+    fn detect_contacts(&mut self) {
+        self.contacts.clear();
+        let margin = self.settings.speculative_distance;
+        for (k, s) in self.shapes.iter().enumerate() {
+            let st = &self.bodies.state[s.body as usize];
+            let poly = s.local.transformed(st.rot, st.pos);
+            self.aabbs[k] = Aabb::of_points(poly.verts()).inflated(margin * 0.5);
+            self.world_polys[k] = poly;
+        }
+        for (b, &(lo, hi)) in self.body_shapes.iter().enumerate().skip(1) {
+            let boxes = &self.aabbs[lo as usize..hi as usize];
+            self.body_aabbs[b - 1] = boxes.iter().skip(1).fold(boxes[0], |acc, x| Aabb {
+                min: acc.min.min(x.min),
+                max: acc.max.max(x.max),
+            });
+        }
+        let Self {
+            shapes,
+            statics,
+            static_index,
+            world_polys,
+            aabbs,
+            body_aabbs,
+            body_shapes,
+            contacts,
+            bodies,
+            sap,
+            excluded,
+            ..
+        } = self;
+        for (k, s) in shapes.iter().enumerate() {
+            let bb = aabbs[k].inflated(margin * 0.5);
+            for st in &statics[static_index.candidates(bb.min.x, bb.max.x)] {
+                if !bb.overlaps(&st.aabb) {
+                    continue;
+                }
+                // static is A so that the normal points from the ground into the body
+                let m = collide_polygons(&st.polygon, &world_polys[k], margin);
+                if m.count > 0 {
+                    let friction = (st.friction * s.friction).sqrt();
+                    let restitution = st.restitution.max(s.restitution);
+                    contacts.push(ContactConstraint::new(bodies, &m, NONE, k as u32, 0, s.body, friction, restitution));
+                }
+            }
+        }
+        sap.for_each_pair(body_aabbs, |k| k as u32, |ba, bb| {
+            let (ra, rb) = (body_shapes[ba as usize + 1], body_shapes[bb as usize + 1]);
+            for i in ra.0..ra.1 {
+                for j in rb.0..rb.1 {
+                    let (si, sj) = (&shapes[i as usize], &shapes[j as usize]);
+                    if !aabbs[i as usize].overlaps(&aabbs[j as usize]) {
+                        continue;
+                    }
+                    if si.group == sj.group && !(si.collide_within_group && sj.collide_within_group) {
+                        continue;
+                    }
+                    if excluded.binary_search(&pair_key(si.part, sj.part)).is_ok() {
+                        continue;
+                    }
+                    let m = collide_polygons(&world_polys[i as usize], &world_polys[j as usize], margin);
+                    if m.count > 0 {
+                        let friction = (si.friction * sj.friction).sqrt();
+                        let restitution = si.restitution.max(sj.restitution);
+                        contacts.push(ContactConstraint::new(bodies, &m, i, j, si.body, sj.body, friction, restitution));
+                    }
+                }
+            }
+        });
+    }
+
+    /// Sub-steps: solve springs, ropes and contacts, integrate positions, relax contacts.
+    fn solve_substeps(&mut self) {
+        let s = &self.settings;
+        let n = s.substeps;
+        let h = s.dt / n as f64;
+        let hertz = s.contact_hertz.min(0.25 / h);
+        let soft = Softness::new(hertz, s.contact_damping_ratio, h);
+        let static_soft = Softness::new((2.0 * hertz).min(0.25 / h), s.contact_damping_ratio, h);
+        let mut pass = ContactPass {
+            soft,
+            static_soft,
+            inv_h: 1.0 / h,
+            push_max: s.contact_push_max,
+            use_bias: true,
+        };
+        let (max_v, max_w) = (s.max_translation / s.dt, s.max_rotation / s.dt);
+        for r in &mut self.ropes {
+            r.impulse = 0.0;
+        }
+        prepare_springs(&mut self.springs, &self.spring_models, &self.bodies, h);
+        for _ in 0..n {
+            solve_springs(&self.springs, &mut self.bodies);
+            solve_ropes(&mut self.ropes, &mut self.bodies, soft, h, pass.push_max, true);
+            pass.use_bias = true;
+            solve_contacts(&mut self.contacts, &mut self.bodies, &pass);
+            integrate_positions(&mut self.bodies, h, max_v, max_w);
+            pass.use_bias = false;
+            solve_contacts(&mut self.contacts, &mut self.bodies, &pass);
+        }
+    }
+
+    /// Marks parts that touch static geometry or a part of another group.
+    fn update_touching(&mut self) {
+        for p in &mut self.parts {
+            p.touching = false;
+        }
+        let tol = self.settings.touch_tolerance;
+        for c in &self.contacts {
+            let touching = c.points[..c.count]
+                .iter()
+                .any(|p| c.separation(&self.bodies, p) <= tol);
+            if !touching {
+                continue;
+            }
+            let sb = &self.shapes[c.shape_b as usize];
+            if c.shape_a == NONE {
+                self.parts[sb.part as usize].touching = true;
+            } else {
+                let sa = &self.shapes[c.shape_a as usize];
+                if sa.group != sb.group {
+                    self.parts[sa.part as usize].touching = true;
+                    self.parts[sb.part as usize].touching = true;
+                }
+            }
+        }
+    }
+
+    fn check_finite(&self) -> Result<(), PhysicsError> {
+        let b = &self.bodies;
+        for i in 1..b.len() {
+            if !(b.state[i].pos.is_finite() && b.state[i].vel.is_finite() && b.state[i].omega.is_finite() && b.state[i].rot.c.is_finite()) {
+                return Err(PhysicsError::NonFinite {
+                    step: self.step_count,
+                    body: i - 1,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    // ---- queries and control -------------------------------------------------------------
+
+    fn part(&self, h: PartHandle) -> &Part {
+        &self.parts[h.0 as usize]
+    }
+    /// World position of a part's frame origin.
+    pub fn part_position(&self, h: PartHandle) -> Vec2 {
+        let p = self.part(h);
+        let b = p.body as usize;
+        self.bodies.state[b].pos + self.bodies.state[b].rot.apply(p.local)
+    }
+    /// World angle of a part (radians, counter-clockwise).
+    pub fn part_angle(&self, h: PartHandle) -> f64 {
+        let r = self.bodies.state[self.part(h).body as usize].rot;
+        r.s.atan2(r.c)
+    }
+    /// World position of a point given in the part's frame.
+    pub fn part_point(&self, h: PartHandle, local: Vec2) -> Vec2 {
+        let p = self.part(h);
+        let b = p.body as usize;
+        self.bodies.state[b].pos + self.bodies.state[b].rot.apply(p.local + local)
+    }
+    /// Linear velocity of a part's frame origin.
+    pub fn part_velocity(&self, h: PartHandle) -> Vec2 {
+        let p = self.part(h);
+        let b = p.body as usize;
+        let r = self.bodies.state[b].rot.apply(p.local);
+        self.bodies.state[b].vel + Vec2::cross_scalar_left(self.bodies.state[b].omega, r)
+    }
+    /// Angular velocity of a part.
+    pub fn part_angular_velocity(&self, h: PartHandle) -> f64 {
+        self.bodies.state[self.part(h).body as usize].omega
+    }
+    /// Whether the part touched static geometry or another group's part in the last step.
+    pub fn part_touching(&self, h: PartHandle) -> bool {
+        self.part(h).touching
+    }
+    /// Whether two parts were welded into the same rigid body.
+    pub fn same_body(&self, a: PartHandle, b: PartHandle) -> bool {
+        self.part(a).body == self.part(b).body
+    }
+    /// Adds a force (applied at the part's frame origin) for the next step only.
+    pub fn apply_force(&mut self, h: PartHandle, force: Vec2) {
+        let p = *self.part(h);
+        let b = p.body as usize;
+        let r = self.bodies.state[b].rot.apply(p.local);
+        self.bodies.force[b] += force;
+        self.bodies.torque[b] += r.cross(force);
+    }
+    /// Moves every body rigidly by `delta` (used to place things before simulating).
+    pub fn translate_all(&mut self, delta: Vec2) {
+        for s in &mut self.bodies.state[1..] {
+            s.pos += delta;
+        }
+    }
+    /// Sets a spring's rest length (takes effect at the next step).
+    #[inline]
+    pub fn set_spring_rest_length(&mut self, h: SpringHandle, rest: f64) {
+        let slot = self.spring_slot[h.0 as usize];
+        if slot != NONE {
+            self.springs[slot as usize].rest = rest;
+        }
+    }
+    /// A spring's current rest length (`None` when its two parts were welded together).
+    pub fn spring_rest_length(&self, h: SpringHandle) -> Option<f64> {
+        let slot = self.spring_slot[h.0 as usize];
+        (slot != NONE).then(|| self.springs[slot as usize].rest)
+    }
+    /// Whether a rope is simulated (false when its two parts were welded together).
+    pub fn rope_active(&self, h: RopeHandle) -> bool {
+        self.rope_slot[h.0 as usize] != NONE
+    }
+    /// Distance from `origin` along unit `dir` to the first static polygon, within `max_distance`.
+    pub fn ray_cast_static(&self, origin: Vec2, dir: Vec2, max_distance: f64) -> Option<f64> {
+        let end = origin + dir * max_distance;
+        let (x0, x1) = (origin.x.min(end.x), origin.x.max(end.x));
+        let mut best: Option<f64> = None;
+        for st in &self.statics[self.static_index.candidates(x0, x1)] {
+            if let Some(t) = ray_cast_polygon(&st.polygon, origin, dir, max_distance) {
+                if best.is_none_or(|b| t < b) {
+                    best = Some(t);
+                }
+            }
+        }
+        best
+    }
+    /// The static polygons, in x order (for drawing).
+    pub fn static_polygons(&self) -> impl Iterator<Item = &Polygon> {
+        self.statics.iter().map(|s| &s.polygon)
+    }
+    /// Total kinetic energy (translational plus rotational).
+    pub fn kinetic_energy(&self) -> f64 {
+        let b = &self.bodies;
+        (1..b.len())
+            .map(|i| 0.5 * b.mass[i] * b.state[i].vel.length_squared() + 0.5 * b.state[i].omega * b.state[i].omega / b.state[i].inv_inertia.max(1e-300))
+            .sum()
+    }
+    /// Total mass of the dynamic bodies.
+    pub fn total_mass(&self) -> f64 {
+        self.bodies.mass[1..].iter().sum()
+    }
+}
+
+/// x += v·h and θ += ω·h, after clamping speeds to the per-step limits.
+fn integrate_positions(b: &mut Bodies, h: f64, max_v: f64, max_w: f64) {
+    for s in &mut b.state[1..] {
+        let v2 = s.vel.length_squared();
+        if v2 > max_v * max_v {
+            s.vel *= max_v / v2.sqrt();
+        }
+        if s.omega.abs() > max_w {
+            s.omega = max_w * s.omega.signum();
+        }
+        s.pos += s.vel * h;
+        // rotate the rotation by ω·h without trigonometry, then renormalise
+        let q = s.rot;
+        let w = s.omega * h;
+        let (c, sn) = (q.c - w * q.s, q.s + w * q.c);
+        let inv = 1.0 / (c * c + sn * sn).sqrt();
+        s.rot = Rot { c: c * inv, s: sn * inv };
+    }
+}

@@ -1,0 +1,160 @@
+//! Contact manifolds between two convex polygons (separating axis test plus edge clipping).
+
+use super::shape::Polygon;
+use crate::math::Vec2;
+
+/// One contact point of a manifold, in world coordinates.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ManifoldPoint {
+    /// World point midway between the two surfaces.
+    pub point: Vec2,
+    /// Signed distance along the normal (negative when overlapping).
+    pub separation: f64,
+}
+
+/// Up to two contact points sharing one normal, which points from the first shape to the second.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Manifold {
+    /// Unit normal from shape A towards shape B.
+    pub normal: Vec2,
+    /// Contact points; only the first `count` are valid.
+    pub points: [ManifoldPoint; 2],
+    /// Number of valid points (0, 1 or 2).
+    pub count: usize,
+}
+
+/// Largest separation of `b` from the edges of `a`: (separation, edge index of `a`).
+fn max_separation(a: &Polygon, b: &Polygon) -> (f64, usize) {
+    let mut best = f64::NEG_INFINITY;
+    let mut best_edge = 0;
+    for i in 0..a.count {
+        let n = a.normals[i];
+        let va = a.vertices[i];
+        let mut min_d = f64::INFINITY;
+        for vb in b.verts() {
+            let d = n.dot(*vb - va);
+            if d < min_d {
+                min_d = d;
+            }
+        }
+        if min_d > best {
+            best = min_d;
+            best_edge = i;
+        }
+    }
+    (best, best_edge)
+}
+
+/// Computes the contact manifold of two world-space polygons, keeping points closer than `margin`.
+pub fn collide_polygons(a: &Polygon, b: &Polygon, margin: f64) -> Manifold {
+    let mut out = Manifold::default();
+    let (sep_a, edge_a) = max_separation(a, b);
+    if sep_a > margin {
+        return out;
+    }
+    let (sep_b, edge_b) = max_separation(b, a);
+    if sep_b > margin {
+        return out;
+    }
+    // prefer A as reference unless B's axis is clearly better (avoids flip-flopping)
+    let (reference, incident, ref_edge, flip) = if sep_b > sep_a + 0.1 * 0.005 {
+        (b, a, edge_b, true)
+    } else {
+        (a, b, edge_a, false)
+    };
+    let n_ref = reference.normals[ref_edge];
+    // incident edge: the one whose normal is most anti-parallel to the reference normal
+    let mut inc_edge = 0;
+    let mut min_dot = f64::INFINITY;
+    for i in 0..incident.count {
+        let d = n_ref.dot(incident.normals[i]);
+        if d < min_dot {
+            min_dot = d;
+            inc_edge = i;
+        }
+    }
+    let i1 = incident.vertices[inc_edge];
+    let i2 = incident.vertices[(inc_edge + 1) % incident.count];
+    let r1 = reference.vertices[ref_edge];
+    let r2 = reference.vertices[(ref_edge + 1) % reference.count];
+    let tangent = (r2 - r1).normalize_or_zero();
+    // clip the incident segment to the slab [r1, r2] along the tangent
+    let lower = tangent.dot(r1);
+    let upper = tangent.dot(r2);
+    let (mut p1, mut p2) = (i1, i2);
+    let (d1, d2) = (tangent.dot(p1), tangent.dot(p2));
+    if !clip_segment(&mut p1, &mut p2, d1, d2, lower, upper) {
+        return out;
+    }
+    let normal = if flip { -n_ref } else { n_ref };
+    for p in [p1, p2] {
+        let separation = n_ref.dot(p - r1);
+        if separation <= margin {
+            let point = p - n_ref * (0.5 * separation);
+            out.points[out.count] = ManifoldPoint { point, separation };
+            out.count += 1;
+        }
+    }
+    out.normal = normal;
+    out
+}
+
+/// Clips segment p1–p2 (with tangent coordinates d1, d2) to [lower, upper]; false if nothing is left.
+fn clip_segment(p1: &mut Vec2, p2: &mut Vec2, d1: f64, d2: f64, lower: f64, upper: f64) -> bool {
+    let (a, b) = (*p1, *p2);
+    let (lo_d, hi_d) = (d1.min(d2), d1.max(d2));
+    if hi_d < lower || lo_d > upper {
+        return false;
+    }
+    let lerp = |t: f64| a + (b - a) * t;
+    let span = d2 - d1;
+    if span.abs() < 1e-12 {
+        return true;
+    }
+    let t_lower = (lower - d1) / span;
+    let t_upper = (upper - d1) / span;
+    let (t_min, t_max) = if span > 0.0 { (t_lower, t_upper) } else { (t_upper, t_lower) };
+    let t0 = t_min.max(0.0);
+    let t1 = t_max.min(1.0);
+    if t0 > t1 {
+        return false;
+    }
+    *p1 = lerp(t0);
+    *p2 = lerp(t1);
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn box_resting_on_box_gives_two_points_with_upward_normal() {
+        let ground = Polygon::rect(Vec2::new(0.0, -1.0), 10.0, 1.0);
+        let b = Polygon::square(Vec2::new(0.0, 0.49), 1.0);
+        let m = collide_polygons(&ground, &b, 0.05);
+        assert_eq!(m.count, 2);
+        assert!((m.normal - Vec2::new(0.0, 1.0)).length() < 1e-12);
+        for p in &m.points[..2] {
+            assert!((p.separation + 0.01).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn normal_points_from_first_to_second_shape() {
+        let a = Polygon::square(Vec2::new(0.0, 0.0), 1.0);
+        let b = Polygon::square(Vec2::new(0.95, 0.2), 1.0);
+        let m = collide_polygons(&a, &b, 0.0);
+        assert!(m.count > 0);
+        assert!(m.normal.x > 0.99);
+        let m2 = collide_polygons(&b, &a, 0.0);
+        assert!(m2.normal.x < -0.99);
+    }
+
+    #[test]
+    fn distant_boxes_do_not_touch() {
+        let a = Polygon::square(Vec2::new(0.0, 0.0), 1.0);
+        let b = Polygon::square(Vec2::new(3.0, 0.0), 1.0);
+        assert_eq!(collide_polygons(&a, &b, 0.1).count, 0);
+    }
+}

@@ -1,0 +1,127 @@
+//! Convex polygons, the one shape family the engine collides (boxes are polygons).
+
+use crate::math::{Rot, Vec2};
+use serde::{Deserialize, Serialize};
+
+/// Most vertices a collision polygon may have (keeps polygons inline, without heap storage).
+pub const MAX_POLYGON_VERTICES: usize = 8;
+
+/// A convex polygon in counter-clockwise order, in its owner's local frame.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Polygon {
+    /// Number of used vertices (3..=8).
+    pub count: usize,
+    /// Vertices, counter-clockwise; only the first `count` are used.
+    pub vertices: [Vec2; MAX_POLYGON_VERTICES],
+    /// Outward unit normal of edge i (from vertex i to vertex i+1).
+    pub normals: [Vec2; MAX_POLYGON_VERTICES],
+}
+
+impl Polygon {
+    /// An axis-aligned box of half extents `hx`, `hy` centred at `center`.
+    pub fn rect(center: Vec2, hx: f64, hy: f64) -> Polygon {
+        let pts = [
+            center + Vec2::new(-hx, -hy),
+            center + Vec2::new(hx, -hy),
+            center + Vec2::new(hx, hy),
+            center + Vec2::new(-hx, hy),
+        ];
+        Polygon::convex(&pts).expect("a box with positive extents is a valid polygon")
+    }
+
+    /// A square of side `side` centred at `center`.
+    pub fn square(center: Vec2, side: f64) -> Polygon {
+        Polygon::rect(center, side / 2.0, side / 2.0)
+    }
+
+    /// Builds a polygon from counter-clockwise convex points; `None` when there are fewer than 3 or
+    /// more than [`MAX_POLYGON_VERTICES`] points, or when the points are not strictly convex and CCW.
+    pub fn convex(points: &[Vec2]) -> Option<Polygon> {
+        let n = points.len();
+        if !(3..=MAX_POLYGON_VERTICES).contains(&n) {
+            return None;
+        }
+        let mut vertices = [Vec2::ZERO; MAX_POLYGON_VERTICES];
+        let mut normals = [Vec2::ZERO; MAX_POLYGON_VERTICES];
+        for i in 0..n {
+            vertices[i] = points[i];
+            let e = points[(i + 1) % n] - points[i];
+            if e.length() < 1e-12 {
+                return None;
+            }
+            normals[i] = Vec2::new(e.y, -e.x).normalize_or_zero();
+            let next = points[(i + 2) % n] - points[(i + 1) % n];
+            if e.cross(next) <= 0.0 {
+                return None;
+            }
+        }
+        Some(Polygon {
+            count: n,
+            vertices,
+            normals,
+        })
+    }
+
+    /// The used vertices.
+    #[inline]
+    pub fn verts(&self) -> &[Vec2] {
+        &self.vertices[..self.count]
+    }
+
+    /// Area, centroid and second moment of area about the centroid (for unit density).
+    pub fn mass_properties(&self) -> (f64, Vec2, f64) {
+        let v = self.verts();
+        let origin = v[0];
+        let mut area = 0.0;
+        let mut centroid = Vec2::ZERO;
+        let mut inertia = 0.0;
+        for i in 1..v.len() - 1 {
+            let e1 = v[i] - origin;
+            let e2 = v[i + 1] - origin;
+            let d = e1.cross(e2);
+            let tri_area = 0.5 * d;
+            area += tri_area;
+            centroid += (e1 + e2) * (tri_area / 3.0);
+            let intx2 = e1.x * e1.x + e2.x * e1.x + e2.x * e2.x;
+            let inty2 = e1.y * e1.y + e2.y * e1.y + e2.y * e2.y;
+            inertia += (0.25 / 3.0) * d * (intx2 + inty2);
+        }
+        let c = centroid / area;
+        // inertia is about `origin`; move it to the centroid
+        let i_centroid = inertia - area * c.length_squared();
+        (area, origin + c, i_centroid)
+    }
+
+    /// The polygon moved by a rotation and a translation.
+    pub fn transformed(&self, rot: Rot, pos: Vec2) -> Polygon {
+        let mut out = *self;
+        for i in 0..self.count {
+            out.vertices[i] = rot.apply(self.vertices[i]) + pos;
+            out.normals[i] = rot.apply(self.normals[i]);
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn square_mass_properties_match_formula() {
+        let p = Polygon::square(Vec2::new(1.0, 2.0), 1.2);
+        let (a, c, i) = p.mass_properties();
+        assert!((a - 1.44).abs() < 1e-12);
+        assert!((c - Vec2::new(1.0, 2.0)).length() < 1e-12);
+        // I = A (w² + h²) / 12 for unit density
+        assert!((i - 1.44 * (1.44 + 1.44) / 12.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn clockwise_or_degenerate_polygons_are_rejected() {
+        let cw = [Vec2::new(0.0, 0.0), Vec2::new(0.0, 1.0), Vec2::new(1.0, 0.0)];
+        assert!(Polygon::convex(&cw).is_none());
+        let line = [Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0), Vec2::new(2.0, 0.0)];
+        assert!(Polygon::convex(&line).is_none());
+    }
+}

@@ -1,0 +1,86 @@
+//! Calibration against the original simulator's reference outputs (vsr-model.md §9).
+
+mod common;
+
+use common::*;
+use vsrlab_body::Preset;
+use vsrlab_brain::BrainSpec;
+use vsrlab_tasks::{locomotion, TraceLevel};
+
+/// Mean area ratio at the last step and (min, max) over the last 2 s, plus centre y at the end and
+/// the lowest voxel corner at the first step.
+fn calibrate(body: &str, preset: Preset, brain: BrainSpec) -> (f64, f64, f64, f64, f64, u64) {
+    let o = locomotion::run(&robot(body, preset, brain), &task("flat", 5.0), 0, TraceLevel::Full).unwrap();
+    let tr = o.trace.unwrap();
+    let n = tr.voxels();
+    let mean = |k: usize| tr.area_ratios[k * n..(k + 1) * n].iter().sum::<f64>() / n as f64;
+    let last = tr.len() - 1;
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for k in 0..tr.len() {
+        if tr.times[k] >= 3.0 {
+            lo = lo.min(mean(k));
+            hi = hi.max(mean(k));
+        }
+    }
+    let first_min_y = tr.polygons_at(0).iter().flatten().map(|p| p.y).fold(f64::INFINITY, f64::min);
+    (mean(last), lo, hi, tr.centers[last].y, first_min_y, o.steps)
+}
+
+fn within(actual: f64, expected: f64, tol: f64, what: &str) {
+    assert!((actual - expected).abs() <= tol, "{what}: got {actual:.4}, reference {expected:.4} (tolerance {tol})");
+}
+
+/// (body, preset, area f=0, f=+1, f=−1, sine range or None, centre y at rest).
+type Reference = (&'static str, Preset, f64, f64, f64, Option<(f64, f64)>, f64);
+const REFERENCES: [Reference; 4] = [
+    ("box-1x1", Preset::Y2022, 0.9993, 0.7992, 1.1993, Some((0.8004, 1.1993)), 6.4939),
+    ("box-3x3", Preset::Y2022, 0.9979, 0.7979, 1.1978, None, 9.4850),
+    ("box-1x1", Preset::Y2021, 0.9987, 0.7737, 1.2241, Some((0.7750, 1.2251)), 6.4933),
+    ("box-3x3", Preset::Y2021, 0.9955, 0.7708, 1.2198, None, 9.4631),
+];
+
+#[test]
+fn constant_and_sine_actuation_match_reference_area_ratios() {
+    for (body, preset, a0, a_pos, a_neg, sine_range, rest_y) in REFERENCES {
+        let what = |s: &str| format!("{body} preset {preset} {s}");
+        let (a, _, _, y, first_min_y, steps) = calibrate(body, preset, BrainSpec::Constant { value: 0.0 });
+        assert_eq!(steps, 301, "5 s at 1/60 s is 301 steps, as in the original");
+        within(a, a0, 0.01, &what("f = 0 area"));
+        // rest height and first-step fall within 2 %
+        within(y, rest_y, 0.02 * rest_y, &what("centre y at rest"));
+        let fall = 6.0 - first_min_y;
+        within(fall, 6.0 - 5.9973, 0.02 * (6.0 - 5.9973), &what("first-step fall"));
+        within(calibrate(body, preset, BrainSpec::Constant { value: 1.0 }).0, a_pos, 0.01, &what("f = +1 area"));
+        within(calibrate(body, preset, BrainSpec::Constant { value: -1.0 }).0, a_neg, 0.01, &what("f = -1 area"));
+        if let Some((lo_ref, hi_ref)) = sine_range {
+            let (_, lo, hi, ..) = calibrate(body, preset, sine());
+            within(lo, lo_ref, 0.01, &what("1 Hz sine min area"));
+            within(hi, hi_ref, 0.01, &what("1 Hz sine max area"));
+        }
+    }
+}
+
+#[test]
+fn rest_height_is_close_to_nominal() {
+    // a resting 1×1 voxel sits on the ground at y = 5: its centre is near 5 + L/2 = 6.5
+    let (_, _, _, y, _, _) = calibrate("box-1x1", Preset::Y2021, BrainSpec::Constant { value: 0.0 });
+    assert!(y < 6.5 && y > 6.45, "{y}");
+}
+
+#[test]
+fn phase_gaits_walk_and_are_reported_beside_the_original() {
+    // The original's velocities (vsr-model.md §9) are single chaotic samples; we only require
+    // sane, finite, forward-moving gaits here and print ours beside theirs.
+    let cases = [
+        ("biped-4x3", Preset::Y2021, 0.1339),
+        ("worm-10x4", Preset::Y2021, 0.0493),
+        ("biped-4x3", Preset::Y2022, 0.6709),
+        ("worm-10x4", Preset::Y2022, 0.7035),
+    ];
+    for (body, preset, original) in cases {
+        let o = locomotion::run(&robot(body, preset, phase()), &task("flat", 30.0), 0, TraceLevel::None).unwrap();
+        println!("{body} preset {preset}: velocity {:.4} (original {original})", o.velocity);
+        assert_eq!(o.steps, 1801);
+        assert!(o.velocity.is_finite() && o.velocity.abs() < 3.0, "{body}: {}", o.velocity);
+    }
+}

@@ -8,6 +8,7 @@
 
 pub mod morphology;
 pub mod params;
+pub mod encodings;
 pub mod robot;
 pub mod sensors;
 pub mod voxel;

@@ -103,7 +103,7 @@ impl BrainSpec {
     }
 
     /// Builds the controller for a body.
-    pub fn build(&self, morphology: &Morphology) -> Result<Box<dyn Controller>, BrainError> {
+    pub fn build(&self, morphology: &Morphology, _readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
         match *self {
             BrainSpec::Phase {
                 frequency,

@@ -7,6 +7,7 @@ use std::time::Instant;
 use vsrlab_body::sensors::SensorConfig;
 use vsrlab_body::{Morphology, Preset};
 use vsrlab_brain::BrainSpec;
+use vsrlab_tasks::files::{load_robot, save_robot};
 use vsrlab_tasks::{locomotion, Locomotion, RobotSpec, Terrain, TraceLevel};
 
 /// Default sensors: area ratio, velocity and touch on every voxel (thesis ch. 3), no noise.
@@ -40,12 +41,21 @@ pub struct SimulateArgs {
     /// Physical preset: 2021 (thesis era, default) or 2022 (2D-VSR-Sim HEAD).
     #[arg(long, default_value = "2021")]
     pub preset: String,
+    /// Physics sub-steps per step (default: the engine's default).
+    #[arg(long)]
+    pub substeps: Option<u32>,
     /// Print the outcome as JSON.
     #[arg(long)]
     pub json: bool,
     /// Render the episode to this file (.gif, .mp4 with ffmpeg, or .png for the last frame).
     #[arg(long)]
     pub video: Option<PathBuf>,
+    /// Replay a robot file (JSON) instead of --body/--sensors/--brain/--preset.
+    #[arg(long, conflicts_with_all = ["body", "sensors", "brain", "preset"])]
+    pub robot: Option<PathBuf>,
+    /// Save the robot that was simulated as a robot file (JSON).
+    #[arg(long)]
+    pub save_robot: Option<PathBuf>,
 }
 
 /// Parses `locomotion:<terrain>`.
@@ -70,13 +80,26 @@ pub fn robot_from_args(body: &str, preset: &str, sensors: &str, brain: &str) -> 
 
 /// Runs `vsrlab simulate`.
 pub fn run(a: SimulateArgs) -> Result<(), String> {
-    let robot = robot_from_args(&a.body, &a.preset, &a.sensors, &a.brain)?;
-    let task = Locomotion {
+    let robot = match &a.robot {
+        Some(path) => load_robot(path).map_err(|e| e.to_string())?,
+        None => robot_from_args(&a.body, &a.preset, &a.sensors, &a.brain)?,
+    };
+    if let Some(path) = &a.save_robot {
+        save_robot(path, &robot, None).map_err(|e| e.to_string())?;
+    }
+    let body_name = match &a.robot {
+        Some(path) => path.display().to_string(),
+        None => a.body.clone(),
+    };
+    let mut task = Locomotion {
         terrain: parse_task(&a.task)?,
         duration: a.duration,
         transient: a.transient,
         ..Default::default()
     };
+    if let Some(n) = a.substeps {
+        task.physics.substeps = n;
+    }
     let level = if a.video.is_some() { TraceLevel::Full } else { TraceLevel::None };
     let start = Instant::now();
     let outcome = locomotion::run(&robot, &task, a.seed, level).map_err(|e| e.to_string())?;
@@ -89,7 +112,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     }
     if a.json {
         let v = json!({
-            "body": a.body, "brain": a.brain, "task": a.task, "sensors": a.sensors, "preset": a.preset,
+            "body": body_name, "brain": a.brain, "task": a.task, "sensors": a.sensors, "preset": a.preset,
             "seed": a.seed, "duration": a.duration, "transient": a.transient,
             "distance": outcome.distance, "velocity": outcome.velocity, "elapsed": outcome.elapsed,
             "steps": outcome.steps, "voxels": outcome.voxels, "wall_seconds": wall,
@@ -97,7 +120,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         });
         println!("{}", serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?);
     } else {
-        println!("body      {} ({} voxels, preset {})", a.body, outcome.voxels, a.preset);
+        println!("body      {} ({} voxels, preset {})", body_name, outcome.voxels, robot.preset);
         println!("task      {} for {} s (seed {}, transient {} s)", a.task, a.duration, a.seed, a.transient);
         println!("distance  {:.4}", outcome.distance);
         println!("velocity  {:.4}", outcome.velocity);

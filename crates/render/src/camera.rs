@@ -101,10 +101,7 @@ pub(crate) fn view_at(trace: &Trace, boxes: &[Option<BBox>], step: usize, width:
         }
     }
     let min_size = side(trace);
-    let b = union.unwrap_or(BBox {
-        min: Vec2::new(0.0, 0.0),
-        max: Vec2::new(10.0 * min_size, 10.0 * min_size),
-    });
+    let b = union.unwrap_or(BBox { min: Vec2::new(0.0, 0.0), max: Vec2::new(10.0 * min_size, 10.0 * min_size) });
     let c = (b.min + b.max) * 0.5;
     let mut w = (b.max.x - b.min.x).max(min_size) * ENLARGE;
     let mut h = (b.max.y - b.min.y).max(min_size) * ENLARGE;

@@ -50,10 +50,10 @@ pub(crate) fn area_color(ratio: f64) -> Rgba {
     }
 }
 
-fn paint(c: Rgba) -> Paint<'static> {
+fn paint(c: Rgba, anti_alias: bool) -> Paint<'static> {
     let mut p = Paint::default();
     p.set_color(Color::from_rgba8(c[0], c[1], c[2], c[3]));
-    p.anti_alias = true;
+    p.anti_alias = anti_alias;
     p
 }
 
@@ -69,11 +69,12 @@ pub(crate) struct Scene<'a> {
     /// First reading of each voxel within a step's readings.
     reading_offsets: Vec<usize>,
     readings_per_step: usize,
+    anti_alias: bool,
 }
 
 impl<'a> Scene<'a> {
-    /// Prepares to draw frames of `trace` (sizes clamped to 1..=MAX_SIDE).
-    pub fn new(trace: &'a Trace, opts: &RenderOptions) -> Self {
+    /// Prepares to draw frames of `trace` (sizes clamped to 1..=MAX_SIDE), anti-aliased or not.
+    pub fn new(trace: &'a Trace, opts: &RenderOptions, anti_alias: bool) -> Self {
         let mut opts = opts.clone();
         opts.width = opts.width.clamp(1, MAX_SIDE);
         opts.height = opts.height.clamp(1, MAX_SIDE);
@@ -83,7 +84,7 @@ impl<'a> Scene<'a> {
             reading_offsets.push(total);
             total += n;
         }
-        Scene { trace, opts, boxes: camera::step_boxes(trace), reading_offsets, readings_per_step: total }
+        Scene { trace, opts, boxes: camera::step_boxes(trace), reading_offsets, readings_per_step: total, anti_alias }
     }
 
     /// A blank pixmap of the frame size.
@@ -94,6 +95,7 @@ impl<'a> Scene<'a> {
     /// Draws step `step` (clamped to the last one) into `pm`, which must have the frame size.
     pub fn draw(&self, step: usize, pm: &mut Pixmap) {
         let t = self.trace;
+        let paint = |c: Rgba| paint(c, self.anti_alias);
         let [r, g, b, a] = BACKGROUND;
         pm.fill(Color::from_rgba8(r, g, b, a));
         let step = step.min(t.len().saturating_sub(1));
@@ -133,6 +135,7 @@ impl<'a> Scene<'a> {
 
     /// The ground polygon: the terrain within (a margin around) the view, closed below it.
     fn draw_ground(&self, pm: &mut Pixmap, view: &View) {
+        let paint = |c: Rgba| paint(c, self.anti_alias);
         let margin = (view.max_x - view.min_x) * 0.1;
         let pts = clip_polyline(&self.trace.terrain, view.min_x - margin, view.max_x + margin);
         let (Some(first), Some(last)) = (pts.first(), pts.last()) else { return };
@@ -161,9 +164,10 @@ impl<'a> Scene<'a> {
     fn draw_sensors(&self, pm: &mut Pixmap, view: &View, step: usize, polys: &[[Vec2; 4]]) {
         let t = self.trace;
         let px = |p: Vec2| view.to_pixel(p, self.opts.width);
-        let fill = paint(SENSOR_FILL);
-        let outline = paint(SENSOR_OUTLINE);
-        let thin = stroke(0.75);
+        let fill = paint(SENSOR_FILL, self.anti_alias);
+        let outline = paint(SENSOR_OUTLINE, self.anti_alias);
+        // without anti-aliasing, strokes under a pixel wide come out dotted
+        let thin = stroke(if self.anti_alias { 0.75 } else { 1.0 });
         for (v, poly) in polys.iter().enumerate() {
             let count = t.readings_per_voxel.get(v).copied().unwrap_or(0);
             if count == 0 {
@@ -192,7 +196,7 @@ impl<'a> Scene<'a> {
     fn draw_lidar(&self, pm: &mut Pixmap, view: &View, step: usize, polys: &[[Vec2; 4]]) {
         let t = self.trace;
         let px = |p: Vec2| view.to_pixel(p, self.opts.width);
-        let red = paint(LIDAR);
+        let red = paint(LIDAR, self.anti_alias);
         let line = stroke(1.0);
         let hit_radius = (0.25 * view.scale(self.opts.width)) as f32;
         for (i, ray) in t.rays.iter().enumerate() {
@@ -228,14 +232,12 @@ impl<'a> Scene<'a> {
     fn draw_time_bar(&self, pm: &mut Pixmap, step: usize) {
         let times = &self.trace.times;
         let (Some(&t0), Some(&t1), Some(&now)) = (times.first(), times.last(), times.get(step)) else { return };
-        if !(t1 > t0) {
+        if t1 <= t0 || t1.is_nan() || t0.is_nan() {
             return;
         }
         let frac = ((now - t0) / (t1 - t0)).clamp(0.0, 1.0) as f32;
         if let Some(rect) = Rect::from_xywh(0.0, 0.0, self.opts.width as f32 * frac, TIME_BAR_HEIGHT) {
-            let mut p = paint(TIME_BAR);
-            p.anti_alias = false;
-            pm.fill_rect(rect, &p, Transform::identity(), None);
+            pm.fill_rect(rect, &paint(TIME_BAR, false), Transform::identity(), None);
         }
     }
 
@@ -269,7 +271,7 @@ fn area(poly: &[Vec2; 4]) -> f64 {
 
 /// A pie slice centred on `c` (world), from world angle `a0` to `a1` (counter-clockwise).
 fn sector(c: Vec2, radius: f64, a0: f64, a1: f64, px: impl Fn(Vec2) -> (f32, f32)) -> Option<tiny_skia::Path> {
-    if !(radius > 0.0) {
+    if radius.is_nan() || radius <= 0.0 {
         return None;
     }
     let segments = ((a1 - a0).abs() / (PI / 24.0)).ceil().max(2.0) as usize;
@@ -310,7 +312,7 @@ fn clip_polyline(pts: &[Vec2], x0: f64, x1: f64) -> Vec<Vec2> {
 /// Draws step `step` of `trace` (clamped to the last step; an empty trace gives the background
 /// only). Sizes outside 1..=[`MAX_SIDE`] are clamped.
 pub fn render_frame(trace: &Trace, step: usize, opts: &RenderOptions) -> Pixmap {
-    let scene = Scene::new(trace, opts);
+    let scene = Scene::new(trace, opts, true);
     let mut pm = scene.new_pixmap();
     scene.draw(step, &mut pm);
     pm
@@ -460,7 +462,7 @@ mod tests {
             let (x, y) = view.to_pixel(p, opts.width);
             (-1..=1).any(|dx| {
                 let c = rgb(pm, (x as i32 + dx) as u32, y as u32);
-                c[0] > 200 && c[1] < 120 && c[2] < 120
+                c[0] > 200 && c[1] < 170 && c[2] < 140
             })
         };
         let pm = render_frame(&t, 0, &opts);

@@ -69,10 +69,7 @@ impl RenderOptions {
             }
         }
         if !(self.fps.is_finite() && self.fps > 0.0 && self.fps <= 1000.0) {
-            return Err(RenderError::InvalidOptions(format!(
-                "fps must be a number in (0, 1000], got {}",
-                self.fps
-            )));
+            return Err(RenderError::InvalidOptions(format!("fps must be a number in (0, 1000], got {}", self.fps)));
         }
         Ok(())
     }
@@ -171,7 +168,8 @@ pub fn frame_steps(trace: &Trace, fps: f64) -> Vec<usize> {
     let (Some(&t0), Some(&t1)) = (times.first(), times.last()) else {
         return Vec::new();
     };
-    if !(fps.is_finite() && fps > 0.0) || !(t1 >= t0) {
+    let usable = fps.is_finite() && fps > 0.0 && t1.is_finite() && t0.is_finite() && t1 >= t0;
+    if !usable {
         return vec![0];
     }
     let frames = ((t1 - t0) * fps + 1e-6).floor() as usize + 1;
@@ -198,20 +196,13 @@ fn check_trace(trace: &Trace, path: &Path) -> Result<(), RenderError> {
         return Err(problem("the trace has no voxels"));
     }
     if trace.polygons.len() < trace.len() * trace.voxels() {
-        return Err(problem(
-            "the trace has no voxel polygons for every step (record it with trace level \"full\")",
-        ));
+        return Err(problem("the trace has no voxel polygons for every step (record it with trace level \"full\")"));
     }
     Ok(())
 }
 
 /// Draws step `step` of `trace` and writes it as a PNG to `path` (atomically).
-pub fn save_png(
-    trace: &Trace,
-    step: usize,
-    opts: &RenderOptions,
-    path: impl AsRef<Path>,
-) -> Result<(), RenderError> {
+pub fn save_png(trace: &Trace, step: usize, opts: &RenderOptions, path: impl AsRef<Path>) -> Result<(), RenderError> {
     let path = path.as_ref();
     opts.validate()?;
     check_trace(trace, path)?;
@@ -222,8 +213,10 @@ pub fn save_png(
     file::write_atomically(path, |w| file::write_png(w, &pixmap, path))
 }
 
-/// Renders the whole episode to `path`, the format chosen by its extension: `.gif` (animated,
-/// built in), `.mp4` (needs `ffmpeg` on PATH) or `.png` (only the last step). The file is written
+/// Renders the whole episode to `path`, the format chosen by its extension (any case): `.gif`
+/// (built in; looping, 128 colours, drawn without anti-aliasing to stay small; GIF timing is in
+/// hundredths of a second, so above 50 fps it plays slower), `.mp4` (H.264, or MPEG-4 part 2, by
+/// piping frames to `ffmpeg` found on PATH) or `.png` (only the last step). The file is written
 /// atomically: nothing is left at `path` (nor beside it) when an error is returned.
 pub fn save_video(trace: &Trace, opts: &RenderOptions, path: impl AsRef<Path>) -> Result<VideoInfo, RenderError> {
     let path = path.as_ref();
@@ -252,9 +245,7 @@ pub fn save_video(trace: &Trace, opts: &RenderOptions, path: impl AsRef<Path>) -
             steps.len()
         }
     };
-    let bytes = std::fs::metadata(path)
-        .map_err(|source| RenderError::Io { path: path.to_path_buf(), source })?
-        .len();
+    let bytes = std::fs::metadata(path).map_err(|source| RenderError::Io { path: path.to_path_buf(), source })?.len();
     Ok(VideoInfo {
         path: path.to_path_buf(),
         format,

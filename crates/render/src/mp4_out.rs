@@ -28,7 +28,13 @@ fn codec_args(ffmpeg: &Path, path: &Path) -> Result<&'static [&'static str], Ren
         .stdin(Stdio::null())
         .stderr(Stdio::null())
         .output()
-        .map_err(|e| RenderError::EncoderUnavailable(format!("cannot write {}: cannot run {}: {e}", path.display(), ffmpeg.display())))?;
+        .map_err(|e| {
+            RenderError::EncoderUnavailable(format!(
+                "cannot write {}: cannot run {}: {e}",
+                path.display(),
+                ffmpeg.display()
+            ))
+        })?;
     let list = String::from_utf8_lossy(&out.stdout);
     let has = |name: &str| list.lines().any(|l| l.split_whitespace().nth(1) == Some(name));
     if has("libx264") {
@@ -67,7 +73,13 @@ pub(crate) fn save_mp4(trace: &Trace, steps: &[usize], opts: &RenderOptions, pat
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
-        .map_err(|e| RenderError::EncoderUnavailable(format!("cannot write {}: cannot run {}: {e}", path.display(), ffmpeg.display())))?;
+        .map_err(|e| {
+            RenderError::EncoderUnavailable(format!(
+                "cannot write {}: cannot run {}: {e}",
+                path.display(),
+                ffmpeg.display()
+            ))
+        })?;
     let mut stderr = child.stderr.take().expect("stderr is piped");
     let reader = std::thread::spawn(move || {
         let mut s = String::new();
@@ -75,7 +87,7 @@ pub(crate) fn save_mp4(trace: &Trace, steps: &[usize], opts: &RenderOptions, pat
         s
     });
     let mut stdin = child.stdin.take().expect("stdin is piped");
-    let scene = Scene::new(trace, opts);
+    let scene = Scene::new(trace, opts, true);
     let mut pm = scene.new_pixmap();
     let mut rgb = Vec::new();
     let mut write_error = None;

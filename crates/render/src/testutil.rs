@@ -3,9 +3,9 @@
 use vsrlab_physics::Vec2;
 use vsrlab_tasks::Trace;
 
-/// Flat terrain at y = 5 between two walls, as the locomotion task builds it.
+/// Flat terrain at y = 5 between two walls far from the robot.
 pub fn flat_terrain() -> Vec<Vec2> {
-    vec![Vec2::new(0.0, 100.0), Vec2::new(10.0, 5.0), Vec2::new(1990.0, 5.0), Vec2::new(2000.0, 100.0)]
+    vec![Vec2::new(-1000.0, 100.0), Vec2::new(-990.0, 5.0), Vec2::new(1990.0, 5.0), Vec2::new(2000.0, 100.0)]
 }
 
 /// The outer polygon (NW, NE, SE, SW) of a 3×3 voxel whose bottom-left corner is at (x, 5).

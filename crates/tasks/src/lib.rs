@@ -4,6 +4,7 @@
 //! places the robot, and steps physics → sense → control → set rest lengths (vsr-model.md §2.2).
 #![warn(missing_docs)]
 
+pub mod files;
 pub mod java_random;
 pub mod locomotion;
 pub mod outcome;

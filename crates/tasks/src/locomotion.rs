@@ -105,9 +105,10 @@ pub fn run(robot: &RobotSpec, task: &Locomotion, seed: u64, trace_level: TraceLe
     let mut world = builder.build().map_err(|e| EpisodeError::Invalid(e.to_string()))?;
     let mut sensors = SensorSuite::new(&robot.sensors, &robot.body, seed)
         .map_err(|e| EpisodeError::Invalid(format!("robot.sensors: {e}")))?;
+    let per_voxel: Vec<usize> = (0..robot.body.voxel_count()).map(|v| sensors.readings_per_voxel(v)).collect();
     let mut brain = robot
         .brain
-        .build(&robot.body)
+        .build(&robot.body, &per_voxel)
         .map_err(|e| EpisodeError::Invalid(format!("robot.{e}")))?;
     brain.reset();
 

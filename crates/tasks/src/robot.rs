@@ -1,7 +1,7 @@
 //! A robot description: body, physical preset, sensors and brain.
 
 use serde::{Deserialize, Serialize};
-use vsrlab_body::sensors::SensorConfig;
+use vsrlab_body::sensors::{SensorConfig, SensorSuite};
 use vsrlab_body::{Morphology, Preset, VoxelParams};
 use vsrlab_brain::BrainSpec;
 
@@ -27,5 +27,23 @@ impl RobotSpec {
     /// The voxel constants in force: explicit ones, or the preset's.
     pub fn voxel_params(&self) -> VoxelParams {
         self.voxel.clone().unwrap_or_else(|| VoxelParams::preset(self.preset))
+    }
+}
+
+impl RobotSpec {
+    /// Readings per voxel (grid order) that this robot's sensors produce.
+    pub fn readings_per_voxel(&self) -> Result<Vec<usize>, String> {
+        let sensors = SensorSuite::new(&self.sensors, &self.body, 0).map_err(|e| format!("robot.sensors: {e}"))?;
+        Ok((0..self.body.voxel_count()).map(|v| sensors.readings_per_voxel(v)).collect())
+    }
+
+    /// Checks that body, constants, sensors and brain fit together; the error names the field.
+    pub fn validate(&self) -> Result<(), String> {
+        self.voxel_params().validate().map_err(|e| format!("robot.{e}"))?;
+        let per_voxel = self.readings_per_voxel()?;
+        self.brain
+            .build(&self.body, &per_voxel)
+            .map(|_| ())
+            .map_err(|e| format!("robot.{e}"))
     }
 }

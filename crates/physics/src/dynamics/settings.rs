@@ -23,6 +23,11 @@ pub struct WorldSettings {
     pub dt: f64,
     /// Number of sub-steps the constraint solver takes inside one step (≥ 1).
     pub substeps: u32,
+    /// Gauss–Seidel iterations over the springs in each sub-step (≥ 1).
+    pub iterations: u32,
+    /// Largest distance (length) the fastest body should travel in one sub-step: faster steps get
+    /// more sub-steps, up to four times `substeps` (0 = always exactly `substeps`).
+    pub substep_travel: f64,
     /// Gravity acceleration (length/s²); zero for a top-down world.
     pub gravity: Vec2,
     /// Largest distance a body may travel in one step; faster bodies are slowed down.
@@ -49,12 +54,14 @@ impl Default for WorldSettings {
         WorldSettings {
             dt: 1.0 / 60.0,
             substeps: 4,
+            iterations: 1,
+            substep_travel: 0.0,
             gravity: Vec2::new(0.0, -9.8),
             max_translation: 2.0,
             max_rotation: std::f64::consts::FRAC_PI_2,
-            contact_hertz: 30.0,
+            contact_hertz: 60.0,
             contact_damping_ratio: 10.0,
-            contact_push_max: 3.0,
+            contact_push_max: 12.0,
             restitution_threshold: 1.0,
             speculative_distance: 0.1,
             touch_tolerance: 0.005,
@@ -81,6 +88,7 @@ impl WorldSettings {
         let non_negative = [
             ("restitution_threshold", self.restitution_threshold),
             ("speculative_distance", self.speculative_distance),
+            ("substep_travel", self.substep_travel),
             ("touch_tolerance", self.touch_tolerance),
         ];
         for (name, v) in non_negative {
@@ -90,6 +98,9 @@ impl WorldSettings {
         }
         if self.substeps == 0 || self.substeps > 64 {
             return Err(format!("substeps must be in 1..=64, got {}", self.substeps));
+        }
+        if self.iterations == 0 || self.iterations > 64 {
+            return Err(format!("iterations must be in 1..=64, got {}", self.iterations));
         }
         if !self.gravity.is_finite() {
             return Err("gravity must be finite".into());

@@ -6,7 +6,7 @@ use super::contact::{apply_restitution, solve_contacts, ContactConstraint, Conta
 use super::rope::{solve_ropes, Rope};
 use super::settings::WorldSettings;
 use super::soft::Softness;
-use super::spring::{prepare_springs, solve_springs, Spring, SpringModel};
+use super::spring::{solve_springs, Spring, SpringModel};
 use crate::geometry::aabb::Aabb;
 use crate::geometry::collide::collide_polygons;
 use crate::geometry::raycast::ray_cast_polygon;
@@ -99,6 +99,8 @@ struct Shape {
     body: u32,
     /// Polygon relative to the body's centre of mass, in body frame.
     local: Polygon,
+    /// Largest distance of a vertex from the body's centre of mass.
+    radius: f64,
     friction: f64,
     restitution: f64,
     group: u32,
@@ -132,6 +134,8 @@ pub struct World {
     contacts: Vec<ContactConstraint>,
     world_polys: Vec<Polygon>,
     aabbs: Vec<Aabb>,
+    /// Speculative margin of each shape this step.
+    margins: Vec<f64>,
     /// Bounding box of each dynamic body (index = body − 1).
     body_aabbs: Vec<Aabb>,
     /// Range of `shapes` owned by each body (shapes are sorted by body).
@@ -262,6 +266,7 @@ impl World {
                     part: i as u32,
                     body: part_body[i],
                     local: p.shape.transformed(Rot::IDENTITY, parts[i].local),
+                    radius: p.shape.verts().iter().map(|v| (*v + parts[i].local).length()).fold(0.0, f64::max),
                     friction: p.friction,
                     restitution: p.restitution,
                     group: p.group,
@@ -307,6 +312,8 @@ impl World {
                 rest: s.rest_length,
                 bias_coef: 0.0,
                 mass: 0.0,
+                gamma: 0.0,
+                acc: 0.0,
             });
             spring_models.push(SpringModel {
                 arm_a: world_a - props[pa].1,
@@ -341,6 +348,7 @@ impl World {
                 local_b: b.parts[pb].position + r.anchor_b - bodies.state[bb as usize].pos,
                 min_length: r.min_length,
                 impulse: 0.0,
+                active: true,
             });
         }
         excluded.sort_unstable();
@@ -370,6 +378,7 @@ impl World {
             bodies,
             world_polys: shapes.iter().map(|s| s.local).collect(),
             aabbs: vec![Aabb { min: Vec2::ZERO, max: Vec2::ZERO }; shapes.len()],
+            margins: vec![0.0; shapes.len()],
             sap: SweepAndPrune::new(n_bodies - 1),
             body_aabbs: vec![Aabb { min: Vec2::ZERO, max: Vec2::ZERO }; n_bodies - 1],
             body_shapes,
@@ -444,11 +453,16 @@ impl World {
     /// Finds touching (or nearly touching) shape pairs and turns them into contact constraints.
     fn detect_contacts(&mut self) {
         self.contacts.clear();
-        let margin = self.settings.speculative_distance;
+        // speculative margin of each shape: the base gap plus how far its body may travel this
+        // step, so fast bodies meet contacts before they overlap (no tunnelling or deep overlaps)
+        let base = self.settings.speculative_distance;
+        let dt = self.settings.dt;
         for (k, s) in self.shapes.iter().enumerate() {
             let st = &self.bodies.state[s.body as usize];
             let poly = s.local.transformed(st.rot, st.pos);
-            self.aabbs[k] = Aabb::of_points(poly.verts()).inflated(margin * 0.5);
+            let reach = s.radius * st.omega.abs() + st.vel.length();
+            self.margins[k] = 0.5 * base + reach * dt;
+            self.aabbs[k] = Aabb::of_points(poly.verts()).inflated(self.margins[k]);
             self.world_polys[k] = poly;
         }
         for (b, &(lo, hi)) in self.body_shapes.iter().enumerate().skip(1) {
@@ -470,16 +484,17 @@ impl World {
             bodies,
             sap,
             excluded,
+            margins,
             ..
         } = self;
         for (k, s) in shapes.iter().enumerate() {
-            let bb = aabbs[k].inflated(margin * 0.5);
+            let bb = aabbs[k].inflated(0.5 * base);
             for st in &statics[static_index.candidates(bb.min.x, bb.max.x)] {
                 if !bb.overlaps(&st.aabb) {
                     continue;
                 }
                 // static is A so that the normal points from the ground into the body
-                let m = collide_polygons(&st.polygon, &world_polys[k], margin);
+                let m = collide_polygons(&st.polygon, &world_polys[k], 0.5 * base + margins[k]);
                 if m.count > 0 {
                     let friction = (st.friction * s.friction).sqrt();
                     let restitution = st.restitution.max(s.restitution);
@@ -501,6 +516,7 @@ impl World {
                     if excluded.binary_search(&pair_key(si.part, sj.part)).is_ok() {
                         continue;
                     }
+                    let margin = margins[i as usize] + margins[j as usize];
                     let m = collide_polygons(&world_polys[i as usize], &world_polys[j as usize], margin);
                     if m.count > 0 {
                         let friction = (si.friction * sj.friction).sqrt();
@@ -515,7 +531,7 @@ impl World {
     /// Sub-steps: solve springs, ropes and contacts, integrate positions, relax contacts.
     fn solve_substeps(&mut self) {
         let s = &self.settings;
-        let n = s.substeps;
+        let n = self.substep_count();
         let h = s.dt / n as f64;
         let hertz = s.contact_hertz.min(0.25 / h);
         let soft = Softness::new(hertz, s.contact_damping_ratio, h);
@@ -528,18 +544,32 @@ impl World {
             use_bias: true,
         };
         let (max_v, max_w) = (s.max_translation / s.dt, s.max_rotation / s.dt);
-        for r in &mut self.ropes {
-            r.impulse = 0.0;
-        }
-        prepare_springs(&mut self.springs, &self.spring_models, &self.bodies, h);
-        for _ in 0..n {
-            solve_springs(&self.springs, &mut self.bodies);
-            solve_ropes(&mut self.ropes, &mut self.bodies, soft, h, pass.push_max, true);
+        for sub in 0..n {
+            for it in 0..s.iterations {
+                solve_springs(&mut self.springs, &self.spring_models, &mut self.bodies, h, sub == 0 && it == 0, it == 0);
+            }
+            solve_ropes(&mut self.ropes, &mut self.bodies, soft, h, s.dt, pass.push_max, true, sub == 0);
             pass.use_bias = true;
             solve_contacts(&mut self.contacts, &mut self.bodies, &pass);
             integrate_positions(&mut self.bodies, h, max_v, max_w);
             pass.use_bias = false;
             solve_contacts(&mut self.contacts, &mut self.bodies, &pass);
+        }
+    }
+
+    /// Sub-steps for this step: the configured number, or more when the fastest body would travel
+    /// farther than `substep_travel` in one sub-step (capped at four times the configured number).
+    fn substep_count(&self) -> u32 {
+        let s = &self.settings;
+        if s.substep_travel <= 0.0 {
+            return s.substeps;
+        }
+        let fastest = self.bodies.state[1..].iter().map(|b| b.vel.length_squared()).fold(0.0, f64::max).sqrt();
+        let wanted = (fastest * s.dt / s.substep_travel).ceil();
+        if wanted.is_finite() {
+            (wanted as u32).clamp(s.substeps, 4 * s.substeps)
+        } else {
+            s.substeps
         }
     }
 

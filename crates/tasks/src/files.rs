@@ -1,0 +1,104 @@
+//! Files: atomic writes, and robot files (a robot as small, human-readable JSON).
+
+use crate::robot::RobotSpec;
+use serde::{Deserialize, Serialize};
+use std::io::Write;
+use std::path::Path;
+
+/// Format tag written at the top of every robot file.
+pub const ROBOT_FORMAT: &str = "vsrlab-robot/1";
+
+/// Why a file could not be read or written.
+#[derive(Debug, thiserror::Error)]
+pub enum FileError {
+    /// The operating system refused.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The OS error.
+        source: std::io::Error,
+    },
+    /// The content is not a valid robot file; the message names the field.
+    #[error("{path}: {msg}")]
+    Invalid {
+        /// The file.
+        path: String,
+        /// What is wrong, naming the field (and line, for syntax errors).
+        msg: String,
+    },
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so that a
+/// reader never sees a half-written file and a failure leaves nothing behind.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+/// On-disk form of a robot.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RobotFile {
+    format: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    note: Option<String>,
+    robot: RobotSpec,
+}
+
+/// Serialises a robot to pretty JSON (floats written in shortest round-trip form).
+pub fn robot_to_json(robot: &RobotSpec, note: Option<&str>) -> String {
+    let file = RobotFile {
+        format: ROBOT_FORMAT.to_string(),
+        note: note.map(str::to_string),
+        robot: robot.clone(),
+    };
+    serde_json::to_string_pretty(&file).expect("robot specs always serialise")
+}
+
+/// Parses and validates a robot from JSON text; `origin` names the source in errors.
+pub fn robot_from_json(text: &str, origin: &str) -> Result<RobotSpec, FileError> {
+    let invalid = |msg: String| FileError::Invalid {
+        path: origin.to_string(),
+        msg,
+    };
+    let de = &mut serde_json::Deserializer::from_str(text);
+    let file: RobotFile = serde_path_to_error::deserialize(de).map_err(|e| {
+        let path = e.path().to_string();
+        let inner = e.into_inner();
+        invalid(format!("field '{path}' (line {}, column {}): {inner}", inner.line(), inner.column()))
+    })?;
+    if file.format != ROBOT_FORMAT {
+        return Err(invalid(format!("field 'format': expected \"{ROBOT_FORMAT}\", got \"{}\"", file.format)));
+    }
+    file.robot.validate().map_err(invalid)?;
+    Ok(file.robot)
+}
+
+/// Saves a robot file atomically.
+pub fn save_robot(path: &Path, robot: &RobotSpec, note: Option<&str>) -> Result<(), FileError> {
+    write_atomic(path, robot_to_json(robot, note).as_bytes()).map_err(|source| FileError::Io {
+        path: path.display().to_string(),
+        source,
+    })
+}
+
+/// Loads and validates a robot file.
+pub fn load_robot(path: &Path) -> Result<RobotSpec, FileError> {
+    let text = std::fs::read_to_string(path).map_err(|source| FileError::Io {
+        path: path.display().to_string(),
+        source,
+    })?;
+    robot_from_json(&text, &path.display().to_string())
+}

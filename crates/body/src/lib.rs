@@ -6,13 +6,13 @@
 //! holds morphologies (named shapes and text grids) and sensors.
 #![warn(missing_docs)]
 
+pub mod encodings;
 pub mod morphology;
 pub mod params;
-pub mod encodings;
 pub mod robot;
 pub mod sensors;
 pub mod voxel;
 
 pub use morphology::{Morphology, MorphologyError};
 pub use params::{Preset, VoxelParams};
-pub use robot::{Vsr, VoxelState};
+pub use robot::{VoxelState, Vsr};

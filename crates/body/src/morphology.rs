@@ -57,7 +57,11 @@ impl From<Morphology> for MorphologyText {
 
 impl Morphology {
     /// Builds and validates a morphology from a predicate over (x, y), y = 0 at the bottom.
-    pub fn from_fn(width: usize, height: usize, f: impl Fn(usize, usize) -> bool) -> Result<Morphology, MorphologyError> {
+    pub fn from_fn(
+        width: usize,
+        height: usize,
+        f: impl Fn(usize, usize) -> bool,
+    ) -> Result<Morphology, MorphologyError> {
         let mut cells = vec![false; width * height];
         for y in 0..height {
             for x in 0..width {
@@ -84,7 +88,11 @@ impl Morphology {
     pub fn parse(s: &str) -> Result<Morphology, MorphologyError> {
         let t = s.trim();
         if t.contains('\n') || t.contains('/') || t.contains('#') || t.chars().all(|c| c == '.') {
-            let rows: Vec<String> = t.split(['\n', '/']).map(|r| r.trim().to_string()).filter(|r| !r.is_empty()).collect();
+            let rows: Vec<String> = t
+                .split(['\n', '/'])
+                .map(|r| r.trim().to_string())
+                .filter(|r| !r.is_empty())
+                .collect();
             return Morphology::from_rows(&rows);
         }
         Morphology::named(t)
@@ -159,7 +167,11 @@ impl Morphology {
     pub fn to_rows(&self) -> Vec<String> {
         (0..self.height)
             .rev()
-            .map(|y| (0..self.width).map(|x| if self.has(x, y) { '#' } else { '.' }).collect())
+            .map(|y| {
+                (0..self.width)
+                    .map(|x| if self.has(x, y) { '#' } else { '.' })
+                    .collect()
+            })
             .collect()
     }
 
@@ -262,9 +274,18 @@ mod tests {
     fn empty_disconnected_and_malformed_bodies_are_rejected() {
         assert_eq!(Morphology::parse("...\n..."), Err(MorphologyError::Empty));
         assert_eq!(Morphology::parse("#.#"), Err(MorphologyError::Disconnected(2)));
-        assert!(matches!(Morphology::parse("#x#"), Err(MorphologyError::BadGrid { row: 1, col: 2, .. })));
-        assert!(matches!(Morphology::parse("##\n#"), Err(MorphologyError::BadGrid { row: 2, .. })));
-        assert!(matches!(Morphology::parse("snake-3x3"), Err(MorphologyError::BadName(_))));
+        assert!(matches!(
+            Morphology::parse("#x#"),
+            Err(MorphologyError::BadGrid { row: 1, col: 2, .. })
+        ));
+        assert!(matches!(
+            Morphology::parse("##\n#"),
+            Err(MorphologyError::BadGrid { row: 2, .. })
+        ));
+        assert!(matches!(
+            Morphology::parse("snake-3x3"),
+            Err(MorphologyError::BadName(_))
+        ));
         assert!(matches!(Morphology::parse("box-0x3"), Err(MorphologyError::BadName(_))));
         // diagonal contact is not a connection
         assert_eq!(Morphology::parse("#.\n.#"), Err(MorphologyError::Disconnected(2)));

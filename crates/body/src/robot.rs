@@ -56,7 +56,13 @@ fn kind_index(k: SpringKind) -> usize {
 impl Vsr {
     /// Adds the robot's parts, springs, ropes and welds to `builder`. The grid's lower-left corner
     /// is placed at `origin`; `group` identifies the robot for touch sensing and self-collision.
-    pub fn assemble(builder: &mut WorldBuilder, morphology: &Morphology, params: &VoxelParams, origin: Vec2, group: u32) -> Vsr {
+    pub fn assemble(
+        builder: &mut WorldBuilder,
+        morphology: &Morphology,
+        params: &VoxelParams,
+        origin: Vec2,
+        group: u32,
+    ) -> Vsr {
         let l = params.side_length;
         let m = params.corner_side();
         let density = params.voxel_mass / 4.0 / (m * m);

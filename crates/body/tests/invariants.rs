@@ -5,9 +5,10 @@ use vsrlab_body::{Morphology, Preset, VoxelParams, Vsr};
 use vsrlab_physics::{Vec2, World, WorldBuilder, WorldSettings};
 
 fn body_strategy() -> impl Strategy<Value = Morphology> {
-    (1usize..=5, 1usize..=5, proptest::collection::vec(any::<bool>(), 25)).prop_filter_map("connected", |(w, h, bits)| {
-        Morphology::from_fn(w, h, |x, y| bits[y * 5 + x] || (x == 0 && y == 0)).ok()
-    })
+    (1usize..=5, 1usize..=5, proptest::collection::vec(any::<bool>(), 25))
+        .prop_filter_map("connected", |(w, h, bits)| {
+            Morphology::from_fn(w, h, |x, y| bits[y * 5 + x] || (x == 0 && y == 0)).ok()
+        })
 }
 
 fn floating_world(m: &Morphology, preset: Preset) -> (World, Vsr) {

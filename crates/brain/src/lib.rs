@@ -97,13 +97,20 @@ impl BrainSpec {
             ("phase", None) => Ok(BrainSpec::default()),
             ("constant", Some(v)) => Ok(BrainSpec::Constant { value: number(v)? }),
             ("random", None) => Ok(BrainSpec::Random { period: 0.0, seed: 0 }),
-            ("random", Some(p)) => Ok(BrainSpec::Random { period: number(p)?, seed: 0 }),
+            ("random", Some(p)) => Ok(BrainSpec::Random {
+                period: number(p)?,
+                seed: 0,
+            }),
             _ => Err(BrainError::Unknown(s.to_string())),
         }
     }
 
     /// Builds the controller for a body.
-    pub fn build(&self, morphology: &Morphology, _readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
+    pub fn build(
+        &self,
+        morphology: &Morphology,
+        _readings_per_voxel: &[usize],
+    ) -> Result<Box<dyn Controller>, BrainError> {
         match *self {
             BrainSpec::Phase {
                 frequency,
@@ -111,7 +118,12 @@ impl BrainSpec {
                 phase_x,
                 phase_y,
             } => {
-                for (field, v) in [("frequency", frequency), ("amplitude", amplitude), ("phase_x", phase_x), ("phase_y", phase_y)] {
+                for (field, v) in [
+                    ("frequency", frequency),
+                    ("amplitude", amplitude),
+                    ("phase_x", phase_x),
+                    ("phase_y", phase_y),
+                ] {
                     if !v.is_finite() {
                         return Err(BrainError::Invalid {
                             field,
@@ -119,7 +131,9 @@ impl BrainSpec {
                         });
                     }
                 }
-                Ok(Box::new(PhaseController::for_morphology(morphology, frequency, amplitude, phase_x, phase_y)))
+                Ok(Box::new(PhaseController::for_morphology(
+                    morphology, frequency, amplitude, phase_x, phase_y,
+                )))
             }
             BrainSpec::Constant { value } => {
                 if !value.is_finite() {

@@ -71,10 +71,25 @@ fn episode(robot: &RobotSpec, task: &Locomotion, seed: u64) -> Result<u64, Strin
 }
 
 #[allow(clippy::too_many_arguments)]
-fn row(body: &str, terrain: &str, voxels: usize, mode: &'static str, threads: usize, episodes: usize, steps: u64, cpu: f64, wall: f64, dt: f64) -> Row {
+fn row(
+    body: &str,
+    terrain: &str,
+    voxels: usize,
+    mode: &'static str,
+    threads: usize,
+    episodes: usize,
+    steps: u64,
+    cpu: f64,
+    wall: f64,
+    dt: f64,
+) -> Row {
     // single-threaded rates use CPU time (robust to other load on the machine); parallel rates use
     // wall time (throughput of the whole machine); the cross-simulator unit always uses CPU time
-    let steps_per_s = if mode == "single" { steps as f64 / cpu } else { steps as f64 / wall };
+    let steps_per_s = if mode == "single" {
+        steps as f64 / cpu
+    } else {
+        steps as f64 / wall
+    };
     Row {
         robot: body.into(),
         terrain: terrain.into(),
@@ -93,7 +108,9 @@ fn row(body: &str, terrain: &str, voxels: usize, mode: &'static str, threads: us
 
 /// Runs `vsrlab bench`.
 pub fn run(a: BenchArgs) -> Result<(), String> {
-    let threads = a.threads.unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1));
+    let threads = a
+        .threads
+        .unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1));
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
@@ -116,7 +133,7 @@ pub fn run(a: BenchArgs) -> Result<(), String> {
         let voxels = robot.body.voxel_count();
         let dt = task.physics.dt;
         episode(&robot, &task, 0)?; // warm-up
-        // single thread: run episodes until min_seconds of CPU time
+                                    // single thread: run episodes until min_seconds of CPU time
         let (c0, w0) = (thread_cpu_seconds(), Instant::now());
         let (mut episodes, mut steps) = (0usize, 0u64);
         while episodes == 0 || thread_cpu_seconds() - c0 < a.min_seconds {
@@ -128,8 +145,12 @@ pub fn run(a: BenchArgs) -> Result<(), String> {
         if !a.single_only {
             let n = (episodes * threads).max(threads);
             let (c0, w0) = (process_cpu_seconds(), Instant::now());
-            let results: Result<Vec<u64>, String> =
-                pool.install(|| (0..n).into_par_iter().map(|i| episode(&robot, &task, i as u64)).collect());
+            let results: Result<Vec<u64>, String> = pool.install(|| {
+                (0..n)
+                    .into_par_iter()
+                    .map(|i| episode(&robot, &task, i as u64))
+                    .collect()
+            });
             let steps: u64 = results?.iter().sum();
             let (cpu, wall) = (process_cpu_seconds() - c0, w0.elapsed().as_secs_f64());
             rows.push(row(body, terrain, voxels, "parallel", threads, n, steps, cpu, wall, dt));
@@ -147,7 +168,16 @@ pub fn run(a: BenchArgs) -> Result<(), String> {
 fn print_table(rows: &[Row]) {
     println!(
         "{:<10} {:<11} {:>6} {:<8} {:>7} {:>8} {:>10} {:>14} {:>16} {:>8}",
-        "robot", "terrain", "voxels", "mode", "threads", "episodes", "steps/s", "voxel-steps/s", "voxel·s/CPU-s", "speedup"
+        "robot",
+        "terrain",
+        "voxels",
+        "mode",
+        "threads",
+        "episodes",
+        "steps/s",
+        "voxel-steps/s",
+        "voxel·s/CPU-s",
+        "speedup"
     );
     for r in rows {
         let speedup = rows
@@ -157,7 +187,16 @@ fn print_table(rows: &[Row]) {
             .unwrap_or(1.0);
         println!(
             "{:<10} {:<11} {:>6} {:<8} {:>7} {:>8} {:>10.0} {:>14.0} {:>16.0} {:>7.2}x",
-            r.robot, r.terrain, r.voxels, r.mode, r.threads, r.episodes, r.steps_per_s, r.voxel_steps_per_s, r.voxel_seconds_per_cpu_s, speedup
+            r.robot,
+            r.terrain,
+            r.voxels,
+            r.mode,
+            r.threads,
+            r.episodes,
+            r.steps_per_s,
+            r.voxel_steps_per_s,
+            r.voxel_seconds_per_cpu_s,
+            speedup
         );
     }
 }

@@ -100,7 +100,11 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     if let Some(n) = a.substeps {
         task.physics.substeps = n;
     }
-    let level = if a.video.is_some() { TraceLevel::Full } else { TraceLevel::None };
+    let level = if a.video.is_some() {
+        TraceLevel::Full
+    } else {
+        TraceLevel::None
+    };
     let start = Instant::now();
     let outcome = locomotion::run(&robot, &task, a.seed, level).map_err(|e| e.to_string())?;
     let wall = start.elapsed().as_secs_f64();
@@ -120,11 +124,22 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         });
         println!("{}", serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?);
     } else {
-        println!("body      {} ({} voxels, preset {})", body_name, outcome.voxels, robot.preset);
-        println!("task      {} for {} s (seed {}, transient {} s)", a.task, a.duration, a.seed, a.transient);
+        println!(
+            "body      {} ({} voxels, preset {})",
+            body_name, outcome.voxels, robot.preset
+        );
+        println!(
+            "task      {} for {} s (seed {}, transient {} s)",
+            a.task, a.duration, a.seed, a.transient
+        );
         println!("distance  {:.4}", outcome.distance);
         println!("velocity  {:.4}", outcome.velocity);
-        println!("steps     {} in {:.3} s wall ({:.0} steps/s)", outcome.steps, wall, outcome.steps as f64 / wall);
+        println!(
+            "steps     {} in {:.3} s wall ({:.0} steps/s)",
+            outcome.steps,
+            wall,
+            outcome.steps as f64 / wall
+        );
         if let Some(v) = video_note {
             println!("video     {v}");
         }

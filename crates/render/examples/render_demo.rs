@@ -55,7 +55,11 @@ fn synthetic(seconds: f64) -> Trace {
     let readings_per_voxel: Vec<usize> = cells.iter().map(|&(_, j)| if j + 1 == h { 3 } else { 2 }).collect();
     let rays: Vec<RayInfo> = [-PI / 3.0, -PI / 6.0, 0.0, PI / 6.0]
         .iter()
-        .map(|&a| RayInfo { voxel: w * h - 1, relative_angle: a, range: 15.0 })
+        .map(|&a| RayInfo {
+            voxel: w * h - 1,
+            relative_angle: a,
+            range: 15.0,
+        })
         .collect();
     let mut tr = Trace {
         dt,
@@ -71,26 +75,39 @@ fn synthetic(seconds: f64) -> Trace {
         let t = k as f64 * dt;
         let x0 = 20.0 + 1.2 * t + 0.4 * (2.0 * PI * t).sin();
         let theta = 0.12 * (1.3 * t).sin();
-        let ground = (0..=15).map(|q| height_at(&terrain, x0 + q as f64)).fold(f64::MIN, f64::max);
+        let ground = (0..=15)
+            .map(|q| height_at(&terrain, x0 + q as f64))
+            .fold(f64::MIN, f64::max);
         let origin = Vec2::new(x0, ground + 0.4 + 0.3 * (2.0 * PI * t).cos().max(0.0));
-        let rot = |p: Vec2| Vec2::new(p.x * theta.cos() - p.y * theta.sin(), p.x * theta.sin() + p.y * theta.cos());
+        let rot = |p: Vec2| {
+            Vec2::new(
+                p.x * theta.cos() - p.y * theta.sin(),
+                p.x * theta.sin() + p.y * theta.cos(),
+            )
+        };
         tr.times.push(t);
         let mut center = Vec2::ZERO;
         for (v, &(i, j)) in cells.iter().enumerate() {
             let s = 1.0 + 0.15 * (2.0 * PI * t - i as f64 * 0.9 + j as f64).sin();
             let c = Vec2::new((i as f64 + 0.5) * side, (h as f64 - 0.5 - j as f64) * side);
             let half = side * s / 2.0;
-            let corners =
-                [Vec2::new(-half, half), Vec2::new(half, half), Vec2::new(half, -half), Vec2::new(-half, -half)];
+            let corners = [
+                Vec2::new(-half, half),
+                Vec2::new(half, half),
+                Vec2::new(half, -half),
+                Vec2::new(-half, -half),
+            ];
             let poly = corners.map(|q| origin + rot(c + q));
             tr.polygons.push(poly);
             tr.area_ratios.push(s * s);
             tr.angles.push(theta);
-            tr.touching.push(j + 1 == h && poly[3].y - height_at(&terrain, poly[3].x) < 0.5);
+            tr.touching
+                .push(j + 1 == h && poly[3].y - height_at(&terrain, poly[3].x) < 0.5);
             tr.actuations.push(0.0);
             center = center + origin + rot(c);
             for r in 0..tr.readings_per_voxel[v] {
-                tr.readings.push((0.5 + 0.5 * (3.0 * t + v as f64 + r as f64 * 2.0).sin()) as f32);
+                tr.readings
+                    .push((0.5 + 0.5 * (3.0 * t + v as f64 + r as f64 * 2.0).sin()) as f32);
             }
         }
         tr.centers.push(center * (1.0 / cells.len() as f64));
@@ -99,7 +116,8 @@ fn synthetic(seconds: f64) -> Trace {
             let p = polys[ray.voxel];
             let c = (p[0] + p[1] + p[2] + p[3]) * 0.25;
             let a = theta + ray.relative_angle;
-            tr.ray_distances.push(cast(&terrain, c, Vec2::new(a.cos(), a.sin()), ray.range) as f32);
+            tr.ray_distances
+                .push(cast(&terrain, c, Vec2::new(a.cos(), a.sin()), ray.range) as f32);
         }
     }
     tr
@@ -108,7 +126,11 @@ fn synthetic(seconds: f64) -> Trace {
 fn main() {
     let trace = synthetic(30.0);
     let plain = std::env::var_os("DEMO_PLAIN").is_some();
-    let opts = RenderOptions { draw_sensors: !plain, draw_lidar: !plain, ..RenderOptions::default() };
+    let opts = RenderOptions {
+        draw_sensors: !plain,
+        draw_lidar: !plain,
+        ..RenderOptions::default()
+    };
     for out in std::env::args().skip(1) {
         let start = Instant::now();
         match save_video(&trace, &opts, &out) {

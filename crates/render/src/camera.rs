@@ -101,7 +101,10 @@ pub(crate) fn view_at(trace: &Trace, boxes: &[Option<BBox>], step: usize, width:
         }
     }
     let min_size = side(trace);
-    let b = union.unwrap_or(BBox { min: Vec2::new(0.0, 0.0), max: Vec2::new(10.0 * min_size, 10.0 * min_size) });
+    let b = union.unwrap_or(BBox {
+        min: Vec2::new(0.0, 0.0),
+        max: Vec2::new(10.0 * min_size, 10.0 * min_size),
+    });
     let c = (b.min + b.max) * 0.5;
     let mut w = (b.max.x - b.min.x).max(min_size) * ENLARGE;
     let mut h = (b.max.y - b.min.y).max(min_size) * ENLARGE;
@@ -111,7 +114,12 @@ pub(crate) fn view_at(trace: &Trace, boxes: &[Option<BBox>], step: usize, width:
     } else {
         h = w / aspect;
     }
-    View { min_x: c.x - w / 2.0, min_y: c.y - h / 2.0, max_x: c.x + w / 2.0, max_y: c.y + h / 2.0 }
+    View {
+        min_x: c.x - w / 2.0,
+        min_y: c.y - h / 2.0,
+        max_x: c.x + w / 2.0,
+        max_y: c.y + h / 2.0,
+    }
 }
 
 /// The rectangle of the world that [`render_frame`](crate::render_frame) shows at `step`: the union
@@ -119,7 +127,13 @@ pub(crate) fn view_at(trace: &Trace, boxes: &[Option<BBox>], step: usize, width:
 /// centre and padded to the image's aspect ratio.
 pub fn camera_view(trace: &Trace, step: usize, opts: &RenderOptions) -> View {
     let boxes = step_boxes(trace);
-    view_at(trace, &boxes, step.min(trace.len().saturating_sub(1)), opts.width, opts.height)
+    view_at(
+        trace,
+        &boxes,
+        step.min(trace.len().saturating_sub(1)),
+        opts.width,
+        opts.height,
+    )
 }
 
 #[cfg(test)]
@@ -150,7 +164,10 @@ mod tests {
         for p in now.iter().chain(two_s_ago.iter()) {
             assert!(v.contains(*p), "{p:?} not in {v:?}");
         }
-        assert!(!older.iter().all(|p| v.contains(*p)), "a box 4 s old is still fully in view");
+        assert!(
+            !older.iter().all(|p| v.contains(*p)),
+            "a box 4 s old is still fully in view"
+        );
     }
 
     #[test]

@@ -58,7 +58,12 @@ fn paint(c: Rgba, anti_alias: bool) -> Paint<'static> {
 }
 
 fn stroke(width: f32) -> Stroke {
-    Stroke { width, line_cap: LineCap::Round, line_join: LineJoin::Round, ..Stroke::default() }
+    Stroke {
+        width,
+        line_cap: LineCap::Round,
+        line_join: LineJoin::Round,
+        ..Stroke::default()
+    }
 }
 
 /// Everything about a trace that does not change from frame to frame.
@@ -84,7 +89,14 @@ impl<'a> Scene<'a> {
             reading_offsets.push(total);
             total += n;
         }
-        Scene { trace, opts, boxes: camera::step_boxes(trace), reading_offsets, readings_per_step: total, anti_alias }
+        Scene {
+            trace,
+            opts,
+            boxes: camera::step_boxes(trace),
+            reading_offsets,
+            readings_per_step: total,
+            anti_alias,
+        }
     }
 
     /// A blank pixmap of the frame size.
@@ -118,10 +130,24 @@ impl<'a> Scene<'a> {
             }
             pb.close();
             let Some(path) = pb.finish() else { continue };
-            let ratio = t.area_ratios.get(idx).copied().unwrap_or_else(|| area(poly) / camera::side(t).powi(2));
-            pm.fill_path(&path, &paint(area_color(ratio)), FillRule::Winding, Transform::identity(), None);
+            let ratio = t
+                .area_ratios
+                .get(idx)
+                .copied()
+                .unwrap_or_else(|| area(poly) / camera::side(t).powi(2));
+            pm.fill_path(
+                &path,
+                &paint(area_color(ratio)),
+                FillRule::Winding,
+                Transform::identity(),
+                None,
+            );
             let touching = t.touching.get(idx).copied().unwrap_or(false);
-            let (color, width) = if touching { (TOUCH_OUTLINE, 2.0) } else { (VOXEL_OUTLINE, 1.0) };
+            let (color, width) = if touching {
+                (TOUCH_OUTLINE, 2.0)
+            } else {
+                (VOXEL_OUTLINE, 1.0)
+            };
             pm.stroke_path(&path, &paint(color), &stroke(width), Transform::identity(), None);
         }
         if self.opts.draw_sensors {
@@ -138,7 +164,9 @@ impl<'a> Scene<'a> {
         let paint = |c: Rgba| paint(c, self.anti_alias);
         let margin = (view.max_x - view.min_x) * 0.1;
         let pts = clip_polyline(&self.trace.terrain, view.min_x - margin, view.max_x + margin);
-        let (Some(first), Some(last)) = (pts.first(), pts.last()) else { return };
+        let (Some(first), Some(last)) = (pts.first(), pts.last()) else {
+            return;
+        };
         let bottom = view.min_y - margin;
         let px = |p: Vec2| view.to_pixel(p, self.opts.width);
         let mut pb = PathBuilder::new();
@@ -180,7 +208,11 @@ impl<'a> Scene<'a> {
             let base = step * self.readings_per_step + self.reading_offsets[v];
             for i in 0..count {
                 let Some(&value) = t.readings.get(base + i) else { break };
-                let value = if value.is_finite() { f64::from(value).clamp(0.0, 1.0) } else { 0.0 };
+                let value = if value.is_finite() {
+                    f64::from(value).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
                 let a0 = angle + i as f64 * slice;
                 if let Some(path) = sector(c, radius * value, a0, a0 + slice, px) {
                     pm.fill_path(&path, &fill, FillRule::Winding, Transform::identity(), None);
@@ -231,7 +263,9 @@ impl<'a> Scene<'a> {
     /// A thin bar along the top edge, as long as the elapsed fraction of the episode.
     fn draw_time_bar(&self, pm: &mut Pixmap, step: usize) {
         let times = &self.trace.times;
-        let (Some(&t0), Some(&t1), Some(&now)) = (times.first(), times.last(), times.get(step)) else { return };
+        let (Some(&t0), Some(&t1), Some(&now)) = (times.first(), times.last(), times.get(step)) else {
+            return;
+        };
         if t1 <= t0 || t1.is_nan() || t0.is_nan() {
             return;
         }
@@ -336,7 +370,11 @@ mod tests {
     }
 
     fn plain() -> RenderOptions {
-        RenderOptions { draw_sensors: false, draw_lidar: false, ..RenderOptions::default() }
+        RenderOptions {
+            draw_sensors: false,
+            draw_lidar: false,
+            ..RenderOptions::default()
+        }
     }
 
     #[test]
@@ -360,7 +398,10 @@ mod tests {
             let pm = render_frame(&t, 0, &opts);
             let c = at(&t, 0, &opts, &pm, mid);
             for i in 0..3 {
-                assert!((i32::from(c[i]) - expect[i]).abs() <= 2, "ratio {ratio}: got {c:?}, want {expect:?}");
+                assert!(
+                    (i32::from(c[i]) - expect[i]).abs() <= 2,
+                    "ratio {ratio}: got {c:?}, want {expect:?}"
+                );
             }
         }
     }
@@ -380,7 +421,10 @@ mod tests {
         let view = crate::camera_view(&t, 0, &opts);
         let (x, y) = view.to_pixel(Vec2::new(10.0, 7.0), opts.width);
         let near: Vec<[u8; 3]> = (-1..=1).map(|dx| rgb(&pm, (x as i32 + dx) as u32, y as u32)).collect();
-        assert!(near.iter().any(|c| c[2] > 200 && c[0] < 100 && c[1] < 100), "no blue outline near x=10: {near:?}");
+        assert!(
+            near.iter().any(|c| c[2] > 200 && c[0] < 100 && c[1] < 100),
+            "no blue outline near x=10: {near:?}"
+        );
         // world y is up: the top of the image is sky, the bottom rows are ground
         assert_eq!(rgb(&pm, 320, 20), [255, 255, 255]);
         assert_eq!(rgb(&pm, 320, 355), [180, 180, 180]);
@@ -396,22 +440,37 @@ mod tests {
         assert!(poly[0].x > 990.0);
         let pm = render_frame(&t, last, &opts);
         let c = at(&t, last, &opts, &pm, center(&poly));
-        assert!(c[0] > 200 && c[1] > 200 && c[2] < 180, "voxel not drawn where it is: {c:?}");
-        assert_eq!(at(&t, last, &opts, &pm, center(&poly) - Vec2::new(0.0, 4.0)), [180, 180, 180]);
+        assert!(
+            c[0] > 200 && c[1] > 200 && c[2] < 180,
+            "voxel not drawn where it is: {c:?}"
+        );
+        assert_eq!(
+            at(&t, last, &opts, &pm, center(&poly) - Vec2::new(0.0, 4.0)),
+            [180, 180, 180]
+        );
 
         // moves to x = 1000 in 5 s, then stays for 3 s: the camera closes in on it again
         let xs: Vec<f64> = (0..481).map(|k| 10.0 + 200.0 * (k as f64 / 60.0).min(5.0)).collect();
         let t = trace_from_positions(&xs);
         let last = t.len() - 1;
         let pm = render_frame(&t, last, &opts);
-        let yellow = pm.pixels().iter().filter(|c| c.red() > 240 && c.green() > 240 && c.blue() < 160).count();
+        let yellow = pm
+            .pixels()
+            .iter()
+            .filter(|c| c.red() > 240 && c.green() > 240 && c.blue() < 160)
+            .count();
         // 3×3 voxel at 80 px per unit: about 240×240 pixels
         assert!(yellow > 40_000, "only {yellow} voxel pixels");
         let mut t2 = t.clone();
-        t2.polygons.iter_mut().for_each(|p| p.iter_mut().for_each(|q| q.x -= 500.0));
+        t2.polygons
+            .iter_mut()
+            .for_each(|p| p.iter_mut().for_each(|q| q.x -= 500.0));
         let pm2 = render_frame(&t2, last, &opts);
         let worst = pm.data().iter().zip(pm2.data()).map(|(a, b)| a.abs_diff(*b)).max();
-        assert!(worst <= Some(3), "the camera does not follow the robot: pixels differ by {worst:?}");
+        assert!(
+            worst <= Some(3),
+            "the camera does not follow the robot: pixels differ by {worst:?}"
+        );
     }
 
     #[test]
@@ -433,7 +492,10 @@ mod tests {
         let mut t = square_trace(1.0);
         t.readings_per_voxel = vec![2];
         t.readings = vec![1.0, 0.0]; // first sector (to the right of up) full, second empty
-        let opts = RenderOptions { draw_lidar: false, ..RenderOptions::default() };
+        let opts = RenderOptions {
+            draw_lidar: false,
+            ..RenderOptions::default()
+        };
         let pm = render_frame(&t, 0, &opts);
         // voxel centre (11.5, 6.5), radius 1.5: the first sector spans angles 0..π/2 (upper right)
         let upper_right = at(&t, 0, &opts, &pm, Vec2::new(12.1, 7.1));
@@ -454,9 +516,16 @@ mod tests {
     fn lidar_ray_stops_at_hit() {
         let mut t = square_trace(1.0);
         // one ray pointing straight down (relative to angle 0), range 10, hit at 1.0
-        t.rays = vec![vsrlab_tasks::outcome::RayInfo { voxel: 0, relative_angle: -PI / 2.0, range: 10.0 }];
+        t.rays = vec![vsrlab_tasks::outcome::RayInfo {
+            voxel: 0,
+            relative_angle: -PI / 2.0,
+            range: 10.0,
+        }];
         t.ray_distances = vec![1.0];
-        let opts = RenderOptions { draw_sensors: false, ..RenderOptions::default() };
+        let opts = RenderOptions {
+            draw_sensors: false,
+            ..RenderOptions::default()
+        };
         let view = crate::camera_view(&t, 0, &opts);
         let red_near = |pm: &Pixmap, p: Vec2| {
             let (x, y) = view.to_pixel(p, opts.width);
@@ -476,15 +545,30 @@ mod tests {
         assert!(red_near(&pm, Vec2::new(11.5, 4.5)), "full-range ray missing");
         assert!(!red_near(&pm, Vec2::new(11.75, 5.5)), "hit circle drawn without a hit");
         // lidar off: nothing red
-        let pm = render_frame(&t, 0, &RenderOptions { draw_lidar: false, ..opts.clone() });
+        let pm = render_frame(
+            &t,
+            0,
+            &RenderOptions {
+                draw_lidar: false,
+                ..opts.clone()
+            },
+        );
         assert!(!red_near(&pm, Vec2::new(11.5, 6.0)));
     }
 
     #[test]
     fn clipping_interpolates_at_the_ends() {
-        let pts = [Vec2::new(0.0, 100.0), Vec2::new(10.0, 0.0), Vec2::new(1990.0, 0.0), Vec2::new(2000.0, 100.0)];
+        let pts = [
+            Vec2::new(0.0, 100.0),
+            Vec2::new(10.0, 0.0),
+            Vec2::new(1990.0, 0.0),
+            Vec2::new(2000.0, 100.0),
+        ];
         let c = clip_polyline(&pts, 5.0, 50.0);
-        assert_eq!(c, vec![Vec2::new(5.0, 50.0), Vec2::new(10.0, 0.0), Vec2::new(50.0, 0.0)]);
+        assert_eq!(
+            c,
+            vec![Vec2::new(5.0, 50.0), Vec2::new(10.0, 0.0), Vec2::new(50.0, 0.0)]
+        );
         assert!(clip_polyline(&pts, 3000.0, 3100.0).is_empty());
     }
 
@@ -496,9 +580,21 @@ mod tests {
         t.touching.clear();
         t.readings_per_voxel = vec![3];
         t.readings.clear();
-        t.rays = vec![vsrlab_tasks::outcome::RayInfo { voxel: 7, relative_angle: 0.0, range: f64::INFINITY }];
+        t.rays = vec![vsrlab_tasks::outcome::RayInfo {
+            voxel: 7,
+            relative_angle: 0.0,
+            range: f64::INFINITY,
+        }];
         t.polygons[0][2] = Vec2::new(f64::NAN, 1.0);
         let _ = render_frame(&t, 10, &RenderOptions::default());
-        let _ = render_frame(&Trace::default(), 0, &RenderOptions { width: 0, height: 0, ..Default::default() });
+        let _ = render_frame(
+            &Trace::default(),
+            0,
+            &RenderOptions {
+                width: 0,
+                height: 0,
+                ..Default::default()
+            },
+        );
     }
 }

@@ -9,12 +9,18 @@ use tiny_skia::Pixmap;
 
 /// An `io::Error` → [`RenderError::Io`] naming `path`.
 pub(crate) fn io_err(path: &Path) -> impl Fn(std::io::Error) -> RenderError + '_ {
-    move |source| RenderError::Io { path: path.to_path_buf(), source }
+    move |source| RenderError::Io {
+        path: path.to_path_buf(),
+        source,
+    }
 }
 
 /// An encoder failure → [`RenderError::Encode`] naming `path`.
 pub(crate) fn encode_err<E: std::fmt::Display>(path: &Path) -> impl Fn(E) -> RenderError + '_ {
-    move |e| RenderError::Encode { path: path.to_path_buf(), message: e.to_string() }
+    move |e| RenderError::Encode {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    }
 }
 
 /// A temporary file in the target's directory, removed on drop unless committed.
@@ -32,7 +38,10 @@ impl TempFile {
             Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
             _ => PathBuf::from("."),
         };
-        let name = dest.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        let name = dest
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
         let n = COUNTER.fetch_add(1, Ordering::Relaxed);
         let path = dir.join(format!(".{name}.{}.{n}.tmp", std::process::id()));
         TempFile { path, committed: false }

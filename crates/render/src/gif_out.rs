@@ -36,7 +36,13 @@ pub(crate) fn frame_between(
             continue;
         }
         let first = a.iter().zip(b).position(|(p, q)| p != q).unwrap_or(0);
-        let last = w - 1 - a.iter().rev().zip(b.iter().rev()).position(|(p, q)| p != q).unwrap_or(0);
+        let last = w
+            - 1
+            - a.iter()
+                .rev()
+                .zip(b.iter().rev())
+                .position(|(p, q)| p != q)
+                .unwrap_or(0);
         top = top.min(y);
         bottom = y;
         left = left.min(first);
@@ -56,7 +62,12 @@ pub(crate) fn frame_between(
     let mut buf = Vec::with_capacity(fw * fh);
     for y in top..=bottom {
         let row = y * w + left..y * w + right + 1;
-        buf.extend(prev[row.clone()].iter().zip(&cur[row]).map(|(&p, &q)| if p == q { transparent } else { q }));
+        buf.extend(
+            prev[row.clone()]
+                .iter()
+                .zip(&cur[row])
+                .map(|(&p, &q)| if p == q { transparent } else { q }),
+        );
     }
     Frame {
         left: left as u16,
@@ -83,7 +94,13 @@ pub(crate) fn save_gif(trace: &Trace, steps: &[usize], opts: &RenderOptions, pat
         for (i, &step) in steps.iter().enumerate() {
             scene.draw(step, &mut pm);
             palette.quantize(pm.data(), &mut cur);
-            let mut frame = frame_between((i > 0).then_some(prev.as_slice()), &cur, width, height, palette.transparent);
+            let mut frame = frame_between(
+                (i > 0).then_some(prev.as_slice()),
+                &cur,
+                width,
+                height,
+                palette.transparent,
+            );
             frame.delay = delay(i, opts.fps);
             frame.dispose = DisposalMethod::Keep;
             enc.write_frame(&frame).map_err(encode_err(path))?;

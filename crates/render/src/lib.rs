@@ -54,7 +54,13 @@ pub struct RenderOptions {
 
 impl Default for RenderOptions {
     fn default() -> Self {
-        RenderOptions { width: 640, height: 360, fps: 30.0, draw_sensors: true, draw_lidar: true }
+        RenderOptions {
+            width: 640,
+            height: 360,
+            fps: 30.0,
+            draw_sensors: true,
+            draw_lidar: true,
+        }
     }
 }
 
@@ -69,7 +75,10 @@ impl RenderOptions {
             }
         }
         if !(self.fps.is_finite() && self.fps > 0.0 && self.fps <= 1000.0) {
-            return Err(RenderError::InvalidOptions(format!("fps must be a number in (0, 1000], got {}", self.fps)));
+            return Err(RenderError::InvalidOptions(format!(
+                "fps must be a number in (0, 1000], got {}",
+                self.fps
+            )));
         }
         Ok(())
     }
@@ -188,7 +197,10 @@ pub fn frame_steps(trace: &Trace, fps: f64) -> Vec<usize> {
 
 /// Checks that `trace` holds what drawing needs; `path` is named in the error.
 fn check_trace(trace: &Trace, path: &Path) -> Result<(), RenderError> {
-    let problem = |p: &str| RenderError::InvalidTrace { path: path.to_path_buf(), problem: p.to_string() };
+    let problem = |p: &str| RenderError::InvalidTrace {
+        path: path.to_path_buf(),
+        problem: p.to_string(),
+    };
     if trace.is_empty() {
         return Err(problem("the trace has no steps"));
     }
@@ -196,7 +208,9 @@ fn check_trace(trace: &Trace, path: &Path) -> Result<(), RenderError> {
         return Err(problem("the trace has no voxels"));
     }
     if trace.polygons.len() < trace.len() * trace.voxels() {
-        return Err(problem("the trace has no voxel polygons for every step (record it with trace level \"full\")"));
+        return Err(problem(
+            "the trace has no voxel polygons for every step (record it with trace level \"full\")",
+        ));
     }
     Ok(())
 }
@@ -207,7 +221,11 @@ pub fn save_png(trace: &Trace, step: usize, opts: &RenderOptions, path: impl AsR
     opts.validate()?;
     check_trace(trace, path)?;
     if step >= trace.len() {
-        return Err(RenderError::StepOutOfRange { path: path.to_path_buf(), step, len: trace.len() });
+        return Err(RenderError::StepOutOfRange {
+            path: path.to_path_buf(),
+            step,
+            len: trace.len(),
+        });
     }
     let pixmap = render_frame(trace, step, opts);
     file::write_atomically(path, |w| file::write_png(w, &pixmap, path))
@@ -220,12 +238,20 @@ pub fn save_png(trace: &Trace, step: usize, opts: &RenderOptions, path: impl AsR
 /// atomically: nothing is left at `path` (nor beside it) when an error is returned.
 pub fn save_video(trace: &Trace, opts: &RenderOptions, path: impl AsRef<Path>) -> Result<VideoInfo, RenderError> {
     let path = path.as_ref();
-    let ext = path.extension().map(|e| e.to_string_lossy().to_lowercase()).unwrap_or_default();
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_lowercase())
+        .unwrap_or_default();
     let format = match ext.as_str() {
         "gif" => VideoFormat::Gif,
         "mp4" => VideoFormat::Mp4,
         "png" => VideoFormat::Png,
-        _ => return Err(RenderError::UnsupportedExtension { path: path.to_path_buf(), ext }),
+        _ => {
+            return Err(RenderError::UnsupportedExtension {
+                path: path.to_path_buf(),
+                ext,
+            })
+        }
     };
     opts.validate()?;
     check_trace(trace, path)?;
@@ -245,7 +271,12 @@ pub fn save_video(trace: &Trace, opts: &RenderOptions, path: impl AsRef<Path>) -
             steps.len()
         }
     };
-    let bytes = std::fs::metadata(path).map_err(|source| RenderError::Io { path: path.to_path_buf(), source })?.len();
+    let bytes = std::fs::metadata(path)
+        .map_err(|source| RenderError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?
+        .len();
     Ok(VideoInfo {
         path: path.to_path_buf(),
         format,
@@ -253,7 +284,11 @@ pub fn save_video(trace: &Trace, opts: &RenderOptions, path: impl AsRef<Path>) -
         width: opts.width,
         height: opts.height,
         fps: opts.fps,
-        duration: if format == VideoFormat::Png { 0.0 } else { frames as f64 / opts.fps },
+        duration: if format == VideoFormat::Png {
+            0.0
+        } else {
+            frames as f64 / opts.fps
+        },
         bytes,
     })
 }

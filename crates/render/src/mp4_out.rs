@@ -38,9 +38,29 @@ fn codec_args(ffmpeg: &Path, path: &Path) -> Result<&'static [&'static str], Ren
     let list = String::from_utf8_lossy(&out.stdout);
     let has = |name: &str| list.lines().any(|l| l.split_whitespace().nth(1) == Some(name));
     if has("libx264") {
-        Ok(&["-c:v", "libx264", "-preset", "veryfast", "-crf", "20", "-pix_fmt", "yuv420p", "-movflags", "+faststart"])
+        Ok(&[
+            "-c:v",
+            "libx264",
+            "-preset",
+            "veryfast",
+            "-crf",
+            "20",
+            "-pix_fmt",
+            "yuv420p",
+            "-movflags",
+            "+faststart",
+        ])
     } else if has("mpeg4") {
-        Ok(&["-c:v", "mpeg4", "-q:v", "3", "-pix_fmt", "yuv420p", "-movflags", "+faststart"])
+        Ok(&[
+            "-c:v",
+            "mpeg4",
+            "-q:v",
+            "3",
+            "-pix_fmt",
+            "yuv420p",
+            "-movflags",
+            "+faststart",
+        ])
     } else {
         Err(RenderError::EncoderUnavailable(format!(
             "cannot write {}: {} has neither the libx264 nor the mpeg4 encoder; use .gif",
@@ -63,7 +83,16 @@ pub(crate) fn save_mp4(trace: &Trace, steps: &[usize], opts: &RenderOptions, pat
     let size = format!("{}x{}", opts.width, opts.height);
     let fps = format!("{}", opts.fps);
     let mut child = Command::new(&ffmpeg)
-        .args(["-hide_banner", "-loglevel", "error", "-y", "-f", "rawvideo", "-pix_fmt", "rgb24"])
+        .args([
+            "-hide_banner",
+            "-loglevel",
+            "error",
+            "-y",
+            "-f",
+            "rawvideo",
+            "-pix_fmt",
+            "rgb24",
+        ])
         .args(["-s", &size, "-framerate", &fps, "-i", "pipe:0", "-an"])
         .args(["-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2"])
         .args(codec)
@@ -107,9 +136,20 @@ pub(crate) fn save_mp4(trace: &Trace, steps: &[usize], opts: &RenderOptions, pat
         let detail = if detail.is_empty() {
             write_error.map(|e| e.to_string()).unwrap_or_default()
         } else {
-            detail.lines().rev().take(5).collect::<Vec<_>>().into_iter().rev().collect::<Vec<_>>().join("; ")
+            detail
+                .lines()
+                .rev()
+                .take(5)
+                .collect::<Vec<_>>()
+                .into_iter()
+                .rev()
+                .collect::<Vec<_>>()
+                .join("; ")
         };
-        return Err(RenderError::Encode { path: path.to_path_buf(), message: format!("ffmpeg ({status}): {detail}") });
+        return Err(RenderError::Encode {
+            path: path.to_path_buf(),
+            message: format!("ffmpeg ({status}): {detail}"),
+        });
     }
     tmp.commit(path)
 }

@@ -44,9 +44,14 @@ impl Palette {
         }
         let white = rgb(draw::BACKGROUND);
         let ground = rgb(draw::GROUND);
-        for c in
-            [white, ground, rgb(draw::VOXEL_OUTLINE), rgb(draw::TOUCH_OUTLINE), rgb(draw::LIDAR), rgb(draw::TIME_BAR)]
-        {
+        for c in [
+            white,
+            ground,
+            rgb(draw::VOXEL_OUTLINE),
+            rgb(draw::TOUCH_OUTLINE),
+            rgb(draw::LIDAR),
+            rgb(draw::TIME_BAR),
+        ] {
             push(&mut colors, c);
         }
         for ratio in [0.75, 0.8125, 0.875, 0.9375, 1.0, 1.0625, 1.125, 1.1875, 1.25] {
@@ -83,14 +88,20 @@ impl Palette {
                     let (dr, dg, db) = (i32::from(c[0]) - r, i32::from(c[1]) - g, i32::from(c[2]) - b);
                     dr * dr + dg * dg + db * db
                 };
-                (0..colors.len()).min_by_key(|&i| dist(&colors[i])).expect("palette is not empty") as u8
+                (0..colors.len())
+                    .min_by_key(|&i| dist(&colors[i]))
+                    .expect("palette is not empty") as u8
             })
             .collect();
         let mut table = Vec::with_capacity(768);
         for i in 0..total {
             table.extend_from_slice(colors.get(i).unwrap_or(&[255, 0, 255]));
         }
-        Palette { rgb: table, lut, transparent: (total - 1) as u8 }
+        Palette {
+            rgb: table,
+            lut,
+            transparent: (total - 1) as u8,
+        }
     }
 
     /// Palette index for a colour.
@@ -121,7 +132,14 @@ mod tests {
     fn exact_colours_map_to_themselves() {
         let p = Palette::get();
         assert_eq!(p.rgb.len(), 3 * (usize::from(p.transparent) + 1));
-        for c in [[255, 255, 255], [180, 180, 180], [0, 0, 255], [255, 0, 0], [0, 0, 0], [255, 255, 127]] {
+        for c in [
+            [255, 255, 255],
+            [180, 180, 180],
+            [0, 0, 255],
+            [255, 0, 0],
+            [0, 0, 0],
+            [255, 255, 127],
+        ] {
             let i = p.index(c[0], c[1], c[2]);
             assert_ne!(i, p.transparent);
             assert_eq!(p.color(i), c, "{c:?}");

@@ -15,8 +15,10 @@ fn scratch(name: &str) -> PathBuf {
 
 /// Names of the files in `dir`.
 fn listing(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> =
-        std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
     v.sort();
     v
 }
@@ -60,7 +62,11 @@ fn frame_steps_subsample_by_time() {
 fn gif_has_header_frames_and_final_picture() {
     let dir = scratch("gif");
     let t = moving_square(121, 3.0);
-    let opts = RenderOptions { width: 160, height: 90, ..RenderOptions::default() };
+    let opts = RenderOptions {
+        width: 160,
+        height: 90,
+        ..RenderOptions::default()
+    };
     let path = dir.join("walk.gif");
     let info = save_video(&t, &opts, &path).unwrap();
     assert_eq!(info.format, VideoFormat::Gif);
@@ -90,7 +96,11 @@ fn gif_has_header_frames_and_final_picture() {
 fn png_is_the_last_frame() {
     let dir = scratch("png");
     let t = moving_square(30, 3.0);
-    let opts = RenderOptions { width: 200, height: 120, ..RenderOptions::default() };
+    let opts = RenderOptions {
+        width: 200,
+        height: 120,
+        ..RenderOptions::default()
+    };
     let path = dir.join("last.PNG");
     let info = save_video(&t, &opts, &path).unwrap();
     assert_eq!((info.format, info.frames), (VideoFormat::Png, 1));
@@ -98,13 +108,19 @@ fn png_is_the_last_frame() {
     let mut reader = dec.read_info().unwrap();
     let mut buf = vec![0; reader.output_buffer_size()];
     let frame = reader.next_frame(&mut buf).unwrap();
-    assert_eq!((frame.width, frame.height, frame.color_type), (200, 120, png::ColorType::Rgb));
+    assert_eq!(
+        (frame.width, frame.height, frame.color_type),
+        (200, 120, png::ColorType::Rgb)
+    );
     let mut want = Vec::new();
     file::to_rgb(&render_frame(&t, 29, &opts), &mut want);
     assert!(buf[..frame.buffer_size()] == want[..]);
     let mut first = Vec::new();
     file::to_rgb(&render_frame(&t, 0, &opts), &mut first);
-    assert!(first != want, "first and last frames should differ (the time bar grows)");
+    assert!(
+        first != want,
+        "first and last frames should differ (the time bar grows)"
+    );
     // save_png of an explicit step, replacing the file
     save_png(&t, 0, &opts, &path).unwrap();
     assert_eq!(listing(&dir), vec!["last.PNG"]);
@@ -118,30 +134,70 @@ fn bad_requests_fail_and_leave_nothing() {
     let opts = RenderOptions::default();
 
     let err = save_video(&t, &opts, dir.join("movie.avi")).unwrap_err();
-    assert!(matches!(&err, RenderError::UnsupportedExtension { ext, .. } if ext == "avi"), "{err:?}");
+    assert!(
+        matches!(&err, RenderError::UnsupportedExtension { ext, .. } if ext == "avi"),
+        "{err:?}"
+    );
     let msg = err.to_string();
-    assert!(msg.contains("movie.avi") && msg.contains("avi") && msg.contains(".gif"), "{msg}");
+    assert!(
+        msg.contains("movie.avi") && msg.contains("avi") && msg.contains(".gif"),
+        "{msg}"
+    );
     let err = save_video(&t, &opts, dir.join("movie")).unwrap_err();
-    assert!(matches!(&err, RenderError::UnsupportedExtension { ext, .. } if ext.is_empty()), "{err:?}");
+    assert!(
+        matches!(&err, RenderError::UnsupportedExtension { ext, .. } if ext.is_empty()),
+        "{err:?}"
+    );
 
     let err = save_png(&t, 10, &opts, dir.join("x.png")).unwrap_err();
-    assert!(matches!(err, RenderError::StepOutOfRange { step: 10, len: 10, .. }), "{err:?}");
+    assert!(
+        matches!(err, RenderError::StepOutOfRange { step: 10, len: 10, .. }),
+        "{err:?}"
+    );
 
     let err = save_video(&Trace::default(), &opts, dir.join("e.gif")).unwrap_err();
     assert!(matches!(err, RenderError::InvalidTrace { .. }), "{err:?}");
     let mut centres_only = t.clone();
     centres_only.polygons.clear();
     let err = save_video(&centres_only, &opts, dir.join("c.gif")).unwrap_err();
-    assert!(err.to_string().contains("c.gif") && err.to_string().contains("polygons"), "{err}");
+    assert!(
+        err.to_string().contains("c.gif") && err.to_string().contains("polygons"),
+        "{err}"
+    );
 
-    let err = save_video(&t, &RenderOptions { fps: 0.0, ..opts.clone() }, dir.join("f.gif")).unwrap_err();
-    assert!(matches!(&err, RenderError::InvalidOptions(m) if m.contains("fps")), "{err:?}");
-    let err = save_video(&t, &RenderOptions { width: 0, ..opts.clone() }, dir.join("w.gif")).unwrap_err();
-    assert!(matches!(&err, RenderError::InvalidOptions(m) if m.contains("width")), "{err:?}");
+    let err = save_video(
+        &t,
+        &RenderOptions {
+            fps: 0.0,
+            ..opts.clone()
+        },
+        dir.join("f.gif"),
+    )
+    .unwrap_err();
+    assert!(
+        matches!(&err, RenderError::InvalidOptions(m) if m.contains("fps")),
+        "{err:?}"
+    );
+    let err = save_video(
+        &t,
+        &RenderOptions {
+            width: 0,
+            ..opts.clone()
+        },
+        dir.join("w.gif"),
+    )
+    .unwrap_err();
+    assert!(
+        matches!(&err, RenderError::InvalidOptions(m) if m.contains("width")),
+        "{err:?}"
+    );
 
     let missing = dir.join("no-such-dir").join("v.gif");
     let err = save_video(&t, &opts, &missing).unwrap_err();
-    assert!(matches!(err, RenderError::Io { .. }) && err.to_string().contains("v.gif"), "{err}");
+    assert!(
+        matches!(err, RenderError::Io { .. }) && err.to_string().contains("v.gif"),
+        "{err}"
+    );
 
     assert!(listing(&dir).is_empty(), "left behind: {:?}", listing(&dir));
     std::fs::remove_dir_all(&dir).unwrap();
@@ -151,7 +207,11 @@ fn bad_requests_fail_and_leave_nothing() {
 fn mp4_needs_ffmpeg() {
     let dir = scratch("mp4");
     let t = moving_square(60, 3.0);
-    let opts = RenderOptions { width: 161, height: 91, ..RenderOptions::default() };
+    let opts = RenderOptions {
+        width: 161,
+        height: 91,
+        ..RenderOptions::default()
+    };
     let path = dir.join("v.mp4");
     let result = save_video(&t, &opts, &path);
     if ffmpeg_available() {
@@ -164,7 +224,10 @@ fn mp4_needs_ffmpeg() {
         let err = result.unwrap_err();
         match &err {
             RenderError::EncoderUnavailable(m) => {
-                assert!(m.contains("ffmpeg on PATH") && m.contains(".gif") && m.contains("v.mp4"), "{m}")
+                assert!(
+                    m.contains("ffmpeg on PATH") && m.contains(".gif") && m.contains("v.mp4"),
+                    "{m}"
+                )
             }
             other => panic!("expected EncoderUnavailable, got {other:?}"),
         }
@@ -176,7 +239,14 @@ fn mp4_needs_ffmpeg() {
 #[test]
 fn options_deserialize_with_defaults() {
     let o: RenderOptions = serde_json::from_str(r#"{"width": 320, "draw_lidar": false}"#).unwrap();
-    assert_eq!(o, RenderOptions { width: 320, draw_lidar: false, ..RenderOptions::default() });
+    assert_eq!(
+        o,
+        RenderOptions {
+            width: 320,
+            draw_lidar: false,
+            ..RenderOptions::default()
+        }
+    );
     assert_eq!(RenderOptions::default().fps, 30.0);
     assert!(serde_json::from_str::<RenderOptions>(r#"{"widht": 1}"#).is_err());
 }

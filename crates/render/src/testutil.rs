@@ -5,12 +5,22 @@ use vsrlab_tasks::Trace;
 
 /// Flat terrain at y = 5 between two walls far from the robot.
 pub fn flat_terrain() -> Vec<Vec2> {
-    vec![Vec2::new(-1000.0, 100.0), Vec2::new(-990.0, 5.0), Vec2::new(1990.0, 5.0), Vec2::new(2000.0, 100.0)]
+    vec![
+        Vec2::new(-1000.0, 100.0),
+        Vec2::new(-990.0, 5.0),
+        Vec2::new(1990.0, 5.0),
+        Vec2::new(2000.0, 100.0),
+    ]
 }
 
 /// The outer polygon (NW, NE, SE, SW) of a 3×3 voxel whose bottom-left corner is at (x, 5).
 pub fn square_at(x: f64) -> [Vec2; 4] {
-    [Vec2::new(x, 8.0), Vec2::new(x + 3.0, 8.0), Vec2::new(x + 3.0, 5.0), Vec2::new(x, 5.0)]
+    [
+        Vec2::new(x, 8.0),
+        Vec2::new(x + 3.0, 8.0),
+        Vec2::new(x + 3.0, 5.0),
+        Vec2::new(x, 5.0),
+    ]
 }
 
 /// One voxel whose left edge is at `xs[k]` at step k (60 Hz), area ratio 1, no sensors.

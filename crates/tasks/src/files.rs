@@ -32,8 +32,14 @@ pub enum FileError {
 /// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so that a
 /// reader never sees a half-written file and a failure leaves nothing behind.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
     let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
     let result = (|| {
         let mut f = std::fs::File::create(&tmp)?;
@@ -77,10 +83,17 @@ pub fn robot_from_json(text: &str, origin: &str) -> Result<RobotSpec, FileError>
     let file: RobotFile = serde_path_to_error::deserialize(de).map_err(|e| {
         let path = e.path().to_string();
         let inner = e.into_inner();
-        invalid(format!("field '{path}' (line {}, column {}): {inner}", inner.line(), inner.column()))
+        invalid(format!(
+            "field '{path}' (line {}, column {}): {inner}",
+            inner.line(),
+            inner.column()
+        ))
     })?;
     if file.format != ROBOT_FORMAT {
-        return Err(invalid(format!("field 'format': expected \"{ROBOT_FORMAT}\", got \"{}\"", file.format)));
+        return Err(invalid(format!(
+            "field 'format': expected \"{ROBOT_FORMAT}\", got \"{}\"",
+            file.format
+        )));
     }
     file.robot.validate().map_err(invalid)?;
     Ok(file.robot)

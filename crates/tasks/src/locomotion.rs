@@ -5,7 +5,7 @@ use crate::robot::RobotSpec;
 use crate::terrain::{add_ground, height_at, Terrain};
 use serde::{Deserialize, Serialize};
 use vsrlab_body::sensors::SensorSuite;
-use vsrlab_body::{Vsr, VoxelState};
+use vsrlab_body::{VoxelState, Vsr};
 use vsrlab_physics::{PhysicsError, Vec2, World, WorldBuilder, WorldSettings};
 
 /// Why an episode could not be run or completed.
@@ -60,7 +60,10 @@ impl Locomotion {
     pub fn validate(&self) -> Result<(), EpisodeError> {
         let bad = |m: String| Err(EpisodeError::Invalid(m));
         if !(self.duration.is_finite() && self.duration > 0.0 && self.duration <= 1e5) {
-            return bad(format!("task.duration must be in (0, 100000] seconds, got {}", self.duration));
+            return bad(format!(
+                "task.duration must be in (0, 100000] seconds, got {}",
+                self.duration
+            ));
         }
         if !(self.transient.is_finite() && self.transient >= 0.0 && self.transient < self.duration) {
             return bad(format!(
@@ -71,7 +74,9 @@ impl Locomotion {
         if !(self.initial_x.is_finite() && self.initial_gap.is_finite() && self.initial_gap >= 0.0) {
             return bad("task.initial_x and task.initial_gap must be finite (gap ≥ 0)".into());
         }
-        self.physics.validate().map_err(|m| EpisodeError::Invalid(format!("task.physics.{m}")))
+        self.physics
+            .validate()
+            .map_err(|m| EpisodeError::Invalid(format!("task.physics.{m}")))
     }
 }
 
@@ -105,7 +110,9 @@ pub fn run(robot: &RobotSpec, task: &Locomotion, seed: u64, trace_level: TraceLe
     let mut world = builder.build().map_err(|e| EpisodeError::Invalid(e.to_string()))?;
     let mut sensors = SensorSuite::new(&robot.sensors, &robot.body, seed)
         .map_err(|e| EpisodeError::Invalid(format!("robot.sensors: {e}")))?;
-    let per_voxel: Vec<usize> = (0..robot.body.voxel_count()).map(|v| sensors.readings_per_voxel(v)).collect();
+    let per_voxel: Vec<usize> = (0..robot.body.voxel_count())
+        .map(|v| sensors.readings_per_voxel(v))
+        .collect();
     let mut brain = robot
         .brain
         .build(&robot.body, &per_voxel)
@@ -122,7 +129,9 @@ pub fn run(robot: &RobotSpec, task: &Locomotion, seed: u64, trace_level: TraceLe
     let mut window = Window::default();
     while t < task.duration {
         t += dt;
-        world.step().map_err(|source| EpisodeError::Physics { time: t, source })?;
+        world
+            .step()
+            .map_err(|source| EpisodeError::Physics { time: t, source })?;
         for (i, s) in states.iter_mut().enumerate() {
             *s = vsr.voxel_state(&world, i);
         }
@@ -186,7 +195,14 @@ struct Recorder {
 }
 
 impl Recorder {
-    fn new(level: TraceLevel, task: &Locomotion, vsr: &Vsr, sensors: &SensorSuite, profile: &[Vec2], _world: &World) -> Recorder {
+    fn new(
+        level: TraceLevel,
+        task: &Locomotion,
+        vsr: &Vsr,
+        sensors: &SensorSuite,
+        profile: &[Vec2],
+        _world: &World,
+    ) -> Recorder {
         let n = vsr.voxel_count();
         let steps = (task.duration / task.physics.dt).ceil() as usize + 1;
         let mut trace = Trace {
@@ -218,7 +234,15 @@ impl Recorder {
         Recorder { level, trace, domains }
     }
 
-    fn record(&mut self, t: f64, center: Vec2, states: &[VoxelState], actuations: &[f64], readings: &[f64], sensors: &SensorSuite) {
+    fn record(
+        &mut self,
+        t: f64,
+        center: Vec2,
+        states: &[VoxelState],
+        actuations: &[f64],
+        readings: &[f64],
+        sensors: &SensorSuite,
+    ) {
         if self.level == TraceLevel::None {
             return;
         }

@@ -34,7 +34,9 @@ impl RobotSpec {
     /// Readings per voxel (grid order) that this robot's sensors produce.
     pub fn readings_per_voxel(&self) -> Result<Vec<usize>, String> {
         let sensors = SensorSuite::new(&self.sensors, &self.body, 0).map_err(|e| format!("robot.sensors: {e}"))?;
-        Ok((0..self.body.voxel_count()).map(|v| sensors.readings_per_voxel(v)).collect())
+        Ok((0..self.body.voxel_count())
+            .map(|v| sensors.readings_per_voxel(v))
+            .collect())
     }
 
     /// Checks that body, constants, sensors and brain fit together; the error names the field.

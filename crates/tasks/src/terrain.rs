@@ -80,7 +80,9 @@ impl std::str::FromStr for Terrain {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
         let bad = || {
-            format!("unknown terrain '{s}': expected flat, hilly-H-W[-SEED], steppy-H-W[-SEED], uphill-DEG or downhill-DEG")
+            format!(
+                "unknown terrain '{s}': expected flat, hilly-H-W[-SEED], steppy-H-W[-SEED], uphill-DEG or downhill-DEG"
+            )
         };
         let parts: Vec<&str> = s.split('-').collect();
         let num = |i: usize| -> Result<f64, String> {
@@ -210,7 +212,14 @@ mod tests {
 
     #[test]
     fn names_round_trip() {
-        for s in ["flat", "hilly-1-10", "hilly-1-10-3", "steppy-2-5-7", "uphill-20", "downhill-30"] {
+        for s in [
+            "flat",
+            "hilly-1-10",
+            "hilly-1-10-3",
+            "steppy-2-5-7",
+            "uphill-20",
+            "downhill-30",
+        ] {
             let t: Terrain = s.parse().unwrap();
             assert_eq!(t.to_string(), s);
         }

@@ -22,20 +22,44 @@ fn calibrate(body: &str, preset: Preset, brain: BrainSpec) -> (f64, f64, f64, f6
             hi = hi.max(mean(k));
         }
     }
-    let first_min_y = tr.polygons_at(0).iter().flatten().map(|p| p.y).fold(f64::INFINITY, f64::min);
+    let first_min_y = tr
+        .polygons_at(0)
+        .iter()
+        .flatten()
+        .map(|p| p.y)
+        .fold(f64::INFINITY, f64::min);
     (mean(last), lo, hi, tr.centers[last].y, first_min_y, o.steps)
 }
 
 fn within(actual: f64, expected: f64, tol: f64, what: &str) {
-    assert!((actual - expected).abs() <= tol, "{what}: got {actual:.4}, reference {expected:.4} (tolerance {tol})");
+    assert!(
+        (actual - expected).abs() <= tol,
+        "{what}: got {actual:.4}, reference {expected:.4} (tolerance {tol})"
+    );
 }
 
 /// (body, preset, area f=0, f=+1, f=−1, sine range or None, centre y at rest).
 type Reference = (&'static str, Preset, f64, f64, f64, Option<(f64, f64)>, f64);
 const REFERENCES: [Reference; 4] = [
-    ("box-1x1", Preset::Y2022, 0.9993, 0.7992, 1.1993, Some((0.8004, 1.1993)), 6.4939),
+    (
+        "box-1x1",
+        Preset::Y2022,
+        0.9993,
+        0.7992,
+        1.1993,
+        Some((0.8004, 1.1993)),
+        6.4939,
+    ),
     ("box-3x3", Preset::Y2022, 0.9979, 0.7979, 1.1978, None, 9.4850),
-    ("box-1x1", Preset::Y2021, 0.9987, 0.7737, 1.2241, Some((0.7750, 1.2251)), 6.4933),
+    (
+        "box-1x1",
+        Preset::Y2021,
+        0.9987,
+        0.7737,
+        1.2241,
+        Some((0.7750, 1.2251)),
+        6.4933,
+    ),
     ("box-3x3", Preset::Y2021, 0.9955, 0.7708, 1.2198, None, 9.4631),
 ];
 
@@ -50,8 +74,18 @@ fn constant_and_sine_actuation_match_reference_area_ratios() {
         within(y, rest_y, 0.02 * rest_y, &what("centre y at rest"));
         let fall = 6.0 - first_min_y;
         within(fall, 6.0 - 5.9973, 0.02 * (6.0 - 5.9973), &what("first-step fall"));
-        within(calibrate(body, preset, BrainSpec::Constant { value: 1.0 }).0, a_pos, 0.01, &what("f = +1 area"));
-        within(calibrate(body, preset, BrainSpec::Constant { value: -1.0 }).0, a_neg, 0.01, &what("f = -1 area"));
+        within(
+            calibrate(body, preset, BrainSpec::Constant { value: 1.0 }).0,
+            a_pos,
+            0.01,
+            &what("f = +1 area"),
+        );
+        within(
+            calibrate(body, preset, BrainSpec::Constant { value: -1.0 }).0,
+            a_neg,
+            0.01,
+            &what("f = -1 area"),
+        );
         if let Some((lo_ref, hi_ref)) = sine_range {
             let (_, lo, hi, ..) = calibrate(body, preset, sine());
             within(lo, lo_ref, 0.01, &what("1 Hz sine min area"));
@@ -79,8 +113,15 @@ fn phase_gaits_walk_and_are_reported_beside_the_original() {
     ];
     for (body, preset, original) in cases {
         let o = locomotion::run(&robot(body, preset, phase()), &task("flat", 30.0), 0, TraceLevel::None).unwrap();
-        println!("{body} preset {preset}: velocity {:.4} (original {original})", o.velocity);
+        println!(
+            "{body} preset {preset}: velocity {:.4} (original {original})",
+            o.velocity
+        );
         assert_eq!(o.steps, 1801);
-        assert!(o.velocity.is_finite() && o.velocity.abs() < 3.0, "{body}: {}", o.velocity);
+        assert!(
+            o.velocity.is_finite() && o.velocity.abs() < 3.0,
+            "{body}: {}",
+            o.velocity
+        );
     }
 }

@@ -42,8 +42,14 @@ fn random_body(rng: &mut ChaCha8Rng) -> Morphology {
 
 fn random_brain(rng: &mut ChaCha8Rng) -> BrainSpec {
     match rng.random_range(0..3) {
-        0 => BrainSpec::Random { period: 0.0, seed: rng.random() },
-        1 => BrainSpec::Random { period: rng.random_range(0.05..1.0), seed: rng.random() },
+        0 => BrainSpec::Random {
+            period: 0.0,
+            seed: rng.random(),
+        },
+        1 => BrainSpec::Random {
+            period: rng.random_range(0.05..1.0),
+            seed: rng.random(),
+        },
         _ => BrainSpec::Phase {
             frequency: rng.random_range(0.1..5.0),
             amplitude: 1.0,
@@ -115,7 +121,12 @@ fn a_thousand_random_bodies_stay_finite_and_sane_on_every_terrain() {
         failures.iter().all(|f| f.contains("area ratio range")),
         "non-finite states or errors: {failures:?}"
     );
-    assert!(failures.len() * 200 <= results.len(), "{} of {} cases left the area bounds", failures.len(), results.len());
+    assert!(
+        failures.len() * 200 <= results.len(),
+        "{} of {} cases left the area bounds",
+        failures.len(),
+        results.len()
+    );
     let ok: Vec<&(f64, f64)> = results.iter().filter_map(|r| r.as_ref().ok()).collect();
     let lo = ok.iter().map(|w| w.0).fold(f64::INFINITY, f64::min);
     let hi = ok.iter().map(|w| w.1).fold(f64::NEG_INFINITY, f64::max);

@@ -135,10 +135,7 @@ mod tests {
     #[test]
     fn empty_grid_is_an_error_or_the_original_single_voxel() {
         let genes = vec![-1.0; 12];
-        assert_eq!(
-            DirectBody::new(4, 3).decode(&genes),
-            Err(EncodingError::Empty)
-        );
+        assert_eq!(DirectBody::new(4, 3).decode(&genes), Err(EncodingError::Empty));
         let m = DirectBody::new(4, 3)
             .with_on_empty(OnEmpty::SingleVoxel)
             .decode(&genes)
@@ -193,13 +190,8 @@ mod tests {
     }
 
     fn grid_and_genes() -> impl Strategy<Value = (usize, usize, Vec<f64>)> {
-        (1usize..=10, 1usize..=10).prop_flat_map(|(w, h)| {
-            (
-                Just(w),
-                Just(h),
-                proptest::collection::vec(-1.0f64..1.0, w * h),
-            )
-        })
+        (1usize..=10, 1usize..=10)
+            .prop_flat_map(|(w, h)| (Just(w), Just(h), proptest::collection::vec(-1.0f64..1.0, w * h)))
     }
 
     proptest! {

@@ -234,11 +234,7 @@ impl GmmBody {
     /// The thresholded grid before the largest component is taken (row-major from the bottom
     /// row): a cell is set iff its mixture value is greater than the threshold.
     pub fn cells(&self, genes: &[f64]) -> Result<Vec<bool>, EncodingError> {
-        Ok(self
-            .values(genes)?
-            .into_iter()
-            .map(|v| v > self.threshold)
-            .collect())
+        Ok(self.values(genes)?.into_iter().map(|v| v > self.threshold).collect())
     }
 
     /// Decodes 5·n finite genes into the largest connected piece of the cells above threshold.
@@ -315,8 +311,7 @@ mod tests {
             sigma_x: 0.2,
             sigma_y: 0.4,
         };
-        let expected = 0.7 * (-0.5f64 * (0.2f64.powi(2) / 0.04 + 0.3f64.powi(2) / 0.16)).exp()
-            / (2.0 * PI * 0.08);
+        let expected = 0.7 * (-0.5f64 * (0.2f64.powi(2) / 0.04 + 0.3f64.powi(2) / 0.16)).exp() / (2.0 * PI * 0.08);
         assert!((g.value(0.5, 0.3) - expected).abs() < 1e-12);
         let peak = Gaussian {
             weight: 1.0,
@@ -347,9 +342,7 @@ mod tests {
     #[test]
     fn centred_coordinates_are_the_thesis_rescaling() {
         // x' = 2u − 1 halves the lengths: Centred(4φ, 2μ − 1, 2μ − 1, 2σ, 2σ) = Unit(φ, μ, μ, σ, σ).
-        let unit = GmmBody::new(10, 10, 1)
-            .decode(&[1.0, 0.45, 0.45, 0.2, 0.2])
-            .unwrap();
+        let unit = GmmBody::new(10, 10, 1).decode(&[1.0, 0.45, 0.45, 0.2, 0.2]).unwrap();
         let centred = GmmBody::new(10, 10, 1)
             .with_coords(GmmCoords::Centred)
             .decode(&[4.0, -0.1, -0.1, 0.4, 0.4])
@@ -365,9 +358,7 @@ mod tests {
 
     #[test]
     fn wider_gaussians_along_x_give_wider_bodies() {
-        let m = GmmBody::new(10, 6, 1)
-            .decode(&[1.0, 0.45, 0.4, 0.4, 0.1])
-            .unwrap();
+        let m = GmmBody::new(10, 6, 1).decode(&[1.0, 0.45, 0.4, 0.4, 0.1]).unwrap();
         assert_eq!(
             m.to_rows(),
             [
@@ -409,11 +400,7 @@ mod tests {
         let clip = GmmBody::new(10, 10, 2).decode(&genes).unwrap();
         assert_eq!(clip.to_rows(), CENTRED_BLOB);
         let signed = GmmBody::new(10, 10, 2).with_sigma(GmmSigma::Signed);
-        assert!(signed
-            .values(&genes)
-            .unwrap()
-            .iter()
-            .all(|v| v.abs() < 1e-12));
+        assert!(signed.values(&genes).unwrap().iter().all(|v| v.abs() < 1e-12));
         assert_eq!(signed.decode(&genes), Err(EncodingError::Empty));
         // Two negative σ's cancel out: the original code reads that Gaussian as a positive one.
         let both_negative = [1.0, 0.45, 0.45, -0.2, -0.2];
@@ -434,14 +421,8 @@ mod tests {
     #[test]
     fn threshold_is_a_parameter() {
         let genes = [1.0, 0.45, 0.45, 0.2, 0.2];
-        let low = GmmBody::new(10, 10, 1)
-            .with_threshold(0.01)
-            .decode(&genes)
-            .unwrap();
-        let high = GmmBody::new(10, 10, 1)
-            .with_threshold(3.0)
-            .decode(&genes)
-            .unwrap();
+        let low = GmmBody::new(10, 10, 1).with_threshold(0.01).decode(&genes).unwrap();
+        let high = GmmBody::new(10, 10, 1).with_threshold(3.0).decode(&genes).unwrap();
         assert!(low.voxel_count() > 52 && high.voxel_count() < 52 && high.voxel_count() > 0);
         assert_eq!(high.to_rows()[4..6], ["....##....", "....##...."]);
         assert_eq!(
@@ -455,10 +436,7 @@ mod tests {
         let genes = [1.0, 50.0, -40.0, 0.2, 0.2, 1.0, -30.0, 80.0, 0.3, 0.3];
         let body = GmmBody::new(10, 10, 2);
         assert_eq!(body.decode(&genes), Err(EncodingError::Empty));
-        let m = body
-            .with_on_empty(OnEmpty::SingleVoxel)
-            .decode(&genes)
-            .unwrap();
+        let m = body.with_on_empty(OnEmpty::SingleVoxel).decode(&genes).unwrap();
         assert_eq!(m.voxel_count(), 1);
         assert!(m.has(0, 0));
     }
@@ -494,9 +472,7 @@ mod tests {
             Err(EncodingError::InvalidConfig(_))
         ));
         assert!(matches!(
-            GmmBody::new(10, 10, 1)
-                .with_threshold(f64::NAN)
-                .decode(&[0.5; 5]),
+            GmmBody::new(10, 10, 1).with_threshold(f64::NAN).decode(&[0.5; 5]),
             Err(EncodingError::InvalidConfig(_))
         ));
         assert!(matches!(
@@ -532,37 +508,21 @@ mod tests {
             1.0, 0.5, 0.5, 1e-200, 1e-200, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
         ];
         // A needle exactly on cell (3, 3): one voxel, everything else 0.
-        assert_eq!(
-            body.decode(&tiny).unwrap().voxels().collect::<Vec<_>>(),
-            [(3, 3)]
-        );
+        assert_eq!(body.decode(&tiny).unwrap().voxels().collect::<Vec<_>>(), [(3, 3)]);
     }
 
     fn config_and_genes() -> impl Strategy<Value = (GmmBody, Vec<f64>)> {
-        (
-            1usize..=10,
-            1usize..=10,
-            1usize..=5,
-            any::<bool>(),
-            any::<bool>(),
-        )
-            .prop_flat_map(|(w, h, n, signed, centred)| {
+        (1usize..=10, 1usize..=10, 1usize..=5, any::<bool>(), any::<bool>()).prop_flat_map(
+            |(w, h, n, signed, centred)| {
                 let body = GmmBody::new(w, h, n)
-                    .with_sigma(if signed {
-                        GmmSigma::Signed
-                    } else {
-                        GmmSigma::Clip
-                    })
-                    .with_coords(if centred {
-                        GmmCoords::Centred
-                    } else {
-                        GmmCoords::Unit
-                    });
+                    .with_sigma(if signed { GmmSigma::Signed } else { GmmSigma::Clip })
+                    .with_coords(if centred { GmmCoords::Centred } else { GmmCoords::Unit });
                 (
                     Just(body),
                     proptest::collection::vec(-1.0f64..1.5, n * GENES_PER_GAUSSIAN),
                 )
-            })
+            },
+        )
     }
 
     proptest! {

@@ -16,11 +16,7 @@ use super::EncodingError;
 ///
 /// Returns an all-false grid when no cell is set, and [`EncodingError::GridSize`] when
 /// `cells.len() != width·height`.
-pub fn largest_component(
-    width: usize,
-    height: usize,
-    cells: &[bool],
-) -> Result<Vec<bool>, EncodingError> {
+pub fn largest_component(width: usize, height: usize, cells: &[bool]) -> Result<Vec<bool>, EncodingError> {
     if width.checked_mul(height) != Some(cells.len()) {
         return Err(EncodingError::GridSize {
             width,
@@ -103,11 +99,7 @@ mod tests {
     fn rows_of(w: usize, h: usize, cells: &[bool]) -> Vec<String> {
         (0..h)
             .rev()
-            .map(|y| {
-                (0..w)
-                    .map(|x| if cells[y * w + x] { '#' } else { '.' })
-                    .collect()
-            })
+            .map(|y| (0..w).map(|x| if cells[y * w + x] { '#' } else { '.' }).collect())
             .collect()
     }
 
@@ -118,10 +110,7 @@ mod tests {
 
     #[test]
     fn keeps_the_strictly_largest_component() {
-        assert_eq!(
-            keep(&["#..##", "#...#", "..###"]),
-            ["...##", "....#", "..###"]
-        );
+        assert_eq!(keep(&["#..##", "#...#", "..###"]), ["...##", "....#", "..###"]);
     }
 
     #[test]
@@ -133,28 +122,19 @@ mod tests {
     fn tie_goes_to_the_component_first_in_column_major_scan() {
         // Two 2-cell pieces: the right one holds the bottom row, but the left one has smaller x
         // and is scanned first (x outer, y inner), so it wins.
-        assert_eq!(
-            keep(&["#..", "#..", "..#", "..#"]),
-            ["#..", "#..", "...", "..."]
-        );
+        assert_eq!(keep(&["#..", "#..", "..#", "..#"]), ["#..", "#..", "...", "..."]);
         // Same column: the lower piece (smaller y) is scanned first.
         assert_eq!(keep(&["#", "#", ".", "#", "#"]), [".", ".", ".", "#", "#"]);
         // Column-major, not row-major: the left piece starts at (0,1), the right one at (2,0);
         // row-major from the bottom would pick the right one, the original's scan picks the left.
         assert_eq!(keep(&["#..", "#.#", "..#"]), ["#..", "#..", "..."]);
         // Three equal single cells: (0, 2) has the smallest x.
-        assert_eq!(
-            keep(&["#..", "...", "..#", ".#."]),
-            ["#..", "...", "...", "..."]
-        );
+        assert_eq!(keep(&["#..", "...", "..#", ".#."]), ["#..", "...", "...", "..."]);
     }
 
     #[test]
     fn empty_grid_stays_empty_and_bad_length_is_an_error() {
-        assert_eq!(
-            largest_component(2, 2, &[false; 4]).unwrap(),
-            vec![false; 4]
-        );
+        assert_eq!(largest_component(2, 2, &[false; 4]).unwrap(), vec![false; 4]);
         assert_eq!(largest_component(0, 3, &[]).unwrap(), Vec::<bool>::new());
         assert!(matches!(
             largest_component(2, 2, &[true; 3]),

@@ -274,12 +274,7 @@ fn check_genes(genes: &[f64], expected: usize) -> Result<(), EncodingError> {
 
 /// Common tail of both decoders: empty check (with the optional fallback), then the largest
 /// component, then a validated morphology.
-fn finish(
-    width: usize,
-    height: usize,
-    mut cells: Vec<bool>,
-    on_empty: OnEmpty,
-) -> Result<Morphology, EncodingError> {
+fn finish(width: usize, height: usize, mut cells: Vec<bool>, on_empty: OnEmpty) -> Result<Morphology, EncodingError> {
     if !cells.iter().any(|&c| c) {
         match on_empty {
             OnEmpty::Error => return Err(EncodingError::Empty),
@@ -296,13 +291,10 @@ mod tests {
 
     #[test]
     fn configs_round_trip_and_fill_defaults() {
-        let d: BodyEncoding =
-            serde_json::from_str(r#"{"kind":"direct","width":10,"height":10}"#).unwrap();
+        let d: BodyEncoding = serde_json::from_str(r#"{"kind":"direct","width":10,"height":10}"#).unwrap();
         assert_eq!(d, BodyEncoding::from(DirectBody::new(10, 10)));
         assert_eq!(d.gene_count(), 100);
-        let g: BodyEncoding =
-            serde_json::from_str(r#"{"kind":"gmm","width":10,"height":10,"components":5}"#)
-                .unwrap();
+        let g: BodyEncoding = serde_json::from_str(r#"{"kind":"gmm","width":10,"height":10,"components":5}"#).unwrap();
         assert_eq!(g, BodyEncoding::from(GmmBody::new(10, 10, 5)));
         assert_eq!(g.gene_count(), 25);
         assert_eq!((g.width(), g.height()), (10, 10));
@@ -336,21 +328,12 @@ mod tests {
 
     #[test]
     fn configs_reject_unknown_fields_and_kinds() {
-        assert!(serde_json::from_str::<BodyEncoding>(
-            r#"{"kind":"direct","width":2,"height":2,"depth":1}"#
-        )
-        .is_err());
+        assert!(serde_json::from_str::<BodyEncoding>(r#"{"kind":"direct","width":2,"height":2,"depth":1}"#).is_err());
+        assert!(serde_json::from_str::<BodyEncoding>(r#"{"kind":"cppn","width":2,"height":2}"#).is_err());
+        assert!(serde_json::from_str::<BodyEncoding>(r#"{"kind":"gmm","width":2,"height":2}"#).is_err());
         assert!(
-            serde_json::from_str::<BodyEncoding>(r#"{"kind":"cppn","width":2,"height":2}"#)
-                .is_err()
+            serde_json::from_str::<BodyEncoding>(r#"{"kind":"direct","width":2,"height":2,"on_empty":"x"}"#).is_err()
         );
-        assert!(
-            serde_json::from_str::<BodyEncoding>(r#"{"kind":"gmm","width":2,"height":2}"#).is_err()
-        );
-        assert!(serde_json::from_str::<BodyEncoding>(
-            r#"{"kind":"direct","width":2,"height":2,"on_empty":"x"}"#
-        )
-        .is_err());
     }
 
     #[test]
@@ -360,16 +343,10 @@ mod tests {
             height: 2,
             on_empty: OnEmpty::Error,
         };
-        assert_eq!(
-            d.decode(&[1.0, -1.0, 1.0, -1.0]).unwrap().to_rows(),
-            ["#.", "#."]
-        );
+        assert_eq!(d.decode(&[1.0, -1.0, 1.0, -1.0]).unwrap().to_rows(), ["#.", "#."]);
         assert_eq!(
             d.decode(&[1.0]),
-            Err(EncodingError::GeneCount {
-                expected: 4,
-                actual: 1
-            })
+            Err(EncodingError::GeneCount { expected: 4, actual: 1 })
         );
         let g = BodyEncoding::from(GmmBody::new(4, 4, 1));
         let genes = [1.0, 0.5, 0.5, 0.2, 0.2];
@@ -391,9 +368,6 @@ mod tests {
             expected: 25,
             actual: 24,
         };
-        assert_eq!(
-            e.to_string(),
-            "wrong number of body genes: expected 25, got 24"
-        );
+        assert_eq!(e.to_string(), "wrong number of body genes: expected 25, got 24");
     }
 }

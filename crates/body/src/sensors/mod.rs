@@ -1,41 +1,80 @@
 //! Sensors (vsr-model.md §3): what each voxel perceives at every step.
 //!
-//! A [`SensorConfig`] places [`SensorSpec`]s on voxels; a [`SensorSuite`] runs them and writes all
-//! readings, voxel by voxel in grid order, each voxel's sensors in list order.
+//! - A [`SensorSpec`] describes one sensor: a raw sensor ([`SensorSpec::AreaRatio`],
+//!   [`SensorSpec::Touch`], [`SensorSpec::Velocity`], [`SensorSpec::Angle`], [`SensorSpec::Lidar`],
+//!   [`SensorSpec::Cpg`], [`SensorSpec::ConstantPosition`], [`SensorSpec::Malfunction`]), possibly
+//!   inside wrappers ([`SensorSpec::Average`], [`SensorSpec::Trend`], [`SensorSpec::Normalization`],
+//!   [`SensorSpec::SoftNormalization`], [`SensorSpec::Noisy`]). [`SensorSpec::named`] gives the
+//!   named sensors of 2D-VSR-Sim (`a`, `t`, `vxy`, …).
+//! - A [`SensorConfig`] places sensors on a body: a placement string (`uniform-a+vxy+t-0.01`,
+//!   `spinedTouchSighted-f-f-0.01`, `empty`, …) or a list of sensor names per voxel.
+//! - A [`SensorSuite`] runs the sensors of one robot during an episode. Each step,
+//!   [`SensorSuite::sense`] writes every reading, voxel by voxel in grid order (row-major from the
+//!   bottom row), each voxel's sensors in list order. It never allocates: windows are ring buffers
+//!   sized when the suite is built.
 //!
-//! Noise differs from the original on purpose: every noisy sensor instance draws from its own
-//! generator, seeded from (episode seed, voxel index, sensor index), instead of the original's
-//! identical seed-0 stream shared by every sensor (vsr-model.md §3.2).
+//! Noise differs from the original on purpose: every `Noisy` instance draws from its own ChaCha8
+//! stream, keyed by (episode seed, voxel index, sensor index), instead of the original's seed-0
+//! stream shared by every noisy sensor of every voxel (vsr-model.md §3.2; details in `noise.rs`).
 
+mod angle;
+mod area_ratio;
+mod average;
+mod constant;
+mod cpg;
 mod lidar;
+mod malfunction;
+mod named;
 mod node;
+mod noise;
+mod normalization;
 mod placement;
+mod soft_normalization;
 mod spec;
+mod touch;
+mod trend;
+mod velocity;
+mod window;
 
+pub use named::SENSOR_NAMES;
 pub use placement::SensorConfig;
-pub use spec::{Axes, Axis, SensorSpec};
+pub use spec::{Axes, Axis, SensorSpec, MAX_RAYS, MAX_WINDOW};
 
 use crate::morphology::Morphology;
 use crate::robot::{VoxelState, Vsr};
-use node::{mix_seed, Context, Node};
+use constant::relative_position;
+use node::{Frame, Node, Site};
+use noise::{NoiseKey, MAX_SENSORS_PER_VOXEL};
+use std::ops::Range;
 use vsrlab_physics::World;
+
+/// The sampling interval the suite plans its windows for unless told otherwise: one physics step of
+/// 2D-VSR-Sim (1/60 s).
+pub const DEFAULT_TIME_STEP: f64 = 1.0 / 60.0;
 
 /// Why a sensor configuration was rejected.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SensorError {
-    /// A sensor name is not one of the known ones.
-    #[error("unknown sensor '{0}': expected one of a, t, r, vx, vy, vxy, ax, ay, axy, px, py, m, cpg, l5, l1")]
-    UnknownSensor(String),
-    /// A placement string is malformed.
-    #[error("bad sensor placement '{placement}': {msg}")]
-    BadPlacement {
-        /// The placement string.
-        placement: String,
-        /// What is wrong.
-        msg: String,
+    /// A sensor name is not one of [`SENSOR_NAMES`].
+    #[error("{}unknown sensor '{name}': expected one of {}", at_voxel(.voxel), SENSOR_NAMES.join(", "))]
+    UnknownSensor {
+        /// Voxel (grid order) whose list holds the name, for per-voxel lists.
+        voxel: Option<usize>,
+        /// The unknown name.
+        name: String,
     },
-    /// A per-voxel list does not have one entry per voxel.
-    #[error("per-voxel sensor list has {got} entries but the body has {expected} voxels")]
+    /// A placement string is malformed.
+    #[error("bad sensor placement '{placement}': got '{token}', expected {expected}")]
+    BadPlacement {
+        /// The whole placement string.
+        placement: String,
+        /// The offending part.
+        token: String,
+        /// What would have been accepted there.
+        expected: String,
+    },
+    /// A per-voxel placement does not have one list per voxel.
+    #[error("the per-voxel sensor lists are {got} but the body has {expected} voxels: give one list per voxel, in grid order (row-major from the bottom row)")]
     WrongVoxelCount {
         /// Voxels in the body.
         expected: usize,
@@ -43,122 +82,209 @@ pub enum SensorError {
         got: usize,
     },
     /// A sensor parameter is out of range.
-    #[error("sensor on voxel {voxel}: {msg}")]
-    Invalid {
-        /// Voxel index (grid order).
+    #[error("voxel {voxel}, sensor {sensor}: {msg}")]
+    InvalidSensor {
+        /// Voxel (grid order).
         voxel: usize,
+        /// Position of the sensor in the voxel's list.
+        sensor: usize,
         /// What is wrong.
         msg: String,
     },
+    /// The planned sampling interval is not a positive number.
+    #[error("the sensor time step must be a finite number > 0, got {0}")]
+    InvalidTimeStep(f64),
 }
 
-/// A lidar ray of a voxel, for drawing.
+fn at_voxel(voxel: &Option<usize>) -> String {
+    voxel.map(|v| format!("voxel {v}: ")).unwrap_or_default()
+}
+
+/// One lidar ray of a voxel, for drawing.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LidarRay {
-    /// Direction relative to the voxel angle (radians).
+    /// Direction relative to the voxel's angle (radians).
     pub relative_angle: f64,
     /// Maximum distance.
     pub range: f64,
-    /// Distance measured at the last step.
+    /// Distance measured at the last step (the range before the first).
     pub distance: f64,
+}
+
+/// One running sensor and where its readings go.
+#[derive(Debug, Clone)]
+struct Placed {
+    node: Node,
+    /// Its readings within the suite's output.
+    readings: Range<usize>,
 }
 
 /// The running sensors of one robot.
 #[derive(Debug, Clone)]
 pub struct SensorSuite {
-    /// Sensors per voxel (grid order).
-    nodes: Vec<Vec<Node>>,
+    /// Every sensor, voxels in grid order, each voxel's in list order.
+    sensors: Vec<Placed>,
+    /// Voxel v's sensors are `sensors[first_sensor[v]..first_sensor[v + 1]]`.
+    first_sensor: Vec<usize>,
+    /// Voxel v's readings are `first_reading[v]..first_reading[v + 1]`.
+    first_reading: Vec<usize>,
+    /// The specs per voxel, as placed.
     specs: Vec<Vec<SensorSpec>>,
-    offsets: Vec<usize>,
-    total: usize,
 }
 
 impl SensorSuite {
-    /// Places and builds the sensors for a body; `seed` seeds noise.
-    pub fn new(config: &SensorConfig, morphology: &Morphology, seed: u64) -> Result<SensorSuite, SensorError> {
-        let specs = config.specs(morphology)?;
-        let (w, h) = (morphology.width(), morphology.height());
-        let rel = |c: usize, n: usize| if n > 1 { c as f64 / (n - 1) as f64 } else { 0.5 };
-        let mut nodes = Vec::with_capacity(specs.len());
-        let mut offsets = Vec::with_capacity(specs.len() + 1);
-        let mut total = 0;
-        for (v, ((x, y), list)) in morphology.voxels().zip(&specs).enumerate() {
-            offsets.push(total);
-            let mut voxel_nodes = Vec::with_capacity(list.len());
-            for (k, spec) in list.iter().enumerate() {
-                spec.validate().map_err(|msg| SensorError::Invalid { voxel: v, msg })?;
-                total += spec.dimension();
-                voxel_nodes.push(Node::build(spec, (rel(x, w), rel(y, h)), mix_seed(&[seed, v as u64, k as u64])));
-            }
-            nodes.push(voxel_nodes);
+    /// Places `config`'s sensors on `body`; `seed` (the episode seed) keys the noise streams.
+    /// Windows are planned for readings every [`DEFAULT_TIME_STEP`].
+    pub fn new(config: &SensorConfig, body: &Morphology, seed: u64) -> Result<SensorSuite, SensorError> {
+        SensorSuite::with_time_step(config, body, seed, DEFAULT_TIME_STEP)
+    }
+
+    /// As [`SensorSuite::new`], with windows planned for readings every `dt` seconds (readings at
+    /// other intervals are still windowed correctly by timestamp; faster ones cost one allocation).
+    pub fn with_time_step(
+        config: &SensorConfig,
+        body: &Morphology,
+        seed: u64,
+        dt: f64,
+    ) -> Result<SensorSuite, SensorError> {
+        SensorSuite::from_specs(config.specs(body)?, body, seed, dt)
+    }
+
+    /// Builds explicit sensor trees: `specs[v]` lists the sensors of voxel v (grid order).
+    pub fn from_specs(
+        specs: Vec<Vec<SensorSpec>>,
+        body: &Morphology,
+        seed: u64,
+        dt: f64,
+    ) -> Result<SensorSuite, SensorError> {
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(SensorError::InvalidTimeStep(dt));
         }
-        offsets.push(total);
-        Ok(SensorSuite { nodes, specs, offsets, total })
+        if specs.len() != body.voxel_count() {
+            return Err(SensorError::WrongVoxelCount {
+                expected: body.voxel_count(),
+                got: specs.len(),
+            });
+        }
+        let (w, h) = (body.width(), body.height());
+        let mut sensors = Vec::new();
+        let mut first_sensor = vec![0];
+        let mut first_reading = vec![0];
+        let mut next = 0;
+        for (v, ((x, y), list)) in body.voxels().zip(&specs).enumerate() {
+            if list.len() > MAX_SENSORS_PER_VOXEL {
+                return Err(SensorError::InvalidSensor {
+                    voxel: v,
+                    sensor: MAX_SENSORS_PER_VOXEL,
+                    msg: format!("at most {MAX_SENSORS_PER_VOXEL} sensors per voxel, got {}", list.len()),
+                });
+            }
+            for (k, spec) in list.iter().enumerate() {
+                spec.validate().map_err(|msg| SensorError::InvalidSensor {
+                    voxel: v,
+                    sensor: k,
+                    msg,
+                })?;
+                let site = Site {
+                    rel: (relative_position(x, w), relative_position(y, h)),
+                    dt,
+                    noise: NoiseKey::new(seed, v, k),
+                };
+                let dim = spec.dimension();
+                sensors.push(Placed {
+                    node: Node::build(spec, site),
+                    readings: next..next + dim,
+                });
+                next += dim;
+            }
+            first_sensor.push(sensors.len());
+            first_reading.push(next);
+        }
+        Ok(SensorSuite {
+            sensors,
+            first_sensor,
+            first_reading,
+            specs,
+        })
     }
 
-    /// Number of readings of voxel `v`.
+    /// Number of voxels.
+    pub fn voxel_count(&self) -> usize {
+        self.specs.len()
+    }
+
+    /// Number of readings of voxel `v` (grid order).
     pub fn readings_per_voxel(&self, v: usize) -> usize {
-        self.offsets[v + 1] - self.offsets[v]
+        self.first_reading[v + 1] - self.first_reading[v]
     }
 
-    /// Total number of readings (all voxels).
+    /// Where voxel `v`'s readings lie in the output of [`SensorSuite::sense`].
+    pub fn readings_range(&self, v: usize) -> Range<usize> {
+        self.first_reading[v]..self.first_reading[v + 1]
+    }
+
+    /// Total number of readings, all voxels.
     pub fn total_readings(&self) -> usize {
-        self.total
+        self.first_reading[self.specs.len()]
     }
 
-    /// Domain (min, max) of each reading of voxel `v`.
-    pub fn domains(&self, v: usize) -> Vec<(f64, f64)> {
-        self.specs[v].iter().flat_map(|s| s.domains()).collect()
-    }
-
-    /// The sensors placed on voxel `v`.
+    /// The sensors placed on voxel `v`, in list order.
     pub fn specs(&self, v: usize) -> &[SensorSpec] {
         &self.specs[v]
     }
 
-    /// Lidar rays of voxel `v` with their last measured distances.
+    /// Declared domain (min, max) of each reading of voxel `v`, after wrapping.
+    pub fn domains(&self, v: usize) -> Vec<(f64, f64)> {
+        self.specs[v].iter().flat_map(SensorSpec::domains).collect()
+    }
+
+    /// The lidar rays of voxel `v`, in reading order, with the distances measured at the last step.
     pub fn lidar_rays(&self, v: usize) -> Vec<LidarRay> {
-        let mut raw = Vec::new();
-        for n in &self.nodes[v] {
-            n.lidar_rays(&mut raw);
+        let mut rays = Vec::new();
+        for placed in self.voxel_sensors(v) {
+            placed.node.for_each_lidar(&mut |lidar| {
+                let range = lidar.range();
+                rays.extend(lidar.directions().iter().zip(lidar.last_distances()).map(
+                    |(&relative_angle, &distance)| LidarRay {
+                        relative_angle,
+                        range,
+                        distance,
+                    },
+                ));
+            });
         }
-        raw.into_iter()
-            .map(|(relative_angle, range, distance)| LidarRay {
-                relative_angle,
-                range,
-                distance,
-            })
-            .collect()
+        rays
     }
 
-    /// Clears every window and restarts every noise stream.
+    /// Back to the state right after construction: empty windows, noise streams at their start.
     pub fn reset(&mut self) {
-        self.nodes.iter_mut().flatten().for_each(Node::reset);
+        self.sensors.iter_mut().for_each(|p| p.node.reset());
     }
 
-    /// Senses every voxel at time `t` (states in grid order) and writes all readings into `out`.
-    pub fn sense(&mut self, world: &World, _vsr: &Vsr, states: &[VoxelState], t: f64, out: &mut [f64]) {
-        for (v, voxel_nodes) in self.nodes.iter_mut().enumerate() {
-            let ctx = Context { world, state: &states[v], t };
-            let mut at = self.offsets[v];
-            for n in voxel_nodes.iter_mut() {
-                let dim = n_dim(n);
-                n.sense(&ctx, &mut out[at..at + dim]);
-                at += dim;
+    /// Reads every sensor at simulated time `t` and writes all readings into `out`
+    /// (length [`SensorSuite::total_readings`]). `states` are the voxel states in grid order; `vsr`
+    /// is the robot they belong to. Call once per step, with increasing `t`.
+    ///
+    /// # Panics
+    /// If `states` does not have one entry per voxel or `out` is not exactly the readings' length.
+    pub fn sense(&mut self, world: &World, vsr: &Vsr, states: &[VoxelState], t: f64, out: &mut [f64]) {
+        assert_eq!(states.len(), self.voxel_count(), "one voxel state per voxel");
+        assert_eq!(out.len(), self.total_readings(), "one slot per reading");
+        debug_assert_eq!(
+            vsr.voxel_count(),
+            self.voxel_count(),
+            "the suite was built for another body"
+        );
+        for (v, state) in states.iter().enumerate() {
+            let frame = Frame { world, state, t };
+            for placed in &mut self.sensors[self.first_sensor[v]..self.first_sensor[v + 1]] {
+                placed.node.sense(&frame, &mut out[placed.readings.clone()]);
             }
         }
     }
-}
 
-/// Dimension of a running node (mirrors [`SensorSpec::dimension`]).
-fn n_dim(n: &Node) -> usize {
-    match n {
-        Node::Velocity { axes: Axes::Xy, .. } => 2,
-        Node::Lidar { angles, .. } => angles.len(),
-        Node::Average { buf, .. } | Node::Trend { buf, .. } => buf.len(),
-        Node::Normalize { domains, .. } => domains.len(),
-        Node::Noisy { sigmas, .. } => sigmas.len(),
-        _ => 1,
+    fn voxel_sensors(&self, v: usize) -> &[Placed] {
+        &self.sensors[self.first_sensor[v]..self.first_sensor[v + 1]]
     }
 }
 

@@ -1,271 +1,208 @@
-//! Running sensors: a tree of nodes mirroring [`SensorSpec`], each with the state it needs
-//! (sample windows, noise generators). Nothing allocates once the windows have filled.
+//! Running sensors: a tree of [`Node`]s mirroring a [`SensorSpec`], each holding the state it needs
+//! (sample windows, noise generators, last lidar distances). Built once per episode; sensing never
+//! allocates.
 
-use super::lidar::ray_angles;
-use super::spec::{Axes, Axis, SensorSpec};
+use super::angle::Angle;
+use super::area_ratio::AreaRatio;
+use super::average::Average;
+use super::constant::ConstantPosition;
+use super::cpg::Cpg;
+use super::lidar::Lidar;
+use super::malfunction::Malfunction;
+use super::noise::{NoiseKey, Noisy};
+use super::normalization::Normalization;
+use super::soft_normalization::SoftNormalization;
+use super::spec::{Axis, SensorSpec};
+use super::touch::Touch;
+use super::trend::Trend;
+use super::velocity::Velocity;
 use crate::robot::VoxelState;
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
-use std::collections::VecDeque;
-use vsrlab_physics::{Vec2, World};
+use vsrlab_physics::World;
 
 /// What a sensor may read at one step.
-pub struct Context<'a> {
+pub(crate) struct Frame<'a> {
     /// The world (for ray casts).
     pub world: &'a World,
-    /// The voxel's state.
+    /// The sensing voxel's state.
     pub state: &'a VoxelState,
-    /// Simulated time.
+    /// Simulated time (s).
     pub t: f64,
 }
 
-/// Time-stamped samples within a window, with their running sum: `t` then `dim` values per sample.
-#[derive(Debug, Clone)]
-pub(crate) struct Samples {
-    window: f64,
-    dim: usize,
-    data: VecDeque<f64>,
-    sum: Vec<f64>,
-}
-
-impl Samples {
-    fn new(window: f64, dim: usize) -> Self {
-        // room for the window at 60 Hz plus slack; more samples only grow the buffer once
-        let cap = ((window * 60.0).ceil() as usize + 4) * (dim + 1);
-        Samples {
-            window,
-            dim,
-            data: VecDeque::with_capacity(cap),
-            sum: vec![0.0; dim],
-        }
-    }
-
-    fn clear(&mut self) {
-        self.data.clear();
-        self.sum.fill(0.0);
-    }
-
-    fn push(&mut self, t: f64, values: &[f64]) {
-        self.data.push_back(t);
-        self.data.extend(values.iter().copied());
-        for (s, v) in self.sum.iter_mut().zip(values) {
-            *s += v;
-        }
-        // keep samples with time ≥ t − window (inclusive, with a tolerance for accumulated time)
-        while self.data.front().is_some_and(|&t0| t0 < t - self.window - 1e-9) {
-            self.data.pop_front();
-            for s in self.sum.iter_mut() {
-                *s -= self.data.pop_front().unwrap_or(0.0);
-            }
-        }
-    }
-
-    fn count(&self) -> usize {
-        self.data.len() / (self.dim + 1)
-    }
-
-    /// Time and i-th value of sample k.
-    fn at(&self, k: usize, i: usize) -> f64 {
-        self.data[k * (self.dim + 1) + 1 + i]
-    }
-
-    fn time(&self, k: usize) -> f64 {
-        self.data[k * (self.dim + 1)]
-    }
+/// Where a sensor is being built: fixed facts about its voxel and its place in the suite.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Site {
+    /// Relative grid position of the voxel (x, y in [0, 1]).
+    pub rel: (f64, f64),
+    /// Nominal time between readings (s), to size sample windows.
+    pub dt: f64,
+    /// Identity of the noise streams of this sensor tree.
+    pub noise: NoiseKey,
 }
 
 /// A running sensor.
 #[derive(Debug, Clone)]
 pub(crate) enum Node {
-    AreaRatio,
-    Touch,
-    Velocity { rotated: bool, axes: Axes },
-    Angle,
-    Lidar { range: f64, angles: Vec<f64>, last: Vec<f64> },
-    Cpg,
-    Position(f64),
-    Malfunction,
-    Average { inner: Box<Node>, samples: Samples, buf: Vec<f64> },
-    Trend { inner: Box<Node>, samples: Samples, buf: Vec<f64> },
-    Normalize { inner: Box<Node>, domains: Vec<(f64, f64)>, soft: bool, clip: bool },
-    Noisy { inner: Box<Node>, sigmas: Vec<f64>, seed: u64, rng: ChaCha8Rng },
-}
-
-/// SplitMix64 finaliser: mixes several integers into one well-spread seed.
-pub(crate) fn mix_seed(parts: &[u64]) -> u64 {
-    let mut z: u64 = 0x9E37_79B9_7F4A_7C15;
-    for &p in parts {
-        z = z.wrapping_add(p).wrapping_add(0x9E37_79B9_7F4A_7C15);
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-    }
-    z
+    AreaRatio(AreaRatio),
+    Touch(Touch),
+    Velocity(Velocity),
+    Angle(Angle),
+    Lidar(Lidar),
+    Cpg(Cpg),
+    ConstantPosition(ConstantPosition),
+    Malfunction(Malfunction),
+    Average(Average),
+    Trend(Trend),
+    Normalization(Normalization),
+    SoftNormalization(SoftNormalization),
+    Noisy(Noisy),
 }
 
 impl Node {
-    /// Builds the running form of `spec` for a voxel at relative grid position `rel`; `seed` seeds
-    /// noise (each noisy node gets its own stream).
-    pub fn build(spec: &SensorSpec, rel: (f64, f64), seed: u64) -> Node {
-        let inner = |of: &SensorSpec, s| Box::new(Node::build(of, rel, s));
+    /// The running form of a (validated) `spec` placed at `site`.
+    pub(crate) fn build(spec: &SensorSpec, site: Site) -> Node {
+        let inner = |of: &SensorSpec| Box::new(Node::build(of, site));
         match spec {
-            SensorSpec::AreaRatio => Node::AreaRatio,
-            SensorSpec::Touch => Node::Touch,
-            SensorSpec::Velocity { rotated, axes, .. } => Node::Velocity { rotated: *rotated, axes: *axes },
-            SensorSpec::Angle => Node::Angle,
-            SensorSpec::Lidar { range, rays } => Node::Lidar {
-                range: *range,
-                angles: ray_angles(rel.0, rel.1, *rays),
-                last: vec![*range; *rays],
-            },
-            SensorSpec::Cpg => Node::Cpg,
-            SensorSpec::Position { axis } => Node::Position(match axis {
-                Axis::X => rel.0,
-                Axis::Y => rel.1,
-            }),
-            SensorSpec::Malfunction => Node::Malfunction,
-            SensorSpec::Average { window, of } => Node::Average {
-                inner: inner(of, seed),
-                samples: Samples::new(*window, of.dimension()),
-                buf: vec![0.0; of.dimension()],
-            },
-            SensorSpec::Trend { window, of } => Node::Trend {
-                inner: inner(of, seed),
-                samples: Samples::new(*window, of.dimension()),
-                buf: vec![0.0; of.dimension()],
-            },
-            SensorSpec::Normalization { of } => Node::Normalize {
-                inner: inner(of, seed),
-                domains: of.domains(),
-                soft: false,
-                clip: true,
-            },
-            SensorSpec::SoftNormalization { clip, of } => Node::Normalize {
-                inner: inner(of, seed),
-                domains: of.domains(),
-                soft: true,
-                clip: *clip,
-            },
-            SensorSpec::Noisy { sigma, of } => {
-                let own = mix_seed(&[seed, 0x4E01_5E]);
-                Node::Noisy {
-                    inner: inner(of, mix_seed(&[seed, 1])),
-                    sigmas: of.domains().iter().map(|(lo, hi)| sigma * (hi - lo)).collect(),
-                    seed: own,
-                    rng: ChaCha8Rng::seed_from_u64(own),
-                }
+            SensorSpec::AreaRatio => Node::AreaRatio(AreaRatio),
+            SensorSpec::Touch => Node::Touch(Touch),
+            SensorSpec::Velocity { rotated, axes, .. } => Node::Velocity(Velocity::new(*rotated, *axes)),
+            SensorSpec::Angle => Node::Angle(Angle),
+            SensorSpec::Lidar { range, rays } => Node::Lidar(Lidar::new(*range, *rays, site.rel)),
+            SensorSpec::Cpg => Node::Cpg(Cpg),
+            SensorSpec::ConstantPosition { axis } => Node::ConstantPosition(ConstantPosition::new(match axis {
+                Axis::X => site.rel.0,
+                Axis::Y => site.rel.1,
+            })),
+            SensorSpec::Malfunction => Node::Malfunction(Malfunction),
+            SensorSpec::Average { window, inner: of } => {
+                Node::Average(Average::new(inner(of), of.dimension(), *window, site.dt))
             }
-        }
-    }
-
-    /// Clears windows and restarts noise streams.
-    pub fn reset(&mut self) {
-        match self {
-            Node::Average { inner, samples, .. } | Node::Trend { inner, samples, .. } => {
-                samples.clear();
-                inner.reset();
+            SensorSpec::Trend { window, inner: of } => {
+                Node::Trend(Trend::new(inner(of), of.dimension(), *window, site.dt))
             }
-            Node::Normalize { inner, .. } => inner.reset(),
-            Node::Noisy { inner, seed, rng, .. } => {
-                *rng = ChaCha8Rng::seed_from_u64(*seed);
-                inner.reset();
+            SensorSpec::Normalization { inner: of } => Node::Normalization(Normalization::new(inner(of), of.domains())),
+            SensorSpec::SoftNormalization { clip, inner: of } => {
+                Node::SoftNormalization(SoftNormalization::new(inner(of), of.domains(), *clip))
             }
-            Node::Lidar { range, last, .. } => last.fill(*range),
-            _ => {}
+            SensorSpec::Noisy { sigma, inner: of } => {
+                let below = Site {
+                    noise: site.noise.nested(),
+                    ..site
+                };
+                Node::Noisy(Noisy::new(
+                    Box::new(Node::build(of, below)),
+                    &of.domains(),
+                    *sigma,
+                    site.noise,
+                ))
+            }
         }
     }
 
     /// Writes this sensor's readings into `out` (exactly its dimension).
-    pub fn sense(&mut self, ctx: &Context, out: &mut [f64]) {
-        let s = ctx.state;
+    pub(crate) fn sense(&mut self, frame: &Frame, out: &mut [f64]) {
         match self {
-            Node::AreaRatio => out[0] = s.area_ratio,
-            Node::Touch => out[0] = if s.touching { 1.0 } else { 0.0 },
-            Node::Velocity { rotated, axes } => {
-                let v = if *rotated {
-                    let (sin, cos) = s.angle.sin_cos();
-                    Vec2::new(s.velocity.dot(Vec2::new(cos, sin)), s.velocity.dot(Vec2::new(-sin, cos)))
-                } else {
-                    s.velocity
-                };
-                match axes {
-                    Axes::X => out[0] = v.x,
-                    Axes::Y => out[0] = v.y,
-                    Axes::Xy => {
-                        out[0] = v.x;
-                        out[1] = v.y;
-                    }
-                }
-            }
-            Node::Angle => out[0] = s.angle,
-            Node::Lidar { range, angles, last } => {
-                for (k, a) in angles.iter().enumerate() {
-                    let (sin, cos) = (s.angle + a).sin_cos();
-                    let d = ctx.world.ray_cast_static(s.center, Vec2::new(cos, sin), *range).unwrap_or(*range);
-                    last[k] = d;
-                    out[k] = d;
-                }
-            }
-            Node::Cpg => out[0] = (-2.0 * std::f64::consts::PI * ctx.t).sin(),
-            Node::Position(p) => out[0] = *p,
-            Node::Malfunction => out[0] = 0.0,
-            Node::Average { inner, samples, buf } => {
-                inner.sense(ctx, buf);
-                samples.push(ctx.t, buf);
-                let n = samples.count() as f64;
-                for (o, s) in out.iter_mut().zip(&samples.sum) {
-                    *o = s / n;
-                }
-            }
-            Node::Trend { inner, samples, buf } => {
-                inner.sense(ctx, buf);
-                samples.push(ctx.t, buf);
-                let last = samples.count() - 1;
-                let (t0, t1) = (samples.time(0), samples.time(last));
-                for (i, o) in out.iter_mut().enumerate() {
-                    *o = if t1 > t0 { (samples.at(last, i) - samples.at(0, i)) / (t1 - t0) } else { 0.0 };
-                }
-            }
-            Node::Normalize { inner, domains, soft, clip } => {
-                inner.sense(ctx, out);
-                for (o, (lo, hi)) in out.iter_mut().zip(domains.iter()) {
-                    let mut v = (*o - lo) / (hi - lo);
-                    if *clip {
-                        v = v.clamp(0.0, 1.0);
-                    }
-                    *o = if *soft { (2.0 * (2.0 * v - 1.0)).tanh() / 2.0 + 0.5 } else { v };
-                }
-            }
-            Node::Noisy { inner, sigmas, rng, .. } => {
-                inner.sense(ctx, out);
-                for (o, sigma) in out.iter_mut().zip(sigmas.iter()) {
-                    *o += sigma * gaussian(rng);
-                }
-            }
+            Node::AreaRatio(s) => s.sense(frame, out),
+            Node::Touch(s) => s.sense(frame, out),
+            Node::Velocity(s) => s.sense(frame, out),
+            Node::Angle(s) => s.sense(frame, out),
+            Node::Lidar(s) => s.sense(frame, out),
+            Node::Cpg(s) => s.sense(frame, out),
+            Node::ConstantPosition(s) => s.sense(frame, out),
+            Node::Malfunction(s) => s.sense(frame, out),
+            Node::Average(s) => s.sense(frame, out),
+            Node::Trend(s) => s.sense(frame, out),
+            Node::Normalization(s) => s.sense(frame, out),
+            Node::SoftNormalization(s) => s.sense(frame, out),
+            Node::Noisy(s) => s.sense(frame, out),
         }
     }
 
-    /// The lidar leaves of this tree: (relative angle, range, last distance) per ray.
-    pub fn lidar_rays(&self, out: &mut Vec<(f64, f64, f64)>) {
+    /// Back to the state at construction: empty windows, noise streams at their start.
+    pub(crate) fn reset(&mut self) {
         match self {
-            Node::Lidar { range, angles, last } => out.extend(angles.iter().zip(last).map(|(a, d)| (*a, *range, *d))),
-            Node::Average { inner, .. } | Node::Trend { inner, .. } | Node::Normalize { inner, .. } | Node::Noisy { inner, .. } => {
-                inner.lidar_rays(out)
-            }
+            Node::Lidar(s) => s.reset(),
+            Node::Average(s) => s.reset(),
+            Node::Trend(s) => s.reset(),
+            Node::Normalization(s) => s.inner_mut().reset(),
+            Node::SoftNormalization(s) => s.inner_mut().reset(),
+            Node::Noisy(s) => s.reset(),
+            Node::AreaRatio(_)
+            | Node::Touch(_)
+            | Node::Velocity(_)
+            | Node::Angle(_)
+            | Node::Cpg(_)
+            | Node::ConstantPosition(_)
+            | Node::Malfunction(_) => {}
+        }
+    }
+
+    /// Calls `f` on every lidar in this tree, depth first.
+    pub(crate) fn for_each_lidar(&self, f: &mut dyn FnMut(&Lidar)) {
+        match self {
+            Node::Lidar(l) => f(l),
+            Node::Average(s) => s.inner().for_each_lidar(f),
+            Node::Trend(s) => s.inner().for_each_lidar(f),
+            Node::Normalization(s) => s.inner().for_each_lidar(f),
+            Node::SoftNormalization(s) => s.inner().for_each_lidar(f),
+            Node::Noisy(s) => s.inner().for_each_lidar(f),
             _ => {}
         }
     }
 }
 
-/// A standard normal draw (Marsaglia's polar method), written here so that values do not change
-/// with the version of a distributions crate.
-fn gaussian(rng: &mut ChaCha8Rng) -> f64 {
-    loop {
-        let u: f64 = rng.random_range(-1.0..1.0);
-        let v: f64 = rng.random_range(-1.0..1.0);
-        let s = u * u + v * v;
-        if s > 0.0 && s < 1.0 {
-            return u * (-2.0 * s.ln() / s).sqrt();
+/// Helpers for the unit tests of the sensor files.
+#[cfg(test)]
+pub(crate) mod testing {
+    use super::*;
+    use vsrlab_physics::{Vec2, WorldBuilder, WorldSettings};
+
+    /// A world with nothing in it.
+    pub(crate) fn empty_world() -> World {
+        WorldBuilder::new(WorldSettings::default()).build().unwrap()
+    }
+
+    /// A voxel at rest at the origin, upright, not touching anything.
+    pub(crate) fn still_state() -> VoxelState {
+        VoxelState {
+            polygon: [Vec2::ZERO; 4],
+            area_ratio: 1.0,
+            center: Vec2::ZERO,
+            velocity: Vec2::ZERO,
+            angle: 0.0,
+            touching: false,
         }
+    }
+
+    /// A site at the grid's centre, sampled at 60 Hz, with noise from episode seed 0.
+    pub(crate) fn site() -> Site {
+        Site {
+            rel: (0.5, 0.5),
+            dt: 1.0 / 60.0,
+            noise: NoiseKey::new(0, 0, 0),
+        }
+    }
+
+    /// Builds `spec` and reads it once per state, at times dt, 2dt, …; returns every reading.
+    pub(crate) fn run(spec: &SensorSpec, states: &[VoxelState], dt: f64) -> Vec<Vec<f64>> {
+        let world = empty_world();
+        let mut node = Node::build(spec, Site { dt, ..site() });
+        let mut t = 0.0;
+        states
+            .iter()
+            .map(|state| {
+                t += dt;
+                let mut out = vec![0.0; spec.dimension()];
+                node.sense(
+                    &Frame {
+                        world: &world,
+                        state,
+                        t,
+                    },
+                    &mut out,
+                );
+                out
+            })
+            .collect()
     }
 }

@@ -201,7 +201,9 @@ impl WorldBuilder {
             ];
             for (name, v) in fields {
                 if !(v.is_finite() && v >= 0.0) {
-                    return Err(PhysicsError::Invalid(format!("part {i}: {name} must be finite and ≥ 0, got {v}")));
+                    return Err(PhysicsError::Invalid(format!(
+                        "part {i}: {name} must be finite and ≥ 0, got {v}"
+                    )));
                 }
             }
             if p.density <= 0.0 {

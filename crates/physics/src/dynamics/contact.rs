@@ -126,14 +126,22 @@ pub(crate) fn solve_contacts(contacts: &mut [ContactConstraint], bodies: &mut Bo
         let (a, b) = (c.a as usize, c.b as usize);
         let n = c.normal;
         let t = n.perp();
-        let soft = if c.shape_b == u32::MAX { pass.static_soft } else { pass.soft };
+        let soft = if c.shape_b == u32::MAX {
+            pass.static_soft
+        } else {
+            pass.soft
+        };
         for i in 0..c.count {
             let p = c.points[i];
             let s = c.separation(bodies, &p);
             let (bias, mass_scale, impulse_scale) = if s > 0.0 {
                 (s * pass.inv_h, 1.0, 0.0)
             } else if pass.use_bias {
-                ((soft.bias_rate * s).max(-pass.push_max), soft.mass_scale, soft.impulse_scale)
+                (
+                    (soft.bias_rate * s).max(-pass.push_max),
+                    soft.mass_scale,
+                    soft.impulse_scale,
+                )
             } else {
                 (0.0, 1.0, 0.0)
             };

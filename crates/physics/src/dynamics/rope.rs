@@ -26,7 +26,16 @@ const SLACK_MARGIN: f64 = 0.05;
 /// On the first sub-step of a step (`prepare`), ropes far from taut are marked inactive and
 /// skipped for the rest of the step.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn solve_ropes(ropes: &mut [Rope], bodies: &mut Bodies, soft: Softness, h: f64, dt: f64, push_max: f64, use_bias: bool, prepare: bool) {
+pub(crate) fn solve_ropes(
+    ropes: &mut [Rope],
+    bodies: &mut Bodies,
+    soft: Softness,
+    h: f64,
+    dt: f64,
+    push_max: f64,
+    use_bias: bool,
+    prepare: bool,
+) {
     for r in ropes {
         if !prepare && !r.active {
             continue;

@@ -69,7 +69,14 @@ impl SpringModel {
 /// iterations converge to the implicit solution instead of over-applying the spring. On the first
 /// iteration of a step (`prepare`), stiffness, damping and soft effective mass are recomputed from
 /// the current geometry, in the same pass.
-pub(crate) fn solve_springs(springs: &mut [Spring], models: &[SpringModel], bodies: &mut Bodies, h: f64, prepare: bool, first: bool) {
+pub(crate) fn solve_springs(
+    springs: &mut [Spring],
+    models: &[SpringModel],
+    bodies: &mut Bodies,
+    h: f64,
+    prepare: bool,
+    first: bool,
+) {
     for (s, m) in springs.iter_mut().zip(models) {
         let (a, b) = (s.a as usize, s.b as usize);
         let (sa, sb) = (bodies.state[a], bodies.state[b]);

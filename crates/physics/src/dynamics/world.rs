@@ -245,8 +245,16 @@ impl World {
                     .iter()
                     .map(|&j| props[j].2 + props[j].0 * (props[j].1 - com).length_squared())
                     .sum();
-                let lin = members.iter().map(|&j| b.parts[j].linear_damping * props[j].0).sum::<f64>() / mass;
-                let ang = members.iter().map(|&j| b.parts[j].angular_damping * props[j].0).sum::<f64>() / mass;
+                let lin = members
+                    .iter()
+                    .map(|&j| b.parts[j].linear_damping * props[j].0)
+                    .sum::<f64>()
+                    / mass;
+                let ang = members
+                    .iter()
+                    .map(|&j| b.parts[j].angular_damping * props[j].0)
+                    .sum::<f64>()
+                    / mass;
                 body_of_root[r] = bodies.len() as u32;
                 bodies.push(com, mass, inertia, lin, ang);
             }
@@ -266,7 +274,12 @@ impl World {
                     part: i as u32,
                     body: part_body[i],
                     local: p.shape.transformed(Rot::IDENTITY, parts[i].local),
-                    radius: p.shape.verts().iter().map(|v| (*v + parts[i].local).length()).fold(0.0, f64::max),
+                    radius: p
+                        .shape
+                        .verts()
+                        .iter()
+                        .map(|v| (*v + parts[i].local).length())
+                        .fold(0.0, f64::max),
                     friction: p.friction,
                     restitution: p.restitution,
                     group: p.group,
@@ -377,10 +390,22 @@ impl World {
             settings: b.settings,
             bodies,
             world_polys: shapes.iter().map(|s| s.local).collect(),
-            aabbs: vec![Aabb { min: Vec2::ZERO, max: Vec2::ZERO }; shapes.len()],
+            aabbs: vec![
+                Aabb {
+                    min: Vec2::ZERO,
+                    max: Vec2::ZERO
+                };
+                shapes.len()
+            ],
             margins: vec![0.0; shapes.len()],
             sap: SweepAndPrune::new(n_bodies - 1),
-            body_aabbs: vec![Aabb { min: Vec2::ZERO, max: Vec2::ZERO }; n_bodies - 1],
+            body_aabbs: vec![
+                Aabb {
+                    min: Vec2::ZERO,
+                    max: Vec2::ZERO
+                };
+                n_bodies - 1
+            ],
             body_shapes,
             parts,
             shapes,
@@ -428,7 +453,11 @@ impl World {
         self.integrate_velocities();
         self.detect_contacts();
         self.solve_substeps();
-        apply_restitution(&mut self.contacts, &mut self.bodies, self.settings.restitution_threshold);
+        apply_restitution(
+            &mut self.contacts,
+            &mut self.bodies,
+            self.settings.restitution_threshold,
+        );
         self.update_touching();
         self.step_count += 1;
         self.time += self.settings.dt;
@@ -498,34 +527,56 @@ impl World {
                 if m.count > 0 {
                     let friction = (st.friction * s.friction).sqrt();
                     let restitution = st.restitution.max(s.restitution);
-                    contacts.push(ContactConstraint::new(bodies, &m, NONE, k as u32, 0, s.body, friction, restitution));
+                    contacts.push(ContactConstraint::new(
+                        bodies,
+                        &m,
+                        NONE,
+                        k as u32,
+                        0,
+                        s.body,
+                        friction,
+                        restitution,
+                    ));
                 }
             }
         }
-        sap.for_each_pair(body_aabbs, |k| k as u32, |ba, bb| {
-            let (ra, rb) = (body_shapes[ba as usize + 1], body_shapes[bb as usize + 1]);
-            for i in ra.0..ra.1 {
-                for j in rb.0..rb.1 {
-                    let (si, sj) = (&shapes[i as usize], &shapes[j as usize]);
-                    if !aabbs[i as usize].overlaps(&aabbs[j as usize]) {
-                        continue;
-                    }
-                    if si.group == sj.group && !(si.collide_within_group && sj.collide_within_group) {
-                        continue;
-                    }
-                    if excluded.binary_search(&pair_key(si.part, sj.part)).is_ok() {
-                        continue;
-                    }
-                    let margin = margins[i as usize] + margins[j as usize];
-                    let m = collide_polygons(&world_polys[i as usize], &world_polys[j as usize], margin);
-                    if m.count > 0 {
-                        let friction = (si.friction * sj.friction).sqrt();
-                        let restitution = si.restitution.max(sj.restitution);
-                        contacts.push(ContactConstraint::new(bodies, &m, i, j, si.body, sj.body, friction, restitution));
+        sap.for_each_pair(
+            body_aabbs,
+            |k| k as u32,
+            |ba, bb| {
+                let (ra, rb) = (body_shapes[ba as usize + 1], body_shapes[bb as usize + 1]);
+                for i in ra.0..ra.1 {
+                    for j in rb.0..rb.1 {
+                        let (si, sj) = (&shapes[i as usize], &shapes[j as usize]);
+                        if !aabbs[i as usize].overlaps(&aabbs[j as usize]) {
+                            continue;
+                        }
+                        if si.group == sj.group && !(si.collide_within_group && sj.collide_within_group) {
+                            continue;
+                        }
+                        if excluded.binary_search(&pair_key(si.part, sj.part)).is_ok() {
+                            continue;
+                        }
+                        let margin = margins[i as usize] + margins[j as usize];
+                        let m = collide_polygons(&world_polys[i as usize], &world_polys[j as usize], margin);
+                        if m.count > 0 {
+                            let friction = (si.friction * sj.friction).sqrt();
+                            let restitution = si.restitution.max(sj.restitution);
+                            contacts.push(ContactConstraint::new(
+                                bodies,
+                                &m,
+                                i,
+                                j,
+                                si.body,
+                                sj.body,
+                                friction,
+                                restitution,
+                            ));
+                        }
                     }
                 }
-            }
-        });
+            },
+        );
     }
 
     /// Sub-steps: solve springs, ropes and contacts, integrate positions, relax contacts.
@@ -546,9 +597,25 @@ impl World {
         let (max_v, max_w) = (s.max_translation / s.dt, s.max_rotation / s.dt);
         for sub in 0..n {
             for it in 0..s.iterations {
-                solve_springs(&mut self.springs, &self.spring_models, &mut self.bodies, h, sub == 0 && it == 0, it == 0);
+                solve_springs(
+                    &mut self.springs,
+                    &self.spring_models,
+                    &mut self.bodies,
+                    h,
+                    sub == 0 && it == 0,
+                    it == 0,
+                );
             }
-            solve_ropes(&mut self.ropes, &mut self.bodies, soft, h, s.dt, pass.push_max, true, sub == 0);
+            solve_ropes(
+                &mut self.ropes,
+                &mut self.bodies,
+                soft,
+                h,
+                s.dt,
+                pass.push_max,
+                true,
+                sub == 0,
+            );
             pass.use_bias = true;
             solve_contacts(&mut self.contacts, &mut self.bodies, &pass);
             integrate_positions(&mut self.bodies, h, max_v, max_w);
@@ -564,7 +631,11 @@ impl World {
         if s.substep_travel <= 0.0 {
             return s.substeps;
         }
-        let fastest = self.bodies.state[1..].iter().map(|b| b.vel.length_squared()).fold(0.0, f64::max).sqrt();
+        let fastest = self.bodies.state[1..]
+            .iter()
+            .map(|b| b.vel.length_squared())
+            .fold(0.0, f64::max)
+            .sqrt();
         let wanted = (fastest * s.dt / s.substep_travel).ceil();
         if wanted.is_finite() {
             (wanted as u32).clamp(s.substeps, 4 * s.substeps)
@@ -580,9 +651,7 @@ impl World {
         }
         let tol = self.settings.touch_tolerance;
         for c in &self.contacts {
-            let touching = c.points[..c.count]
-                .iter()
-                .any(|p| c.separation(&self.bodies, p) <= tol);
+            let touching = c.points[..c.count].iter().any(|p| c.separation(&self.bodies, p) <= tol);
             if !touching {
                 continue;
             }
@@ -602,7 +671,11 @@ impl World {
     fn check_finite(&self) -> Result<(), PhysicsError> {
         let b = &self.bodies;
         for i in 1..b.len() {
-            if !(b.state[i].pos.is_finite() && b.state[i].vel.is_finite() && b.state[i].omega.is_finite() && b.state[i].rot.c.is_finite()) {
+            if !(b.state[i].pos.is_finite()
+                && b.state[i].vel.is_finite()
+                && b.state[i].omega.is_finite()
+                && b.state[i].rot.c.is_finite())
+            {
                 return Err(PhysicsError::NonFinite {
                     step: self.step_count,
                     body: i - 1,
@@ -706,7 +779,10 @@ impl World {
     pub fn kinetic_energy(&self) -> f64 {
         let b = &self.bodies;
         (1..b.len())
-            .map(|i| 0.5 * b.mass[i] * b.state[i].vel.length_squared() + 0.5 * b.state[i].omega * b.state[i].omega / b.state[i].inv_inertia.max(1e-300))
+            .map(|i| {
+                0.5 * b.mass[i] * b.state[i].vel.length_squared()
+                    + 0.5 * b.state[i].omega * b.state[i].omega / b.state[i].inv_inertia.max(1e-300)
+            })
             .sum()
     }
     /// Total mass of the dynamic bodies.
@@ -731,6 +807,9 @@ fn integrate_positions(b: &mut Bodies, h: f64, max_v: f64, max_w: f64) {
         let w = s.omega * h;
         let (c, sn) = (q.c - w * q.s, q.s + w * q.c);
         let inv = 1.0 / (c * c + sn * sn).sqrt();
-        s.rot = Rot { c: c * inv, s: sn * inv };
+        s.rot = Rot {
+            c: c * inv,
+            s: sn * inv,
+        };
     }
 }

@@ -113,7 +113,11 @@ fn clip_segment(p1: &mut Vec2, p2: &mut Vec2, d1: f64, d2: f64, lower: f64, uppe
     }
     let t_lower = (lower - d1) / span;
     let t_upper = (upper - d1) / span;
-    let (t_min, t_max) = if span > 0.0 { (t_lower, t_upper) } else { (t_upper, t_lower) };
+    let (t_min, t_max) = if span > 0.0 {
+        (t_lower, t_upper)
+    } else {
+        (t_upper, t_lower)
+    };
     let t0 = t_min.max(0.0);
     let t1 = t_max.min(1.0);
     if t0 > t1 {

@@ -1,0 +1,162 @@
+"""Side-by-side benchmark: vsrlab-evolution vs pycma (CMA-ES) and pymoo (NSGA-II).
+
+Measurements (identical settings on both sides, one run per seed, medians over seeds):
+- CMA-ES, evaluations until the best f < 1e-8 on sphere and Rosenbrock, n = 10 and 40;
+  default population size, sigma0 = 0.5, initial mean uniform in [-1, 1]^n, budgets
+  1e5 (n = 10) and 4e5 (n = 40) evaluations. pycma runs with its defaults (active CMA,
+  no restarts) plus ftarget and maxfevals. A run that misses the target counts as a failure;
+  medians are over successful runs.
+- NSGA-II on ZDT1 (n = 30), population 100, 100 offspring per generation, SBX (p 0.9, eta 15)
+  and polynomial mutation (eta 20, p 1/n), 25 000 evaluations; hypervolume of the final
+  non-dominated set w.r.t. (1.1, 1.1), computed with pymoo's HV indicator for both sides
+  (the vsrlab value is also checked against vsrlab's own hypervolume).
+Time per run: CPU seconds (Python, process_time) vs wall seconds (Rust, single thread).
+"""
+
+import argparse
+import json
+import math
+import statistics
+import subprocess
+import sys
+import time
+
+import cma
+import numpy as np
+import pymoo
+from pymoo.algorithms.moo.nsga2 import NSGA2
+from pymoo.indicators.hv import HV
+from pymoo.optimize import minimize
+from pymoo.problems import get_problem
+
+TARGET = 1e-8
+CMA_CASES = [("sphere", 10, 100_000), ("sphere", 40, 400_000),
+             ("rosenbrock", 10, 100_000), ("rosenbrock", 40, 400_000)]
+ZDT_BUDGET = 25_000
+REFERENCE = np.array([1.1, 1.1])
+TRUE_HV_ZDT1 = 0.1 + 2.0 / 3.0 + 0.11
+
+
+def sphere(x):
+    return float(np.dot(x, x))
+
+
+def rosenbrock(x):
+    return float(np.sum(100.0 * (x[1:] - x[:-1] ** 2) ** 2 + (1.0 - x[:-1]) ** 2))
+
+
+FUNCTIONS = {"sphere": sphere, "rosenbrock": rosenbrock}
+
+
+def median_or_nan(values):
+    return statistics.median(values) if values else math.nan
+
+
+def pycma_run(name, n, budget, seed):
+    f = FUNCTIONS[name]
+    x0 = np.random.default_rng(seed).uniform(-1.0, 1.0, n)
+    opts = {"seed": seed + 1, "ftarget": TARGET, "maxfevals": budget, "verbose": -9}
+    start = time.process_time()
+    es = cma.CMAEvolutionStrategy(x0, 0.5, opts)
+    while not es.stop():
+        xs = es.ask()
+        es.tell(xs, [f(x) for x in xs])
+    seconds = time.process_time() - start
+    reached = es.result.fbest < TARGET
+    return (es.result.evaluations if reached else None), seconds
+
+
+def pymoo_run(seed):
+    problem = get_problem("zdt1", n_var=30)
+    start = time.process_time()
+    res = minimize(problem, NSGA2(pop_size=100), ("n_eval", ZDT_BUDGET), seed=seed + 1, verbose=False)
+    seconds = time.process_time() - start
+    return float(HV(ref_point=REFERENCE)(res.F)), seconds
+
+
+def vsrlab_results(seeds):
+    cmd = ["cargo", "run", "--release", "-q", "-p", "vsrlab-evolution", "--example",
+           "optimizer_bench", "--", "--json", "--seeds", str(seeds)]
+    print("[compare] " + " ".join(cmd), file=sys.stderr)
+    out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
+    return json.loads(out)
+
+
+def ratio(a, b):
+    return a / b if b and not math.isnan(a) and not math.isnan(b) else math.nan
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--seeds", type=int, default=15, help="runs per benchmark (default 15)")
+    parser.add_argument("--json", action="store_true", help="print JSON instead of the table")
+    args = parser.parse_args()
+
+    rows = []
+    ours = vsrlab_results(args.seeds)
+    for (name, n, budget), mine in zip(CMA_CASES, ours["cma_es"]):
+        assert (mine["function"], mine["dimension"], mine["budget"]) == (name, n, budget)
+        evals, secs = [], []
+        for seed in range(args.seeds):
+            e, s = pycma_run(name, n, budget, seed)
+            evals.append(e)
+            secs.append(s)
+            print(f"[compare] pycma {name} n={n} seed {seed}: {e} evals, {s:.3f} s", file=sys.stderr)
+        ok = [e for e in evals if e is not None]
+        mine_ok = [e for e in mine["evaluations"] if e is not None]
+        rows.append({
+            "benchmark": f"CMA-ES {name} n={n}",
+            "metric": f"evals to f<{TARGET:g}",
+            "peer": f"pycma {cma.__version__}",
+            "peer_value": median_or_nan(ok),
+            "vsrlab_value": median_or_nan(mine_ok),
+            "peer_success": f"{len(ok)}/{args.seeds}",
+            "vsrlab_success": f"{len(mine_ok)}/{args.seeds}",
+            "peer_seconds": statistics.median(secs),
+            "vsrlab_seconds": mine["median_seconds"],
+        })
+
+    mine = ours["nsga2"]
+    hvs, secs = [], []
+    for seed in range(args.seeds):
+        hv, s = pymoo_run(seed)
+        hvs.append(hv)
+        secs.append(s)
+        print(f"[compare] pymoo zdt1 seed {seed}: hv {hv:.5f}, {s:.3f} s", file=sys.stderr)
+    indicator = HV(ref_point=REFERENCE)
+    mine_hvs = [float(indicator(np.array(front))) for front in mine["fronts"]]
+    for ours_hv, own in zip(mine_hvs, mine["hypervolume"]):
+        assert abs(ours_hv - own) < 1e-9, (ours_hv, own)
+    rows.append({
+        "benchmark": "NSGA-II ZDT1 n=30",
+        "metric": f"hypervolume @ {ZDT_BUDGET} evals (true {TRUE_HV_ZDT1:.5f})",
+        "peer": f"pymoo {pymoo.__version__}",
+        "peer_value": statistics.median(hvs),
+        "vsrlab_value": statistics.median(mine_hvs),
+        "peer_success": "-",
+        "vsrlab_success": "-",
+        "peer_seconds": statistics.median(secs),
+        "vsrlab_seconds": mine["median_seconds"],
+    })
+
+    if args.json:
+        print(json.dumps({"seeds": args.seeds, "rows": rows}, indent=2))
+        return
+    print(f"\nMedians over {args.seeds} seeds; ratio = vsrlab / peer "
+          "(evals: < 1 is fewer evaluations; hypervolume: > 1 is better; time: < 1 is faster)\n")
+    header = f"{'benchmark':<26} {'metric':<44} {'peer':<13} {'peer':>10} {'vsrlab':>10} {'ratio':>7}" \
+             f" {'reached p/v':>12} {'s/run peer':>11} {'s/run vsrlab':>13} {'time ratio':>10}"
+    print(header)
+    print("-" * len(header))
+    for r in rows:
+        fmt = "{:>10.5f}" if "hypervolume" in r["metric"] else "{:>10.0f}"
+        print(f"{r['benchmark']:<26} {r['metric']:<44} {r['peer']:<13} "
+              f"{fmt.format(r['peer_value'])} {fmt.format(r['vsrlab_value'])} "
+              f"{ratio(r['vsrlab_value'], r['peer_value']):>7.3f} "
+              f"{r['peer_success'] + ' ' + r['vsrlab_success']:>12} "
+              f"{r['peer_seconds']:>11.4f} {r['vsrlab_seconds']:>13.4f} "
+              f"{ratio(r['vsrlab_seconds'], r['peer_seconds']):>10.3f}")
+
+
+if __name__ == "__main__":
+    main()

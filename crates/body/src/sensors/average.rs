@@ -1,0 +1,102 @@
+//! Average (vsr-model.md §3.2): the mean of the inner sensor's readings over the last `window`
+//! seconds, the current reading included. The window is by timestamp and inclusive: it holds every
+//! sample taken at or after t − window (16 samples for 0.25 s at 60 Hz, 31 for 0.5 s). The domain
+//! is the inner sensor's.
+
+use super::node::{Frame, Node};
+use super::window::TimeWindow;
+
+/// Running mean over a time window.
+#[derive(Debug, Clone)]
+pub(crate) struct Average {
+    inner: Box<Node>,
+    samples: TimeWindow,
+    /// The inner sensor's current readings.
+    scratch: Vec<f64>,
+}
+
+impl Average {
+    /// Averages the `dim` readings of `inner` over `window` seconds, sampled every `dt` seconds.
+    pub(crate) fn new(inner: Box<Node>, dim: usize, window: f64, dt: f64) -> Average {
+        Average {
+            inner,
+            samples: TimeWindow::new(window, dim, dt),
+            scratch: vec![0.0; dim],
+        }
+    }
+
+    /// Reads the inner sensor, records the sample and writes the window's mean.
+    pub(crate) fn sense(&mut self, frame: &Frame, out: &mut [f64]) {
+        self.inner.sense(frame, &mut self.scratch);
+        self.samples.push(frame.t, &self.scratch);
+        out.fill(0.0);
+        for k in 0..self.samples.len() {
+            for (o, v) in out.iter_mut().zip(self.samples.values(k)) {
+                *o += v;
+            }
+        }
+        let n = self.samples.len() as f64;
+        out.iter_mut().for_each(|o| *o /= n);
+    }
+
+    /// Empties the window.
+    pub(crate) fn reset(&mut self) {
+        self.samples.clear();
+        self.inner.reset();
+    }
+
+    /// The averaged sensor.
+    pub(crate) fn inner(&self) -> &Node {
+        &self.inner
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::sensors::node::testing::{run, still_state};
+    use crate::sensors::spec::SensorSpec;
+
+    #[test]
+    fn averages_touch_over_an_inclusive_quarter_second() {
+        let spec = SensorSpec::Touch.averaged(0.25);
+        // 60 steps, touching during the last 8 only
+        let states: Vec<_> = (0..60)
+            .map(|k| {
+                let mut s = still_state();
+                s.touching = k >= 52;
+                s
+            })
+            .collect();
+        let readings = run(&spec, &states, 1.0 / 60.0);
+        // the window holds 16 samples at 60 Hz, 8 of which touch
+        assert!((readings[59][0] - 0.5).abs() < 1e-12, "{:?}", readings[59]);
+        // before the window fills, the mean is over the samples so far
+        assert_eq!(readings[0][0], 0.0);
+        assert!((readings[52][0] - 1.0 / 16.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn averages_each_component_of_a_ramp() {
+        use crate::sensors::spec::Axes;
+        let spec = SensorSpec::Velocity {
+            rotated: false,
+            vmax: 8.0,
+            axes: Axes::Xy,
+        }
+        .averaged(0.5);
+        let dt = 1.0 / 60.0;
+        let states: Vec<_> = (1..=120)
+            .map(|k| {
+                let mut s = still_state();
+                s.velocity = vsrlab_physics::Vec2::new(k as f64, -2.0);
+                s
+            })
+            .collect();
+        let last = run(&spec, &states, dt).pop().unwrap();
+        // samples k = 90 … 120 (31 of them): mean 105
+        assert!(
+            (last[0] - 105.0).abs() < 1e-9 && (last[1] + 2.0).abs() < 1e-12,
+            "{last:?}"
+        );
+    }
+}

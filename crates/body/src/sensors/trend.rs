@@ -1,0 +1,114 @@
+//! Trend (vsr-model.md §3.2, since 2021-08 in place of `Derivative`): how fast the inner readings
+//! change over the last `window` seconds, (last − first)/(t_last − t_first) over the samples of the
+//! inclusive window. With a single sample (the first step) it reads 0. Its domain is
+//! ±extent/window per reading, where extent is the width of the inner sensor's domain.
+
+use super::node::{Frame, Node};
+use super::window::TimeWindow;
+
+/// Declared domain for an inner domain `(lo, hi)` over `window` seconds.
+pub(crate) fn domain((lo, hi): (f64, f64), window: f64) -> (f64, f64) {
+    let extent = hi - lo;
+    (-extent / window, extent / window)
+}
+
+/// Slope between the oldest and the newest sample of a time window.
+#[derive(Debug, Clone)]
+pub(crate) struct Trend {
+    inner: Box<Node>,
+    samples: TimeWindow,
+    /// The inner sensor's current readings.
+    scratch: Vec<f64>,
+}
+
+impl Trend {
+    /// The trend of the `dim` readings of `inner` over `window` seconds, sampled every `dt` seconds.
+    pub(crate) fn new(inner: Box<Node>, dim: usize, window: f64, dt: f64) -> Trend {
+        Trend {
+            inner,
+            samples: TimeWindow::new(window, dim, dt),
+            scratch: vec![0.0; dim],
+        }
+    }
+
+    /// Reads the inner sensor, records the sample and writes the slope.
+    pub(crate) fn sense(&mut self, frame: &Frame, out: &mut [f64]) {
+        self.inner.sense(frame, &mut self.scratch);
+        self.samples.push(frame.t, &self.scratch);
+        let last = self.samples.len() - 1;
+        let elapsed = self.samples.time(last) - self.samples.time(0);
+        if elapsed > 0.0 {
+            let (first, newest) = (self.samples.values(0), self.samples.values(last));
+            for ((o, a), b) in out.iter_mut().zip(first).zip(newest) {
+                *o = (b - a) / elapsed;
+            }
+        } else {
+            out.fill(0.0);
+        }
+    }
+
+    /// Empties the window.
+    pub(crate) fn reset(&mut self) {
+        self.samples.clear();
+        self.inner.reset();
+    }
+
+    /// The sensor whose trend this is.
+    pub(crate) fn inner(&self) -> &Node {
+        &self.inner
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sensors::node::testing::{run, still_state};
+    use crate::sensors::spec::{Axes, SensorSpec};
+    use vsrlab_physics::Vec2;
+
+    #[test]
+    fn the_trend_of_a_ramp_is_its_slope() {
+        let spec = SensorSpec::Velocity {
+            rotated: false,
+            vmax: 4.0,
+            axes: Axes::Xy,
+        }
+        .trend(0.5);
+        let dt = 1.0 / 60.0;
+        let states: Vec<_> = (1..=90)
+            .map(|k| {
+                let t = k as f64 * dt;
+                let mut s = still_state();
+                s.velocity = Vec2::new(3.0 * t + 1.0, -0.5 * t);
+                s
+            })
+            .collect();
+        let readings = run(&spec, &states, dt);
+        assert_eq!(readings[0], vec![0.0, 0.0], "one sample: no trend yet");
+        for r in &readings[1..] {
+            assert!((r[0] - 3.0).abs() < 1e-9 && (r[1] + 0.5).abs() < 1e-9, "{r:?}");
+        }
+    }
+
+    #[test]
+    fn the_trend_forgets_what_left_the_window() {
+        // a step at step 10: the slope is nonzero while the step is inside the 0.5 s window, then 0
+        let spec = SensorSpec::AreaRatio.trend(0.5);
+        let dt = 1.0 / 60.0;
+        let states: Vec<_> = (0..80)
+            .map(|k| {
+                let mut s = still_state();
+                s.area_ratio = if k < 10 { 1.0 } else { 1.2 };
+                s
+            })
+            .collect();
+        let readings = run(&spec, &states, dt);
+        assert!(readings[20][0] > 0.0);
+        assert_eq!(readings[79][0], 0.0);
+    }
+
+    #[test]
+    fn domain_is_extent_over_window() {
+        assert_eq!(domain((-4.0, 4.0), 0.5), (-16.0, 16.0));
+    }
+}

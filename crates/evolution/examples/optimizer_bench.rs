@@ -1,0 +1,143 @@
+//! Benchmarks of vsrlab-evolution's CMA-ES and NSGA-II, the same measurements that
+//! `bench/optimizers/run.sh` makes with pycma and pymoo:
+//! - CMA-ES: evaluations to reach f < 1e-8 on sphere and Rosenbrock in 10 and 40 dimensions
+//!   (default λ, σ0 = 0.5, initial mean uniform in [−1, 1]^n), one run per seed;
+//! - NSGA-II: hypervolume (reference point (1.1, 1.1)) of the first front after 25 000
+//!   evaluations on ZDT1 (n = 30, N = 100, SBX + polynomial mutation), one run per seed.
+//!
+//! ```text
+//! cargo run --release -p vsrlab-evolution --example optimizer_bench -- [--seeds 15] [--json]
+//! ```
+//! Prints medians (and per-seed values with `--json`, including the ZDT1 fronts so the Python
+//! side can recompute the hypervolume with pymoo's indicator).
+
+use serde_json::json;
+use std::time::Instant;
+use vsrlab_evolution::pareto::hypervolume_2d;
+use vsrlab_evolution::test_functions::{rosenbrock, sphere, zdt1};
+use vsrlab_evolution::{
+    run_to_budget, CmaEs, CmaEsConfig, Evaluation, Nsga2, Nsga2Config, SbxPolynomial, Sense, Stop, StopReason,
+};
+
+/// (name, function, dimension, evaluation budget)
+type CmaCase = (&'static str, fn(&[f64]) -> f64, usize, u64);
+
+const CMA_CASES: [CmaCase; 4] = [
+    ("sphere", sphere, 10, 100_000),
+    ("sphere", sphere, 40, 400_000),
+    ("rosenbrock", rosenbrock, 10, 100_000),
+    ("rosenbrock", rosenbrock, 40, 400_000),
+];
+const TARGET: f64 = 1e-8;
+const ZDT_BUDGET: u64 = 25_000;
+
+fn median(values: &mut [f64]) -> f64 {
+    if values.is_empty() {
+        return f64::NAN;
+    }
+    values.sort_by(f64::total_cmp);
+    let n = values.len();
+    if n % 2 == 1 {
+        values[n / 2]
+    } else {
+        0.5 * (values[n / 2 - 1] + values[n / 2])
+    }
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let as_json = args.iter().any(|a| a == "--json");
+    let seeds: u64 = args
+        .iter()
+        .position(|a| a == "--seeds")
+        .and_then(|i| args.get(i + 1))
+        .map(|s| s.parse().expect("--seeds takes an integer"))
+        .unwrap_or(15);
+
+    let mut cma_rows = Vec::new();
+    for (name, f, n, budget) in CMA_CASES {
+        let mut evaluations = Vec::new();
+        let mut seconds = Vec::new();
+        for seed in 0..seeds {
+            let config = CmaEsConfig {
+                sense: Sense::Minimize,
+                ..CmaEsConfig::default()
+            };
+            let mut cma = CmaEs::new(config, n, seed).expect("valid configuration");
+            let start = Instant::now();
+            let summary = run_to_budget(
+                &mut cma,
+                |c| Evaluation::single(f(&c.genotype)),
+                &Stop::evaluations(budget).or_target(TARGET),
+            )
+            .expect("run");
+            seconds.push(start.elapsed().as_secs_f64());
+            evaluations.push((summary.reason == StopReason::Target).then_some(summary.evaluations));
+        }
+        let mut successes: Vec<f64> = evaluations.iter().flatten().map(|&e| e as f64).collect();
+        let row = json!({
+            "function": name,
+            "dimension": n,
+            "target": TARGET,
+            "budget": budget,
+            "evaluations": evaluations,
+            "successes": successes.len(),
+            "median_evaluations": median(&mut successes),
+            "median_seconds": median(&mut seconds.clone()),
+            "seconds": seconds,
+        });
+        if !as_json {
+            println!(
+                "CMA-ES {name:>10} n={n:<3} evals to {TARGET:e}: median {:>9.0} ({}/{seeds} reached), {:.4} s/run",
+                row["median_evaluations"].as_f64().unwrap_or(f64::NAN),
+                row["successes"],
+                row["median_seconds"].as_f64().unwrap_or(f64::NAN),
+            );
+        }
+        cma_rows.push(row);
+    }
+
+    let mut hvs = Vec::new();
+    let mut fronts = Vec::new();
+    let mut seconds = Vec::new();
+    for seed in 0..seeds {
+        let config = Nsga2Config::new(vec![Sense::Minimize; 2]);
+        let mut nsga = Nsga2::new(config, SbxPolynomial::new(30, 0.0, 1.0), seed).expect("valid");
+        let start = Instant::now();
+        run_to_budget(
+            &mut nsga,
+            |c| Evaluation::multi(zdt1(&c.genotype).to_vec()),
+            &Stop::evaluations(ZDT_BUDGET),
+        )
+        .expect("run");
+        seconds.push(start.elapsed().as_secs_f64());
+        let front: Vec<[f64; 2]> = nsga
+            .first_front()
+            .iter()
+            .map(|i| [i.objectives[0], i.objectives[1]])
+            .collect();
+        hvs.push(hypervolume_2d(&front, [1.1, 1.1], [Sense::Minimize; 2]));
+        fronts.push(front);
+    }
+    let nsga_row = json!({
+        "problem": "zdt1",
+        "n_var": 30,
+        "population": 100,
+        "budget": ZDT_BUDGET,
+        "reference": [1.1, 1.1],
+        "hypervolume": hvs,
+        "median_hypervolume": median(&mut hvs.clone()),
+        "median_seconds": median(&mut seconds.clone()),
+        "seconds": seconds,
+        "fronts": fronts,
+    });
+    if as_json {
+        println!("{}", json!({ "cma_es": cma_rows, "nsga2": nsga_row }));
+    } else {
+        println!(
+            "NSGA-II ZDT1 n=30 N=100 {ZDT_BUDGET} evals: median hypervolume {:.5} (true front 0.87667), {:.4} s/run",
+            nsga_row["median_hypervolume"].as_f64().unwrap_or(f64::NAN),
+            nsga_row["median_seconds"].as_f64().unwrap_or(f64::NAN),
+        );
+    }
+}

@@ -1,0 +1,315 @@
+//! Standard genetic algorithm with overlapping generations (μ + λ), as in the thesis §3.3.5.2
+//! and jgea's `StandardEvolver`.
+//!
+//! Per generation: λ children are built, each by the mutation operator with probability
+//! `mutation_probability` (one parent) or else by the crossover operator (two parents); parents
+//! are picked by tournament selection (size 5, with replacement). Children and parents are
+//! merged and the worst are removed until μ remain ("remove-worst" truncation: the thesis'
+//! "worst half discarded" when λ = μ).
+//!
+//! Decisions where the sources are silent or differ:
+//! - Ties: jgea removes a uniformly random member of the last front. Here survival keeps
+//!   children ahead of parents of equal fitness (a deterministic rule that lets the population
+//!   drift on plateaus), and tournaments break ties by population order.
+//! - With `reevaluate_survivors` (jgea "remap", for noisy tasks) the μ parents are re-evaluated
+//!   every generation in the same batch as the children; re-evaluations count as evaluations but
+//!   not births, and the new value replaces the old one.
+
+use crate::error::EvolutionError;
+use crate::operators::Representation;
+use crate::optimizer::{
+    collect_results, ensure, keep_best, make_batch, Candidate, Counters, Individual, Optimizer, Sense, Tell, Told,
+};
+use crate::rng::{SeededRng, Stream};
+use crate::selection::{sort_best_first, tournament};
+use serde::{Deserialize, Serialize};
+
+/// Parameters of the [`GeneticAlgorithm`]. `Default` gives the thesis settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GaConfig {
+    /// μ: individuals kept each generation (thesis: 100).
+    pub population_size: usize,
+    /// λ: children per generation (thesis: 100).
+    pub offspring_size: usize,
+    /// Tournament size for parent selection (thesis: 5).
+    pub tournament_size: usize,
+    /// Probability of building a child by mutation instead of crossover (thesis p_mut = 0.2).
+    pub mutation_probability: f64,
+    /// Re-evaluate the survivors every generation (noisy tasks).
+    pub reevaluate_survivors: bool,
+    /// Whether fitness is maximised or minimised.
+    pub sense: Sense,
+}
+
+impl Default for GaConfig {
+    fn default() -> Self {
+        Self {
+            population_size: 100,
+            offspring_size: 100,
+            tournament_size: 5,
+            mutation_probability: 0.2,
+            reevaluate_survivors: false,
+            sense: Sense::Maximize,
+        }
+    }
+}
+
+/// The μ + λ genetic algorithm over any [`Representation`] (see the module docs).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(bound(
+    serialize = "R: Serialize, R::Genotype: Serialize",
+    deserialize = "R: Deserialize<'de>, R::Genotype: Deserialize<'de>"
+))]
+pub struct GeneticAlgorithm<R: Representation> {
+    config: GaConfig,
+    representation: R,
+    seed: u64,
+    counters: Counters,
+    /// Survivors, best first.
+    population: Vec<Individual<R::Genotype>>,
+    pending: Option<Vec<Candidate<R::Genotype>>>,
+    best: Option<Individual<R::Genotype>>,
+}
+
+impl<R: Representation> GeneticAlgorithm<R> {
+    /// A new run with the given run seed.
+    pub fn new(config: GaConfig, representation: R, seed: u64) -> Result<Self, EvolutionError> {
+        ensure(config.population_size > 0, || "GA: population_size must be > 0".into())?;
+        ensure(config.offspring_size > 0, || "GA: offspring_size must be > 0".into())?;
+        ensure(config.tournament_size > 0, || "GA: tournament_size must be > 0".into())?;
+        ensure((0.0..=1.0).contains(&config.mutation_probability), || {
+            "GA: mutation_probability must be in [0, 1]".into()
+        })?;
+        representation.validate()?;
+        Ok(Self {
+            config,
+            representation,
+            seed,
+            counters: Counters::default(),
+            population: Vec::new(),
+            pending: None,
+            best: None,
+        })
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &GaConfig {
+        &self.config
+    }
+
+    fn child(&self, index: usize) -> R::Genotype {
+        let mut rng = SeededRng::derive(self.seed, self.counters.generation, index as u64, Stream::Variation);
+        let n = self.population.len();
+        let k = self.config.tournament_size;
+        if rng.uniform() < self.config.mutation_probability {
+            let parent = &self.population[tournament(n, k, &mut rng)].genotype;
+            self.representation.mutate(parent, &mut rng)
+        } else {
+            let first = &self.population[tournament(n, k, &mut rng)].genotype;
+            let second = &self.population[tournament(n, k, &mut rng)].genotype;
+            self.representation.crossover(first, second, &mut rng)
+        }
+    }
+}
+
+impl<R: Representation> Optimizer for GeneticAlgorithm<R> {
+    type Genotype = R::Genotype;
+
+    fn ask(&mut self) -> Vec<Candidate<R::Genotype>> {
+        if let Some(pending) = &self.pending {
+            return pending.clone();
+        }
+        let generation = self.counters.generation;
+        let (genotypes, first_reevaluation) = if self.population.is_empty() {
+            let genotypes: Vec<_> = (0..self.config.population_size)
+                .map(|i| {
+                    let mut rng = SeededRng::derive(self.seed, generation, i as u64, Stream::Initialisation);
+                    self.representation.random(&mut rng)
+                })
+                .collect();
+            let n = genotypes.len();
+            (genotypes, n)
+        } else {
+            let mut genotypes: Vec<_> = (0..self.config.offspring_size).map(|i| self.child(i)).collect();
+            let n = genotypes.len();
+            if self.config.reevaluate_survivors {
+                genotypes.extend(self.population.iter().map(|p| p.genotype.clone()));
+            }
+            (genotypes, n)
+        };
+        let batch = make_batch(self.seed, generation, genotypes, first_reevaluation);
+        self.pending = Some(batch.clone());
+        batch
+    }
+
+    fn generation(&self) -> u64 {
+        self.counters.generation
+    }
+
+    fn evaluations(&self) -> u64 {
+        self.counters.evaluations
+    }
+
+    fn births(&self) -> u64 {
+        self.counters.births
+    }
+
+    fn senses(&self) -> &[Sense] {
+        std::slice::from_ref(&self.config.sense)
+    }
+
+    fn best(&self) -> Option<&Individual<R::Genotype>> {
+        self.best.as_ref()
+    }
+
+    fn population(&self) -> Vec<&Individual<R::Genotype>> {
+        self.population.iter().collect()
+    }
+}
+
+impl<R: Representation, O> Tell<O> for GeneticAlgorithm<R> {
+    fn tell(&mut self, results: Vec<Told<O>>) -> Result<(), EvolutionError> {
+        let batch = self.pending.as_ref().ok_or(EvolutionError::NoPendingBatch)?;
+        let evaluations = collect_results(results, batch.len(), 1)?;
+        let batch = self.pending.take().expect("checked above");
+        let generation = self.counters.generation;
+        let mut merged = Vec::with_capacity(batch.len() + self.population.len());
+        let mut survivors = std::mem::take(&mut self.population);
+        for (candidate, evaluation) in batch.iter().zip(evaluations) {
+            if candidate.reevaluation {
+                let survivor = &mut survivors[candidate.id - self.config.offspring_size];
+                survivor.objectives = evaluation.objectives;
+                continue;
+            }
+            merged.push(Individual {
+                genotype: candidate.genotype.clone(),
+                objectives: evaluation.objectives,
+                descriptor: evaluation.descriptor,
+                birth_generation: generation,
+            });
+        }
+        // Children first, so that on equal fitness the stable sort keeps them ahead of parents.
+        merged.extend(survivors);
+        let senses = std::slice::from_ref(&self.config.sense);
+        for individual in &merged {
+            if individual.birth_generation == generation || self.config.reevaluate_survivors {
+                keep_best(&mut self.best, individual, senses);
+            }
+        }
+        sort_best_first(&mut merged, self.config.sense);
+        merged.truncate(self.config.population_size);
+        self.population = merged;
+        self.counters.advance(&batch);
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::operators::RealVector;
+    use crate::run::{run_to_budget, Stop};
+    use crate::test_functions::{rastrigin, rosenbrock, sphere};
+
+    fn minimise(f: fn(&[f64]) -> f64, dimension: usize, init: f64, seed: u64, evaluations: u64) -> f64 {
+        let config = GaConfig {
+            sense: Sense::Minimize,
+            ..GaConfig::default()
+        };
+        let rep = RealVector::thesis(dimension).with_init_range(-init, init);
+        let mut ga = GeneticAlgorithm::new(config, rep, seed).unwrap();
+        run_to_budget(
+            &mut ga,
+            |c| crate::Evaluation::single(f(&c.genotype)),
+            &Stop::evaluations(evaluations),
+        )
+        .unwrap();
+        ga.best().unwrap().fitness()
+    }
+
+    /// Thesis settings (μ = λ = 100, tournament 5, p_mut = 0.2, σ = 0.35, α ∈ [−1, 2],
+    /// σ′ = 0.1) on 10-D benchmarks with a 20 000-evaluation budget, 3 seeds each. The GA has no
+    /// step-size adaptation, so the σ′ = 0.1 perturbation sets its precision floor (a few
+    /// 1e-3 on the sphere). Baselines, from [−5.12, 5.12]^10 (Rosenbrock: [−2, 2]^10): a random
+    /// point scores ≈ 87 / 186 / 4 090 (sphere / Rastrigin / Rosenbrock) and the best of 20 000
+    /// random points ≈ 9–14 / 63–72 / 124–207. Measured GA results over 5 seeds:
+    /// 4e-3–1.3e-2 / 7–24 / 7.8–9.1. Thresholds: 0.05 / 30 / 15 — far below random search and
+    /// each a few times above the worst observed run.
+    #[test]
+    fn converges_on_benchmarks_with_thesis_settings() {
+        for seed in 0..3 {
+            let s = minimise(sphere, 10, 5.12, seed, 20_000);
+            assert!(s < 0.05, "sphere seed {seed}: {s}");
+            let r = minimise(rastrigin, 10, 5.12, seed, 20_000);
+            assert!(r < 30.0, "rastrigin seed {seed}: {r}");
+            let b = minimise(rosenbrock, 10, 2.0, seed, 20_000);
+            assert!(b < 15.0, "rosenbrock seed {seed}: {b}");
+        }
+    }
+
+    #[test]
+    fn population_is_truncated_to_the_best_and_counts_births() {
+        let config = GaConfig {
+            population_size: 10,
+            offspring_size: 7,
+            sense: Sense::Minimize,
+            ..GaConfig::default()
+        };
+        let mut ga = GeneticAlgorithm::new(config, RealVector::thesis(3), 1).unwrap();
+        for _ in 0..4 {
+            let batch = ga.ask();
+            let told = batch
+                .iter()
+                .map(|c| c.told(crate::Evaluation::single(sphere(&c.genotype))))
+                .collect();
+            ga.tell(told).unwrap();
+        }
+        assert_eq!(ga.births(), 10 + 3 * 7);
+        assert_eq!(ga.evaluations(), 10 + 3 * 7);
+        let pop = ga.population();
+        assert_eq!(pop.len(), 10);
+        assert!(pop.windows(2).all(|w| w[0].fitness() <= w[1].fitness()));
+        assert_eq!(pop[0].fitness(), ga.best().unwrap().fitness());
+    }
+
+    #[test]
+    fn survivors_are_reevaluated_when_asked() {
+        let config = GaConfig {
+            population_size: 5,
+            offspring_size: 3,
+            reevaluate_survivors: true,
+            ..GaConfig::default()
+        };
+        let mut ga = GeneticAlgorithm::new(config, RealVector::thesis(2), 1).unwrap();
+        let first = ga.ask();
+        assert_eq!(first.len(), 5);
+        ga.tell(first.iter().map(|c| c.told(crate::Evaluation::single(1.0))).collect())
+            .unwrap();
+        let second = ga.ask();
+        assert_eq!(second.len(), 8);
+        assert_eq!(second.iter().filter(|c| c.reevaluation).count(), 5);
+        // Survivors now measure 10.0: the re-evaluated value replaces the old one.
+        ga.tell(
+            second
+                .iter()
+                .map(|c| c.told(crate::Evaluation::single(if c.reevaluation { 10.0 } else { 0.0 })))
+                .collect(),
+        )
+        .unwrap();
+        assert!(ga.population().iter().all(|p| p.fitness() == 10.0));
+        assert_eq!(ga.births(), 8);
+        assert_eq!(ga.evaluations(), 13);
+    }
+
+    #[test]
+    fn invalid_configurations_are_rejected() {
+        let bad = GaConfig {
+            mutation_probability: 1.5,
+            ..GaConfig::default()
+        };
+        assert!(GeneticAlgorithm::new(bad, RealVector::thesis(2), 0).is_err());
+        assert!(GeneticAlgorithm::new(GaConfig::default(), RealVector::thesis(0), 0).is_err());
+        let mut ga = GeneticAlgorithm::new(GaConfig::default(), RealVector::thesis(2), 0).unwrap();
+        assert_eq!(Tell::<()>::tell(&mut ga, vec![]), Err(EvolutionError::NoPendingBatch));
+    }
+}

@@ -20,7 +20,10 @@ pub struct SimulateArgs {
     /// text grid with rows separated by '/', top row first ('#' voxel, '.' empty), e.g. "###/#.#".
     #[arg(long, default_value = "biped-4x3")]
     pub body: String,
-    /// Brain: `phase` (open-loop a = sin(2πt + πx/W)).
+    /// Brain: `phase` (open-loop a = sin(2πt + πx/W)), `constant:<v>`, `random[:<period>]`,
+    /// `phase-grid`, `mlp[:<hidden,…>|none]`, `distributed-mlp[:<signals>]`,
+    /// `distributed-mlp-hetero[:<signals>]`, `step:<period>:<brain>`, `smoothed:<speed>:<brain>`.
+    /// Brains with parameters get seeded random ones in [-1, 1]; evolved ones come in robot files.
     #[arg(long, default_value = "phase")]
     pub brain: String,
     /// Task: locomotion:<terrain>, terrain = flat | hilly-H-W[-SEED] | steppy-H-W[-SEED] | uphill-DEG | downhill-DEG.
@@ -69,13 +72,26 @@ pub fn parse_task(s: &str) -> Result<Terrain, String> {
 
 /// Builds the robot description from command-line strings; errors name the option.
 pub fn robot_from_args(body: &str, preset: &str, sensors: &str, brain: &str) -> Result<RobotSpec, String> {
-    Ok(RobotSpec {
+    let mut robot = RobotSpec {
         body: Morphology::parse(body).map_err(|e| format!("--body: {e}"))?,
         preset: preset.parse::<Preset>().map_err(|e| format!("--preset: {e}"))?,
         voxel: None,
         sensors: SensorConfig::parse(sensors).map_err(|e| format!("--sensors: {e}"))?,
         brain: BrainSpec::parse(brain).map_err(|e| format!("--brain: {e}"))?,
-    })
+    };
+    // a parameterised brain named on the command line gets seeded random parameters in [-1, 1]
+    let per_voxel = robot.readings_per_voxel().map_err(|e| format!("--sensors: {e}"))?;
+    let count = robot
+        .brain
+        .parameter_count(&robot.body, &per_voxel)
+        .map_err(|e| format!("--brain: {e}"))?;
+    if count > 0 && robot.brain.parameters().is_empty() {
+        robot.brain = robot
+            .brain
+            .with_random_parameters(0, &robot.body, &per_voxel)
+            .map_err(|e| format!("--brain: {e}"))?;
+    }
+    Ok(robot)
 }
 
 /// Runs `vsrlab simulate`.

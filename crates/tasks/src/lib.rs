@@ -8,10 +8,12 @@ pub mod files;
 pub mod java_random;
 pub mod locomotion;
 pub mod outcome;
+pub mod representation;
 pub mod robot;
 pub mod terrain;
 
 pub use locomotion::{EpisodeError, Locomotion};
 pub use outcome::{Outcome, Trace, TraceLevel};
+pub use representation::{evaluate, evaluate_traced, BodyPart, EvaluationError, Representation};
 pub use robot::RobotSpec;
 pub use terrain::Terrain;

@@ -1,5 +1,10 @@
 //! The controllers, one per file.
 
+pub mod centralized_mlp;
 pub mod constant;
+pub mod distributed_mlp;
 pub mod phase;
+pub mod phase_grid;
 pub mod random;
+pub mod smoothed;
+pub mod step;

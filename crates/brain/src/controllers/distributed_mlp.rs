@@ -1,0 +1,562 @@
+//! Distributed MLP controller with neighbour signals (2D-VSR-Sim `DistributedSensing` at HEAD,
+//! vsr-model.md §4.4, thesis §2.2.2.1): every voxel runs its own MLP on its own readings and on the
+//! signals its four neighbours sent it at the previous control step.
+//!
+//! # Wiring
+//!
+//! Directions come in the fixed order N, E, S, W with grid offsets N = (0, −1), E = (+1, 0),
+//! S = (0, +1), W = (−1, 0). Since y = 0 is the bottom row, "N" is physically the voxel *below*
+//! and "S" the one above; only the index semantics matter.
+//!
+//! With `s` signals per direction and `r` readings per voxel (the same on every voxel):
+//! - inputs (r + 4s) = `[own readings…, s from N, s from E, s from S, s from W]`, where the block
+//!   "from d" is the block the neighbour in direction d emitted towards this voxel, i.e. that
+//!   neighbour's output block for the opposite direction; a missing neighbour gives zeros;
+//! - outputs (1 + 4s) = `[actuation, s towards N, s towards E, s towards S, s towards W]`.
+//!
+//! Signals have exactly one control step of delay: at each call all voxels first read the signals
+//! emitted at the previous call (zeros at the first call and after [`Controller::reset`]), then all
+//! emit new ones (synchronous update, HEAD semantics since 2021-10-20).
+//!
+//! # Parameter layout
+//!
+//! One network has sizes `[r + 4s, hidden…, 1 + 4s]` and n_w = [`Mlp::parameter_count`] weights
+//! (layout in [`crate::mlp`]); with r = 4, s = 1 and no hidden layer: 8 inputs, 5 outputs, 45 weights.
+//! - homogeneous: the n_w weights are shared by all voxels (count n_w, whatever the body);
+//! - heterogeneous: one block per grid cell, empty cells included (count W·H·n_w); the voxel at
+//!   (x, y) uses `weights[(y·W + x)·n_w .. (y·W + x + 1)·n_w]`. 10×10 grid: 4500; 5×5: 1125.
+
+use crate::mlp::{Activation, Mlp};
+use crate::{BrainError, Controller};
+use vsrlab_body::Morphology;
+
+/// Grid offsets (dx, dy) of the directions N, E, S, W, in this order.
+pub const DIRECTION_OFFSETS: [(isize, isize); 4] = [(0, -1), (1, 0), (0, 1), (-1, 0)];
+
+/// Index of the opposite direction (N ↔ S, E ↔ W).
+pub const fn opposite(direction: usize) -> usize {
+    (direction + 2) % 4
+}
+
+/// How the voxels' networks get their weights.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Layout {
+    /// One weight vector shared by every voxel.
+    #[default]
+    Homogeneous,
+    /// One weight block per grid cell (W·H blocks, empty cells included).
+    Heterogeneous,
+}
+
+/// Sizes of one voxel's network: `[r + 4s, hidden…, 1 + 4s]`.
+pub fn network_sizes(readings: usize, signals: usize, hidden: &[usize]) -> Vec<usize> {
+    let mut sizes = Vec::with_capacity(hidden.len() + 2);
+    sizes.push(readings + 4 * signals);
+    sizes.extend_from_slice(hidden);
+    sizes.push(1 + 4 * signals);
+    sizes
+}
+
+/// The readings count shared by all voxels, or an error naming `readings_per_voxel`.
+pub fn common_readings(morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
+    let Some(&first) = readings_per_voxel.first() else {
+        return Err(BrainError::Invalid {
+            field: "readings_per_voxel",
+            msg: "no voxel: the body is empty".into(),
+        });
+    };
+    if let Some(v) = readings_per_voxel.iter().position(|&r| r != first) {
+        let cell = |i: usize| {
+            morphology
+                .voxels()
+                .nth(i)
+                .map_or_else(|| "?".to_string(), |(x, y)| format!("({x}, {y})"))
+        };
+        return Err(BrainError::Invalid {
+            field: "readings_per_voxel",
+            msg: format!(
+                "a distributed MLP needs the same number of readings on every voxel, but voxel 0 at {} has {first} \
+                 and voxel {v} at {} has {} (check the sensors)",
+                cell(0),
+                cell(v),
+                readings_per_voxel[v]
+            ),
+        });
+    }
+    Ok(first)
+}
+
+/// Number of weights for a body: n_w (homogeneous) or W·H·n_w (heterogeneous).
+pub fn parameter_count(
+    morphology: &Morphology,
+    readings: usize,
+    signals: usize,
+    hidden: &[usize],
+    layout: Layout,
+) -> usize {
+    let per_network = Mlp::parameter_count(&network_sizes(readings, signals, hidden));
+    match layout {
+        Layout::Homogeneous => per_network,
+        Layout::Heterogeneous => morphology.width() * morphology.height() * per_network,
+    }
+}
+
+/// The shape of a distributed controller: everything but the body and the weights.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DistributedConfig {
+    /// Signals per direction (s).
+    pub signals: usize,
+    /// Hidden layer sizes of each voxel's network.
+    pub hidden: Vec<usize>,
+    /// Activation of every layer.
+    pub activation: Activation,
+    /// Whether the activation is applied to the raw inputs first.
+    pub input_activation: bool,
+    /// Shared or per-cell weights.
+    pub layout: Layout,
+}
+
+/// One MLP per voxel exchanging signals with its four neighbours (module documentation).
+#[derive(Debug, Clone)]
+pub struct DistributedMlpController {
+    signals: usize,
+    readings: usize,
+    n_in: usize,
+    n_out: usize,
+    /// One network (homogeneous) or one per voxel (heterogeneous).
+    networks: Vec<Mlp>,
+    /// Per voxel: index into `networks`.
+    network_of: Vec<usize>,
+    /// Per voxel and direction N, E, S, W: the neighbour's voxel index.
+    neighbours: Vec<[Option<usize>; 4]>,
+    /// Per voxel: the 4s signals it emitted at the last call (blocks towards N, E, S, W).
+    emitted: Vec<f64>,
+    /// Per voxel: the n_in inputs of the last call.
+    inputs: Vec<f64>,
+    outputs: Vec<f64>,
+    scratch: Vec<f64>,
+}
+
+impl DistributedMlpController {
+    /// Builds the controller; `weights` must have [`parameter_count`] entries for this body.
+    pub fn new(
+        morphology: &Morphology,
+        readings_per_voxel: &[usize],
+        config: &DistributedConfig,
+        weights: &[f64],
+    ) -> Result<Self, BrainError> {
+        let DistributedConfig {
+            signals,
+            ref hidden,
+            activation,
+            input_activation,
+            layout,
+        } = *config;
+        if readings_per_voxel.len() != morphology.voxel_count() {
+            return Err(BrainError::Invalid {
+                field: "readings_per_voxel",
+                msg: format!(
+                    "{} entries for a body of {} voxels",
+                    readings_per_voxel.len(),
+                    morphology.voxel_count()
+                ),
+            });
+        }
+        let readings = common_readings(morphology, readings_per_voxel)?;
+        let sizes = network_sizes(readings, signals, hidden);
+        Mlp::check_sizes(&sizes)?;
+        let expected = parameter_count(morphology, readings, signals, hidden, layout);
+        if weights.len() != expected {
+            return Err(BrainError::Invalid {
+                field: "weights",
+                msg: format!("expected {expected} for this body and sensors, got {}", weights.len()),
+            });
+        }
+        let n_w = Mlp::parameter_count(&sizes);
+        let (w, h) = (morphology.width(), morphology.height());
+        let cells: Vec<(usize, usize)> = morphology.voxels().collect();
+        let mut voxel_at = vec![None; w * h];
+        for (v, &(x, y)) in cells.iter().enumerate() {
+            voxel_at[y * w + x] = Some(v);
+        }
+        let neighbours = cells
+            .iter()
+            .map(|&(x, y)| {
+                DIRECTION_OFFSETS.map(|(dx, dy)| {
+                    let (nx, ny) = (x as isize + dx, y as isize + dy);
+                    if nx < 0 || ny < 0 || nx >= w as isize || ny >= h as isize {
+                        None
+                    } else {
+                        voxel_at[ny as usize * w + nx as usize]
+                    }
+                })
+            })
+            .collect();
+        let block = |cell: usize| weights[cell * n_w..(cell + 1) * n_w].to_vec();
+        let (networks, network_of) = match layout {
+            Layout::Homogeneous => (
+                vec![Mlp::new(sizes.clone(), activation, input_activation, block(0))?],
+                vec![0; cells.len()],
+            ),
+            Layout::Heterogeneous => (
+                cells
+                    .iter()
+                    .map(|&(x, y)| Mlp::new(sizes.clone(), activation, input_activation, block(y * w + x)))
+                    .collect::<Result<Vec<_>, _>>()?,
+                (0..cells.len()).collect(),
+            ),
+        };
+        let (n_in, n_out) = (sizes[0], sizes[sizes.len() - 1]);
+        let scratch = vec![0.0; networks[0].scratch_len()];
+        Ok(DistributedMlpController {
+            signals,
+            readings,
+            n_in,
+            n_out,
+            networks,
+            network_of,
+            neighbours,
+            emitted: vec![0.0; cells.len() * 4 * signals],
+            inputs: vec![0.0; cells.len() * n_in],
+            outputs: vec![0.0; n_out],
+            scratch,
+        })
+    }
+
+    /// Signals per direction (s).
+    pub fn signals(&self) -> usize {
+        self.signals
+    }
+
+    /// The voxel's neighbours in directions N, E, S, W (voxel indices; `None` where no voxel).
+    pub fn neighbours(&self, voxel: usize) -> [Option<usize>; 4] {
+        self.neighbours[voxel]
+    }
+
+    /// The 4s signals the voxel received at the last call, blocks from N, E, S, W in this order
+    /// (zeros before the first call).
+    pub fn incoming(&self, voxel: usize) -> &[f64] {
+        &self.inputs[voxel * self.n_in + self.readings..(voxel + 1) * self.n_in]
+    }
+
+    /// The 4s signals the voxel emitted at the last call, blocks towards N, E, S, W in this order.
+    pub fn emitted(&self, voxel: usize) -> &[f64] {
+        let s4 = 4 * self.signals;
+        &self.emitted[voxel * s4..(voxel + 1) * s4]
+    }
+}
+
+impl Controller for DistributedMlpController {
+    fn reset(&mut self) {
+        self.emitted.fill(0.0);
+        self.inputs.fill(0.0);
+    }
+
+    fn control(&mut self, _t: f64, readings: &[f64], actuations: &mut [f64]) {
+        let (r, s, n_in) = (self.readings, self.signals, self.n_in);
+        let s4 = 4 * s;
+        debug_assert_eq!(readings.len(), r * self.neighbours.len());
+        debug_assert_eq!(actuations.len(), self.neighbours.len());
+        // Gather every voxel's inputs from the previous step's signals before anyone emits.
+        for (v, neighbours) in self.neighbours.iter().enumerate() {
+            let input = &mut self.inputs[v * n_in..(v + 1) * n_in];
+            input[..r].copy_from_slice(&readings[v * r..(v + 1) * r]);
+            for (d, neighbour) in neighbours.iter().enumerate() {
+                let slot = &mut input[r + d * s..r + (d + 1) * s];
+                match neighbour {
+                    Some(n) => {
+                        let from = n * s4 + opposite(d) * s;
+                        slot.copy_from_slice(&self.emitted[from..from + s]);
+                    }
+                    None => slot.fill(0.0),
+                }
+            }
+        }
+        for (v, a) in actuations.iter_mut().enumerate() {
+            let network = &self.networks[self.network_of[v]];
+            network.apply(
+                &self.inputs[v * n_in..(v + 1) * n_in],
+                &mut self.outputs,
+                &mut self.scratch,
+            );
+            *a = self.outputs[0].clamp(-1.0, 1.0);
+            self.emitted[v * s4..(v + 1) * s4].copy_from_slice(&self.outputs[1..self.n_out]);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn config(
+        signals: usize,
+        hidden: &[usize],
+        activation: Activation,
+        input_activation: bool,
+        layout: Layout,
+    ) -> DistributedConfig {
+        DistributedConfig {
+            signals,
+            hidden: hidden.to_vec(),
+            activation,
+            input_activation,
+            layout,
+        }
+    }
+
+    /// Weights of one network with `r` readings, `s` signals, no hidden layer, identity activation:
+    /// each output neuron's bias and source weights given by `f(output, source)`, bias = source None.
+    fn weights(r: usize, s: usize, f: impl Fn(usize, Option<usize>) -> f64) -> Vec<f64> {
+        let (n_in, n_out) = (r + 4 * s, 1 + 4 * s);
+        let mut w = Vec::new();
+        for o in 0..n_out {
+            w.push(f(o, None));
+            for i in 0..n_in {
+                w.push(f(o, Some(i)));
+            }
+        }
+        w
+    }
+
+    #[test]
+    fn parameter_counts_match_the_thesis() {
+        let sizes = network_sizes(4, 1, &[]);
+        assert_eq!(sizes, vec![8, 5]);
+        assert_eq!(Mlp::parameter_count(&sizes), 45);
+        let m10 = Morphology::named("box-10x10").unwrap();
+        let m5 = Morphology::named("box-5x5").unwrap();
+        let single = Morphology::from_fn(10, 10, |x, y| x == 3 && y == 4).unwrap();
+        assert_eq!(parameter_count(&m10, 4, 1, &[], Layout::Homogeneous), 45);
+        assert_eq!(parameter_count(&m10, 4, 1, &[], Layout::Heterogeneous), 4500);
+        assert_eq!(parameter_count(&single, 4, 1, &[], Layout::Heterogeneous), 4500);
+        assert_eq!(parameter_count(&m5, 4, 1, &[], Layout::Heterogeneous), 1125);
+        // s = 2, hidden 6: sizes [12, 6, 9] → 6·13 + 9·7 = 141
+        assert_eq!(parameter_count(&m5, 4, 2, &[6], Layout::Homogeneous), 141);
+    }
+
+    /// Each voxel emits, in every direction, its own first reading (1 reading, s = 1, identity);
+    /// so a single voxel with a nonzero reading is the only emitter. The actuation reports nothing.
+    fn relay(m: &Morphology) -> DistributedMlpController {
+        let w = weights(1, 1, |o, i| if o >= 1 && i == Some(0) { 1.0 } else { 0.0 });
+        let rpv = vec![1; m.voxel_count()];
+        DistributedMlpController::new(
+            m,
+            &rpv,
+            &config(1, &[], Activation::Identity, false, Layout::Homogeneous),
+            &w,
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn a_signal_reaches_exactly_the_neighbours_one_step_later_on_the_right_slot() {
+        // a plus shape with a hole: centre (1, 1) has neighbours N = (1, 0), E = (2, 1), W = (0, 1);
+        // (1, 2) is empty, so the centre has no S neighbour
+        let m = Morphology::from_rows(&["#.#", "###", ".#."]).unwrap();
+        let cells: Vec<(usize, usize)> = m.voxels().collect();
+        let index = |x: usize, y: usize| cells.iter().position(|&c| c == (x, y)).unwrap();
+        let centre = index(1, 1);
+        let mut c = relay(&m);
+        assert_eq!(
+            c.neighbours(centre),
+            [Some(index(1, 0)), Some(index(2, 1)), None, Some(index(0, 1))]
+        );
+        let n = m.voxel_count();
+        let mut readings = vec![0.0; n];
+        readings[centre] = 0.75;
+        let mut a = vec![0.0; n];
+
+        c.control(1.0 / 60.0, &readings, &mut a);
+        // step 1: nobody has received anything yet; only the centre emitted
+        for v in 0..n {
+            assert_eq!(c.incoming(v), &[0.0; 4], "voxel {v} at step 1");
+            let expected = if v == centre { [0.75; 4] } else { [0.0; 4] };
+            assert_eq!(c.emitted(v), &expected, "voxel {v} emitted at step 1");
+        }
+
+        readings[centre] = 0.0;
+        c.control(2.0 / 60.0, &readings, &mut a);
+        // step 2: the centre's neighbour below (its N) receives it from its S, and so on
+        let expected_incoming = |v: usize| -> [f64; 4] {
+            let mut e = [0.0; 4];
+            if v == index(1, 0) {
+                e[2] = 0.75; // the centre is this voxel's S neighbour
+            } else if v == index(2, 1) {
+                e[3] = 0.75; // … its W neighbour
+            } else if v == index(0, 1) {
+                e[1] = 0.75; // … its E neighbour
+            }
+            e
+        };
+        for (v, cell) in cells.iter().enumerate() {
+            assert_eq!(c.incoming(v), &expected_incoming(v), "voxel {v} at {cell:?}, step 2");
+        }
+        // the voxels above the centre's row are not its neighbours and got nothing
+        assert_eq!(c.incoming(index(0, 2)), &[0.0; 4]);
+        assert_eq!(c.incoming(index(2, 2)), &[0.0; 4]);
+
+        // step 3: the wave has moved on: the centre gets nothing back (its neighbours emitted 0)
+        c.control(3.0 / 60.0, &readings, &mut a);
+        assert_eq!(c.incoming(centre), &[0.0; 4]);
+    }
+
+    #[test]
+    fn a_direction_specific_signal_reaches_only_the_neighbour_it_was_sent_to() {
+        // s = 2; emitter sends its reading only on the second signal towards E; actuation = input
+        // "second signal from W" (input index r + 3·2 + 1 = 8)
+        let (r, s) = (1, 2);
+        let w = weights(r, s, |o, i| match (o, i) {
+            (0, Some(8)) => 1.0, // actuation ← from W, signal 1
+            (4, Some(0)) => 1.0, // output 4 = towards E (block 1), signal 1
+            _ => 0.0,
+        });
+        let m = Morphology::named("box-3x2").unwrap();
+        let rpv = vec![r; 6];
+        let mut c = DistributedMlpController::new(
+            &m,
+            &rpv,
+            &config(s, &[], Activation::Identity, true, Layout::Homogeneous),
+            &w,
+        )
+        .unwrap();
+        let mut readings = vec![0.0; 6];
+        readings[0] = 0.5; // voxel 0 = (0, 0); its E neighbour is voxel 1 = (1, 0)
+        let mut a = vec![0.0; 6];
+        c.control(1.0 / 60.0, &readings, &mut a);
+        assert_eq!(a, vec![0.0; 6], "no signal at the first step");
+        c.control(2.0 / 60.0, &readings, &mut a);
+        // only voxel 1 received it, in the second slot of its W block (identity everywhere)
+        assert_eq!(a, vec![0.0, 0.5, 0.0, 0.0, 0.0, 0.0]);
+        assert_eq!(c.incoming(1), &[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.5]);
+        for v in [0, 2, 3, 4, 5] {
+            assert_eq!(c.incoming(v), &[0.0; 8], "voxel {v}");
+        }
+    }
+
+    #[test]
+    fn absent_neighbours_give_zero_even_when_everyone_emits() {
+        // every voxel emits a constant 1 in every direction (bias); incoming counts neighbours
+        let w = weights(0, 1, |o, i| if o >= 1 && i.is_none() { 1.0 } else { 0.0 });
+        let m = Morphology::named("biped-4x3").unwrap();
+        let rpv = vec![0; m.voxel_count()];
+        let mut c = DistributedMlpController::new(
+            &m,
+            &rpv,
+            &config(1, &[], Activation::Identity, false, Layout::Homogeneous),
+            &w,
+        )
+        .unwrap();
+        let mut a = vec![0.0; m.voxel_count()];
+        c.control(1.0 / 60.0, &[], &mut a);
+        c.control(2.0 / 60.0, &[], &mut a);
+        for (v, (x, y)) in m.voxels().enumerate() {
+            for (d, (dx, dy)) in DIRECTION_OFFSETS.iter().enumerate() {
+                let (nx, ny) = (x as isize + dx, y as isize + dy);
+                let present = nx >= 0 && ny >= 0 && m.has(nx as usize, ny as usize);
+                let expected = if present { 1.0 } else { 0.0 };
+                assert_eq!(c.incoming(v)[d], expected, "voxel ({x}, {y}) direction {d}");
+            }
+        }
+        c.reset();
+        assert!((0..m.voxel_count()).all(|v| c.incoming(v) == [0.0; 4] && c.emitted(v) == [0.0; 4]));
+    }
+
+    #[test]
+    fn heterogeneous_with_equal_blocks_equals_homogeneous() {
+        let m = Morphology::named("comb-5x3").unwrap();
+        let (r, s, hidden) = (3, 2, [5]);
+        let n_w = Mlp::parameter_count(&network_sizes(r, s, &hidden));
+        let block: Vec<f64> = (0..n_w).map(|i| ((i * 37 % 23) as f64 / 11.5) - 1.0).collect();
+        let all: Vec<f64> = (0..15).flat_map(|_| block.iter().copied()).collect();
+        let rpv = vec![r; m.voxel_count()];
+        let mut ho = DistributedMlpController::new(
+            &m,
+            &rpv,
+            &config(s, &hidden, Activation::Tanh, true, Layout::Homogeneous),
+            &block,
+        )
+        .unwrap();
+        let mut he = DistributedMlpController::new(
+            &m,
+            &rpv,
+            &config(s, &hidden, Activation::Tanh, true, Layout::Heterogeneous),
+            &all,
+        )
+        .unwrap();
+        let n = m.voxel_count();
+        let (mut a1, mut a2) = (vec![0.0; n], vec![0.0; n]);
+        for k in 1..=50 {
+            let t = k as f64 / 60.0;
+            let readings: Vec<f64> = (0..n * r).map(|i| (t * (i + 1) as f64).sin()).collect();
+            ho.control(t, &readings, &mut a1);
+            he.control(t, &readings, &mut a2);
+            assert_eq!(a1, a2, "step {k}");
+            assert!(a1.iter().all(|a| (-1.0..=1.0).contains(a)));
+        }
+    }
+
+    #[test]
+    fn heterogeneous_blocks_are_indexed_by_grid_cell() {
+        // 2×2 grid with (1, 0) empty; each cell's block has actuation bias = its cell index
+        let m = Morphology::from_rows(&["##", "#."]).unwrap();
+        let n_w = Mlp::parameter_count(&network_sizes(0, 1, &[]));
+        let mut w = vec![0.0; 4 * n_w];
+        for cell in 0..4 {
+            w[cell * n_w] = cell as f64 / 10.0;
+        }
+        let mut c = DistributedMlpController::new(
+            &m,
+            &[0, 0, 0],
+            &config(1, &[], Activation::Identity, false, Layout::Heterogeneous),
+            &w,
+        )
+        .unwrap();
+        let mut a = vec![0.0; 3];
+        c.control(1.0 / 60.0, &[], &mut a);
+        // voxels in grid order: (0, 0) → cell 0, (0, 1) → cell 2, (1, 1) → cell 3
+        assert_eq!(a, vec![0.0, 0.2, 0.3]);
+    }
+
+    #[test]
+    fn unequal_readings_and_wrong_weight_counts_are_errors() {
+        let m = Morphology::named("worm-3x1").unwrap();
+        let err = DistributedMlpController::new(
+            &m,
+            &[4, 4, 5],
+            &config(1, &[], Activation::Tanh, true, Layout::Homogeneous),
+            &[],
+        )
+        .unwrap_err();
+        assert!(
+            matches!(
+                err,
+                BrainError::Invalid {
+                    field: "readings_per_voxel",
+                    ..
+                }
+            ),
+            "{err}"
+        );
+        assert!(
+            err.to_string()
+                .contains("voxel 0 at (0, 0) has 4 and voxel 2 at (2, 0) has 5"),
+            "{err}"
+        );
+        let err = DistributedMlpController::new(
+            &m,
+            &[4, 4, 4],
+            &config(1, &[], Activation::Tanh, true, Layout::Heterogeneous),
+            &[0.0; 45],
+        )
+        .unwrap_err();
+        assert_eq!(
+            err,
+            BrainError::Invalid {
+                field: "weights",
+                msg: "expected 135 for this body and sensors, got 45".into()
+            }
+        );
+    }
+}

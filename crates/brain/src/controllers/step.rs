@@ -1,0 +1,98 @@
+//! Step wrapper (2D-VSR-Sim `StepController`, vsr-model.md §4.6): the inner controller runs at every
+//! control step, so its state evolves, but the applied actuations are refreshed only when at least
+//! `period` seconds passed since the last refresh (the first call always refreshes) and held in
+//! between. AttentionVSRs used 0.33 s, i.e. a refresh every 20 steps at 1/60 s (20·(1/60) ≈ 0.3333 ≥
+//! 0.33 while 19 steps ≈ 0.3167 are not enough). A period of exactly k·dt is fragile with a time
+//! accumulated in floating point; give a slightly smaller one. No parameters of its own.
+
+use crate::Controller;
+
+/// Holds the inner controller's output for `period` seconds.
+pub struct StepController {
+    inner: Box<dyn Controller>,
+    period: f64,
+    last_refresh: Option<f64>,
+    target: Vec<f64>,
+    held: Vec<f64>,
+}
+
+impl StepController {
+    /// Wraps `inner` for a body of `voxels` voxels.
+    pub fn new(inner: Box<dyn Controller>, period: f64, voxels: usize) -> Self {
+        StepController {
+            inner,
+            period,
+            last_refresh: None,
+            target: vec![0.0; voxels],
+            held: vec![0.0; voxels],
+        }
+    }
+}
+
+impl Controller for StepController {
+    fn reset(&mut self) {
+        self.inner.reset();
+        self.last_refresh = None;
+        self.held.fill(0.0);
+    }
+
+    fn control(&mut self, t: f64, readings: &[f64], actuations: &mut [f64]) {
+        self.inner.control(t, readings, &mut self.target);
+        if self.last_refresh.is_none_or(|last| t - last >= self.period) {
+            self.held.copy_from_slice(&self.target);
+            self.last_refresh = Some(t);
+        }
+        actuations.copy_from_slice(&self.held);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Outputs the number of calls so far (so every call gives a new value) and counts resets.
+    struct Counter(f64);
+    impl Controller for Counter {
+        fn reset(&mut self) {
+            self.0 = 0.0;
+        }
+        fn control(&mut self, _t: f64, _r: &[f64], a: &mut [f64]) {
+            self.0 += 1.0;
+            a.fill(self.0);
+        }
+    }
+
+    #[test]
+    fn refreshes_exactly_every_twenty_steps_with_0_33_s() {
+        let mut c = StepController::new(Box::new(Counter(0.0)), 0.33, 2);
+        let dt = 1.0 / 60.0;
+        let mut t = 0.0;
+        let mut a = [0.0; 2];
+        let mut refreshes = Vec::new();
+        let mut last = f64::NAN;
+        for step in 1..=200 {
+            t += dt;
+            c.control(t, &[], &mut a);
+            if a[0] != last {
+                refreshes.push(step);
+                last = a[0];
+            }
+            // the held value is the inner's output at the last refresh step: it ran every step
+            assert_eq!(a[0], *refreshes.last().unwrap() as f64);
+        }
+        assert_eq!(refreshes, (0..10).map(|k| 1 + 20 * k).collect::<Vec<_>>());
+        c.reset();
+        c.control(dt, &[], &mut a);
+        assert_eq!(a, [1.0, 1.0], "reset: the first call refreshes, inner restarted");
+    }
+
+    #[test]
+    fn zero_period_is_a_pass_through() {
+        let mut c = StepController::new(Box::new(Counter(0.0)), 0.0, 1);
+        let mut a = [0.0];
+        for k in 1..=5 {
+            c.control(k as f64 / 60.0, &[], &mut a);
+            assert_eq!(a[0], k as f64);
+        }
+    }
+}

@@ -1,0 +1,201 @@
+//! From a flat genotype to a robot (thesis §3.3.5): a representation is a body part and a brain
+//! part over one vector `v = [v_body v_brain]`, plus the sensors and the physical preset.
+//!
+//! - The body part is either a fixed [`Morphology`] (no genes) or a [`BodyEncoding`] (Direct: W·H
+//!   genes, GMM: 5 genes per Gaussian).
+//! - The brain part is a [`BrainSpec`] *template*: its kind and shape; its parameters come from
+//!   the genotype. With an evolved body the brain's parameter count must not depend on which cells
+//!   the decoded body occupies (distributed MLPs, homogeneous or one block per grid cell); a brain
+//!   whose count does (a centralised MLP) needs a fixed body, and is rejected otherwise.
+//!
+//! [`evaluate`] is the pure function (representation, genotype, task, seed) → outcome that the
+//! optimizers call, from as many threads as they like.
+
+use crate::locomotion::{self, EpisodeError, Locomotion};
+use crate::outcome::{Outcome, TraceLevel};
+use crate::robot::RobotSpec;
+use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
+use serde::de::{self, MapAccess, SeqAccess, Visitor};
+use serde::{Deserialize, Deserializer, Serialize};
+use vsrlab_body::encodings::BodyEncoding;
+use vsrlab_body::sensors::{SensorConfig, SensorSuite};
+use vsrlab_body::{Morphology, Preset};
+use vsrlab_brain::BrainSpec;
+
+/// Where the body comes from. In configs: a shape name or text grid (`"biped-4x3"`, `"##/#."`) or
+/// a list of rows for a fixed body; a table with `kind = "direct"` or `"gmm"` for an encoded one.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum BodyPart {
+    /// The same body for every genotype (no body genes).
+    Fixed(Morphology),
+    /// A body decoded from the first genes of the genotype.
+    Encoded(BodyEncoding),
+}
+
+impl<'de> Deserialize<'de> for BodyPart {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        deserializer.deserialize_any(BodyPartVisitor)
+    }
+}
+
+struct BodyPartVisitor;
+
+impl<'de> Visitor<'de> for BodyPartVisitor {
+    type Value = BodyPart;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("a shape name, a text grid, a list of rows, or a body encoding {kind = \"direct\" | \"gmm\", …}")
+    }
+
+    fn visit_str<E: de::Error>(self, s: &str) -> Result<BodyPart, E> {
+        Morphology::parse(s).map(BodyPart::Fixed).map_err(E::custom)
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<BodyPart, A::Error> {
+        Morphology::deserialize(SeqAccessDeserializer::new(seq)).map(BodyPart::Fixed)
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<BodyPart, A::Error> {
+        BodyEncoding::deserialize(MapAccessDeserializer::new(map)).map(BodyPart::Encoded)
+    }
+}
+
+/// A genotype → robot mapping: body part, sensors, brain template and preset.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Representation {
+    /// The body: fixed, or decoded from the body genes.
+    pub body: BodyPart,
+    /// Sensors on every voxel (thesis ch. 3: `uniform-vxy+a+t-0` style placements).
+    pub sensors: SensorConfig,
+    /// The brain's kind and shape; its parameters are the brain genes.
+    pub brain: BrainSpec,
+    /// Physical preset of the voxels.
+    #[serde(default)]
+    pub preset: Preset,
+}
+
+/// Why a genotype could not become a robot, or an evaluation failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum EvaluationError {
+    /// The representation itself is unusable; the message names the field.
+    #[error("representation.{0}")]
+    Representation(String),
+    /// The genotype does not fit the representation.
+    #[error("genotype: {0}")]
+    Genotype(String),
+    /// The episode could not be run or blew up.
+    #[error(transparent)]
+    Episode(#[from] EpisodeError),
+}
+
+impl Representation {
+    /// Number of body genes (0 for a fixed body).
+    pub fn body_genes(&self) -> usize {
+        match &self.body {
+            BodyPart::Fixed(_) => 0,
+            BodyPart::Encoded(encoding) => encoding.gene_count(),
+        }
+    }
+
+    /// Number of brain genes. With an encoded body it is computed on the full W×H grid and must be
+    /// the same for a single-voxel body, otherwise the brain cannot follow an evolving body.
+    pub fn brain_genes(&self) -> Result<usize, EvaluationError> {
+        match &self.body {
+            BodyPart::Fixed(body) => self.brain_parameters_for(body),
+            BodyPart::Encoded(encoding) => {
+                encoding
+                    .validate()
+                    .map_err(|e| EvaluationError::Representation(format!("body: {e}")))?;
+                let (w, h) = (encoding.width(), encoding.height());
+                let full = Morphology::from_fn(w, h, |_, _| true).map_err(representation_error("body"))?;
+                let single = Morphology::from_fn(w, h, |x, y| x == 0 && y == 0).map_err(representation_error("body"))?;
+                let count = self.brain_parameters_for(&full)?;
+                if self.brain_parameters_for(&single)? != count {
+                    return Err(EvaluationError::Representation(
+                        "brain: its parameter count depends on the body's voxels, so it cannot be used with an \
+                         evolved body; use a fixed body or a distributed brain"
+                            .to_string(),
+                    ));
+                }
+                Ok(count)
+            }
+        }
+    }
+
+    /// Total genotype length: body genes then brain genes.
+    pub fn genotype_length(&self) -> Result<usize, EvaluationError> {
+        Ok(self.body_genes() + self.brain_genes()?)
+    }
+
+    /// Checks that the representation is usable (body encoding, sensors and brain fit together).
+    pub fn validate(&self) -> Result<(), EvaluationError> {
+        self.genotype_length().map(|_| ())
+    }
+
+    /// Builds the robot a genotype stands for.
+    pub fn robot(&self, genotype: &[f64]) -> Result<RobotSpec, EvaluationError> {
+        let expected = self.genotype_length()?;
+        if genotype.len() != expected {
+            return Err(EvaluationError::Genotype(format!(
+                "expected {expected} genes ({} body + {} brain), got {}",
+                self.body_genes(),
+                expected - self.body_genes(),
+                genotype.len()
+            )));
+        }
+        let (body_genes, brain_genes) = genotype.split_at(self.body_genes());
+        let body = match &self.body {
+            BodyPart::Fixed(body) => body.clone(),
+            BodyPart::Encoded(encoding) => encoding
+                .decode(body_genes)
+                .map_err(|e| EvaluationError::Genotype(format!("body: {e}")))?,
+        };
+        let brain = self
+            .brain
+            .with_parameters(brain_genes)
+            .map_err(|e| EvaluationError::Genotype(e.to_string()))?;
+        Ok(RobotSpec {
+            body,
+            preset: self.preset,
+            voxel: None,
+            sensors: self.sensors.clone(),
+            brain,
+        })
+    }
+
+    fn brain_parameters_for(&self, body: &Morphology) -> Result<usize, EvaluationError> {
+        let suite = SensorSuite::new(&self.sensors, body, 0).map_err(representation_error("sensors"))?;
+        let per_voxel: Vec<usize> = (0..body.voxel_count()).map(|v| suite.readings_per_voxel(v)).collect();
+        self.brain
+            .parameter_count(body, &per_voxel)
+            .map_err(|e| EvaluationError::Representation(e.to_string()))
+    }
+}
+
+fn representation_error<E: std::fmt::Display>(field: &'static str) -> impl Fn(E) -> EvaluationError {
+    move |e| EvaluationError::Representation(format!("{field}: {e}"))
+}
+
+/// Evaluates a genotype on a locomotion task: pure, thread-safe, summary outcome only (no trace).
+pub fn evaluate(
+    representation: &Representation,
+    genotype: &[f64],
+    task: &Locomotion,
+    seed: u64,
+) -> Result<Outcome, EvaluationError> {
+    evaluate_traced(representation, genotype, task, seed, TraceLevel::None)
+}
+
+/// [`evaluate`] with a per-step trace at the given level (for analyses and videos).
+pub fn evaluate_traced(
+    representation: &Representation,
+    genotype: &[f64],
+    task: &Locomotion,
+    seed: u64,
+    trace: TraceLevel,
+) -> Result<Outcome, EvaluationError> {
+    let robot = representation.robot(genotype)?;
+    Ok(locomotion::run(&robot, task, seed, trace)?)
+}

@@ -32,6 +32,10 @@ pub struct BenchArgs {
     /// Physics sub-steps per step (default: the engine's default).
     #[arg(long)]
     pub substeps: Option<u32>,
+    /// Brain of every robot (as `vsrlab simulate --brain`; parameterised brains get random
+    /// weights), to measure what a brain costs per step.
+    #[arg(long, default_value = "phase")]
+    pub brain: String,
     /// Skip the parallel rows.
     #[arg(long)]
     pub single_only: bool,
@@ -121,7 +125,7 @@ pub fn run(a: BenchArgs) -> Result<(), String> {
         if wanted.as_ref().is_some_and(|w| !w.contains(&body)) {
             continue;
         }
-        let robot = robot_from_args(body, &a.preset, DEFAULT_SENSORS, "phase")?;
+        let robot = robot_from_args(body, &a.preset, DEFAULT_SENSORS, &a.brain)?;
         let mut task = Locomotion {
             terrain: terrain.parse()?,
             duration: a.duration,
@@ -133,7 +137,7 @@ pub fn run(a: BenchArgs) -> Result<(), String> {
         let voxels = robot.body.voxel_count();
         let dt = task.physics.dt;
         episode(&robot, &task, 0)?; // warm-up
-                                    // single thread: run episodes until min_seconds of CPU time
+        // single thread: run episodes until min_seconds of CPU time
         let (c0, w0) = (thread_cpu_seconds(), Instant::now());
         let (mut episodes, mut steps) = (0usize, 0u64);
         while episodes == 0 || thread_cpu_seconds() - c0 < a.min_seconds {

@@ -1,8 +1,11 @@
 //! `vsrlab`: the command-line front end. It parses arguments, builds the pieces from the library
 //! crates and hands over; it holds no domain logic.
 
+mod analyze;
 mod bench;
 mod cpu_time;
+mod label;
+mod run;
 mod simulate;
 
 use clap::{Parser, Subcommand};
@@ -22,6 +25,12 @@ enum Command {
     Simulate(simulate::SimulateArgs),
     /// Measure simulation speed on the standard robots, single-threaded and on every core.
     Bench(bench::BenchArgs),
+    /// Run an evolutionary experiment described in a TOML file (docs/experiments.md).
+    Run(run::RunArgs),
+    /// Figures and a summary table from the output of `vsrlab run` (docs/analysis.md).
+    Analyze(analyze::AnalyzeArgs),
+    /// Render a stratified sample of evolved robots into an HTML page for labelling species.
+    Label(label::LabelArgs),
 }
 
 fn main() -> ExitCode {
@@ -29,6 +38,9 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Simulate(a) => simulate::run(a),
         Command::Bench(a) => bench::run(a),
+        Command::Run(a) => run::run(a),
+        Command::Analyze(a) => analyze::run(a),
+        Command::Label(a) => label::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

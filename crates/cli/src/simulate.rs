@@ -132,7 +132,8 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     }
     if a.json {
         let v = json!({
-            "body": body_name, "brain": a.brain, "task": a.task, "sensors": a.sensors, "preset": a.preset,
+            "body": body_name, "brain": robot.brain.kind(), "task": a.task, "sensors": robot.sensors.to_string(),
+            "preset": robot.preset.to_string(),
             "seed": a.seed, "duration": a.duration, "transient": a.transient,
             "distance": outcome.distance, "velocity": outcome.velocity, "elapsed": outcome.elapsed,
             "steps": outcome.steps, "voxels": outcome.voxels, "wall_seconds": wall,
@@ -148,6 +149,8 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
             "task      {} for {} s (seed {}, transient {} s)",
             a.task, a.duration, a.seed, a.transient
         );
+        println!("brain     {} ({} parameters)", robot.brain.kind(), robot.brain.parameters().len());
+        println!("sensors   {}", robot.sensors);
         println!("distance  {:.4}", outcome.distance);
         println!("velocity  {:.4}", outcome.velocity);
         println!(

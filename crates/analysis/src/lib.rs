@@ -1,0 +1,29 @@
+//! Analysis of evolved voxel-based soft robots (thesis ch. 3; docs/analysis.md): morphology
+//! descriptors, dynamic pose, centre-of-mass spectra, footprints and gaits, a random-forest
+//! species classifier, the Inverse Simpson Index, Mann–Whitney tests, PCA and figures.
+
+pub mod curves;
+pub mod diversity;
+pub mod features;
+pub mod footprint;
+pub mod forest;
+pub mod labels;
+pub mod morphology;
+pub mod pca;
+pub mod plot;
+pub mod pose;
+pub mod report;
+pub mod results;
+pub mod sampling;
+pub mod spectrum;
+pub mod stats;
+
+pub use diversity::{inverse_simpson, species_index, Classifier};
+pub use features::{FeatureParams, RobotFeatures};
+pub use footprint::{FootprintParams, Gait};
+pub use forest::{cross_validate, CvReport, Folds, ForestParams, MaxFeatures, RandomForest};
+pub use morphology::MorphologyDescriptors;
+pub use pca::Pca;
+pub use pose::Pose;
+pub use spectrum::{Axis, SpectrumParams};
+pub use stats::{mann_whitney_u, median, std_dev, MannWhitney};

@@ -1,0 +1,105 @@
+//! Robot files through the CLI: save, replay bit-exactly, render, and clear errors for broken files.
+
+use std::path::Path;
+use std::process::Command;
+
+const VSRLAB: &str = env!("CARGO_BIN_EXE_vsrlab");
+
+fn vsrlab(args: &[&str]) -> (bool, String, String) {
+    let out = Command::new(VSRLAB).args(args).output().expect("vsrlab runs");
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn distance(json: &str) -> String {
+    let v: serde_json::Value = serde_json::from_str(json).unwrap_or_else(|e| panic!("{e}: {json}"));
+    v["distance"].to_string()
+}
+
+#[test]
+fn a_saved_robot_replays_to_the_identical_outcome_and_renders() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("biped.robot.json");
+    let file = file.to_str().unwrap();
+    let common = ["--duration", "5", "--seed", "3", "--json"];
+    let mut args = vec!["simulate", "--body", "biped-4x3", "--brain", "distributed-mlp", "--save-robot", file];
+    args.extend(common);
+    let (ok, first, err) = vsrlab(&args);
+    assert!(ok, "{err}");
+    let mut args = vec!["simulate", "--robot", file];
+    args.extend(common);
+    let (ok, replay, err) = vsrlab(&args);
+    assert!(ok, "{err}");
+    assert_eq!(distance(&first), distance(&replay));
+    // and on another task, with a video
+    let gif = dir.path().join("replay.gif");
+    let (ok, _, err) = vsrlab(&[
+        "simulate",
+        "--robot",
+        file,
+        "--task",
+        "locomotion:hilly-1-10",
+        "--duration",
+        "1",
+        "--video",
+        gif.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    assert!(std::fs::metadata(&gif).unwrap().len() > 1000);
+}
+
+/// Saves a valid robot, applies `edit` to its JSON, and returns the error of replaying it.
+fn error_after(edit: impl Fn(&mut serde_json::Value)) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("r.json");
+    let (ok, _, err) = vsrlab(&[
+        "simulate",
+        "--body",
+        "biped-4x3",
+        "--brain",
+        "distributed-mlp",
+        "--duration",
+        "0.1",
+        "--save-robot",
+        file.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let mut v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
+    edit(&mut v);
+    std::fs::write(&file, serde_json::to_string_pretty(&v).unwrap()).unwrap();
+    let (ok, _, err) = vsrlab(&["simulate", "--robot", file.to_str().unwrap(), "--duration", "0.1"]);
+    assert!(!ok, "a broken file must be rejected");
+    assert!(!err.contains("panicked"), "{err}");
+    err
+}
+
+#[test]
+fn broken_robot_files_get_errors_naming_the_field() {
+    let err = error_after(|v| {
+        v["robot"]["brain"]["weights"].as_array_mut().unwrap().pop();
+    });
+    assert!(err.contains("weights") && err.contains("expected 45"), "{err}");
+    let err = error_after(|v| v["robot"]["sensors"] = "uniform-a+zz-0".into());
+    assert!(err.contains("sensors") && err.contains("zz"), "{err}");
+    // a heterogeneous brain made for another grid: the body no longer matches the brain
+    let err = error_after(|v| {
+        v["robot"]["brain"]["layout"] = "heterogeneous".into();
+    });
+    assert!(err.contains("weights") && err.contains("expected 540"), "{err}");
+    let err = error_after(|v| v["robot"]["body"] = serde_json::json!(["#.#", "..."]));
+    assert!(err.contains("body"), "{err}");
+    let err = error_after(|v| v["robot"]["brian"] = serde_json::json!({}));
+    assert!(err.contains("brian"), "{err}");
+}
+
+#[test]
+fn the_shipped_example_robot_replays() {
+    let example = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/biped-distributed.robot.json");
+    let (ok, out, err) = vsrlab(&["simulate", "--robot", example.to_str().unwrap(), "--duration", "10", "--json"]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!(v["velocity"].as_f64().unwrap() > 0.5, "the example robot should walk: {out}");
+}

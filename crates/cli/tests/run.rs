@@ -1,0 +1,140 @@
+//! `vsrlab run` end to end: a run killed with SIGKILL and resumed ends with the same files as an
+//! uninterrupted one; a bad experiment file is reported with its field and line.
+
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+const VSRLAB: &str = env!("CARGO_BIN_EXE_vsrlab");
+
+/// About 60 short generations: long enough to be killed in the middle.
+const EXPERIMENT: &str = r#"
+runs = 1
+seed = 5
+
+[representation]
+body = "biped-4x3"
+sensors = "uniform-vxy+a+t-0"
+brain = { kind = "distributed-mlp", layout = "homogeneous", signals = 1, hidden = [] }
+
+[task]
+duration = 3.0
+
+[optimizer]
+kind = "ga"
+population_size = 10
+offspring_size = 10
+
+[stop]
+generations = 60
+
+[output]
+snapshot_every = 200
+"#;
+
+fn deterministic_files(out: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut files = Vec::new();
+    let mut stack = vec![out.to_path_buf()];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                stack.push(path);
+            } else if !matches!(
+                path.file_name().unwrap().to_str().unwrap(),
+                "timings.csv" | "summary.json"
+            ) {
+                let rel = path.strip_prefix(out).unwrap().display().to_string();
+                files.push((rel, std::fs::read(&path).unwrap()));
+            }
+        }
+    }
+    files.sort();
+    files
+}
+
+fn vsrlab(args: &[&str]) -> std::process::Output {
+    Command::new(VSRLAB).args(args).output().unwrap()
+}
+
+#[test]
+fn killed_run_resumes_to_the_same_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("exp.toml");
+    std::fs::write(&file, EXPERIMENT).unwrap();
+    let file = file.to_str().unwrap();
+    let straight = dir.path().join("straight");
+    let killed = dir.path().join("killed");
+
+    let out = vsrlab(&["run", file, "--out", straight.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+
+    let mut child = Command::new(VSRLAB)
+        .args(["run", file, "--out", killed.to_str().unwrap(), "--threads", "2"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let csv = killed.join("run-00/generations.csv");
+    let start = Instant::now();
+    loop {
+        let rows = std::fs::read_to_string(&csv).map_or(0, |t| t.lines().count());
+        if rows >= 6 && killed.join("run-00/checkpoint.json").exists() {
+            break;
+        }
+        assert!(start.elapsed() < Duration::from_secs(60), "no checkpoint appeared");
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    child.kill().unwrap(); // SIGKILL
+    child.wait().unwrap();
+    assert!(
+        !killed.join("run-00/summary.json").exists(),
+        "the run finished before it could be killed"
+    );
+    // Without --resume the folder is refused; with it the run goes on.
+    let refused = vsrlab(&["run", file, "--out", killed.to_str().unwrap()]);
+    assert!(!refused.status.success());
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("--resume"));
+    let resumed = vsrlab(&[
+        "run",
+        file,
+        "--out",
+        killed.to_str().unwrap(),
+        "--resume",
+        "--threads",
+        "1",
+    ]);
+    assert!(resumed.status.success(), "{}", String::from_utf8_lossy(&resumed.stderr));
+
+    let (a, b) = (deterministic_files(&straight), deterministic_files(&killed));
+    assert!(a.iter().any(|(n, _)| n == "run-00/best.robot.json"));
+    let names = |v: &[(String, Vec<u8>)]| v.iter().map(|(n, _)| n.clone()).collect::<Vec<_>>();
+    assert_eq!(names(&a), names(&b));
+    for ((na, ca), (nb, cb)) in a.iter().zip(&b) {
+        assert_eq!(na, nb);
+        assert!(ca == cb, "{na} differs after kill -9 and --resume");
+    }
+}
+
+#[test]
+fn bad_experiment_files_name_the_field_and_the_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("bad.toml");
+    std::fs::write(
+        &file,
+        EXPERIMENT.replace("population_size = 10", "population_size = -3"),
+    )
+    .unwrap();
+    let out = vsrlab(&[
+        "run",
+        file.to_str().unwrap(),
+        "--out",
+        dir.path().join("o").to_str().unwrap(),
+    ]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("line 15") && err.contains("optimizer.population_size"),
+        "{err}"
+    );
+}

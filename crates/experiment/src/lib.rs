@@ -1,0 +1,41 @@
+//! # vsrlab-experiment
+//!
+//! Runs evolutionary experiments on voxel-based soft robots as described in one TOML file
+//! (`docs/experiments.md`): representation (body, sensors, brain, preset), locomotion task,
+//! optimizer, stop criterion, runs and outputs.
+//!
+//! - [`config`]: the experiment file, parsed with errors that name the field and the line.
+//! - [`optimizer`]: the optimizers of `vsrlab-evolution` behind one serialisable value.
+//! - [`evaluator`]: genotype → fitness, descriptor, speciation features, snapshot record.
+//! - [`features`]: simple morphology descriptors, dynamic pose and behaviour spectrum.
+//! - [`runner`]: the ask → parallel evaluate → tell loop, with CSV logs, snapshots, the best
+//!   robot, checkpoints and resume.
+//!
+//! ## Guarantees
+//! - **Thread count never changes results**: batches are evaluated with rayon and collected in
+//!   candidate order; all randomness derives from the run seed.
+//! - **Resume**: a run killed at any point and resumed from its last checkpoint ends with the
+//!   same deterministic files (`generations.csv`, snapshots, best robot) as an uninterrupted one.
+//! - **Atomic files**: everything is written to a temporary file and renamed.
+//! - **Failed evaluations never abort a run**: they get the worst fitness (NaN) and are counted.
+//!
+//! ## Example
+//! ```no_run
+//! use vsrlab_experiment::{config, evaluator::RobotEvaluator, runner};
+//! let experiment = config::load("experiments/quickstart.toml".as_ref()).unwrap();
+//! let evaluator = RobotEvaluator::new(&experiment).unwrap();
+//! let options = runner::RunOptions { threads: 0, resume: false };
+//! runner::run_experiment(&experiment, &evaluator, "out/quickstart".as_ref(), &options, &mut runner::Silent)
+//!     .unwrap();
+//! ```
+#![warn(missing_docs)]
+
+pub mod config;
+pub mod evaluator;
+pub mod features;
+pub mod optimizer;
+pub mod runner;
+
+pub use config::{ConfigError, Experiment};
+pub use evaluator::{Evaluated, Evaluator, Record, RobotEvaluator};
+pub use runner::{run_experiment, Flow, Observer, Progress, RunError, RunOptions, RunSummary, Silent};

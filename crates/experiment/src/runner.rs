@@ -1,0 +1,672 @@
+//! The run loop: ask → evaluate the batch in parallel → tell, with per-generation logs,
+//! population snapshots, checkpoints and resume.
+//!
+//! Output folder of an experiment (every file written atomically, temporary file + rename):
+//!
+//! ```text
+//! OUT/experiment.toml            the resolved experiment (every default written out)
+//! OUT/summary.json               per-run results and timings (written when all runs end)
+//! OUT/run-00/generations.csv     one row per generation: deterministic columns only
+//! OUT/run-00/timings.csv         one row per generation: wall-clock columns
+//! OUT/run-00/snapshots/evaluations-0001000.jsonl   the population, every N evaluations
+//! OUT/run-00/best.robot.json     the best robot (a robot file)
+//! OUT/run-00/summary.json        the run's result, timings and overhead (written at its end)
+//! OUT/run-00/checkpoint.json     optimizer + run state (while the run is unfinished)
+//! ```
+//!
+//! Determinism: evaluations run on a rayon pool but their results are collected in candidate
+//! order, and every random number comes from the run seed, so `generations.csv`, the snapshots
+//! and the best robot do not depend on the number of threads, nor on whether the run was
+//! interrupted and resumed. Only `timings.csv` and the `summary.json` files hold wall-clock
+//! figures. (A `stop.wall_seconds` criterion makes the stopping point machine-dependent.)
+
+use crate::config::{Experiment, StopConfig};
+use crate::evaluator::{Evaluated, Evaluator, Record};
+use crate::optimizer::AnyOptimizer;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use vsrlab_evolution::{Evaluation, Told};
+use vsrlab_tasks::files::write_atomic;
+
+/// Format tag of checkpoint files.
+pub const CHECKPOINT_FORMAT: &str = "vsrlab-checkpoint/1";
+
+/// Header of `generations.csv`.
+pub const GENERATIONS_HEADER: &str = "generation,evaluations,births,failures,best_fitness,batch_best,batch_median,\
+population_best,population_median,population_size,distinct_bodies,mean_voxels,species,archive_cells";
+
+/// Header of `timings.csv`.
+pub const TIMINGS_HEADER: &str =
+    "generation,elapsed_seconds,generation_seconds,evaluation_seconds,episode_cpu_seconds,overhead_seconds";
+
+/// Why a run or an experiment could not go on.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    /// A file could not be read or written.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The OS error.
+        source: std::io::Error,
+    },
+    /// The output folder or a checkpoint does not fit this experiment.
+    #[error("{0}")]
+    Mismatch(String),
+    /// The optimizer refused its configuration or a batch.
+    #[error("optimizer: {0}")]
+    Optimizer(#[from] vsrlab_evolution::EvolutionError),
+    /// Anything else (e.g. the best robot could not be built).
+    #[error("{0}")]
+    Other(String),
+}
+
+fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> RunError + '_ {
+    move |source| RunError::Io {
+        path: path.display().to_string(),
+        source,
+    }
+}
+
+fn write_file(path: &Path, bytes: &[u8]) -> Result<(), RunError> {
+    write_atomic(path, bytes).map_err(io_error(path))
+}
+
+/// How to run.
+#[derive(Debug, Clone, Default)]
+pub struct RunOptions {
+    /// Worker threads for evaluations (0: one per core).
+    pub threads: usize,
+    /// Continue runs from their checkpoints (and skip finished runs) instead of refusing a
+    /// non-empty output folder.
+    pub resume: bool,
+}
+
+/// Whether the runner should go on after a generation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Flow {
+    /// Go on.
+    Continue,
+    /// Stop now, as if the process were killed right after the checkpoint (no final files).
+    Interrupt,
+}
+
+/// What the runner reports after each generation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Progress {
+    /// Run index.
+    pub run: usize,
+    /// Number of runs.
+    pub runs: usize,
+    /// Completed generations.
+    pub generation: u64,
+    /// Evaluations so far.
+    pub evaluations: u64,
+    /// Best fitness so far.
+    pub best_fitness: f64,
+    /// Progress towards the nearest stop criterion, in [0, 1].
+    pub fraction: f64,
+    /// Wall-clock seconds of this run so far.
+    pub elapsed: f64,
+}
+
+/// Receives progress; the CLI draws progress bars with it.
+pub trait Observer {
+    /// A run starts (or resumes, with `progress` where it left off).
+    fn run_started(&mut self, _progress: &Progress) {}
+    /// A generation ended (after its checkpoint was written).
+    fn generation(&mut self, _progress: &Progress) -> Flow {
+        Flow::Continue
+    }
+    /// A run ended, or was found finished when resuming.
+    fn run_finished(&mut self, _summary: &RunSummary) {}
+}
+
+/// An observer that does nothing.
+pub struct Silent;
+
+impl Observer for Silent {}
+
+/// The result and timings of one run (`run-XX/summary.json`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunSummary {
+    /// Run index.
+    pub run: usize,
+    /// Run seed.
+    pub seed: u64,
+    /// Which stop criterion ended the run.
+    pub stop_reason: String,
+    /// Generations.
+    pub generations: u64,
+    /// Evaluations.
+    pub evaluations: u64,
+    /// Births.
+    pub births: u64,
+    /// Failed evaluations (worst fitness given).
+    pub failures: u64,
+    /// Best fitness (`None` if every evaluation failed).
+    pub best_fitness: Option<f64>,
+    /// Generation in which the best was born.
+    pub best_birth_generation: Option<u64>,
+    /// Body of the best.
+    pub best_body: Option<String>,
+    /// Wall-clock seconds (over all sessions of the run).
+    pub wall_seconds: f64,
+    /// Wall-clock seconds spent evaluating batches (episodes, in parallel).
+    pub evaluation_seconds: f64,
+    /// Wall-clock seconds outside batch evaluation: optimizer, logs, snapshots, checkpoints.
+    pub overhead_seconds: f64,
+    /// `overhead_seconds / wall_seconds`.
+    pub overhead_fraction: f64,
+    /// Sum over evaluations of their own duration (CPU seconds across threads).
+    pub episode_cpu_seconds: f64,
+    /// Threads used by the last session.
+    pub threads: usize,
+}
+
+/// Run state that is not the optimizer's: saved in checkpoints.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+struct RunState {
+    /// Records of the current population's genotypes, by genotype hash.
+    records: BTreeMap<u64, Record>,
+    /// Evaluation count at which the next snapshot is due.
+    next_snapshot: u64,
+    /// Evaluation count of the last snapshot written.
+    last_snapshot: Option<u64>,
+    failures: u64,
+    /// Genotype hash and record of the best individual so far.
+    best: Option<(u64, Record)>,
+    wall_seconds: f64,
+    evaluation_seconds: f64,
+    episode_cpu_seconds: f64,
+    /// Bytes of `generations.csv` and `timings.csv` covered by this checkpoint.
+    csv_bytes: u64,
+    timings_bytes: u64,
+}
+
+#[derive(Serialize, Deserialize)]
+struct Checkpoint {
+    format: String,
+    run: usize,
+    seed: u64,
+    state: RunState,
+    optimizer: AnyOptimizer,
+}
+
+/// A snapshot line: one population member.
+#[derive(Serialize)]
+struct SnapshotLine<'a> {
+    generation: u64,
+    evaluations: u64,
+    index: usize,
+    birth_generation: u64,
+    #[serde(flatten)]
+    record: Option<&'a Record>,
+    descriptor: &'a [f64],
+    genotype: &'a [f64],
+}
+
+/// FNV-1a over the bits of the genes: the key of a genotype's record.
+fn genotype_hash(genotype: &[f64]) -> u64 {
+    let mut h = 0xcbf2_9ce4_8422_2325u64;
+    for g in genotype {
+        for b in g.to_bits().to_le_bytes() {
+            h ^= u64::from(b);
+            h = h.wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+    h
+}
+
+/// Formats a float for the CSV: shortest round-trip form, `NaN` for failures.
+fn num(v: f64) -> String {
+    format!("{v}")
+}
+
+/// The element at index n/2 of the sorted values (jgea's median), NaN first (the worst).
+fn median(values: &[f64]) -> f64 {
+    if values.is_empty() {
+        return f64::NAN;
+    }
+    let mut v = values.to_vec();
+    v.sort_by(|a, b| match (a.is_nan(), b.is_nan()) {
+        (true, true) => std::cmp::Ordering::Equal,
+        (true, false) => std::cmp::Ordering::Less,
+        (false, true) => std::cmp::Ordering::Greater,
+        _ => a.total_cmp(b),
+    });
+    v[v.len() / 2]
+}
+
+fn best_of(values: &[f64]) -> f64 {
+    values.iter().copied().filter(|v| !v.is_nan()).fold(f64::NAN, f64::max)
+}
+
+/// The folder of run `run` out of `runs`.
+pub fn run_dir(out: &Path, run: usize, runs: usize) -> PathBuf {
+    let width = (runs.max(1) - 1).to_string().len().max(2);
+    out.join(format!("run-{run:0width$}"))
+}
+
+/// Runs every run of an experiment into `out` (see the module docs for the files).
+pub fn run_experiment(
+    experiment: &Experiment,
+    evaluator: &dyn Evaluator,
+    out: &Path,
+    options: &RunOptions,
+    observer: &mut dyn Observer,
+) -> Result<Vec<RunSummary>, RunError> {
+    std::fs::create_dir_all(out).map_err(io_error(out))?;
+    let resolved = experiment.to_toml();
+    let config_path = out.join("experiment.toml");
+    match std::fs::read_to_string(&config_path) {
+        Ok(existing) if !options.resume => {
+            let _ = existing;
+            return Err(RunError::Mismatch(format!(
+                "{} already holds an experiment: pass --resume to continue it, or choose another output folder",
+                out.display()
+            )));
+        }
+        Ok(existing) if existing != resolved => {
+            return Err(RunError::Mismatch(format!(
+                "{} was written by a different experiment configuration: resuming needs the same file \
+                 (compare with {})",
+                out.display(),
+                config_path.display()
+            )));
+        }
+        _ => write_file(&config_path, resolved.as_bytes())?,
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(options.threads)
+        .build()
+        .map_err(|e| RunError::Other(format!("thread pool: {e}")))?;
+    let mut summaries = Vec::new();
+    for (run, seed) in experiment.run_seeds().into_iter().enumerate() {
+        let dir = run_dir(out, run, experiment.runs);
+        match run_one(experiment, evaluator, run, seed, &dir, options, &pool, observer)? {
+            Some(summary) => summaries.push(summary),
+            None => return Ok(summaries),
+        }
+    }
+    let text = serde_json::to_string_pretty(&summaries).expect("summaries serialise");
+    write_file(&out.join("summary.json"), text.as_bytes())?;
+    Ok(summaries)
+}
+
+/// Which stop criterion holds, if any.
+fn stop_reason(stop: &StopConfig, optimizer: &AnyOptimizer, wall: f64) -> Option<&'static str> {
+    if let (Some(target), Some(best)) = (stop.target_fitness, optimizer.best()) {
+        if best.fitness() >= target {
+            return Some("target_fitness");
+        }
+    }
+    if stop.evaluations.is_some_and(|n| optimizer.evaluations() >= n) {
+        return Some("evaluations");
+    }
+    if stop.births.is_some_and(|n| optimizer.births() >= n) {
+        return Some("births");
+    }
+    if stop.generations.is_some_and(|n| optimizer.generation() >= n) {
+        return Some("generations");
+    }
+    if stop.wall_seconds.is_some_and(|s| wall >= s) {
+        return Some("wall_seconds");
+    }
+    None
+}
+
+fn fraction(stop: &StopConfig, optimizer: &AnyOptimizer, wall: f64) -> f64 {
+    let mut f: f64 = 0.0;
+    if let Some(n) = stop.evaluations {
+        f = f.max(optimizer.evaluations() as f64 / n.max(1) as f64);
+    }
+    if let Some(n) = stop.births {
+        f = f.max(optimizer.births() as f64 / n.max(1) as f64);
+    }
+    if let Some(n) = stop.generations {
+        f = f.max(optimizer.generation() as f64 / n.max(1) as f64);
+    }
+    if let Some(s) = stop.wall_seconds {
+        f = f.max(wall / s);
+    }
+    f.clamp(0.0, 1.0)
+}
+
+/// Reads a file and cuts it to `bytes` (what the checkpoint covers).
+fn read_truncated(path: &Path, bytes: u64) -> Result<String, RunError> {
+    let text = std::fs::read_to_string(path).map_err(io_error(path))?;
+    let cut = usize::try_from(bytes).unwrap_or(usize::MAX);
+    if text.len() < cut || !text.is_char_boundary(cut) {
+        return Err(RunError::Mismatch(format!(
+            "{} is shorter than its checkpoint says ({} < {cut} bytes): the run folder is damaged",
+            path.display(),
+            text.len()
+        )));
+    }
+    Ok(text[..cut].to_string())
+}
+
+#[allow(clippy::too_many_arguments)]
+fn run_one(
+    experiment: &Experiment,
+    evaluator: &dyn Evaluator,
+    run: usize,
+    seed: u64,
+    dir: &Path,
+    options: &RunOptions,
+    pool: &rayon::ThreadPool,
+    observer: &mut dyn Observer,
+) -> Result<Option<RunSummary>, RunError> {
+    let summary_path = dir.join("summary.json");
+    let checkpoint_path = dir.join("checkpoint.json");
+    let csv_path = dir.join("generations.csv");
+    let timings_path = dir.join("timings.csv");
+    let snapshots = dir.join("snapshots");
+    if options.resume {
+        if let Ok(text) = std::fs::read_to_string(&summary_path) {
+            let summary: RunSummary = serde_json::from_str(&text)
+                .map_err(|e| RunError::Mismatch(format!("{}: {e}", summary_path.display())))?;
+            observer.run_finished(&summary);
+            return Ok(Some(summary));
+        }
+    }
+    std::fs::create_dir_all(&snapshots).map_err(io_error(&snapshots))?;
+    if options.resume {
+        remove_stale_temporaries(dir);
+        remove_stale_temporaries(&snapshots);
+    }
+    let every = experiment.output.snapshot_every;
+    let (mut optimizer, mut state, mut csv, mut timings) = match std::fs::read(&checkpoint_path) {
+        Ok(bytes) if options.resume => {
+            let checkpoint: Checkpoint = serde_json::from_slice(&bytes)
+                .map_err(|e| RunError::Mismatch(format!("{}: {e}", checkpoint_path.display())))?;
+            if checkpoint.format != CHECKPOINT_FORMAT || checkpoint.run != run || checkpoint.seed != seed {
+                return Err(RunError::Mismatch(format!(
+                    "{} belongs to another run or format",
+                    checkpoint_path.display()
+                )));
+            }
+            let csv = read_truncated(&csv_path, checkpoint.state.csv_bytes)?;
+            let timings = read_truncated(&timings_path, checkpoint.state.timings_bytes)?;
+            (checkpoint.optimizer, checkpoint.state, csv, timings)
+        }
+        _ => {
+            let optimizer = AnyOptimizer::new(&experiment.optimizer, evaluator.genotype_length(), seed)?;
+            let state = RunState {
+                next_snapshot: every,
+                ..RunState::default()
+            };
+            (
+                optimizer,
+                state,
+                format!("{GENERATIONS_HEADER}\n"),
+                format!("{TIMINGS_HEADER}\n"),
+            )
+        }
+    };
+    let session_start = Instant::now();
+    let wall_before = state.wall_seconds;
+    let wall = |start: &Instant| wall_before + start.elapsed().as_secs_f64();
+    let progress = |optimizer: &AnyOptimizer, wall: f64| Progress {
+        run,
+        runs: experiment.runs,
+        generation: optimizer.generation(),
+        evaluations: optimizer.evaluations(),
+        best_fitness: optimizer.best().map_or(f64::NAN, |b| b.fitness()),
+        fraction: fraction(&experiment.stop, optimizer, wall),
+        elapsed: wall,
+    };
+    observer.run_started(&progress(&optimizer, wall_before));
+    let mut last_checkpoint = Instant::now();
+    let reason = loop {
+        if let Some(reason) = stop_reason(&experiment.stop, &optimizer, wall(&session_start)) {
+            break reason;
+        }
+        let generation_start = Instant::now();
+        let batch = optimizer.ask();
+        let evaluation_start = Instant::now();
+        let results: Vec<Evaluated> = pool.install(|| {
+            batch
+                .par_iter()
+                .map(|c| evaluate_guarded(evaluator, &c.genotype, c.seed))
+                .collect()
+        });
+        let evaluation_seconds = evaluation_start.elapsed().as_secs_f64();
+        let batch_fitness: Vec<f64> = results.iter().map(|e| e.fitness).collect();
+        let failures = results.iter().filter(|e| e.failed()).count() as u64;
+        let episode_cpu: f64 = results.iter().map(|e| e.seconds).sum();
+        let mut told = Vec::with_capacity(batch.len());
+        for (candidate, evaluated) in batch.iter().zip(results) {
+            state
+                .records
+                .insert(genotype_hash(&candidate.genotype), evaluated.record);
+            told.push(Told {
+                id: candidate.id,
+                evaluation: Evaluation {
+                    objectives: vec![evaluated.fitness],
+                    descriptor: evaluated.descriptor,
+                    outcome: evaluated.features,
+                },
+            });
+        }
+        optimizer.tell(told)?;
+        if let Some(best) = optimizer.best() {
+            let hash = genotype_hash(&best.genotype);
+            if state.best.as_ref().map(|b| b.0) != Some(hash) {
+                state.best = state.records.get(&hash).map(|r| (hash, r.clone()));
+            }
+        }
+        let population = optimizer.population();
+        let keep: BTreeSet<u64> = population.iter().map(|i| genotype_hash(&i.genotype)).collect();
+        state.records.retain(|k, _| keep.contains(k));
+
+        // Per-generation statistics (deterministic columns).
+        let population_fitness: Vec<f64> = population.iter().map(|i| i.fitness()).collect();
+        let records: Vec<Option<&Record>> = population
+            .iter()
+            .map(|i| state.records.get(&genotype_hash(&i.genotype)))
+            .collect();
+        let bodies: BTreeSet<&str> = records
+            .iter()
+            .filter_map(|r| r.and_then(|r| r.body.as_deref()))
+            .collect();
+        let voxels: Vec<usize> = records.iter().filter_map(|r| r.and_then(|r| r.voxels)).collect();
+        let mean_voxels = if voxels.is_empty() {
+            f64::NAN
+        } else {
+            voxels.iter().sum::<usize>() as f64 / voxels.len() as f64
+        };
+        state.failures += failures;
+        let best = optimizer.best().map_or(f64::NAN, |b| b.fitness());
+        let _ = writeln!(
+            csv,
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+            optimizer.generation(),
+            optimizer.evaluations(),
+            optimizer.births(),
+            failures,
+            num(best),
+            num(best_of(&batch_fitness)),
+            num(median(&batch_fitness)),
+            num(best_of(&population_fitness)),
+            num(median(&population_fitness)),
+            population.len(),
+            bodies.len(),
+            num(mean_voxels),
+            optimizer.species().map_or(String::new(), |s| s.to_string()),
+            optimizer.archive_cells().map_or(String::new(), |s| s.to_string()),
+        );
+        drop(population);
+        write_file(&csv_path, csv.as_bytes())?;
+
+        // Snapshots.
+        if every > 0 && optimizer.evaluations() >= state.next_snapshot {
+            write_snapshot(&snapshots, &optimizer, &state)?;
+            state.last_snapshot = Some(optimizer.evaluations());
+            while state.next_snapshot <= optimizer.evaluations() {
+                state.next_snapshot += every;
+            }
+        }
+
+        // Timings (wall clock: kept apart from the deterministic CSV).
+        let generation_seconds = generation_start.elapsed().as_secs_f64();
+        state.evaluation_seconds += evaluation_seconds;
+        state.episode_cpu_seconds += episode_cpu;
+        let _ = writeln!(
+            timings,
+            "{},{:.6},{:.6},{:.6},{:.6},{:.6}",
+            optimizer.generation(),
+            wall(&session_start),
+            generation_seconds,
+            evaluation_seconds,
+            episode_cpu,
+            generation_seconds - evaluation_seconds,
+        );
+        write_file(&timings_path, timings.as_bytes())?;
+
+        // Checkpoint.
+        state.wall_seconds = wall(&session_start);
+        if last_checkpoint.elapsed().as_secs_f64() >= experiment.output.checkpoint_interval {
+            state.csv_bytes = csv.len() as u64;
+            state.timings_bytes = timings.len() as u64;
+            write_checkpoint(&checkpoint_path, run, seed, &state, &optimizer)?;
+            last_checkpoint = Instant::now();
+        }
+        if observer.generation(&progress(&optimizer, wall(&session_start))) == Flow::Interrupt {
+            return Ok(None);
+        }
+    };
+
+    // The run is over: final population, best robot, summary; the checkpoint is no longer needed.
+    if state.last_snapshot != Some(optimizer.evaluations()) {
+        write_snapshot(&snapshots, &optimizer, &state)?;
+    }
+    let best = optimizer.best();
+    if experiment.output.save_best {
+        if let Some(best) = best {
+            let note = format!(
+                "{}: run {run} (seed {seed}), best of {} evaluations, born in generation {}, fitness {}",
+                experiment.name.as_deref().unwrap_or("experiment"),
+                optimizer.evaluations(),
+                best.birth_generation,
+                best.fitness()
+            );
+            evaluator
+                .save_robot(&best.genotype, &dir.join("best.robot.json"), &note)
+                .map_err(|e| RunError::Other(format!("best robot of run {run}: {e}")))?;
+        }
+    }
+    let wall_seconds = wall(&session_start);
+    let overhead = (wall_seconds - state.evaluation_seconds).max(0.0);
+    let best_record = state.best.as_ref().map(|b| &b.1);
+    let summary = RunSummary {
+        run,
+        seed,
+        stop_reason: reason.to_string(),
+        generations: optimizer.generation(),
+        evaluations: optimizer.evaluations(),
+        births: optimizer.births(),
+        failures: state.failures,
+        best_fitness: best.map(|b| b.fitness()).filter(|f| !f.is_nan()),
+        best_birth_generation: best.map(|b| b.birth_generation),
+        best_body: best_record.and_then(|r| r.body.clone()),
+        wall_seconds,
+        evaluation_seconds: state.evaluation_seconds,
+        overhead_seconds: overhead,
+        overhead_fraction: if wall_seconds > 0.0 {
+            overhead / wall_seconds
+        } else {
+            0.0
+        },
+        episode_cpu_seconds: state.episode_cpu_seconds,
+        threads: pool.current_num_threads(),
+    };
+    let text = serde_json::to_string_pretty(&summary).expect("summaries serialise");
+    write_file(&summary_path, text.as_bytes())?;
+    let _ = std::fs::remove_file(&checkpoint_path);
+    observer.run_finished(&summary);
+    Ok(Some(summary))
+}
+
+/// Evaluates a genotype, turning a panic inside the evaluation into a failed evaluation so that
+/// one bad genotype never ends a run.
+fn evaluate_guarded(evaluator: &dyn Evaluator, genotype: &[f64], seed: u64) -> Evaluated {
+    let start = Instant::now();
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| evaluator.evaluate(genotype, seed))).unwrap_or_else(
+        |panic| {
+            let message = panic
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| panic.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown panic".to_string());
+            let mut failed = evaluator.failure(seed, format!("the evaluation panicked: {message}"));
+            failed.seconds = start.elapsed().as_secs_f64();
+            failed
+        },
+    )
+}
+
+/// Removes the temporary files a killed process may have left mid-write (`.NAME.tmp-PID`, see
+/// [`write_atomic`]).
+fn remove_stale_temporaries(dir: &Path) {
+    if let Ok(entries) = std::fs::read_dir(dir) {
+        for entry in entries.flatten() {
+            let name = entry.file_name().to_string_lossy().into_owned();
+            if name.starts_with('.') && name.contains(".tmp-") {
+                let _ = std::fs::remove_file(entry.path());
+            }
+        }
+    }
+}
+
+fn write_checkpoint(
+    path: &Path,
+    run: usize,
+    seed: u64,
+    state: &RunState,
+    optimizer: &AnyOptimizer,
+) -> Result<(), RunError> {
+    #[derive(Serialize)]
+    struct CheckpointRef<'a> {
+        format: &'a str,
+        run: usize,
+        seed: u64,
+        state: &'a RunState,
+        optimizer: &'a AnyOptimizer,
+    }
+    let bytes = serde_json::to_vec(&CheckpointRef {
+        format: CHECKPOINT_FORMAT,
+        run,
+        seed,
+        state,
+        optimizer,
+    })
+    .map_err(|e| RunError::Other(format!("checkpoint: {e}")))?;
+    write_file(path, &bytes)
+}
+
+fn write_snapshot(folder: &Path, optimizer: &AnyOptimizer, state: &RunState) -> Result<(), RunError> {
+    let mut text = String::new();
+    for (index, individual) in optimizer.population().into_iter().enumerate() {
+        let line = SnapshotLine {
+            generation: optimizer.generation(),
+            evaluations: optimizer.evaluations(),
+            index,
+            birth_generation: individual.birth_generation,
+            record: state.records.get(&genotype_hash(&individual.genotype)),
+            descriptor: &individual.descriptor,
+            genotype: &individual.genotype,
+        };
+        text.push_str(&serde_json::to_string(&line).map_err(|e| RunError::Other(format!("snapshot: {e}")))?);
+        text.push('\n');
+    }
+    write_file(
+        &folder.join(format!("evaluations-{:07}.jsonl", optimizer.evaluations())),
+        text.as_bytes(),
+    )
+}

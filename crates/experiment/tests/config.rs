@@ -1,0 +1,181 @@
+//! Experiment files: the shipped ones parse; mistakes give errors naming the field and the line;
+//! the resolved configuration round-trips.
+
+use std::path::{Path, PathBuf};
+use vsrlab_experiment::config::{self, OptimizerConfig, SeFeatures};
+
+const BASE: &str = r#"name = "demo"
+runs = 2
+seed = 7
+
+[representation]
+body = { kind = "direct", width = 5, height = 5 }
+sensors = "uniform-vxy+a+t-0"
+brain = { kind = "distributed-mlp", layout = "homogeneous", signals = 1, hidden = [] }
+
+[task]
+terrain = "flat"
+duration = 5.0
+
+[optimizer]
+kind = "ga"
+population_size = 10
+
+[stop]
+evaluations = 100
+"#;
+
+/// Parses BASE with `from` replaced by `to` and returns the error text.
+fn error_of(from: &str, to: &str) -> String {
+    assert!(BASE.contains(from), "{from}");
+    let text = BASE.replacen(from, to, 1);
+    match config::parse(&text, "demo.toml") {
+        Ok(_) => panic!("expected an error for {to:?}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn errors_name_the_field_and_the_line() {
+    let cases = [
+        // wrong type
+        ("duration = 5.0", "duration = \"long\"", "line 12", "'task.duration'"),
+        // unknown top-level field
+        ("seed = 7", "seed = 7\nrun = 3", "line 4", "'run'"),
+        // unknown and wrongly typed fields inside the (tagged) optimizer table
+        (
+            "population_size = 10",
+            "population_size = 10\nmutation_rate = 0.1",
+            "line 17",
+            "'optimizer.mutation_rate'",
+        ),
+        (
+            "population_size = 10",
+            "population_size = \"many\"",
+            "line 16",
+            "'optimizer.population_size'",
+        ),
+        // unknown optimizer
+        ("kind = \"ga\"", "kind = \"pso\"", "line 15", "'optimizer.kind'"),
+        // unknown field inside an inline table of the representation
+        (
+            "width = 5,",
+            "width = 5, depth = 2,",
+            "line 6",
+            "'representation.body.depth'",
+        ),
+        // invalid values caught after parsing
+        ("runs = 2", "runs = 0", "line 2", "'runs'"),
+        (
+            "duration = 5.0",
+            "duration = 5.0\ntransient = 7.0",
+            "line 13",
+            "'task.transient'",
+        ),
+        (
+            "population_size = 10",
+            "population_size = 10\nmutation_probability = 1.5",
+            "line 17",
+            "'optimizer.mutation_probability'",
+        ),
+        (
+            "sensors = \"uniform-vxy+a+t-0\"",
+            "sensors = \"uniform-vz+a-0\"",
+            "line 7",
+            "'representation.sensors'",
+        ),
+        ("evaluations = 100", "target_fitness = 3.0", "line 18", "'stop'"),
+        // syntax error
+        ("[stop]", "[stop", "line 18", ""),
+    ];
+    for (from, to, line, field) in cases {
+        let e = error_of(from, to);
+        assert!(e.starts_with("demo.toml, "), "{e}");
+        assert!(e.contains(line), "expected {line} in: {e}");
+        assert!(e.contains(field), "expected {field} in: {e}");
+    }
+}
+
+#[test]
+fn defaults_are_resolved_and_round_trip() {
+    let e = config::parse(BASE, "demo.toml").unwrap();
+    assert_eq!(e.output.snapshot_every, 1000);
+    let text = e.to_toml();
+    assert!(
+        text.contains("tournament_size = 5") && text.contains("mutation_sigma = 0.35"),
+        "{text}"
+    );
+    assert_eq!(config::parse(&text, "resolved").unwrap(), e);
+    // MAP-Elites gets the thesis' three descriptors, d_num over the whole grid.
+    let me = config::parse(
+        &BASE.replace("kind = \"ga\"\npopulation_size = 10", "kind = \"map-elites\""),
+        "me",
+    )
+    .unwrap();
+    match &me.optimizer {
+        OptimizerConfig::MapElites(p) => {
+            assert_eq!(p.axes.len(), 3);
+            assert_eq!(p.axes[0].max, 25.0);
+            assert!(p.axes.iter().all(|a| a.bins == 10));
+        }
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(config::parse(&me.to_toml(), "me").unwrap(), me);
+    // Runs get distinct derived seeds.
+    let seeds = e.run_seeds();
+    assert_eq!(seeds.len(), 2);
+    assert_ne!(seeds[0], seeds[1]);
+}
+
+fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+#[test]
+fn shipped_experiments_parse_with_the_thesis_sizes() {
+    let quick = config::load(&workspace().join("experiments/quickstart.toml")).unwrap();
+    assert_eq!(quick.name.as_deref(), Some("quickstart"));
+    let dir = workspace().join("experiments/ch3");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    files.sort();
+    assert_eq!(files.len(), 72, "2 brains × 2 bodies × 6 EAs × 3 terrains");
+    for path in files {
+        let e = config::load(&path).unwrap_or_else(|err| panic!("{err}"));
+        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+        let genes = e.representation.genotype_length().unwrap();
+        let expected = match (name.starts_with("ho-"), name.contains("-direct-")) {
+            (true, true) => 100 + 45,
+            (true, false) => 25 + 45,
+            (false, true) => 100 + 4500,
+            (false, false) => 25 + 4500,
+        };
+        assert_eq!(genes, expected, "{name}");
+        assert_eq!(e.runs, 10, "{name}");
+        assert_eq!(e.stop.evaluations, Some(30_000), "{name}");
+        assert_eq!(e.task.duration, 30.0, "{name}");
+        let features = match &e.optimizer {
+            OptimizerConfig::Se(p) => Some(p.features),
+            _ => None,
+        };
+        let ea = name.split('-').nth(2).unwrap();
+        match ea {
+            "se" => {
+                let suffix = name.split('-').nth(3).unwrap();
+                let want = match suffix {
+                    "g" => SeFeatures::Genotype,
+                    "s" => SeFeatures::Shape,
+                    _ => SeFeatures::Behaviour,
+                };
+                assert_eq!(features, Some(want), "{name}");
+            }
+            "es" => assert!(matches!(e.optimizer, OptimizerConfig::Es(_)), "{name}"),
+            "ga" => assert!(matches!(e.optimizer, OptimizerConfig::Ga(_)), "{name}"),
+            "me" => assert!(matches!(e.optimizer, OptimizerConfig::MapElites(_)), "{name}"),
+            other => panic!("unexpected EA {other} in {name}"),
+        }
+    }
+}

@@ -1,0 +1,265 @@
+//! The runner end to end on tiny experiments with real robots (short episodes, small
+//! populations): thread count does not change results; an interrupted then resumed run ends
+//! with the same files as an uninterrupted one; failed evaluations are counted, not fatal.
+
+use std::path::Path;
+use vsrlab_experiment::config::{self, Experiment};
+use vsrlab_experiment::evaluator::{Evaluated, Evaluator, Record, RobotEvaluator};
+use vsrlab_experiment::runner::{run_dir, run_experiment, Flow, Observer, Progress, RunOptions, Silent};
+
+/// The brain of the tiny experiments.
+const BRAIN: &str = r#"{ kind = "distributed-mlp", layout = "homogeneous", signals = 1, hidden = [] }"#;
+
+/// A tiny experiment: fixed 3×2 body, homogeneous distributed MLP, 2 s episodes.
+fn tiny(optimizer: &str, stop: &str) -> Experiment {
+    let text = format!(
+        r####"
+runs = 2
+seed = 11
+
+[representation]
+body = "###/#.#"
+sensors = "uniform-vxy+a+t-0"
+brain = {BRAIN}
+
+[task]
+terrain = "flat"
+duration = 2.0
+
+[optimizer]
+{optimizer}
+
+[stop]
+{stop}
+
+[output]
+snapshot_every = 20
+"####
+    );
+    config::parse(&text, "tiny.toml").unwrap()
+}
+
+/// The deterministic files of a finished experiment, as (relative path, content).
+fn deterministic_files(out: &Path) -> Vec<(String, String)> {
+    let mut files = Vec::new();
+    let mut stack = vec![out.to_path_buf()];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                stack.push(path);
+                continue;
+            }
+            let name = path.file_name().unwrap().to_string_lossy().into_owned();
+            if name == "timings.csv" || name == "summary.json" {
+                continue;
+            }
+            let rel = path.strip_prefix(out).unwrap().display().to_string();
+            files.push((rel, std::fs::read_to_string(&path).unwrap()));
+        }
+    }
+    files.sort();
+    files
+}
+
+fn run(experiment: &Experiment, out: &Path, threads: usize) {
+    let evaluator = RobotEvaluator::new(experiment).unwrap();
+    let options = RunOptions { threads, resume: false };
+    run_experiment(experiment, &evaluator, out, &options, &mut Silent).unwrap();
+}
+
+#[test]
+fn thread_count_does_not_change_results() {
+    let experiment = tiny(
+        "kind = \"ga\"\npopulation_size = 8\noffspring_size = 8",
+        "generations = 4",
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let (one, two) = (dir.path().join("one"), dir.path().join("two"));
+    run(&experiment, &one, 1);
+    run(&experiment, &two, 2);
+    let (a, b) = (deterministic_files(&one), deterministic_files(&two));
+    let names: Vec<&str> = a.iter().map(|(n, _)| n.as_str()).collect();
+    for expected in [
+        "experiment.toml",
+        "run-00/generations.csv",
+        "run-00/best.robot.json",
+        "run-00/snapshots/evaluations-0000024.jsonl",
+        "run-01/generations.csv",
+    ] {
+        assert!(names.contains(&expected), "{expected} missing from {names:?}");
+    }
+    assert!(
+        !names.iter().any(|n| n.ends_with("checkpoint.json")),
+        "finished runs drop checkpoints"
+    );
+    assert_eq!(a, b, "1 thread and 2 threads must give identical files");
+    // The two runs differ (different derived seeds).
+    let csv = |run: &str| {
+        a.iter()
+            .find(|(n, _)| n == &format!("{run}/generations.csv"))
+            .unwrap()
+            .1
+            .clone()
+    };
+    assert_ne!(csv("run-00"), csv("run-01"));
+    // Header + one row per generation; timings and summaries exist.
+    assert_eq!(csv("run-00").lines().count(), 5);
+    assert!(one.join("run-00/timings.csv").exists() && one.join("summary.json").exists());
+    // The best robot is a valid robot file.
+    vsrlab_tasks::files::load_robot(&one.join("run-00/best.robot.json")).unwrap();
+}
+
+/// Interrupts the run after `after` generations of run `run`, as a kill would.
+struct Killer {
+    run: usize,
+    after: u64,
+}
+
+impl Observer for Killer {
+    fn generation(&mut self, progress: &Progress) -> Flow {
+        if progress.run == self.run && progress.generation >= self.after {
+            Flow::Interrupt
+        } else {
+            Flow::Continue
+        }
+    }
+}
+
+#[test]
+fn resumed_runs_end_like_uninterrupted_ones() {
+    for optimizer in [
+        "kind = \"ga\"\npopulation_size = 6\noffspring_size = 6",
+        "kind = \"se\"\nfeatures = \"shape\"\npopulation_size = 8\nspecies = 3",
+        "kind = \"map-elites\"\ninitial_population = 6\nbatch_size = 4",
+        "kind = \"es\"\npopulation_size = 6",
+    ] {
+        let experiment = tiny(optimizer, "evaluations = 30");
+        let evaluator = RobotEvaluator::new(&experiment).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let (straight, resumed) = (dir.path().join("straight"), dir.path().join("resumed"));
+        run(&experiment, &straight, 2);
+        // Kill run 1 after its 2nd generation, then run 0 is done and run 1 has a checkpoint.
+        let options = RunOptions {
+            threads: 2,
+            resume: false,
+        };
+        let done = run_experiment(
+            &experiment,
+            &evaluator,
+            &resumed,
+            &options,
+            &mut Killer { run: 1, after: 2 },
+        )
+        .unwrap();
+        assert_eq!(done.len(), 1);
+        let run1 = run_dir(&resumed, 1, 2);
+        assert!(run1.join("checkpoint.json").exists());
+        assert!(!run1.join("summary.json").exists());
+        // Without --resume the folder is refused.
+        let again = run_experiment(&experiment, &evaluator, &resumed, &options, &mut Silent);
+        assert!(again.unwrap_err().to_string().contains("--resume"));
+        // A stale extra CSV row (killed after writing it, before the checkpoint) is dropped.
+        let csv = run1.join("generations.csv");
+        let mut text = std::fs::read_to_string(&csv).unwrap();
+        text.push_str("999,garbage\n");
+        std::fs::write(&csv, text).unwrap();
+        let options = RunOptions {
+            threads: 1,
+            resume: true,
+        };
+        let summaries = run_experiment(&experiment, &evaluator, &resumed, &options, &mut Silent).unwrap();
+        assert_eq!(summaries.len(), 2);
+        assert_eq!(
+            deterministic_files(&straight),
+            deterministic_files(&resumed),
+            "resumed run differs ({optimizer})"
+        );
+    }
+}
+
+#[test]
+fn resuming_with_another_configuration_is_refused() {
+    let experiment = tiny(
+        "kind = \"ga\"\npopulation_size = 4\noffspring_size = 4",
+        "generations = 1",
+    );
+    let dir = tempfile::tempdir().unwrap();
+    run(&experiment, dir.path(), 1);
+    let other = tiny(
+        "kind = \"ga\"\npopulation_size = 5\noffspring_size = 4",
+        "generations = 1",
+    );
+    let evaluator = RobotEvaluator::new(&other).unwrap();
+    let options = RunOptions {
+        threads: 1,
+        resume: true,
+    };
+    let err = run_experiment(&other, &evaluator, dir.path(), &options, &mut Silent).unwrap_err();
+    assert!(err.to_string().contains("different experiment"), "{err}");
+}
+
+/// Fails every genotype whose first gene is negative, panics when the second is ≥ 0.9;
+/// fitness = −Σx² otherwise.
+struct Flaky;
+
+impl Evaluator for Flaky {
+    fn genotype_length(&self) -> usize {
+        3
+    }
+
+    fn evaluate(&self, genotype: &[f64], seed: u64) -> Evaluated {
+        assert!(genotype[1] < 0.9, "gene 1 too large");
+        let ok = genotype[0] >= 0.0;
+        let fitness = if ok {
+            -genotype.iter().map(|x| x * x).sum::<f64>()
+        } else {
+            f64::NAN
+        };
+        Evaluated {
+            fitness,
+            descriptor: vec![],
+            features: vec![],
+            record: Record {
+                seed,
+                fitness: ok.then_some(fitness),
+                distance: None,
+                velocity: None,
+                voxels: None,
+                body: None,
+                error: (!ok).then(|| "negative first gene".to_string()),
+            },
+            seconds: 0.0,
+        }
+    }
+}
+
+#[test]
+fn failed_and_panicking_evaluations_get_the_worst_fitness_and_are_counted() {
+    let experiment = tiny(
+        "kind = \"ga\"\npopulation_size = 20\noffspring_size = 20",
+        "generations = 15",
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let options = RunOptions {
+        threads: 2,
+        resume: false,
+    };
+    let summaries = run_experiment(&experiment, &Flaky, dir.path(), &options, &mut Silent).unwrap();
+    let s = &summaries[0];
+    assert!(s.failures > 0 && s.generations == 15);
+    let best = s.best_fitness.unwrap();
+    assert!(best > -1.0, "GA improves despite failures: {best}");
+    let csv = std::fs::read_to_string(dir.path().join("run-00/generations.csv")).unwrap();
+    let first: Vec<&str> = csv.lines().nth(1).unwrap().split(',').collect();
+    assert!(first[3].parse::<u64>().unwrap() > 0, "failures column: {csv}");
+    let failures: u64 = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(3).unwrap().parse::<u64>().unwrap())
+        .sum();
+    assert_eq!(failures, s.failures);
+    // Survivors are never failed ones once enough good genotypes exist.
+    let last: Vec<&str> = csv.lines().last().unwrap().split(',').collect();
+    assert_ne!(last[8], "NaN", "population median");
+}

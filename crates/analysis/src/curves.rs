@@ -40,7 +40,12 @@ pub struct Band {
 /// Summarises step-wise run curves on `grid`. Runs stop contributing after their last point
 /// only if `extend` is false; with `extend` a finished run keeps its last value.
 pub fn band(curves: &[Vec<(f64, f64)>], grid: &[f64], extend: bool) -> Band {
-    let mut out = Band { x: grid.to_vec(), median: Vec::new(), sd: Vec::new(), runs: Vec::new() };
+    let mut out = Band {
+        x: grid.to_vec(),
+        median: Vec::new(),
+        sd: Vec::new(),
+        runs: Vec::new(),
+    };
     for &x in grid {
         let vals: Vec<f64> = curves
             .iter()
@@ -57,8 +62,16 @@ pub fn band(curves: &[Vec<(f64, f64)>], grid: &[f64], extend: bool) -> Band {
 
 /// A grid of `n` points spanning the curves, from the earliest first x to the latest last x.
 pub fn grid_for(curves: &[Vec<(f64, f64)>], n: usize) -> Vec<f64> {
-    let lo = curves.iter().filter_map(|c| c.first()).map(|p| p.0).fold(f64::INFINITY, f64::min);
-    let hi = curves.iter().filter_map(|c| c.last()).map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
+    let lo = curves
+        .iter()
+        .filter_map(|c| c.first())
+        .map(|p| p.0)
+        .fold(f64::INFINITY, f64::min);
+    let hi = curves
+        .iter()
+        .filter_map(|c| c.last())
+        .map(|p| p.0)
+        .fold(f64::NEG_INFINITY, f64::max);
     if lo.is_finite() && hi.is_finite() {
         linspace(lo, hi, n)
     } else {

@@ -147,8 +147,13 @@ mod tests {
     #[test]
     fn classifier_names_classes() {
         let x: Vec<Vec<f64>> = (0..40).map(|i| vec![i as f64, (i % 3) as f64]).collect();
-        let labels: Vec<String> = (0..40).map(|i| if i < 20 { "blob".into() } else { "limbed".into() }).collect();
-        let p = ForestParams { trees: 10, ..Default::default() };
+        let labels: Vec<String> = (0..40)
+            .map(|i| if i < 20 { "blob".into() } else { "limbed".into() })
+            .collect();
+        let p = ForestParams {
+            trees: 10,
+            ..Default::default()
+        };
         let c = Classifier::train(&x, &labels, 5, Folds::Shuffled(1), &p);
         assert_eq!(c.classes, vec!["blob", "limbed"]);
         assert_eq!(c.predict(&[3.0, 0.0]), "blob");

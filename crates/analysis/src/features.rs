@@ -42,7 +42,9 @@ pub fn net_turns(trace: &Trace) -> f64 {
     let mut total = 0.0;
     let mut prev: Option<f64> = None;
     for k in 0..trace.len() {
-        let Some(p) = trace.polygons_at(k).first() else { continue };
+        let Some(p) = trace.polygons_at(k).first() else {
+            continue;
+        };
         let a = (p[2].y - p[3].y).atan2(p[2].x - p[3].x);
         if let Some(b) = prev {
             let mut d = a - b;
@@ -66,7 +68,9 @@ pub fn airborne_fraction(trace: &Trace) -> f64 {
         return 0.0;
     }
     let steps = trace.touching.len() / n;
-    let air = (0..steps).filter(|&k| !trace.touching[k * n..(k + 1) * n].iter().any(|&t| t)).count();
+    let air = (0..steps)
+        .filter(|&k| !trace.touching[k * n..(k + 1) * n].iter().any(|&t| t))
+        .count();
     air as f64 / steps as f64
 }
 
@@ -128,7 +132,12 @@ mod tests {
     /// of each cycle, for 10 s at 60 Hz.
     fn hopper() -> Trace {
         let dt = 1.0 / 60.0;
-        let mut t = Trace { dt, side_length: 3.0, cells: vec![(0, 0)], ..Default::default() };
+        let mut t = Trace {
+            dt,
+            side_length: 3.0,
+            cells: vec![(0, 0)],
+            ..Default::default()
+        };
         t.terrain = vec![Vec2::new(-1e3, 0.0), Vec2::new(1e3, 0.0)];
         for k in 0..=600 {
             let time = k as f64 * dt;
@@ -136,7 +145,12 @@ mod tests {
             let x = 0.3 * time;
             t.times.push(time);
             t.centers.push(Vec2::new(x + 1.5, h + 1.5));
-            t.polygons.push([Vec2::new(x, h + 3.0), Vec2::new(x + 3.0, h + 3.0), Vec2::new(x + 3.0, h), Vec2::new(x, h)]);
+            t.polygons.push([
+                Vec2::new(x, h + 3.0),
+                Vec2::new(x + 3.0, h + 3.0),
+                Vec2::new(x + 3.0, h),
+                Vec2::new(x, h),
+            ]);
             t.touching.push(h < 0.05);
         }
         t
@@ -146,7 +160,9 @@ mod tests {
     fn features_of_a_hopper() {
         let f = RobotFeatures::from_trace(&hopper(), &FeatureParams::default());
         assert_eq!(f.pose.count(), 256);
-        let peak = (0..100).max_by(|&a, &b| f.spectrum_y[a].total_cmp(&f.spectrum_y[b])).unwrap();
+        let peak = (0..100)
+            .max_by(|&a, &b| f.spectrum_y[a].total_cmp(&f.spectrum_y[b]))
+            .unwrap();
         assert_eq!(peak, 19, "2 Hz bin");
         assert_eq!(f.morphology_vector().len(), 256);
         assert_eq!(f.behaviour_vector().len(), 205);
@@ -166,12 +182,17 @@ mod tests {
     #[test]
     fn turns_of_a_rolling_square() {
         // A unit square rotating clockwise by 3 full turns over 300 steps.
-        let mut t = Trace { dt: 0.01, cells: vec![(0, 0)], ..Default::default() };
+        let mut t = Trace {
+            dt: 0.01,
+            cells: vec![(0, 0)],
+            ..Default::default()
+        };
         for k in 0..=300 {
             let a = -2.0 * std::f64::consts::PI * 3.0 * k as f64 / 300.0;
             let c = |dx: f64, dy: f64| Vec2::new(dx * a.cos() - dy * a.sin(), dx * a.sin() + dy * a.cos());
             t.times.push(k as f64 * 0.01);
-            t.polygons.push([c(-0.5, 0.5), c(0.5, 0.5), c(0.5, -0.5), c(-0.5, -0.5)]);
+            t.polygons
+                .push([c(-0.5, 0.5), c(0.5, 0.5), c(0.5, -0.5), c(-0.5, -0.5)]);
         }
         assert!((net_turns(&t) + 3.0).abs() < 1e-9);
     }

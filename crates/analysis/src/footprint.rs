@@ -45,7 +45,12 @@ pub struct FootprintParams {
 
 impl Default for FootprintParams {
     fn default() -> Self {
-        FootprintParams { window: 0.5, min_n: 2, max_n: 10, contact_tolerance: 0.25 }
+        FootprintParams {
+            window: 0.5,
+            min_n: 2,
+            max_n: 10,
+            contact_tolerance: 0.25,
+        }
     }
 }
 
@@ -69,16 +74,31 @@ pub struct Gait {
 impl Gait {
     /// The five features (duration, touch area, occurrences, mode interval, purity).
     pub fn features(&self) -> [f64; 5] {
-        [self.duration, self.touch_area, self.occurrences as f64, self.mode_interval, self.purity]
+        [
+            self.duration,
+            self.touch_area,
+            self.occurrences as f64,
+            self.mode_interval,
+            self.purity,
+        ]
     }
 
     /// Names of [`Gait::features`].
-    pub const FEATURE_NAMES: [&'static str; 5] =
-        ["gait_duration", "gait_touch_area", "gait_occurrences", "gait_mode_interval", "gait_purity"];
+    pub const FEATURE_NAMES: [&'static str; 5] = [
+        "gait_duration",
+        "gait_touch_area",
+        "gait_occurrences",
+        "gait_mode_interval",
+        "gait_purity",
+    ];
 
     /// The n-gram as text: one group of 8 characters per footprint, `_` touching, `.` not.
     pub fn ngram_text(&self) -> String {
-        self.ngram.iter().map(|&f| footprint_text(f)).collect::<Vec<_>>().join("|")
+        self.ngram
+            .iter()
+            .map(|&f| footprint_text(f))
+            .collect::<Vec<_>>()
+            .join("|")
     }
 }
 
@@ -101,14 +121,24 @@ pub fn terrain_height(terrain: &[Vec2], x: f64) -> Option<f64> {
     let i = terrain.partition_point(|p| p.x <= x);
     let (a, b) = (terrain[i - 1], terrain[i]);
     let span = b.x - a.x;
-    Some(if span > 0.0 { a.y + (b.y - a.y) * (x - a.x) / span } else { a.y.max(b.y) })
+    Some(if span > 0.0 {
+        a.y + (b.y - a.y) * (x - a.x) / span
+    } else {
+        a.y.max(b.y)
+    })
 }
 
 /// The footprint of one step.
-pub fn footprint_of(polygons: &[[Vec2; 4]], touching: &[bool], terrain: &[Vec2], side_length: f64, tolerance: f64) -> Footprint {
+pub fn footprint_of(
+    polygons: &[[Vec2; 4]],
+    touching: &[bool],
+    terrain: &[Vec2],
+    side_length: f64,
+    tolerance: f64,
+) -> Footprint {
     let xs = polygons.iter().flat_map(|p| p.iter().map(|v| v.x));
     let (min, max) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
-    if !(max > min) {
+    if max.partial_cmp(&min) != Some(std::cmp::Ordering::Greater) {
         return 0;
     }
     let last = (SEGMENTS - 1) as f64;
@@ -118,8 +148,10 @@ pub fn footprint_of(polygons: &[[Vec2; 4]], touching: &[bool], terrain: &[Vec2],
         if !touch {
             continue;
         }
-        let clearance: Vec<f64> =
-            poly.iter().map(|v| v.y - terrain_height(terrain, v.x).unwrap_or(f64::NEG_INFINITY)).collect();
+        let clearance: Vec<f64> = poly
+            .iter()
+            .map(|v| v.y - terrain_height(terrain, v.x).unwrap_or(f64::NEG_INFINITY))
+            .collect();
         let lowest = clearance.iter().copied().fold(f64::INFINITY, f64::min);
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
         for (v, &c) in poly.iter().zip(&clearance) {
@@ -143,7 +175,13 @@ pub fn step_footprints(trace: &Trace, params: &FootprintParams) -> Vec<Footprint
         .map(|k| {
             let polys = trace.polygons_at(k);
             let touch = trace.touching.get(k * n..(k + 1) * n).unwrap_or(&[]);
-            footprint_of(polys, touch, &trace.terrain, trace.side_length, params.contact_tolerance)
+            footprint_of(
+                polys,
+                touch,
+                &trace.terrain,
+                trace.side_length,
+                params.contact_tolerance,
+            )
         })
         .collect()
 }
@@ -223,7 +261,9 @@ pub fn main_gait(seq: &[Footprint], params: &FootprintParams) -> Gait {
             }
         }
     }
-    let Some((_, n, first, starts)) = best else { return Gait::default() };
+    let Some((_, n, first, starts)) = best else {
+        return Gait::default();
+    };
     let ngram = seq[first..first + n].to_vec();
     let intervals: Vec<usize> = starts.windows(2).map(|w| w[1] - w[0]).collect();
     let mut mode = intervals[0];
@@ -235,7 +275,11 @@ pub fn main_gait(seq: &[Footprint], params: &FootprintParams) -> Gait {
             mode_count = c;
         }
     }
-    let touch_area = ngram.iter().map(|f| f.count_ones() as f64 / SEGMENTS as f64).sum::<f64>() / n as f64;
+    let touch_area = ngram
+        .iter()
+        .map(|f| f.count_ones() as f64 / SEGMENTS as f64)
+        .sum::<f64>()
+        / n as f64;
     Gait {
         ngram,
         duration: n as f64 * params.window,
@@ -266,7 +310,12 @@ mod tests {
     #[test]
     fn a_periodic_sequence_yields_its_period() {
         let p = FootprintParams::default();
-        for period in [vec![A, B], vec![A, B, C], vec![A, D, B, D, C], vec![A, A, B, B, C, C, D]] {
+        for period in [
+            vec![A, B],
+            vec![A, B, C],
+            vec![A, D, B, D, C],
+            vec![A, A, B, B, C, C, D],
+        ] {
             let seq: Vec<Footprint> = period.iter().copied().cycle().take(60).collect();
             let g = main_gait(&seq, &p);
             assert_eq!(g.ngram, period, "{period:?}");
@@ -318,7 +367,12 @@ mod tests {
     }
 
     fn square(x: f64, y: f64, s: f64) -> [Vec2; 4] {
-        [Vec2::new(x, y + s), Vec2::new(x + s, y + s), Vec2::new(x + s, y), Vec2::new(x, y)]
+        [
+            Vec2::new(x, y + s),
+            Vec2::new(x + s, y + s),
+            Vec2::new(x + s, y),
+            Vec2::new(x, y),
+        ]
     }
 
     #[test]
@@ -334,7 +388,12 @@ mod tests {
         // Left leg: x 0..3 → segments round(0) = 0 to round(3/12·7) = 2; right leg: 9..12 → 5..7.
         assert_eq!(footprint_text(f), "___..___");
         // Lifting the right leg's right corner (a tilted foot) leaves only its left corner.
-        polys[5] = [Vec2::new(9.0, 3.0), Vec2::new(12.0, 4.0), Vec2::new(12.0, 1.0), Vec2::new(9.0, 0.0)];
+        polys[5] = [
+            Vec2::new(9.0, 3.0),
+            Vec2::new(12.0, 4.0),
+            Vec2::new(12.0, 1.0),
+            Vec2::new(9.0, 0.0),
+        ];
         let f = footprint_of(&polys, &touch, &terrain, 3.0, 0.25);
         assert_eq!(footprint_text(f), "___.._..");
     }

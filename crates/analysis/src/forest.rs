@@ -58,14 +58,25 @@ pub struct ForestParams {
 
 impl Default for ForestParams {
     fn default() -> Self {
-        ForestParams { trees: 100, max_features: MaxFeatures::Sqrt, bootstrap: true, max_depth: None, seed: 0 }
+        ForestParams {
+            trees: 100,
+            max_features: MaxFeatures::Sqrt,
+            bootstrap: true,
+            max_depth: None,
+            seed: 0,
+        }
     }
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 enum Node {
     Leaf(Vec<f64>),
-    Split { feature: usize, threshold: f64, left: usize, right: usize },
+    Split {
+        feature: usize,
+        threshold: f64,
+        left: usize,
+        right: usize,
+    },
 }
 
 /// One classification tree.
@@ -81,7 +92,12 @@ impl Tree {
         loop {
             match &self.nodes[i] {
                 Node::Leaf(p) => return p,
-                Node::Split { feature, threshold, left, right } => {
+                Node::Split {
+                    feature,
+                    threshold,
+                    left,
+                    right,
+                } => {
                     i = if x[*feature] <= *threshold { *left } else { *right };
                 }
             }
@@ -146,7 +162,10 @@ impl Builder<'_> {
 
     fn leaf(&mut self, counts: &[f64]) -> usize {
         let total: f64 = counts.iter().sum();
-        let p = counts.iter().map(|c| if total > 0.0 { c / total } else { 0.0 }).collect();
+        let p = counts
+            .iter()
+            .map(|c| if total > 0.0 { c / total } else { 0.0 })
+            .collect();
         self.nodes.push(Node::Leaf(p));
         self.nodes.len() - 1
     }
@@ -225,7 +244,12 @@ impl Builder<'_> {
                 let (l, r) = samples.split_at_mut(cut);
                 let left = self.grow(l, depth + 1);
                 let right = self.grow(r, depth + 1);
-                self.nodes[id] = Node::Split { feature, threshold, left, right };
+                self.nodes[id] = Node::Split {
+                    feature,
+                    threshold,
+                    left,
+                    right,
+                };
                 id
             }
         }
@@ -248,7 +272,10 @@ impl RandomForest {
     /// # Panics
     /// If `x` is empty, rows differ in length, or a label is ≥ `classes`.
     pub fn fit(x: &[Vec<f64>], y: &[usize], classes: usize, params: &ForestParams) -> RandomForest {
-        assert!(!x.is_empty() && x.len() == y.len(), "need as many labels as rows, and at least one row");
+        assert!(
+            !x.is_empty() && x.len() == y.len(),
+            "need as many labels as rows, and at least one row"
+        );
         let p = x[0].len();
         assert!(x.iter().all(|r| r.len() == p), "rows must have the same length");
         assert!(y.iter().all(|&c| c < classes), "labels must be < classes");
@@ -281,7 +308,11 @@ impl RandomForest {
                 Tree { nodes: b.nodes }
             })
             .collect();
-        RandomForest { classes, features: p, trees }
+        RandomForest {
+            classes,
+            features: p,
+            trees,
+        }
     }
 
     /// Mean of the trees' class distributions.
@@ -365,7 +396,14 @@ pub struct CvReport {
 
 /// k-fold cross-validation: for each fold, fit on the others (with seed `params.seed` + fold)
 /// and score on it.
-pub fn cross_validate(x: &[Vec<f64>], y: &[usize], classes: usize, k: usize, folds: Folds, params: &ForestParams) -> CvReport {
+pub fn cross_validate(
+    x: &[Vec<f64>],
+    y: &[usize],
+    classes: usize,
+    k: usize,
+    folds: Folds,
+    params: &ForestParams,
+) -> CvReport {
     let parts = kfold(x.len(), k, folds);
     let mut fold_accuracy = Vec::new();
     let mut fold_majority_accuracy = Vec::new();
@@ -378,7 +416,10 @@ pub fn cross_validate(x: &[Vec<f64>], y: &[usize], classes: usize, k: usize, fol
         }
         let tx: Vec<Vec<f64>> = train.iter().map(|&i| x[i].clone()).collect();
         let ty: Vec<usize> = train.iter().map(|&i| y[i]).collect();
-        let p = ForestParams { seed: params.seed.wrapping_add(f as u64), ..*params };
+        let p = ForestParams {
+            seed: params.seed.wrapping_add(f as u64),
+            ..*params
+        };
         let forest = RandomForest::fit(&tx, &ty, classes, &p);
         let hits = test.iter().filter(|&&i| forest.predict(&x[i]) == y[i]).count();
         fold_accuracy.push(hits as f64 / test.len() as f64);
@@ -388,7 +429,13 @@ pub fn cross_validate(x: &[Vec<f64>], y: &[usize], classes: usize, k: usize, fol
         let hits = test.iter().filter(|&&i| y[i] == majority).count();
         fold_majority_accuracy.push(hits as f64 / test.len() as f64);
     }
-    let mean = |v: &[f64]| if v.is_empty() { f64::NAN } else { v.iter().sum::<f64>() / v.len() as f64 };
+    let mean = |v: &[f64]| {
+        if v.is_empty() {
+            f64::NAN
+        } else {
+            v.iter().sum::<f64>() / v.len() as f64
+        }
+    };
     CvReport {
         accuracy: mean(&fold_accuracy),
         majority_accuracy: mean(&fold_majority_accuracy),
@@ -434,7 +481,12 @@ mod tests {
                 y.push(usize::from((a > 0.5) != (b > 0.5)));
             }
         }
-        let p = ForestParams { trees: 1, bootstrap: false, max_features: MaxFeatures::All, ..Default::default() };
+        let p = ForestParams {
+            trees: 1,
+            bootstrap: false,
+            max_features: MaxFeatures::All,
+            ..Default::default()
+        };
         let f = RandomForest::fit(&x, &y, 2, &p);
         assert!(x.iter().zip(&y).all(|(r, &c)| f.predict(r) == c));
         assert!(!f.trees()[0].is_empty());
@@ -451,7 +503,11 @@ mod tests {
             x.push(vec![c as f64 + unit() * 1.2, unit(), unit(), unit() * 2.0 - c as f64]);
             y.push(c);
         }
-        let p = ForestParams { trees: 30, seed: 3, ..Default::default() };
+        let p = ForestParams {
+            trees: 30,
+            seed: 3,
+            ..Default::default()
+        };
         let a = RandomForest::fit(&x, &y, 3, &p);
         let b = RandomForest::fit(&x, &y, 3, &p);
         assert_eq!(a, b);
@@ -466,7 +522,12 @@ mod tests {
         // Only feature 3 of 4 varies: with max_features = 1 the search must go on past constants.
         let x: Vec<Vec<f64>> = (0..10).map(|i| vec![1.0, 1.0, 1.0, i as f64]).collect();
         let y: Vec<usize> = (0..10).map(|i| usize::from(i >= 5)).collect();
-        let p = ForestParams { trees: 5, max_features: MaxFeatures::Count(1), bootstrap: false, ..Default::default() };
+        let p = ForestParams {
+            trees: 5,
+            max_features: MaxFeatures::Count(1),
+            bootstrap: false,
+            ..Default::default()
+        };
         let f = RandomForest::fit(&x, &y, 2, &p);
         assert!(x.iter().zip(&y).all(|(r, &c)| f.predict(r) == c));
     }

@@ -81,7 +81,11 @@ mod tests {
         write_labels(&p, &rows).unwrap();
         assert_eq!(read_labels(&p).unwrap(), rows);
         assert_eq!(rows[0].robot_path(&p), dir.path().join("robots/r-0001.robot.json"));
-        std::fs::write(&p, "id,robot,terrain,duration,transient,seed,shape,behaviour,note\n1,a.json,flat,5,0,0,limbed,walking,x\n").unwrap();
+        std::fs::write(
+            &p,
+            "id,robot,terrain,duration,transient,seed,shape,behaviour,note\n1,a.json,flat,5,0,0,limbed,walking,x\n",
+        )
+        .unwrap();
         let r = read_labels(&p).unwrap();
         assert_eq!((r[0].shape.as_str(), r[0].behaviour.as_str()), ("limbed", "walking"));
     }

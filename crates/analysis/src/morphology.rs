@@ -194,8 +194,11 @@ pub fn convex_hull(points: &[(i64, i64)]) -> Vec<(i64, i64)> {
     let mut hull: Vec<(i64, i64)> = Vec::with_capacity(2 * pts.len());
     for pass in 0..2 {
         let start = hull.len();
-        let iter: Box<dyn Iterator<Item = &(i64, i64)>> =
-            if pass == 0 { Box::new(pts.iter()) } else { Box::new(pts.iter().rev()) };
+        let iter: Box<dyn Iterator<Item = &(i64, i64)>> = if pass == 0 {
+            Box::new(pts.iter())
+        } else {
+            Box::new(pts.iter().rev())
+        };
         for &p in iter {
             while hull.len() >= start + 2 && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0 {
                 hull.pop();
@@ -231,8 +234,14 @@ pub fn compactness(body: &Morphology) -> f64 {
     if hull.len() < 3 {
         return 1.0;
     }
-    let (x0, x1) = (hull.iter().map(|p| p.0).min().unwrap(), hull.iter().map(|p| p.0).max().unwrap());
-    let (y0, y1) = (hull.iter().map(|p| p.1).min().unwrap(), hull.iter().map(|p| p.1).max().unwrap());
+    let (x0, x1) = (
+        hull.iter().map(|p| p.0).min().unwrap(),
+        hull.iter().map(|p| p.0).max().unwrap(),
+    );
+    let (y0, y1) = (
+        hull.iter().map(|p| p.1).min().unwrap(),
+        hull.iter().map(|p| p.1).max().unwrap(),
+    );
     let mut inside = 0usize;
     for x in x0..=x1 {
         for y in y0..=y1 {
@@ -260,7 +269,11 @@ mod tests {
             assert_eq!(d.voxels, side * side);
             assert!(d.elongation.abs() < 1e-12, "{side}: {}", d.elongation);
             assert!((d.compactness - 1.0).abs() < 1e-12);
-            assert!(elongation_enclosing_ellipse(&b) < 1e-3, "{side}: {}", elongation_enclosing_ellipse(&b));
+            assert!(
+                elongation_enclosing_ellipse(&b) < 1e-3,
+                "{side}: {}",
+                elongation_enclosing_ellipse(&b)
+            );
         }
     }
 

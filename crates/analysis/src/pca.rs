@@ -8,10 +8,15 @@ use serde::{Deserialize, Serialize};
 pub fn symmetric_eigen(matrix: &[Vec<f64>]) -> (Vec<f64>, Vec<Vec<f64>>) {
     let n = matrix.len();
     let mut a: Vec<Vec<f64>> = matrix.to_vec();
-    let mut v: Vec<Vec<f64>> = (0..n).map(|i| (0..n).map(|j| f64::from(u8::from(i == j))).collect()).collect();
+    let mut v: Vec<Vec<f64>> = (0..n)
+        .map(|i| (0..n).map(|j| f64::from(u8::from(i == j))).collect())
+        .collect();
     let scale: f64 = a.iter().flatten().map(|x| x * x).sum::<f64>().sqrt();
     for _sweep in 0..100 {
-        let off: f64 = (0..n).flat_map(|i| (0..n).filter(move |&j| j != i).map(move |j| (i, j))).map(|(i, j)| a[i][j] * a[i][j]).sum();
+        let off: f64 = (0..n)
+            .flat_map(|i| (0..n).filter(move |&j| j != i).map(move |j| (i, j)))
+            .map(|(i, j)| a[i][j] * a[i][j])
+            .sum();
         if off.sqrt() <= 1e-15 * scale.max(f64::MIN_POSITIVE) {
             break;
         }
@@ -26,13 +31,13 @@ pub fn symmetric_eigen(matrix: &[Vec<f64>]) -> (Vec<f64>, Vec<Vec<f64>>) {
                 let t = if theta == 0.0 { 1.0 } else { t };
                 let c = 1.0 / (t * t + 1.0).sqrt();
                 let s = t * c;
-                for k in 0..n {
-                    let (akp, akq) = (a[k][p], a[k][q]);
-                    a[k][p] = c * akp - s * akq;
-                    a[k][q] = s * akp + c * akq;
+                for row in a.iter_mut() {
+                    let (akp, akq) = (row[p], row[q]);
+                    row[p] = c * akp - s * akq;
+                    row[q] = s * akp + c * akq;
                 }
-                for k in 0..n {
-                    let (apk, aqk) = (a[p][k], a[q][k]);
+                let (row_p, row_q) = (a[p].clone(), a[q].clone());
+                for (k, (apk, aqk)) in row_p.into_iter().zip(row_q).enumerate() {
                     a[p][k] = c * apk - s * aqk;
                     a[q][k] = s * apk + c * aqk;
                 }
@@ -98,22 +103,35 @@ impl Pca {
                 }
             }
         }
-        for i in 0..p {
-            for j in 0..i {
-                cov[i][j] = cov[j][i];
+        let upper = cov.clone();
+        for (i, row) in cov.iter_mut().enumerate() {
+            for (j, v) in row.iter_mut().enumerate().take(i) {
+                *v = upper[j][i];
             }
         }
         let (values, mut vectors) = symmetric_eigen(&cov);
         for v in vectors.iter_mut() {
-            let big = v.iter().copied().fold(0.0f64, |a, b| if b.abs() > a.abs() { b } else { a });
+            let big = v
+                .iter()
+                .copied()
+                .fold(0.0f64, |a, b| if b.abs() > a.abs() { b } else { a });
             if big < 0.0 {
                 v.iter_mut().for_each(|c| *c = -*c);
             }
         }
         let variance: Vec<f64> = values.iter().map(|v| v.max(0.0)).collect();
         let total: f64 = variance.iter().sum();
-        let variance_ratio = variance.iter().map(|v| if total > 0.0 { v / total } else { 0.0 }).collect();
-        Pca { mean, scale, components: vectors, variance, variance_ratio }
+        let variance_ratio = variance
+            .iter()
+            .map(|v| if total > 0.0 { v / total } else { 0.0 })
+            .collect();
+        Pca {
+            mean,
+            scale,
+            components: vectors,
+            variance,
+            variance_ratio,
+        }
     }
 
     /// Coordinates of a row on the first `k` components.
@@ -121,7 +139,12 @@ impl Pca {
         self.components
             .iter()
             .take(k)
-            .map(|c| c.iter().enumerate().map(|(j, w)| w * (row[j] - self.mean[j]) / self.scale[j]).sum())
+            .map(|c| {
+                c.iter()
+                    .enumerate()
+                    .map(|(j, w)| w * (row[j] - self.mean[j]) / self.scale[j])
+                    .sum()
+            })
             .collect()
     }
 }
@@ -142,9 +165,16 @@ mod tests {
     #[test]
     fn jacobi_reconstructs_a_random_symmetric_matrix() {
         let n = 6;
-        let m: Vec<Vec<f64>> =
-            (0..n).map(|i| (0..n).map(|j| ((i * 7 + j * 3) % 5) as f64 + ((i + j) % 3) as f64 * 0.3 + if i == j { 2.0 } else { 0.0 }).collect()).collect();
-        let sym: Vec<Vec<f64>> = (0..n).map(|i| (0..n).map(|j| (m[i][j] + m[j][i]) / 2.0).collect()).collect();
+        let m: Vec<Vec<f64>> = (0..n)
+            .map(|i| {
+                (0..n)
+                    .map(|j| ((i * 7 + j * 3) % 5) as f64 + ((i + j) % 3) as f64 * 0.3 + if i == j { 2.0 } else { 0.0 })
+                    .collect()
+            })
+            .collect();
+        let sym: Vec<Vec<f64>> = (0..n)
+            .map(|i| (0..n).map(|j| (m[i][j] + m[j][i]) / 2.0).collect())
+            .collect();
         let (vals, vecs) = symmetric_eigen(&sym);
         for i in 0..n {
             for j in 0..n {

@@ -97,7 +97,10 @@ pub fn save(figure: &impl Figure, stem: &Path) -> Result<Vec<PathBuf>, PlotError
     let png = stem.with_extension("png");
     let svg = stem.with_extension("svg");
     let size = figure.size();
-    let fail = |p: &Path, msg: String| PlotError { path: p.display().to_string(), msg };
+    let fail = |p: &Path, msg: String| PlotError {
+        path: p.display().to_string(),
+        msg,
+    };
     {
         let root = BitMapBackend::new(&png, size).into_drawing_area();
         figure.draw(&root).map_err(|m| fail(&png, m))?;
@@ -120,15 +123,31 @@ fn anchored(size: u32, h: HPos, v: VPos) -> TextStyle<'static> {
 }
 
 /// A legend box of coloured squares and labels, stacked, in pixel coordinates of `area`.
-fn draw_legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, title: &str, entries: &[(String, RGBColor)], top: i32) -> R {
+fn draw_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    title: &str,
+    entries: &[(String, RGBColor)],
+    top: i32,
+) -> R {
     let mut y = top;
     if !title.is_empty() {
-        area.draw(&Text::new(title.to_string(), (10, y), anchored(18, HPos::Left, VPos::Top))).map_err(err)?;
+        area.draw(&Text::new(
+            title.to_string(),
+            (10, y),
+            anchored(18, HPos::Left, VPos::Top),
+        ))
+        .map_err(err)?;
         y += 30;
     }
     for (label, color) in entries {
-        area.draw(&Rectangle::new([(10, y + 2), (28, y + 20)], color.filled())).map_err(err)?;
-        area.draw(&Text::new(label.clone(), (36, y + 11), anchored(16, HPos::Left, VPos::Center))).map_err(err)?;
+        area.draw(&Rectangle::new([(10, y + 2), (28, y + 20)], color.filled()))
+            .map_err(err)?;
+        area.draw(&Text::new(
+            label.clone(),
+            (36, y + 11),
+            anchored(16, HPos::Left, VPos::Center),
+        ))
+        .map_err(err)?;
         y += 28;
     }
     Ok(())
@@ -136,7 +155,12 @@ fn draw_legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, title: &str, e
 
 /// Width of a legend column fitting the labels.
 fn legend_width(entries: &[(String, RGBColor)], title: &str) -> u32 {
-    let longest = entries.iter().map(|(l, _)| l.chars().count()).max().unwrap_or(0).max(title.chars().count());
+    let longest = entries
+        .iter()
+        .map(|(l, _)| l.chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(title.chars().count());
     (50 + 9 * longest as u32).clamp(120, 420)
 }
 
@@ -195,15 +219,24 @@ impl BandChart {
     fn draw_on<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> R {
         let pts = || {
             self.series.iter().flat_map(|s| {
-                s.x.iter().zip(&s.center).zip(&s.spread).filter(|((x, c), _)| x.is_finite() && c.is_finite())
+                s.x.iter()
+                    .zip(&s.center)
+                    .zip(&s.spread)
+                    .filter(|((x, c), _)| x.is_finite() && c.is_finite())
             })
         };
-        let (x0, x1) = pts().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), ((x, _), _)| (a.min(*x), b.max(*x)));
+        let (x0, x1) = pts().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), ((x, _), _)| {
+            (a.min(*x), b.max(*x))
+        });
         let (y0, y1) = pts().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), ((_, c), s)| {
             let s = if s.is_finite() { *s } else { 0.0 };
             (a.min(c - s), b.max(c + s))
         });
-        let (x0, x1) = if x0.is_finite() { (x0, x1.max(x0 + 1e-9)) } else { (0.0, 1.0) };
+        let (x0, x1) = if x0.is_finite() {
+            (x0, x1.max(x0 + 1e-9))
+        } else {
+            (0.0, 1.0)
+        };
         let (y0, y1) = nice_range(y0, y1, 0.05);
         let mut chart = ChartBuilder::on(area)
             .caption(&self.title, text_style(22))
@@ -227,22 +260,26 @@ impl BandChart {
             .map_err(err)?;
         for s in &self.series {
             let color = setting_color(s.color);
-            let ok: Vec<(f64, f64, f64)> = s
-                .x
-                .iter()
-                .zip(&s.center)
-                .zip(&s.spread)
-                .filter(|((x, c), _)| x.is_finite() && c.is_finite())
-                .map(|((x, c), sd)| (*x, *c, if sd.is_finite() { *sd } else { 0.0 }))
-                .collect();
+            let ok: Vec<(f64, f64, f64)> =
+                s.x.iter()
+                    .zip(&s.center)
+                    .zip(&s.spread)
+                    .filter(|((x, c), _)| x.is_finite() && c.is_finite())
+                    .map(|((x, c), sd)| (*x, *c, if sd.is_finite() { *sd } else { 0.0 }))
+                    .collect();
             if ok.is_empty() {
                 continue;
             }
             let mut band: Vec<(f64, f64)> = ok.iter().map(|&(x, c, s)| (x, c + s)).collect();
             band.extend(ok.iter().rev().map(|&(x, c, s)| (x, c - s)));
-            chart.draw_series(std::iter::once(Polygon::new(band, color.mix(0.18)))).map_err(err)?;
             chart
-                .draw_series(LineSeries::new(ok.iter().map(|&(x, c, _)| (x, c)), color.stroke_width(3)))
+                .draw_series(std::iter::once(Polygon::new(band, color.mix(0.18))))
+                .map_err(err)?;
+            chart
+                .draw_series(LineSeries::new(
+                    ok.iter().map(|&(x, c, _)| (x, c)),
+                    color.stroke_width(3),
+                ))
                 .map_err(err)?;
         }
         Ok(())
@@ -278,7 +315,8 @@ fn trim(s: String) -> String {
 
 impl Figure for BandFigure {
     fn size(&self) -> (u32, u32) {
-        (700 * self.panels.len().max(1) as u32 + 240, 620)
+        let per_panel = if self.panels.len() >= 3 { 560 } else { 700 };
+        (per_panel * self.panels.len().max(1) as u32 + 240, 620)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> R {
@@ -297,13 +335,23 @@ impl Figure for BandFigure {
         let n = self.panels.len().max(1);
         let w = plots.dim_in_pixel().0 as usize / n;
         let breaks: Vec<i32> = (1..n).map(|i| (i * w) as i32).collect();
-        for (panel, area) in self.panels.iter().zip(plots.split_by_breakpoints(breaks, Vec::<i32>::new())) {
+        for (panel, area) in self
+            .panels
+            .iter()
+            .zip(plots.split_by_breakpoints(breaks, Vec::<i32>::new()))
+        {
             panel.draw_on(&area)?;
         }
         draw_legend(&legend, &self.legend_title, &entries, 40)?;
         let y = 40 + 30 + 28 * entries.len() as i32 + 10;
         for (k, line) in ["line: median", "band: ± sd", "(across runs)"].iter().enumerate() {
-            legend.draw(&Text::new(line.to_string(), (10, y + 18 * k as i32), anchored(13, HPos::Left, VPos::Top))).map_err(err)?;
+            legend
+                .draw(&Text::new(
+                    line.to_string(),
+                    (10, y + 18 * k as i32),
+                    anchored(13, HPos::Left, VPos::Top),
+                ))
+                .map_err(err)?;
         }
         Ok(())
     }
@@ -354,21 +402,26 @@ impl Figure for BoxFigure {
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> R {
         root.fill(&WHITE).map_err(err)?;
-        let vals = self.groups.iter().flat_map(|g| g.values.iter().copied().filter(|v| v.is_finite()));
+        let vals = self
+            .groups
+            .iter()
+            .flat_map(|g| g.values.iter().copied().filter(|v| v.is_finite()));
         let (lo, hi) = vals.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
         let (lo, hi) = nice_range(lo, hi, 0.06);
-        let brackets: Vec<(usize, usize, f64)> =
-            if self.pvalues.len() <= self.max_brackets { self.pvalues.clone() } else { Vec::new() };
+        let brackets: Vec<(usize, usize, f64)> = if self.pvalues.len() <= self.max_brackets {
+            self.pvalues.clone()
+        } else {
+            Vec::new()
+        };
         let step = (hi - lo) * 0.09;
         let top = hi + step * (brackets.len() as f64 + 0.3);
         let n = self.groups.len();
         let labels: Vec<String> = self.groups.iter().map(|g| g.label.clone()).collect();
         let long = labels.iter().map(|l| l.chars().count()).max().unwrap_or(0);
-        let bottom_area = if long * 9 > 160 { 110 } else { 60 };
+        let bottom_area = if long * 9 > 160 { 120 } else { 75 };
         let mut chart = ChartBuilder::on(root)
             .caption(&self.title, text_style(24))
             .margin(15)
-            .margin_top(30)
             .x_label_area_size(bottom_area)
             .y_label_area_size(85)
             .build_cartesian_2d(-0.6..(n as f64 - 0.4), lo..top)
@@ -398,7 +451,9 @@ impl Figure for BoxFigure {
         for (i, g) in self.groups.iter().enumerate() {
             let color = setting_color(g.color);
             let x = i as f64;
-            let Some(b) = crate::stats::BoxStats::of(&g.values) else { continue };
+            let Some(b) = crate::stats::BoxStats::of(&g.values) else {
+                continue;
+            };
             let hw = 0.3;
             chart
                 .draw_series([
@@ -419,10 +474,16 @@ impl Figure for BoxFigure {
             // Every run as a dot, spread deterministically across the box.
             let m = g.values.len().max(1);
             chart
-                .draw_series(g.values.iter().enumerate().filter(|(_, v)| v.is_finite()).map(|(k, &v)| {
-                    let jitter = ((k as f64 + 0.5) / m as f64 - 0.5) * hw * 1.2;
-                    Circle::new((x + jitter, v), 4, BLACK.mix(0.75).filled())
-                }))
+                .draw_series(
+                    g.values
+                        .iter()
+                        .enumerate()
+                        .filter(|(_, v)| v.is_finite())
+                        .map(|(k, &v)| {
+                            let jitter = ((k as f64 + 0.5) / m as f64 - 0.5) * hw * 1.2;
+                            Circle::new((x + jitter, v), 4, BLACK.mix(0.75).filled())
+                        }),
+                )
                 .map_err(err)?;
         }
         for (level, &(i, j, p)) in brackets.iter().enumerate() {
@@ -443,18 +504,22 @@ impl Figure for BoxFigure {
                 )))
                 .map_err(err)?;
         }
-        if brackets.is_empty() && !self.pvalues.is_empty() {
-            root.draw(&Text::new(
-                format!("{} pairwise Mann–Whitney p-values: see summary.md", self.pvalues.len()),
-                (root.dim_in_pixel().0 as i32 / 2, 48),
-                anchored(14, HPos::Center, VPos::Top),
-            ))
-            .map_err(err)?;
+        let (w, h) = root.dim_in_pixel();
+        let note = if brackets.is_empty() && !self.pvalues.is_empty() {
+            format!(
+                "{} pairwise two-sided Mann–Whitney U p-values: see summary.md",
+                self.pvalues.len()
+            )
         } else if !brackets.is_empty() {
+            "brackets: two-sided Mann–Whitney U p-values".to_string()
+        } else {
+            String::new()
+        };
+        if !note.is_empty() {
             root.draw(&Text::new(
-                "two-sided Mann–Whitney U tests".to_string(),
-                (root.dim_in_pixel().0 as i32 / 2, 48),
-                anchored(14, HPos::Center, VPos::Top),
+                note,
+                (w as i32 / 2, h as i32 - 8),
+                anchored(14, HPos::Center, VPos::Bottom),
             ))
             .map_err(err)?;
         }
@@ -517,9 +582,17 @@ impl Figure for BubbleFigure {
         let root = root.titled(&self.title, text_style(26)).map_err(err)?;
         let (w, _) = root.dim_in_pixel();
         let (plots, bar) = root.split_horizontally(w.saturating_sub(170));
-        let values = self.panels.iter().flat_map(|p| p.bubbles.iter().map(|b| b.value)).filter(|v| v.is_finite());
+        let values = self
+            .panels
+            .iter()
+            .flat_map(|p| p.bubbles.iter().map(|b| b.value))
+            .filter(|v| v.is_finite());
         let (vmin, vmax) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
-        let (vmin, vmax) = if vmin.is_finite() { (vmin, vmax.max(vmin + 1e-9)) } else { (0.0, 1.0) };
+        let (vmin, vmax) = if vmin.is_finite() {
+            (vmin, vmax.max(vmin + 1e-9))
+        } else {
+            (0.0, 1.0)
+        };
         let n = self.panels.len().max(1);
         let cols = n.min(3);
         let rows = n.div_ceil(3);
@@ -552,7 +625,8 @@ impl Figure for BubbleFigure {
                 .draw()
                 .map_err(err)?;
             let (pw, ph) = area.dim_in_pixel();
-            let cell = ((pw.saturating_sub(110)) as f64 / nx.max(1) as f64).min((ph.saturating_sub(90)) as f64 / ny.max(1) as f64);
+            let cell = ((pw.saturating_sub(110)) as f64 / nx.max(1) as f64)
+                .min((ph.saturating_sub(90)) as f64 / ny.max(1) as f64);
             let max_r = (cell * 0.48).max(4.0);
             for b in &panel.bubbles {
                 if b.share <= 0.0 {
@@ -561,38 +635,69 @@ impl Figure for BubbleFigure {
                 let r = (max_r * b.share.sqrt()).max(3.0) as i32;
                 let c = viridis((b.value - vmin) / (vmax - vmin));
                 let (x, y) = (b.x as f64, b.y as f64);
-                chart.draw_series([Circle::new((x, y), r, c.mix(0.9).filled()), Circle::new((x, y), r, BLACK.stroke_width(1))]).map_err(err)?;
+                chart
+                    .draw_series([
+                        Circle::new((x, y), r, c.mix(0.9).filled()),
+                        Circle::new((x, y), r, BLACK.stroke_width(1)),
+                    ])
+                    .map_err(err)?;
                 let label = format!("{:.0}%", b.share * 100.0);
                 let light = (c.0 as u32 + c.1 as u32 + c.2 as u32) < 330;
                 let style = anchored(13, HPos::Center, VPos::Center).color(if light { &WHITE } else { &BLACK });
                 if r >= 14 {
-                    chart.draw_series(std::iter::once(Text::new(label, (x, y), style))).map_err(err)?;
+                    chart
+                        .draw_series(std::iter::once(Text::new(label, (x, y), style)))
+                        .map_err(err)?;
                 } else {
-                    let above = anchored(12, HPos::Center, VPos::Bottom);
-                    chart.plotting_area().draw(&Text::new(label, (x, y), above)).map_err(err)?;
+                    // Right of the bubble: r + 4 pixels, in data units.
+                    let ppu = chart.plotting_area().dim_in_pixel().0 as f64 / nx.max(1) as f64;
+                    let right = anchored(12, HPos::Left, VPos::Center);
+                    let at = (x + (r as f64 + 4.0) / ppu.max(1.0), y);
+                    chart.plotting_area().draw(&Text::new(label, at, right)).map_err(err)?;
                 }
             }
         }
         // Colour bar.
         let (_, bh) = bar.dim_in_pixel();
         let (top, bottom) = (70i32, (bh as i32 - 90).max(120));
-        bar.draw(&Text::new(self.value_label.clone(), (15, top - 40), anchored(15, HPos::Left, VPos::Top))).map_err(err)?;
+        bar.draw(&Text::new(
+            self.value_label.clone(),
+            (15, top - 40),
+            anchored(15, HPos::Left, VPos::Top),
+        ))
+        .map_err(err)?;
         let steps = 64;
         for k in 0..steps {
             let t0 = k as f64 / steps as f64;
             let y0 = bottom - ((bottom - top) as f64 * t0) as i32;
             let y1 = bottom - ((bottom - top) as f64 * (k + 1) as f64 / steps as f64) as i32;
-            bar.draw(&Rectangle::new([(20, y1), (45, y0)], viridis(t0 + 0.5 / steps as f64).filled())).map_err(err)?;
+            bar.draw(&Rectangle::new(
+                [(20, y1), (45, y0)],
+                viridis(t0 + 0.5 / steps as f64).filled(),
+            ))
+            .map_err(err)?;
         }
-        bar.draw(&Rectangle::new([(20, top), (45, bottom)], BLACK.stroke_width(1))).map_err(err)?;
+        bar.draw(&Rectangle::new([(20, top), (45, bottom)], BLACK.stroke_width(1)))
+            .map_err(err)?;
         for k in 0..=4 {
             let t = k as f64 / 4.0;
             let y = bottom - ((bottom - top) as f64 * t) as i32;
-            bar.draw(&PathElement::new(vec![(45, y), (50, y)], BLACK.stroke_width(1))).map_err(err)?;
+            bar.draw(&PathElement::new(vec![(45, y), (50, y)], BLACK.stroke_width(1)))
+                .map_err(err)?;
             let v = vmin + (vmax - vmin) * t;
-            bar.draw(&Text::new(format_tick(v), (54, y), anchored(13, HPos::Left, VPos::Center))).map_err(err)?;
+            bar.draw(&Text::new(
+                format_tick(v),
+                (54, y),
+                anchored(13, HPos::Left, VPos::Center),
+            ))
+            .map_err(err)?;
         }
-        bar.draw(&Text::new("area ∝ share".to_string(), (15, bottom + 25), anchored(13, HPos::Left, VPos::Top))).map_err(err)?;
+        bar.draw(&Text::new(
+            "area ∝ share".to_string(),
+            (15, bottom + 25),
+            anchored(13, HPos::Left, VPos::Top),
+        ))
+        .map_err(err)?;
         Ok(())
     }
 }
@@ -649,11 +754,21 @@ impl Figure for ScatterFigure {
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> R {
         root.fill(&WHITE).map_err(err)?;
-        let entries: Vec<(String, RGBColor)> = self.groups.iter().enumerate().map(|(i, g)| (g.clone(), setting_color(i))).collect();
+        let entries: Vec<(String, RGBColor)> = self
+            .groups
+            .iter()
+            .enumerate()
+            .map(|(i, g)| (g.clone(), setting_color(i)))
+            .collect();
         let lw = legend_width(&entries, &self.legend_title);
         let (plot, legend) = root.split_horizontally(root.dim_in_pixel().0.saturating_sub(lw));
         let fit = |f: &dyn Fn(&ScatterPoint) -> f64| {
-            let (a, b) = self.points.iter().map(f).filter(|v| v.is_finite()).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+            let (a, b) = self
+                .points
+                .iter()
+                .map(f)
+                .filter(|v| v.is_finite())
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
             nice_range(a, b, 0.08)
         };
         let (x0, x1) = self.x_range.unwrap_or_else(|| fit(&|p| p.x));
@@ -679,24 +794,45 @@ impl Figure for ScatterFigure {
             .draw()
             .map_err(err)?;
         // Larger markers first so small ones stay visible.
-        let mut order: Vec<&ScatterPoint> = self.points.iter().filter(|p| p.x.is_finite() && p.y.is_finite()).collect();
+        let mut order: Vec<&ScatterPoint> = self
+            .points
+            .iter()
+            .filter(|p| p.x.is_finite() && p.y.is_finite())
+            .collect();
         order.sort_by(|a, b| b.radius.total_cmp(&a.radius));
         for p in order {
             let c = setting_color(p.group);
             let r = p.radius.max(2.0) as i32;
             chart
-                .draw_series([Circle::new((p.x, p.y), r, c.mix(0.6).filled()), Circle::new((p.x, p.y), r, c.stroke_width(2))])
+                .draw_series([
+                    Circle::new((p.x, p.y), r, c.mix(0.6).filled()),
+                    Circle::new((p.x, p.y), r, c.stroke_width(2)),
+                ])
                 .map_err(err)?;
         }
         draw_legend(&legend, &self.legend_title, &entries, 40)?;
         if let Some((title, sizes)) = &self.size_legend {
             let mut y = 40 + 30 + 28 * entries.len() as i32 + 30;
-            legend.draw(&Text::new(title.clone(), (10, y), anchored(16, HPos::Left, VPos::Top))).map_err(err)?;
+            legend
+                .draw(&Text::new(title.clone(), (10, y), anchored(16, HPos::Left, VPos::Top)))
+                .map_err(err)?;
             y += 30;
             for (label, r) in sizes {
                 let r = r.max(2.0) as i32;
-                legend.draw(&Circle::new((10 + 20, y + r), r, RGBColor(120, 120, 120).stroke_width(2))).map_err(err)?;
-                legend.draw(&Text::new(label.clone(), (60, y + r), anchored(14, HPos::Left, VPos::Center))).map_err(err)?;
+                legend
+                    .draw(&Circle::new(
+                        (10 + 20, y + r),
+                        r,
+                        RGBColor(120, 120, 120).stroke_width(2),
+                    ))
+                    .map_err(err)?;
+                legend
+                    .draw(&Text::new(
+                        label.clone(),
+                        (60, y + r),
+                        anchored(14, HPos::Left, VPos::Center),
+                    ))
+                    .map_err(err)?;
                 y += 2 * r + 12;
             }
         }
@@ -740,16 +876,34 @@ mod tests {
             title: "Fitness".into(),
             legend_title: "setting".into(),
             panels: vec![
-                BandChart { title: "best".into(), x_label: "evaluations".into(), y_label: "velocity".into(), series: vec![series("ga", 0, 1.0), series("es", 1, 0.7)] },
-                BandChart { title: "median".into(), x_label: "evaluations".into(), y_label: "velocity".into(), series: vec![series("ga", 0, 0.5), series("es", 1, 0.3)] },
+                BandChart {
+                    title: "best".into(),
+                    x_label: "evaluations".into(),
+                    y_label: "velocity".into(),
+                    series: vec![series("ga", 0, 1.0), series("es", 1, 0.7)],
+                },
+                BandChart {
+                    title: "median".into(),
+                    x_label: "evaluations".into(),
+                    y_label: "velocity".into(),
+                    series: vec![series("ga", 0, 0.5), series("es", 1, 0.3)],
+                },
             ],
         };
         let boxes = BoxFigure {
             title: "Best velocity".into(),
             y_label: "velocity".into(),
             groups: vec![
-                BoxGroup { label: "ga".into(), color: 0, values: vec![1.0, 1.2, 0.9, 1.5, 1.1] },
-                BoxGroup { label: "es".into(), color: 1, values: vec![0.7, 0.8, 0.75, 0.9, 2.0] },
+                BoxGroup {
+                    label: "ga".into(),
+                    color: 0,
+                    values: vec![1.0, 1.2, 0.9, 1.5, 1.1],
+                },
+                BoxGroup {
+                    label: "es".into(),
+                    color: 1,
+                    values: vec![0.7, 0.8, 0.75, 0.9, 2.0],
+                },
             ],
             pvalues: vec![(0, 1, 0.0317)],
             max_brackets: 6,
@@ -761,7 +915,23 @@ mod tests {
             x_label: "morphology".into(),
             y_label: "behaviour".into(),
             value_label: "best velocity".into(),
-            panels: vec![BubblePanel { title: "ga".into(), bubbles: vec![Bubble { x: 0, y: 1, share: 0.7, value: 1.0 }, Bubble { x: 1, y: 0, share: 0.3, value: 2.0 }] }],
+            panels: vec![BubblePanel {
+                title: "ga".into(),
+                bubbles: vec![
+                    Bubble {
+                        x: 0,
+                        y: 1,
+                        share: 0.7,
+                        value: 1.0,
+                    },
+                    Bubble {
+                        x: 1,
+                        y: 0,
+                        share: 0.3,
+                        value: 2.0,
+                    },
+                ],
+            }],
         };
         let scatter = ScatterFigure {
             title: "Descriptors".into(),
@@ -769,7 +939,20 @@ mod tests {
             y_label: "compactness".into(),
             groups: vec!["ga".into(), "es".into()],
             legend_title: "setting".into(),
-            points: vec![ScatterPoint { x: 0.2, y: 0.9, radius: 8.0, group: 0 }, ScatterPoint { x: 0.7, y: 0.5, radius: 14.0, group: 1 }],
+            points: vec![
+                ScatterPoint {
+                    x: 0.2,
+                    y: 0.9,
+                    radius: 8.0,
+                    group: 0,
+                },
+                ScatterPoint {
+                    x: 0.7,
+                    y: 0.5,
+                    radius: 14.0,
+                    group: 1,
+                },
+            ],
             x_range: Some((0.0, 1.0)),
             y_range: Some((0.0, 1.0)),
             size_legend: Some(("voxels".into(), vec![("10".into(), 6.0), ("50".into(), 14.0)])),

@@ -137,7 +137,12 @@ mod tests {
     use super::*;
 
     fn square(x: f64, y: f64, s: f64) -> [Vec2; 4] {
-        [Vec2::new(x, y + s), Vec2::new(x + s, y + s), Vec2::new(x + s, y), Vec2::new(x, y)]
+        [
+            Vec2::new(x, y + s),
+            Vec2::new(x + s, y + s),
+            Vec2::new(x + s, y),
+            Vec2::new(x, y),
+        ]
     }
 
     #[test]
@@ -183,11 +188,19 @@ mod tests {
 
     #[test]
     fn dynamic_pose_of_a_trace() {
-        let mut t = Trace { dt: 1.0 / 60.0, cells: vec![(0, 0), (1, 0)], ..Default::default() };
+        let mut t = Trace {
+            dt: 1.0 / 60.0,
+            cells: vec![(0, 0), (1, 0)],
+            ..Default::default()
+        };
         for k in 0..3 {
             t.times.push(k as f64 / 60.0);
             // Two voxels side by side, then (last step) stacked: the mode is the side-by-side pose.
-            let second = if k < 2 { square(1.0, 0.0, 1.0) } else { square(0.0, 1.0, 1.0) };
+            let second = if k < 2 {
+                square(1.0, 0.0, 1.0)
+            } else {
+                square(0.0, 1.0, 1.0)
+            };
             t.polygons.extend_from_slice(&[square(0.0, 0.0, 1.0), second]);
         }
         let p = dynamic_pose(&t);

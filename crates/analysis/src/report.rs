@@ -36,7 +36,12 @@ pub fn pairwise(metric: &str, values: &[Vec<f64>]) -> Vec<Comparison> {
     for a in 0..values.len() {
         for b in a + 1..values.len() {
             let clean = |v: &Vec<f64>| v.iter().copied().filter(|x| x.is_finite()).collect::<Vec<f64>>();
-            out.push(Comparison { metric: metric.into(), a, b, test: mann_whitney_u(&clean(&values[a]), &clean(&values[b])) });
+            out.push(Comparison {
+                metric: metric.into(),
+                a,
+                b,
+                test: mann_whitney_u(&clean(&values[a]), &clean(&values[b])),
+            });
         }
     }
     out
@@ -66,7 +71,16 @@ fn num(v: f64) -> String {
 }
 
 fn p_text(t: &Option<MannWhitney>) -> String {
-    t.map_or_else(|| "n/a".into(), |t| if t.p < 1e-4 { format!("{:.1e}", t.p) } else { format!("{:.4}", t.p) })
+    t.map_or_else(
+        || "n/a".into(),
+        |t| {
+            if t.p < 1e-4 {
+                format!("{:.1e}", t.p)
+            } else {
+                format!("{:.4}", t.p)
+            }
+        },
+    )
 }
 
 impl Summary {
@@ -78,7 +92,11 @@ impl Summary {
             let isi: Vec<Vec<f64>> = settings.iter().map(|s| s.final_isi.clone()).collect();
             comparisons.extend(pairwise("isi", &isi));
         }
-        Summary { fitness: fitness.into(), settings, comparisons }
+        Summary {
+            fitness: fitness.into(),
+            settings,
+            comparisons,
+        }
     }
 
     /// One row per setting: setting, runs, median_best, sd_best, median_final_isi, sd_final_isi.
@@ -86,7 +104,16 @@ impl Summary {
         let mut s = String::from("setting,runs,median_best,sd_best,median_final_isi,sd_final_isi\n");
         for x in &self.settings {
             let (b, i) = (finite(&x.best), finite(&x.final_isi));
-            let _ = writeln!(s, "{},{},{},{},{},{}", csv_field(&x.name), x.best.len(), num(median(&b)), num(std_dev(&b)), num(median(&i)), num(std_dev(&i)));
+            let _ = writeln!(
+                s,
+                "{},{},{},{},{},{}",
+                csv_field(&x.name),
+                x.best.len(),
+                num(median(&b)),
+                num(std_dev(&b)),
+                num(median(&i)),
+                num(std_dev(&i))
+            );
         }
         s
     }
@@ -96,10 +123,20 @@ impl Summary {
         let mut s = String::from("metric,setting_a,setting_b,u,p,method\n");
         for c in &self.comparisons {
             let (u, p, m) = match c.test {
-                Some(t) => (format!("{}", t.u), format!("{}", t.p), format!("{:?}", t.method).to_lowercase()),
+                Some(t) => (
+                    format!("{}", t.u),
+                    format!("{}", t.p),
+                    format!("{:?}", t.method).to_lowercase(),
+                ),
                 None => (String::new(), String::new(), String::new()),
             };
-            let _ = writeln!(s, "{},{},{},{u},{p},{m}", c.metric, csv_field(&self.settings[c.a].name), csv_field(&self.settings[c.b].name));
+            let _ = writeln!(
+                s,
+                "{},{},{},{u},{p},{m}",
+                c.metric,
+                csv_field(&self.settings[c.a].name),
+                csv_field(&self.settings[c.b].name)
+            );
         }
         s
     }
@@ -107,14 +144,30 @@ impl Summary {
     /// Markdown: the per-setting table, then a matrix of p-values per metric.
     pub fn to_markdown(&self) -> String {
         let mut s = String::new();
-        let _ = writeln!(s, "| setting | runs | median best {f} | sd best {f} | median final ISI | sd final ISI |", f = self.fitness);
+        let _ = writeln!(
+            s,
+            "| setting | runs | median best {f} | sd best {f} | median final ISI | sd final ISI |",
+            f = self.fitness
+        );
         let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|");
         for x in &self.settings {
             let (b, i) = (finite(&x.best), finite(&x.final_isi));
             let dash = |v: f64| if v.is_finite() { format!("{v:.4}") } else { "–".into() };
-            let _ = writeln!(s, "| {} | {} | {} | {} | {} | {} |", x.name, x.best.len(), dash(median(&b)), dash(std_dev(&b)), dash(median(&i)), dash(std_dev(&i)));
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {} | {} |",
+                x.name,
+                x.best.len(),
+                dash(median(&b)),
+                dash(std_dev(&b)),
+                dash(median(&i)),
+                dash(std_dev(&i))
+            );
         }
-        for (metric, title) in [("best", format!("best {}", self.fitness)), ("isi", "final ISI".to_string())] {
+        for (metric, title) in [
+            ("best", format!("best {}", self.fitness)),
+            ("isi", "final ISI".to_string()),
+        ] {
             let cs: Vec<&Comparison> = self.comparisons.iter().filter(|c| c.metric == metric).collect();
             if cs.is_empty() {
                 continue;
@@ -129,7 +182,9 @@ impl Summary {
                         if i == j {
                             "–".into()
                         } else {
-                            cs.iter().find(|c| (c.a, c.b) == (i.min(j), i.max(j))).map_or("".into(), |c| p_text(&c.test))
+                            cs.iter()
+                                .find(|c| (c.a, c.b) == (i.min(j), i.max(j)))
+                                .map_or("".into(), |c| p_text(&c.test))
                         }
                     })
                     .collect();
@@ -158,8 +213,16 @@ mod tests {
         let s = Summary::new(
             "velocity",
             vec![
-                SettingSummary { name: "es".into(), best: vec![1.0, 2.0, 3.0], final_isi: vec![1.0, 1.5, 2.0] },
-                SettingSummary { name: "ga".into(), best: vec![4.0, 5.0, 6.0], final_isi: vec![2.0, 3.0, 4.0] },
+                SettingSummary {
+                    name: "es".into(),
+                    best: vec![1.0, 2.0, 3.0],
+                    final_isi: vec![1.0, 1.5, 2.0],
+                },
+                SettingSummary {
+                    name: "ga".into(),
+                    best: vec![4.0, 5.0, 6.0],
+                    final_isi: vec![2.0, 3.0, 4.0],
+                },
             ],
         );
         assert_eq!(s.comparisons.len(), 2);
@@ -167,7 +230,10 @@ mod tests {
         let csv = s.settings_csv();
         assert!(csv.contains("es,3,2.0000,1.0000,1.5000,0.5000"), "{csv}");
         let md = s.to_markdown();
-        assert!(md.contains("| es | 3 | 2.0000 |") && md.contains("| ga | 0.1000 | – |"), "{md}");
+        assert!(
+            md.contains("| es | 3 | 2.0000 |") && md.contains("| ga | 0.1000 | – |"),
+            "{md}"
+        );
         assert!(s.pvalues_csv().contains("best,es,ga,0,0.1,exact"));
         assert_eq!(csv_field("a,b"), "\"a,b\"");
     }

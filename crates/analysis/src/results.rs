@@ -20,7 +20,10 @@ pub struct ResultsError {
 }
 
 fn fail(path: &Path, msg: impl std::fmt::Display) -> ResultsError {
-    ResultsError { path: path.display().to_string(), msg: msg.to_string() }
+    ResultsError {
+        path: path.display().to_string(),
+        msg: msg.to_string(),
+    }
 }
 
 /// One row of `generations.csv` (the columns analysis uses; NaN when absent).
@@ -132,7 +135,10 @@ impl ExperimentData {
 
     /// What the fitness is (`velocity` or `distance`; `velocity` when unset).
     pub fn fitness_kind(&self) -> String {
-        self.config_value("task.fitness").and_then(|v| v.as_str()).unwrap_or("velocity").to_string()
+        self.config_value("task.fitness")
+            .and_then(|v| v.as_str())
+            .unwrap_or("velocity")
+            .to_string()
     }
 }
 
@@ -145,7 +151,10 @@ pub fn read_generations(path: &Path) -> Result<Vec<GenerationRow>, ResultsError>
     for (line, rec) in reader.records().enumerate() {
         let rec = rec.map_err(|e| fail(path, e))?;
         let num = |name: &str| -> f64 {
-            col.get(name).and_then(|&i| rec.get(i)).and_then(|v| v.trim().parse::<f64>().ok()).unwrap_or(f64::NAN)
+            col.get(name)
+                .and_then(|&i| rec.get(i))
+                .and_then(|v| v.trim().parse::<f64>().ok())
+                .unwrap_or(f64::NAN)
         };
         let int = |name: &str| -> Result<u64, ResultsError> {
             col.get(name)
@@ -176,7 +185,11 @@ pub fn read_snapshot(path: &Path) -> Result<Vec<SnapshotRow>, ResultsError> {
 
 fn read_run(dir: &Path, index: usize) -> Result<RunData, ResultsError> {
     let gens = dir.join("generations.csv");
-    let generations = if gens.exists() { read_generations(&gens)? } else { Vec::new() };
+    let generations = if gens.exists() {
+        read_generations(&gens)?
+    } else {
+        Vec::new()
+    };
     let mut snapshots = Vec::new();
     if let Ok(entries) = std::fs::read_dir(dir.join("snapshots")) {
         for e in entries.flatten() {
@@ -190,8 +203,17 @@ fn read_run(dir: &Path, index: usize) -> Result<RunData, ResultsError> {
     }
     snapshots.sort();
     let best = dir.join("best.robot.json");
-    let summary = std::fs::read_to_string(dir.join("summary.json")).ok().and_then(|t| serde_json::from_str(&t).ok());
-    Ok(RunData { dir: dir.to_path_buf(), index, generations, snapshots, best_robot: best.exists().then_some(best), summary })
+    let summary = std::fs::read_to_string(dir.join("summary.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str(&t).ok());
+    Ok(RunData {
+        dir: dir.to_path_buf(),
+        index,
+        generations,
+        snapshots,
+        best_robot: best.exists().then_some(best),
+        summary,
+    })
 }
 
 /// Reads one experiment folder (it must hold `experiment.toml`).
@@ -199,8 +221,15 @@ pub fn read_experiment(dir: &Path) -> Result<ExperimentData, ResultsError> {
     let cfg_path = dir.join("experiment.toml");
     let text = std::fs::read_to_string(&cfg_path).map_err(|e| fail(&cfg_path, e))?;
     let config: toml::Table = text.parse().map_err(|e| fail(&cfg_path, e))?;
-    let folder = dir.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "experiment".into());
-    let name = config.get("name").and_then(|v| v.as_str()).map(str::to_string).unwrap_or(folder);
+    let folder = dir
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "experiment".into());
+    let name = config
+        .get("name")
+        .and_then(|v| v.as_str())
+        .map(str::to_string)
+        .unwrap_or(folder);
     let mut runs = Vec::new();
     let mut entries: Vec<_> = std::fs::read_dir(dir).map_err(|e| fail(dir, e))?.flatten().collect();
     entries.sort_by_key(|e| e.file_name());
@@ -212,7 +241,12 @@ pub fn read_experiment(dir: &Path) -> Result<ExperimentData, ResultsError> {
             }
         }
     }
-    Ok(ExperimentData { dir: dir.to_path_buf(), name, config, runs })
+    Ok(ExperimentData {
+        dir: dir.to_path_buf(),
+        name,
+        config,
+        runs,
+    })
 }
 
 /// Finds every experiment folder at or below each root (up to 4 levels deep), in path order.
@@ -244,7 +278,10 @@ pub fn discover(roots: &[PathBuf]) -> Result<Vec<ExperimentData>, ResultsError> 
     found.dedup();
     if found.is_empty() {
         let names: Vec<String> = roots.iter().map(|r| r.display().to_string()).collect();
-        return Err(ResultsError { path: names.join(", "), msg: "no experiment.toml found (is this the output of `vsrlab run`?)".into() });
+        return Err(ResultsError {
+            path: names.join(", "),
+            msg: "no experiment.toml found (is this the output of `vsrlab run`?)".into(),
+        });
     }
     found.iter().map(|d| read_experiment(d)).collect()
 }
@@ -279,7 +316,10 @@ mod tests {
         let root = tmp.path();
         for (folder, name) in [("a", "ga-flat"), ("b", "es-flat"), ("nested/c", "ga-flat")] {
             let d = root.join(folder);
-            write(&d.join("experiment.toml"), &format!("name = \"{name}\"\nruns = 1\n[task]\nfitness = \"velocity\"\n"));
+            write(
+                &d.join("experiment.toml"),
+                &format!("name = \"{name}\"\nruns = 1\n[task]\nfitness = \"velocity\"\n"),
+            );
             write(
                 &d.join("run-00/generations.csv"),
                 "generation,evaluations,births,best_fitness,population_median,population_best\n1,40,40,0.5,0.1,0.5\n2,80,80,NaN,0.2,0.7\n",
@@ -294,7 +334,10 @@ mod tests {
         let exps = discover(&[root.to_path_buf()]).unwrap();
         assert_eq!(exps.len(), 3);
         let s = settings(&exps);
-        assert_eq!(s.iter().map(|x| x.0.as_str()).collect::<Vec<_>>(), vec!["es-flat", "ga-flat"]);
+        assert_eq!(
+            s.iter().map(|x| x.0.as_str()).collect::<Vec<_>>(),
+            vec!["es-flat", "ga-flat"]
+        );
         assert_eq!(s[1].1.len(), 2);
         let run = &exps[0].runs[0];
         assert_eq!(run.generations.len(), 2);

@@ -27,8 +27,9 @@ pub fn stratified_sample(descriptors: &[Vec<f64>], bins: usize, count: usize, se
         return Vec::new();
     }
     let d = descriptors[0].len();
-    let per_descriptor: Vec<Vec<usize>> =
-        (0..d).map(|j| rank_bins(&descriptors.iter().map(|v| v[j]).collect::<Vec<f64>>(), bins)).collect();
+    let per_descriptor: Vec<Vec<usize>> = (0..d)
+        .map(|j| rank_bins(&descriptors.iter().map(|v| v[j]).collect::<Vec<f64>>(), bins))
+        .collect();
     let key = |i: usize| per_descriptor.iter().fold(0usize, |k, b| k * bins.max(1) + b[i]);
     let mut cells: std::collections::BTreeMap<usize, Vec<usize>> = Default::default();
     for i in 0..n {
@@ -66,7 +67,10 @@ mod tests {
 
     #[test]
     fn bins_are_equal_size() {
-        assert_eq!(rank_bins(&[5.0, 1.0, 3.0, 2.0, 4.0, 0.0, 7.0, 6.0], 4), vec![2, 0, 1, 1, 2, 0, 3, 3]);
+        assert_eq!(
+            rank_bins(&[5.0, 1.0, 3.0, 2.0, 4.0, 0.0, 7.0, 6.0], 4),
+            vec![2, 0, 1, 1, 2, 0, 3, 3]
+        );
     }
 
     #[test]

@@ -49,7 +49,12 @@ pub struct SpectrumParams {
 
 impl Default for SpectrumParams {
     fn default() -> Self {
-        SpectrumParams { max_frequency: 10.0, bins: 100, absolute: false, convention: FrequencyConvention::Exact }
+        SpectrumParams {
+            max_frequency: 10.0,
+            bins: 100,
+            absolute: false,
+            convention: FrequencyConvention::Exact,
+        }
     }
 }
 
@@ -88,7 +93,8 @@ pub fn magnitudes(signal: &[f64]) -> Vec<f64> {
     let mut input = fft.make_input_vec();
     input[..signal.len()].copy_from_slice(signal);
     let mut output = fft.make_output_vec();
-    fft.process(&mut input, &mut output).expect("buffer sizes come from the plan");
+    fft.process(&mut input, &mut output)
+        .expect("buffer sizes come from the plan");
     output.iter().map(|c| c.norm()).collect()
 }
 
@@ -110,7 +116,10 @@ pub fn resampled_spectrum(signal: &[f64], dt: f64, params: &SpectrumParams) -> V
             }
         }
     }
-    sums.iter().zip(&counts).map(|(&s, &c)| if c > 0 { s / c as f64 } else { 0.0 }).collect()
+    sums.iter()
+        .zip(&counts)
+        .map(|(&s, &c)| if c > 0 { s / c as f64 } else { 0.0 })
+        .collect()
 }
 
 /// The spectrum of the first differences of the centre's `axis` coordinate.
@@ -197,7 +206,10 @@ mod tests {
 
     #[test]
     fn absolute_differences_double_the_frequency() {
-        let p = SpectrumParams { absolute: true, ..Default::default() };
+        let p = SpectrumParams {
+            absolute: true,
+            ..Default::default()
+        };
         let c = oscillation(2.0, 30.0, true);
         let y = center_spectrum(&c, 1.0 / 60.0, Axis::Y, &p);
         // |Δy| has a DC term (leaking into the lowest bins) and its first harmonic at 4 Hz.
@@ -214,7 +226,10 @@ mod tests {
         let f = 140.0 * 60.0 / 2048.0;
         let c = oscillation(f, 30.0, true);
         let exact = SpectrumParams::default();
-        let original = SpectrumParams { convention: FrequencyConvention::Original, ..Default::default() };
+        let original = SpectrumParams {
+            convention: FrequencyConvention::Original,
+            ..Default::default()
+        };
         assert_eq!(argmax(&center_spectrum(&c, 1.0 / 60.0, Axis::Y, &exact)), 41);
         assert_eq!(argmax(&center_spectrum(&c, 1.0 / 60.0, Axis::Y, &original)), 40);
     }
@@ -222,7 +237,9 @@ mod tests {
     #[test]
     fn magnitudes_of_a_cosine() {
         // 8 samples of cos(2π·k/8): bin 1 holds N/2 = 4.
-        let s: Vec<f64> = (0..8).map(|k| (2.0 * std::f64::consts::PI * k as f64 / 8.0).cos()).collect();
+        let s: Vec<f64> = (0..8)
+            .map(|k| (2.0 * std::f64::consts::PI * k as f64 / 8.0).cos())
+            .collect();
         let m = magnitudes(&s);
         assert_eq!(m.len(), 5);
         assert!((m[1] - 4.0).abs() < 1e-9 && m[0].abs() < 1e-9 && m[2].abs() < 1e-9);

@@ -185,9 +185,9 @@ fn u_counts(n1: usize, n2: usize) -> Vec<f64> {
     f[0][0] = 1.0;
     // Build by increasing total length: process positions, deciding a or b; equivalently iterate
     // j (number of b's) and insert a's with the recurrence f_j[i][u] = f_{j-1}[i][u] + f_j[i-1][u-j].
-    for i in 1..=a {
+    for row in f.iter_mut() {
         // j = 0: a's only, U = 0.
-        f[i][0] = 1.0;
+        row[0] = 1.0;
     }
     for j in 1..=b {
         // Row i = 0 stays (one arrangement, U = 0). For i ≥ 1, in increasing i so that f[i−1] is
@@ -220,7 +220,7 @@ pub fn mann_whitney_u(x: &[f64], y: &[f64]) -> Option<MannWhitney> {
     let u2 = (n1 * n2) as f64 - u1;
     let u = u1.max(u2);
     let has_ties = ties.iter().any(|&t| t > 1);
-    let exact = !(n1 > 8 && n2 > 8) && !has_ties;
+    let exact = !has_ties && (n1 <= 8 || n2 <= 8);
     let p = if exact {
         let counts = u_counts(n1, n2);
         let total: f64 = counts.iter().sum();
@@ -236,7 +236,11 @@ pub fn mann_whitney_u(x: &[f64], y: &[f64]) -> Option<MannWhitney> {
         let z = (u - n1f * n2f / 2.0 - 0.5) / s;
         2.0 * if z.is_nan() { 0.5 } else { normal_sf(z) }
     };
-    Some(MannWhitney { u: u1, p: p.clamp(0.0, 1.0), method: if exact { MwuMethod::Exact } else { MwuMethod::Asymptotic } })
+    Some(MannWhitney {
+        u: u1,
+        p: p.clamp(0.0, 1.0),
+        method: if exact { MwuMethod::Exact } else { MwuMethod::Asymptotic },
+    })
 }
 
 #[cfg(test)]

@@ -193,11 +193,15 @@ mod tests {
 
     #[test]
     fn bad_fields_are_named() {
-        let mut p = VoxelParams::default();
-        p.mass_side_ratio = 0.7;
+        let p = VoxelParams {
+            mass_side_ratio: 0.7,
+            ..VoxelParams::default()
+        };
         assert!(p.validate().unwrap_err().contains("mass_side_ratio"));
-        let mut p = VoxelParams::default();
-        p.min_area_ratio = 0.2;
+        let p = VoxelParams {
+            min_area_ratio: 0.2,
+            ..VoxelParams::default()
+        };
         assert!(p.validate().unwrap_err().contains("min_area_ratio"));
     }
 }

@@ -13,7 +13,10 @@ use vsrlab_analysis::forest::{Folds, ForestParams};
 use vsrlab_analysis::labels::read_labels;
 use vsrlab_analysis::morphology::MorphologyDescriptors;
 use vsrlab_analysis::pca::Pca;
-use vsrlab_analysis::plot::{self, BandChart, BandFigure, BandSeries, BoxFigure, BoxGroup, Bubble, BubbleFigure, BubblePanel, ScatterFigure, ScatterPoint};
+use vsrlab_analysis::plot::{
+    self, BandChart, BandFigure, BandSeries, BoxFigure, BoxGroup, Bubble, BubbleFigure, BubblePanel, ScatterFigure,
+    ScatterPoint,
+};
 use vsrlab_analysis::report::{csv_field, SettingSummary, Summary};
 use vsrlab_analysis::results::{self, ExperimentData, SnapshotRow};
 use vsrlab_body::Morphology;
@@ -84,7 +87,10 @@ pub(crate) fn full_trace(robot: &RobotSpec, task: &Locomotion, seed: u64) -> Res
 
 /// A thread pool of `threads` workers (0 or None: every core).
 pub(crate) fn pool(threads: Option<usize>) -> Result<rayon::ThreadPool, String> {
-    rayon::ThreadPoolBuilder::new().num_threads(threads.unwrap_or(0)).build().map_err(|e| e.to_string())
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .map_err(|e| e.to_string())
 }
 
 /// Evenly spread indices: `k` of `0..n` (all when k = 0 or k ≥ n).
@@ -142,12 +148,20 @@ pub fn run(args: AnalyzeArgs) -> Result<(), String> {
     let settings: Vec<Setting> = results::settings(&experiments)
         .into_iter()
         .enumerate()
-        .map(|(i, (name, experiments))| Setting { name, color: i, experiments })
+        .map(|(i, (name, experiments))| Setting {
+            name,
+            color: i,
+            experiments,
+        })
         .collect();
     std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
     let pool = pool(args.threads)?;
     let runs: usize = experiments.iter().map(|e| e.runs.len()).sum();
-    eprintln!("{} setting(s), {} experiment folder(s), {runs} run(s)", settings.len(), experiments.len());
+    eprintln!(
+        "{} setting(s), {} experiment folder(s), {runs} run(s)",
+        settings.len(),
+        experiments.len()
+    );
     let fitness = fitness_label(&experiments);
     let mut figures: Vec<(String, String)> = Vec::new();
     let out = |name: &str| args.out.join(name);
@@ -162,28 +176,57 @@ pub fn run(args: AnalyzeArgs) -> Result<(), String> {
                     .experiments
                     .iter()
                     .flat_map(|&e| experiments[e].runs.iter())
-                    .map(|r| r.generations.iter().map(|g| (g.evaluations as f64, pick(g))).filter(|p| p.1.is_finite()).collect())
+                    .map(|r| {
+                        r.generations
+                            .iter()
+                            .map(|g| (g.evaluations as f64, pick(g)))
+                            .filter(|p| p.1.is_finite())
+                            .collect()
+                    })
                     .filter(|c: &Vec<(f64, f64)>| !c.is_empty())
                     .collect();
                 let grid = grid_for(&curves, 200);
                 let b = band(&curves, &grid, true);
-                BandSeries { label: s.name.clone(), color: s.color, x: b.x, center: b.median, spread: b.sd }
+                BandSeries {
+                    label: s.name.clone(),
+                    color: s.color,
+                    x: b.x,
+                    center: b.median,
+                    spread: b.sd,
+                }
             })
             .collect();
-        BandChart { title: title.into(), x_label: "fitness evaluations".into(), y_label: fitness.clone(), series }
+        BandChart {
+            title: title.into(),
+            x_label: "fitness evaluations".into(),
+            y_label: fitness.clone(),
+            series,
+        }
     };
     let fig = BandFigure {
         title: format!("Fitness ({fitness}) during evolution"),
         legend_title: "setting".into(),
-        panels: vec![band_panel("best so far", &|g| g.best_fitness), band_panel("population median", &|g| g.population_median)],
+        panels: vec![
+            band_panel("best so far", &|g| g.best_fitness),
+            band_panel("population median", &|g| g.population_median),
+        ],
     };
     plot::save(&fig, &out("fitness")).map_err(|e| e.to_string())?;
-    note("fitness", "best-so-far and population-median fitness vs evaluations, median ± sd across runs");
+    note(
+        "fitness",
+        "best-so-far and population-median fitness vs evaluations, median ± sd across runs",
+    );
 
     // 2. Final best fitness per run, boxplots with pairwise Mann–Whitney p-values.
     let best_values: Vec<Vec<f64>> = settings
         .iter()
-        .map(|s| s.experiments.iter().flat_map(|&e| experiments[e].runs.iter()).map(|r| r.final_best()).collect())
+        .map(|s| {
+            s.experiments
+                .iter()
+                .flat_map(|&e| experiments[e].runs.iter())
+                .map(|r| r.final_best())
+                .collect()
+        })
         .collect();
 
     // 3. Best robots: descriptors, and features from a replay (for the PCA).
@@ -194,7 +237,13 @@ pub fn run(args: AnalyzeArgs) -> Result<(), String> {
             let exp = &experiments[e];
             for r in &exp.runs {
                 if let Some(p) = &r.best_robot {
-                    best_jobs.push((s.color, e, format!("{}/run-{:02}", exp.dir.display(), r.index), p.clone(), r.final_best()));
+                    best_jobs.push((
+                        s.color,
+                        e,
+                        format!("{}/run-{:02}", exp.dir.display(), r.index),
+                        p.clone(),
+                        r.final_best(),
+                    ));
                 }
             }
         }
@@ -236,7 +285,10 @@ pub fn run(args: AnalyzeArgs) -> Result<(), String> {
     // Descriptor scatter of the best robots.
     let max_voxels = bests.iter().map(|b| b.descriptors.voxels).max().unwrap_or(1).max(1) as f64;
     let radius = |v: f64| 4.0 + 16.0 * (v / max_voxels).sqrt();
-    let size_entries: Vec<(String, f64)> = size_legend_values(max_voxels).into_iter().map(|v| (format!("{v}"), radius(v as f64))).collect();
+    let size_entries: Vec<(String, f64)> = size_legend_values(max_voxels)
+        .into_iter()
+        .map(|v| (format!("{v}"), radius(v as f64)))
+        .collect();
     let fig = ScatterFigure {
         title: "Morphology descriptors of the best robots".into(),
         x_label: "elongation".into(),
@@ -245,14 +297,22 @@ pub fn run(args: AnalyzeArgs) -> Result<(), String> {
         legend_title: "setting".into(),
         points: bests
             .iter()
-            .map(|b| ScatterPoint { x: b.descriptors.elongation, y: b.descriptors.compactness, radius: radius(b.descriptors.voxels as f64), group: b.setting })
+            .map(|b| ScatterPoint {
+                x: b.descriptors.elongation,
+                y: b.descriptors.compactness,
+                radius: radius(b.descriptors.voxels as f64),
+                group: b.setting,
+            })
             .collect(),
         x_range: Some((-0.03, 1.03)),
         y_range: Some((0.0, 1.03)),
         size_legend: Some(("voxels".into(), size_entries)),
     };
     plot::save(&fig, &out("descriptors")).map_err(|e| e.to_string())?;
-    note("descriptors", "elongation vs compactness of each run's best robot (marker size: voxels)");
+    note(
+        "descriptors",
+        "elongation vs compactness of each run's best robot (marker size: voxels)",
+    );
 
     // PCA of the best robots' features (dynamic pose + behaviour), standardised.
     let with_features: Vec<&BestRobot> = bests.iter().filter(|b| b.features.is_some()).collect();
@@ -269,8 +329,14 @@ pub fn run(args: AnalyzeArgs) -> Result<(), String> {
         let pca = Pca::fit(&rows, true);
         let fig = ScatterFigure {
             title: "PCA of the best robots (dynamic pose + behaviour features, standardised)".into(),
-            x_label: format!("PC1 ({:.0}% of variance)", 100.0 * pca.variance_ratio.first().copied().unwrap_or(0.0)),
-            y_label: format!("PC2 ({:.0}% of variance)", 100.0 * pca.variance_ratio.get(1).copied().unwrap_or(0.0)),
+            x_label: format!(
+                "PC1 ({:.0}% of variance)",
+                100.0 * pca.variance_ratio.first().copied().unwrap_or(0.0)
+            ),
+            y_label: format!(
+                "PC2 ({:.0}% of variance)",
+                100.0 * pca.variance_ratio.get(1).copied().unwrap_or(0.0)
+            ),
             groups: settings.iter().map(|s| s.name.clone()).collect(),
             legend_title: "setting".into(),
             points: with_features
@@ -278,7 +344,12 @@ pub fn run(args: AnalyzeArgs) -> Result<(), String> {
                 .zip(&rows)
                 .map(|(b, r)| {
                     let z = pca.transform(r, 2);
-                    ScatterPoint { x: z[0], y: z.get(1).copied().unwrap_or(0.0), radius: 9.0, group: b.setting }
+                    ScatterPoint {
+                        x: z[0],
+                        y: z.get(1).copied().unwrap_or(0.0),
+                        radius: 9.0,
+                        group: b.setting,
+                    }
                 })
                 .collect(),
             x_range: None,
@@ -286,7 +357,10 @@ pub fn run(args: AnalyzeArgs) -> Result<(), String> {
             size_legend: None,
         };
         plot::save(&fig, &out("pca-best")).map_err(|e| e.to_string())?;
-        note("pca-best", "best robots on the first two principal components of their features");
+        note(
+            "pca-best",
+            "best robots on the first two principal components of their features",
+        );
     } else {
         eprintln!("note: fewer than 3 replayable best robots: no PCA figure");
     }
@@ -301,10 +375,25 @@ pub fn run(args: AnalyzeArgs) -> Result<(), String> {
             "Classifiers (random forests, 100 trees, ⌊√p⌋ features per split, {} examples for shape, {} for behaviour; {}-fold cross-validation):\n",
             cls.examples.0, cls.examples.1, args.folds
         );
-        let _ = writeln!(classifier_text, "| classifier | classes | CV accuracy | majority-class accuracy |\n|---|---|---:|---:|");
-        for (name, c) in [("shape (dynamic pose, 256 features)", &cls.shape), ("behaviour (spectra + gait, 205 features)", &cls.behaviour)] {
-            let _ = writeln!(classifier_text, "| {name} | {} | {:.3} | {:.3} |", c.classes.join(", "), c.cv.accuracy, c.cv.majority_accuracy);
-            eprintln!("{name}: CV accuracy {:.3} (majority class {:.3})", c.cv.accuracy, c.cv.majority_accuracy);
+        let _ = writeln!(
+            classifier_text,
+            "| classifier | classes | CV accuracy | majority-class accuracy |\n|---|---|---:|---:|"
+        );
+        for (name, c) in [
+            ("shape (dynamic pose, 256 features)", &cls.shape),
+            ("behaviour (spectra + gait, 205 features)", &cls.behaviour),
+        ] {
+            let _ = writeln!(
+                classifier_text,
+                "| {name} | {} | {:.3} | {:.3} |",
+                c.classes.join(", "),
+                c.cv.accuracy,
+                c.cv.majority_accuracy
+            );
+            eprintln!(
+                "{name}: CV accuracy {:.3} (majority class {:.3})",
+                c.cv.accuracy, c.cv.majority_accuracy
+            );
         }
         let (isi, finals) = species_over_time(&experiments, &settings, &replays, &cls, args.sample, &pool)?;
         write_isi_csv(&out("isi.csv"), &settings, &experiments, &isi)?;
@@ -320,15 +409,30 @@ pub fn run(args: AnalyzeArgs) -> Result<(), String> {
                         .collect();
                     let grid = grid_for(&curves, 200);
                     let b = band(&curves, &grid, true);
-                    BandSeries { label: s.name.clone(), color: s.color, x: b.x, center: b.median, spread: b.sd }
+                    BandSeries {
+                        label: s.name.clone(),
+                        color: s.color,
+                        x: b.x,
+                        center: b.median,
+                        spread: b.sd,
+                    }
                 })
                 .collect();
-            BandChart { title: title.into(), x_label: "fitness evaluations".into(), y_label: "Inverse Simpson Index".into(), series }
+            BandChart {
+                title: title.into(),
+                x_label: "fitness evaluations".into(),
+                y_label: "Inverse Simpson Index".into(),
+                series,
+            }
         };
         let fig = BandFigure {
             title: "Diversity of the population (Inverse Simpson Index)".into(),
             legend_title: "setting".into(),
-            panels: vec![isi_panel("species", &|x| x.species), isi_panel("morphology", &|x| x.shape), isi_panel("behaviour", &|x| x.behaviour)],
+            panels: vec![
+                isi_panel("species", &|x| x.species),
+                isi_panel("morphology", &|x| x.shape),
+                isi_panel("behaviour", &|x| x.behaviour),
+            ],
         };
         plot::save(&fig, &out("isi")).map_err(|e| e.to_string())?;
         note("isi", "Inverse Simpson Index of species, morphology and behaviour classes vs evaluations, median ± sd across runs");
@@ -340,29 +444,55 @@ pub fn run(args: AnalyzeArgs) -> Result<(), String> {
         let fig = BoxFigure {
             title: "Final species diversity per run (Inverse Simpson Index)".into(),
             y_label: "ISI of the final population".into(),
-            groups: settings.iter().map(|s| BoxGroup { label: s.name.clone(), color: s.color, values: final_isi[s.color].clone() }).collect(),
+            groups: settings
+                .iter()
+                .map(|s| BoxGroup {
+                    label: s.name.clone(),
+                    color: s.color,
+                    values: final_isi[s.color].clone(),
+                })
+                .collect(),
             pvalues: pairs(&final_isi),
             max_brackets: 6,
         };
         plot::save(&fig, &out("isi-boxplot")).map_err(|e| e.to_string())?;
-        note("isi-boxplot", "ISI of the final population of each run, with pairwise Mann–Whitney p-values");
+        note(
+            "isi-boxplot",
+            "ISI of the final population of each run, with pairwise Mann–Whitney p-values",
+        );
         // Bubble plot of the species of the final populations.
         let panels = settings
             .iter()
             .map(|s| {
-                let members: Vec<&Labelled> = finals.iter().filter(|(si, _)| *si == s.color).flat_map(|(_, v)| v.iter()).collect();
+                let members: Vec<&Labelled> = finals
+                    .iter()
+                    .filter(|(si, _)| *si == s.color)
+                    .flat_map(|(_, v)| v.iter())
+                    .collect();
                 let n = members.len().max(1) as f64;
                 let mut bubbles = Vec::new();
                 for (x, _) in cls.shape.classes.iter().enumerate() {
                     for (y, _) in cls.behaviour.classes.iter().enumerate() {
                         let of: Vec<&&Labelled> = members.iter().filter(|m| m.shape == x && m.behaviour == y).collect();
                         if !of.is_empty() {
-                            let best = of.iter().map(|m| m.velocity).filter(|v| v.is_finite()).fold(f64::NAN, f64::max);
-                            bubbles.push(Bubble { x, y, share: of.len() as f64 / n, value: best });
+                            let best = of
+                                .iter()
+                                .map(|m| m.velocity)
+                                .filter(|v| v.is_finite())
+                                .fold(f64::NAN, f64::max);
+                            bubbles.push(Bubble {
+                                x,
+                                y,
+                                share: of.len() as f64 / n,
+                                value: best,
+                            });
                         }
                     }
                 }
-                BubblePanel { title: format!("{} ({} individuals)", s.name, members.len()), bubbles }
+                BubblePanel {
+                    title: format!("{} ({} individuals)", s.name, members.len()),
+                    bubbles,
+                }
             })
             .collect();
         let fig = BubbleFigure {
@@ -375,7 +505,10 @@ pub fn run(args: AnalyzeArgs) -> Result<(), String> {
             panels,
         };
         plot::save(&fig, &out("species")).map_err(|e| e.to_string())?;
-        note("species", "share of each species in the final populations (bubble area) and its best velocity (colour)");
+        note(
+            "species",
+            "share of each species in the final populations (bubble area) and its best velocity (colour)",
+        );
     } else {
         classifier_text.push_str(
             "No labels given (--labels): species, ISI and the species bubble plot are skipped. \
@@ -386,28 +519,60 @@ pub fn run(args: AnalyzeArgs) -> Result<(), String> {
     let fig = BoxFigure {
         title: format!("Best {fitness} of each run"),
         y_label: format!("best {fitness}"),
-        groups: settings.iter().map(|s| BoxGroup { label: s.name.clone(), color: s.color, values: best_values[s.color].clone() }).collect(),
+        groups: settings
+            .iter()
+            .map(|s| BoxGroup {
+                label: s.name.clone(),
+                color: s.color,
+                values: best_values[s.color].clone(),
+            })
+            .collect(),
         pvalues: pairs(&best_values),
         max_brackets: 6,
     };
     plot::save(&fig, &out("best-boxplot")).map_err(|e| e.to_string())?;
-    note("best-boxplot", "best fitness of each run per setting, with pairwise Mann–Whitney p-values");
+    note(
+        "best-boxplot",
+        "best fitness of each run per setting, with pairwise Mann–Whitney p-values",
+    );
 
     // 5. Tables.
     let summary = Summary::new(
         &fitness,
         settings
             .iter()
-            .map(|s| SettingSummary { name: s.name.clone(), best: best_values[s.color].clone(), final_isi: final_isi[s.color].clone() })
+            .map(|s| SettingSummary {
+                name: s.name.clone(),
+                best: best_values[s.color].clone(),
+                final_isi: final_isi[s.color].clone(),
+            })
             .collect(),
     );
     write(&out("summary.csv"), &summary.settings_csv())?;
     write(&out("pvalues.csv"), &summary.pvalues_csv())?;
     let mut md = String::from("# vsrlab analysis\n\n");
-    let _ = writeln!(md, "Results: {}\n", args.results.iter().map(|p| format!("`{}`", p.display())).collect::<Vec<_>>().join(", "));
+    let _ = writeln!(
+        md,
+        "Results: {}\n",
+        args.results
+            .iter()
+            .map(|p| format!("`{}`", p.display()))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
     let _ = writeln!(md, "Settings and their experiment folders:\n");
     for s in &settings {
-        let dirs: Vec<String> = s.experiments.iter().map(|&e| format!("`{}` ({} runs)", experiments[e].dir.display(), experiments[e].runs.len())).collect();
+        let dirs: Vec<String> = s
+            .experiments
+            .iter()
+            .map(|&e| {
+                format!(
+                    "`{}` ({} runs)",
+                    experiments[e].dir.display(),
+                    experiments[e].runs.len()
+                )
+            })
+            .collect();
         let _ = writeln!(md, "- **{}**: {}", s.name, dirs.join(", "));
     }
     let _ = writeln!(md, "\n{}", summary.to_markdown());
@@ -416,10 +581,22 @@ pub fn run(args: AnalyzeArgs) -> Result<(), String> {
     for (f, what) in &figures {
         let _ = writeln!(md, "- `{f}.png`: {what}");
     }
-    let _ = writeln!(md, "\nTables: `summary.csv` (per setting), `pvalues.csv` (pairwise tests), `best.csv` (best robot of each run){}.", if args.labels.is_some() { ", `isi.csv` (ISI per snapshot)" } else { "" });
+    let _ = writeln!(
+        md,
+        "\nTables: `summary.csv` (per setting), `pvalues.csv` (pairwise tests), `best.csv` (best robot of each run){}.",
+        if args.labels.is_some() {
+            ", `isi.csv` (ISI per snapshot)"
+        } else {
+            ""
+        }
+    );
     write(&out("summary.md"), &md)?;
     println!("{}", summary.to_markdown());
-    println!("wrote {} figures and the tables to {}", figures.len(), args.out.display());
+    println!(
+        "wrote {} figures and the tables to {}",
+        figures.len(),
+        args.out.display()
+    );
     Ok(())
 }
 
@@ -461,7 +638,11 @@ fn write(path: &Path, text: &str) -> Result<(), String> {
 fn write_best_csv(path: &Path, settings: &[Setting], bests: &[BestRobot]) -> Result<(), String> {
     let mut s = String::from("setting,run,best_fitness,voxels,elongation,compactness,gait_duration,gait_touch_area,gait_occurrences,gait_mode_interval,gait_purity\n");
     for b in bests {
-        let g = b.features.as_ref().map(|f| f.gait.features().map(|v| v.to_string()).join(",")).unwrap_or_else(|| ",,,,".into());
+        let g = b
+            .features
+            .as_ref()
+            .map(|f| f.gait.features().map(|v| v.to_string()).join(","))
+            .unwrap_or_else(|| ",,,,".into());
         let _ = writeln!(
             s,
             "{},{},{},{},{},{},{g}",
@@ -483,8 +664,16 @@ fn train_classifiers(labels: &Path, folds: usize, seed: u64, pool: &rayon::Threa
         rows.par_iter()
             .map(|r| {
                 let robot = load_robot(&r.robot_path(labels)).map_err(|e| e.to_string())?;
-                let terrain: Terrain = r.terrain.parse().map_err(|e| format!("{}: terrain '{}': {e}", r.robot, r.terrain))?;
-                let task = Locomotion { terrain, duration: r.duration, transient: r.transient, ..Locomotion::default() };
+                let terrain: Terrain = r
+                    .terrain
+                    .parse()
+                    .map_err(|e| format!("{}: terrain '{}': {e}", r.robot, r.terrain))?;
+                let task = Locomotion {
+                    terrain,
+                    duration: r.duration,
+                    transient: r.transient,
+                    ..Locomotion::default()
+                };
                 let trace = full_trace(&robot, &task, r.seed)?;
                 Ok(RobotFeatures::from_trace(&trace, &FeatureParams::default()))
             })
@@ -503,13 +692,25 @@ fn train_classifiers(labels: &Path, folds: usize, seed: u64, pool: &rayon::Threa
         }
     }
     if sx.len() < folds.max(2) || bx.len() < folds.max(2) {
-        return Err(format!("{}: too few labelled robots ({} with a shape, {} with a behaviour) for {folds}-fold cross-validation", labels.display(), sx.len(), bx.len()));
+        return Err(format!(
+            "{}: too few labelled robots ({} with a shape, {} with a behaviour) for {folds}-fold cross-validation",
+            labels.display(),
+            sx.len(),
+            bx.len()
+        ));
     }
-    let params = ForestParams { seed, ..Default::default() };
+    let params = ForestParams {
+        seed,
+        ..Default::default()
+    };
     // Labels come in the page's order (stratified bins): shuffle the folds, seeded.
     let shape = Classifier::train(&sx, &sy, folds, Folds::Shuffled(seed), &params);
     let behaviour = Classifier::train(&bx, &by, folds, Folds::Shuffled(seed), &params);
-    Ok(Classifiers { shape, behaviour, examples: (sx.len(), bx.len()) })
+    Ok(Classifiers {
+        shape,
+        behaviour,
+        examples: (sx.len(), bx.len()),
+    })
 }
 
 type IsiRuns = Vec<(usize, String, Vec<SnapshotIsi>)>;
@@ -533,16 +734,27 @@ fn species_over_time(
             for r in &exp.runs {
                 let mut snaps = Vec::new();
                 let mut last = Vec::new();
-                eprintln!("species: {} run {:02}: {} snapshots…", s.name, r.index, r.snapshots.len());
+                eprintln!(
+                    "species: {} run {:02}: {} snapshots…",
+                    s.name,
+                    r.index,
+                    r.snapshots.len()
+                );
                 for (evals, path) in &r.snapshots {
                     let rows = results::read_snapshot(path).map_err(|e| e.to_string())?;
-                    let rows: Vec<&SnapshotRow> = rows.iter().filter(|x| x.error.is_none() && x.fitness.is_some()).collect();
+                    let rows: Vec<&SnapshotRow> = rows
+                        .iter()
+                        .filter(|x| x.error.is_none() && x.fitness.is_some())
+                        .collect();
                     let picked: Vec<&SnapshotRow> = spread(rows.len(), sample).into_iter().map(|i| rows[i]).collect();
                     let labelled: Vec<Labelled> = pool.install(|| {
                         picked
                             .par_iter()
                             .filter_map(|row| {
-                                let (_, trace) = rp.row(row).map_err(|err| eprintln!("warning: {}: {err}", path.display())).ok()?;
+                                let (_, trace) = rp
+                                    .row(row)
+                                    .map_err(|err| eprintln!("warning: {}: {err}", path.display()))
+                                    .ok()?;
                                 let f = RobotFeatures::from_trace(&trace, &FeatureParams::default());
                                 Some(Labelled {
                                     shape: cls.shape.predict_index(&f.morphology_vector()),
@@ -557,7 +769,10 @@ fn species_over_time(
                     }
                     let shapes: Vec<usize> = labelled.iter().map(|l| l.shape).collect();
                     let behaviours: Vec<usize> = labelled.iter().map(|l| l.behaviour).collect();
-                    let species: Vec<usize> = labelled.iter().map(|l| vsrlab_analysis::species_index(l.shape, l.behaviour, nb)).collect();
+                    let species: Vec<usize> = labelled
+                        .iter()
+                        .map(|l| vsrlab_analysis::species_index(l.shape, l.behaviour, nb))
+                        .collect();
                     snaps.push(SnapshotIsi {
                         evaluations: *evals,
                         shape: inverse_simpson(&shapes),
@@ -574,11 +789,25 @@ fn species_over_time(
     Ok((isi, finals))
 }
 
-fn write_isi_csv(path: &Path, settings: &[Setting], _experiments: &[ExperimentData], isi: &IsiRuns) -> Result<(), String> {
+fn write_isi_csv(
+    path: &Path,
+    settings: &[Setting],
+    _experiments: &[ExperimentData],
+    isi: &IsiRuns,
+) -> Result<(), String> {
     let mut s = String::from("setting,run,evaluations,isi_species,isi_shape,isi_behaviour\n");
     for (si, run, snaps) in isi {
         for x in snaps {
-            let _ = writeln!(s, "{},{},{},{},{},{}", csv_field(&settings[*si].name), csv_field(run), x.evaluations, x.species, x.shape, x.behaviour);
+            let _ = writeln!(
+                s,
+                "{},{},{},{},{},{}",
+                csv_field(&settings[*si].name),
+                csv_field(run),
+                x.evaluations,
+                x.species,
+                x.shape,
+                x.behaviour
+            );
         }
     }
     write(path, &s)

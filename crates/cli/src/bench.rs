@@ -137,7 +137,7 @@ pub fn run(a: BenchArgs) -> Result<(), String> {
         let voxels = robot.body.voxel_count();
         let dt = task.physics.dt;
         episode(&robot, &task, 0)?; // warm-up
-        // single thread: run episodes until min_seconds of CPU time
+                                    // single thread: run episodes until min_seconds of CPU time
         let (c0, w0) = (thread_cpu_seconds(), Instant::now());
         let (mut episodes, mut steps) = (0usize, 0u64);
         while episodes == 0 || thread_cpu_seconds() - c0 < a.min_seconds {

@@ -93,16 +93,28 @@ pub fn run(args: LabelArgs) -> Result<(), String> {
                     if row.error.is_some() || row.fitness.is_none() || row.genotype.is_empty() {
                         continue;
                     }
-                    if args.min_velocity.is_some_and(|v| row.velocity.unwrap_or(f64::NEG_INFINITY) < v) {
+                    if args
+                        .min_velocity
+                        .is_some_and(|v| row.velocity.unwrap_or(f64::NEG_INFINITY) < v)
+                    {
                         continue;
                     }
                     let Some(body) = row_body(&row) else { continue };
                     // Survivors appear in many snapshots: keep each genotype once.
-                    let key = (exp.dir.display().to_string(), row.genotype.iter().map(|g| g.to_bits()).collect());
+                    let key = (
+                        exp.dir.display().to_string(),
+                        row.genotype.iter().map(|g| g.to_bits()).collect(),
+                    );
                     if !seen.insert(key) {
                         continue;
                     }
-                    pool_rows.push(Candidate { experiment: e, setting: exp.name.clone(), run: r.index, descriptors: MorphologyDescriptors::of(&body), row });
+                    pool_rows.push(Candidate {
+                        experiment: e,
+                        setting: exp.name.clone(),
+                        run: r.index,
+                        descriptors: MorphologyDescriptors::of(&body),
+                        row,
+                    });
                 }
             }
         }
@@ -112,7 +124,11 @@ pub fn run(args: LabelArgs) -> Result<(), String> {
     }
     let keys: Vec<Vec<f64>> = pool_rows.iter().map(|c| c.descriptors.to_vec().to_vec()).collect();
     let picked = stratified_sample(&keys, args.bins, args.count, args.seed);
-    eprintln!("{} distinct individuals in the snapshots; replaying {} of them…", pool_rows.len(), picked.len());
+    eprintln!(
+        "{} distinct individuals in the snapshots; replaying {} of them…",
+        pool_rows.len(),
+        picked.len()
+    );
     let replays: Vec<Option<Replay>> = experiments.iter().map(|e| Replay::of(e).ok()).collect();
     for dir in ["robots", "videos"] {
         std::fs::create_dir_all(args.out.join(dir)).map_err(|e| format!("{}: {e}", args.out.join(dir).display()))?;
@@ -131,12 +147,17 @@ pub fn run(args: LabelArgs) -> Result<(), String> {
             .enumerate()
             .map(|(k, &i)| {
                 let c = &pool_rows[i];
-                let rp = replays[c.experiment].as_ref().ok_or_else(|| format!("{}: cannot replay", experiments[c.experiment].dir.display()))?;
+                let rp = replays[c.experiment]
+                    .as_ref()
+                    .ok_or_else(|| format!("{}: cannot replay", experiments[c.experiment].dir.display()))?;
                 let (robot, trace) = rp.row(&c.row)?;
                 let id = format!("r-{:04}", k + 1);
                 let robot_rel = format!("robots/{id}.robot.json");
                 let video_rel = format!("videos/{id}.gif");
-                let note = format!("{} run {} evaluations {} index {}", c.setting, c.run, c.row.evaluations, c.row.index);
+                let note = format!(
+                    "{} run {} evaluations {} index {}",
+                    c.setting, c.run, c.row.evaluations, c.row.index
+                );
                 save_robot(&args.out.join(&robot_rel), &robot, Some(&note)).map_err(|e| e.to_string())?;
                 vsrlab_render::save_video(&trace, &render, args.out.join(&video_rel)).map_err(|e| e.to_string())?;
                 let f = RobotFeatures::from_trace(&trace, &FeatureParams::default());
@@ -177,7 +198,10 @@ pub fn run(args: LabelArgs) -> Result<(), String> {
             })
             .collect();
         write_labels(&args.out.join("labels.csv"), &rows)?;
-        println!("wrote rule-of-thumb labels to {}", args.out.join("labels.csv").display());
+        println!(
+            "wrote rule-of-thumb labels to {}",
+            args.out.join("labels.csv").display()
+        );
     }
     println!(
         "open {} in a browser, pick a class per robot and save labels.csv into {}; then run\n  vsrlab analyze {} --labels {}",
@@ -190,7 +214,11 @@ pub fn run(args: LabelArgs) -> Result<(), String> {
 }
 
 fn split_classes(s: &str) -> Result<Vec<String>, String> {
-    let v: Vec<String> = s.split(',').map(|c| c.trim().to_string()).filter(|c| !c.is_empty()).collect();
+    let v: Vec<String> = s
+        .split(',')
+        .map(|c| c.trim().to_string())
+        .filter(|c| !c.is_empty())
+        .collect();
     if v.len() < 2 {
         return Err(format!("need at least two classes, got '{s}'"));
     }
@@ -202,7 +230,11 @@ fn split_classes(s: &str) -> Result<Vec<String>, String> {
 
 /// The proposal if it is one of the classes, else the last class (the "other" bin by convention).
 fn nearest_class(proposal: &str, classes: &[String]) -> String {
-    classes.iter().find(|c| c.as_str() == proposal).cloned().unwrap_or_else(|| classes.last().cloned().unwrap_or_default())
+    classes
+        .iter()
+        .find(|c| c.as_str() == proposal)
+        .cloned()
+        .unwrap_or_else(|| classes.last().cloned().unwrap_or_default())
 }
 
 fn write_manifest(path: &Path, entries: &[Entry], pool: &[Candidate]) -> Result<(), String> {
@@ -256,7 +288,9 @@ fn page(entries: &[Entry], pool: &[Candidate], shapes: &[String], behaviours: &[
     let data = serde_json::json!({ "items": items, "shapes": shapes, "behaviours": behaviours, "prefill": prefill });
     // "</" cannot appear inside the script element.
     let data = serde_json::to_string(&data).expect("json").replace("</", "<\\/");
-    PAGE.replace("/*DATA*/null", &data).replace("{{TITLE}}", &format!("vsrlab labelling: {} robots", entries.len())).replace("{{KEY}}", &json_str(&format!("vsrlab-labels-{}", entries.len())))
+    PAGE.replace("/*DATA*/null", &data)
+        .replace("{{TITLE}}", &format!("vsrlab labelling: {} robots", entries.len()))
+        .replace("{{KEY}}", &json_str(&format!("vsrlab-labels-{}", entries.len())))
 }
 
 const PAGE: &str = r#"<!doctype html>
@@ -275,7 +309,7 @@ button { font-size: 14px; padding: 6px 12px; margin-right: 8px; cursor: pointer;
 .meta { font-size: 12px; color: #555; margin: 6px 0; }
 .body { font-family: monospace; font-size: 10px; line-height: 10px; white-space: pre; float: right; margin-left: 8px; }
 .group { margin: 4px 0; font-size: 13px; }
-.group b { display: inline-block; width: 80px; }
+.group b { display: block; margin-bottom: 2px; }
 .group label { margin-right: 8px; white-space: nowrap; }
 .hint { color: #888; font-size: 12px; }
 </style></head><body>

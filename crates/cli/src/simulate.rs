@@ -149,7 +149,11 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
             "task      {} for {} s (seed {}, transient {} s)",
             a.task, a.duration, a.seed, a.transient
         );
-        println!("brain     {} ({} parameters)", robot.brain.kind(), robot.brain.parameters().len());
+        println!(
+            "brain     {} ({} parameters)",
+            robot.brain.kind(),
+            robot.brain.parameters().len()
+        );
         println!("sensors   {}", robot.sensors);
         println!("distance  {:.4}", outcome.distance);
         println!("velocity  {:.4}", outcome.velocity);

@@ -25,7 +25,15 @@ fn a_saved_robot_replays_to_the_identical_outcome_and_renders() {
     let file = dir.path().join("biped.robot.json");
     let file = file.to_str().unwrap();
     let common = ["--duration", "5", "--seed", "3", "--json"];
-    let mut args = vec!["simulate", "--body", "biped-4x3", "--brain", "distributed-mlp", "--save-robot", file];
+    let mut args = vec![
+        "simulate",
+        "--body",
+        "biped-4x3",
+        "--brain",
+        "distributed-mlp",
+        "--save-robot",
+        file,
+    ];
     args.extend(common);
     let (ok, first, err) = vsrlab(&args);
     assert!(ok, "{err}");
@@ -98,8 +106,18 @@ fn broken_robot_files_get_errors_naming_the_field() {
 #[test]
 fn the_shipped_example_robot_replays() {
     let example = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/biped-distributed.robot.json");
-    let (ok, out, err) = vsrlab(&["simulate", "--robot", example.to_str().unwrap(), "--duration", "10", "--json"]);
+    let (ok, out, err) = vsrlab(&[
+        "simulate",
+        "--robot",
+        example.to_str().unwrap(),
+        "--duration",
+        "10",
+        "--json",
+    ]);
     assert!(ok, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
-    assert!(v["velocity"].as_f64().unwrap() > 0.5, "the example robot should walk: {out}");
+    assert!(
+        v["velocity"].as_f64().unwrap() > 0.5,
+        "the example robot should walk: {out}"
+    );
 }

@@ -5,6 +5,7 @@ use std::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 
 /// A 2D vector or point, in world units.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[repr(C)]
 pub struct Vec2 {
     /// Horizontal component.
     pub x: f64,
@@ -144,6 +145,7 @@ impl Neg for Vec2 {
 
 /// A rotation stored as cosine and sine of its angle.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
 pub struct Rot {
     /// Cosine of the angle.
     pub c: f64,

@@ -110,7 +110,8 @@ impl Representation {
                     .map_err(|e| EvaluationError::Representation(format!("body: {e}")))?;
                 let (w, h) = (encoding.width(), encoding.height());
                 let full = Morphology::from_fn(w, h, |_, _| true).map_err(representation_error("body"))?;
-                let single = Morphology::from_fn(w, h, |x, y| x == 0 && y == 0).map_err(representation_error("body"))?;
+                let single =
+                    Morphology::from_fn(w, h, |x, y| x == 0 && y == 0).map_err(representation_error("body"))?;
                 let count = self.brain_parameters_for(&full)?;
                 if self.brain_parameters_for(&single)? != count {
                     return Err(EvaluationError::Representation(

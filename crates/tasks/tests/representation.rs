@@ -47,7 +47,10 @@ fn parameter_counts_match_the_thesis() {
 fn a_brain_whose_size_follows_the_body_is_rejected_with_an_evolved_body() {
     let r = representation(DIRECT_10, r#"{"kind": "mlp"}"#);
     let err = r.genotype_length().unwrap_err().to_string();
-    assert!(err.contains("representation.brain") && err.contains("fixed body"), "{err}");
+    assert!(
+        err.contains("representation.brain") && err.contains("fixed body"),
+        "{err}"
+    );
 }
 
 #[test]

@@ -64,7 +64,11 @@ fn run_case(i: usize, only: Option<usize>) -> Result<(f64, f64), String> {
     let mut rng = ChaCha8Rng::seed_from_u64(i as u64);
     let body = random_body(&mut rng);
     let brain = random_brain(&mut rng);
-    let preset = if i % 2 == 0 { Preset::Y2021 } else { Preset::Y2022 };
+    let preset = if i.is_multiple_of(2) {
+        Preset::Y2021
+    } else {
+        Preset::Y2022
+    };
     let terrain = TERRAINS[i % TERRAINS.len()];
     let mut r = robot("box-1x1", preset, brain);
     r.body = body.clone();
@@ -143,7 +147,7 @@ fn a_thousand_random_bodies_stay_finite_and_sane_on_every_terrain() {
 #[test]
 fn a_state_that_blows_up_is_reported_as_an_error() {
     let r = robot("biped-4x3", Preset::Y2021, phase());
-    let mut t = task("flat", 2.0);
+    let t = task("flat", 2.0);
     // a user-reachable blow-up: a spring so stiff that its stiffness overflows to infinity
     let mut r = r;
     let mut params = vsrlab_body::VoxelParams::preset(Preset::Y2021);

@@ -94,3 +94,42 @@ impl StaticIndex {
         start..end.max(start)
     }
 }
+
+/// Part pairs that never collide, as a list of larger partners per part (each part has only a
+/// few, so a linear scan beats a binary search over all pairs).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct ExcludedPairs {
+    /// `partners[start[p]..start[p + 1]]` are the parts q > p excluded with p.
+    start: Vec<u32>,
+    partners: Vec<u32>,
+}
+
+impl ExcludedPairs {
+    /// From pairs of part indices (any order, duplicates allowed) among `n` parts.
+    pub fn new(n: usize, pairs: impl IntoIterator<Item = (u32, u32)>) -> Self {
+        let mut keys: Vec<(u32, u32)> = pairs.into_iter().map(|(a, b)| (a.min(b), a.max(b))).collect();
+        keys.sort_unstable();
+        keys.dedup();
+        let mut start = vec![0u32; n + 1];
+        for &(lo, _) in &keys {
+            start[lo as usize + 1] += 1;
+        }
+        for p in 0..n {
+            start[p + 1] += start[p];
+        }
+        ExcludedPairs {
+            start,
+            partners: keys.iter().map(|&(_, hi)| hi).collect(),
+        }
+    }
+
+    /// Whether parts `a` and `b` never collide.
+    #[inline]
+    pub fn contains(&self, a: u32, b: u32) -> bool {
+        let (lo, hi) = (a.min(b) as usize, a.max(b));
+        match (self.start.get(lo), self.start.get(lo + 1)) {
+            (Some(&s), Some(&e)) => self.partners[s as usize..e as usize].contains(&hi),
+            _ => false,
+        }
+    }
+}

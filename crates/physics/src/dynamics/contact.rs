@@ -111,6 +111,74 @@ impl ContactConstraint {
     }
 }
 
+/// The order in which the contacts of a step are solved (see [`ContactSchedule::build`]);
+/// reusable buffers, so nothing is allocated once warm.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct ContactSchedule {
+    /// Per body: the wave after the last contact seen so far that touches it.
+    body_wave: Vec<u32>,
+    /// Per contact: its wave.
+    wave: Vec<u32>,
+    /// Per wave: where its contacts end in `order`.
+    end: Vec<u32>,
+    /// Contact indices, wave by wave.
+    order: Vec<u32>,
+}
+
+impl ContactSchedule {
+    /// Orders the contacts in waves: a contact's wave is one more than that of the last earlier
+    /// contact sharing a moving body with it, and contacts are sorted by wave, stably. Every body
+    /// therefore meets its contacts in the same order as in `contacts`, and the contacts of a wave
+    /// touch different moving bodies, so a Gauss–Seidel sweep in this order gives bit-identical
+    /// results while the contacts of a wave can be solved together. Body 0 (the static world)
+    /// never moves and is shared freely.
+    pub fn build(&mut self, contacts: &[ContactConstraint], n_bodies: usize) {
+        self.body_wave.clear();
+        self.body_wave.resize(n_bodies, 0);
+        self.wave.clear();
+        let mut waves = 0;
+        for c in contacts {
+            let (a, b) = (c.a as usize, c.b as usize);
+            let w = self.body_wave[a].max(self.body_wave[b]);
+            self.wave.push(w);
+            for body in [a, b] {
+                if body != 0 {
+                    self.body_wave[body] = w + 1;
+                }
+            }
+            waves = waves.max(w + 1);
+        }
+        // counting sort: `end[w]` first counts the contacts before wave w, then is advanced past
+        // each of its contacts, ending at the end of wave w
+        self.end.clear();
+        self.end.resize(waves as usize + 1, 0);
+        for &w in &self.wave {
+            self.end[w as usize + 1] += 1;
+        }
+        for w in 0..waves as usize {
+            self.end[w + 1] += self.end[w];
+        }
+        self.end.pop();
+        self.order.clear();
+        self.order.resize(contacts.len(), 0);
+        for (i, &w) in self.wave.iter().enumerate() {
+            let k = &mut self.end[w as usize];
+            self.order[*k as usize] = i as u32;
+            *k += 1;
+        }
+    }
+
+    /// Contact indices, wave by wave.
+    pub fn order(&self) -> &[u32] {
+        &self.order
+    }
+
+    /// End (exclusive) of each wave in [`ContactSchedule::order`].
+    pub fn wave_ends(&self) -> &[u32] {
+        &self.end
+    }
+}
+
 /// Parameters of one solver pass over the contacts.
 pub(crate) struct ContactPass {
     pub soft: Softness,
@@ -118,56 +186,6 @@ pub(crate) struct ContactPass {
     pub inv_h: f64,
     pub push_max: f64,
     pub use_bias: bool,
-}
-
-/// Solves every contact once (normal then friction per point).
-pub(crate) fn solve_contacts(contacts: &mut [ContactConstraint], bodies: &mut Bodies, pass: &ContactPass) {
-    for c in contacts.iter_mut() {
-        let (a, b) = (c.a as usize, c.b as usize);
-        let n = c.normal;
-        let t = n.perp();
-        let soft = if c.shape_b == u32::MAX {
-            pass.static_soft
-        } else {
-            pass.soft
-        };
-        for i in 0..c.count {
-            let p = c.points[i];
-            let s = c.separation(bodies, &p);
-            let (bias, mass_scale, impulse_scale) = if s > 0.0 {
-                (s * pass.inv_h, 1.0, 0.0)
-            } else if pass.use_bias {
-                (
-                    (soft.bias_rate * s).max(-pass.push_max),
-                    soft.mass_scale,
-                    soft.impulse_scale,
-                )
-            } else {
-                (0.0, 1.0, 0.0)
-            };
-            let va = bodies.state[a].vel + Vec2::cross_scalar_left(bodies.state[a].omega, p.ra);
-            let vb = bodies.state[b].vel + Vec2::cross_scalar_left(bodies.state[b].omega, p.rb);
-            let vn = n.dot(vb - va);
-            let delta = -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
-            let new = (p.normal_impulse + delta).max(0.0);
-            let applied = new - p.normal_impulse;
-            let cp = &mut c.points[i];
-            cp.normal_impulse = new;
-            cp.max_normal_impulse = cp.max_normal_impulse.max(applied);
-            bodies.apply_impulse_pair(a, b, p.ra, p.rb, n * applied);
-        }
-        for i in 0..c.count {
-            let p = c.points[i];
-            let va = bodies.state[a].vel + Vec2::cross_scalar_left(bodies.state[a].omega, p.ra);
-            let vb = bodies.state[b].vel + Vec2::cross_scalar_left(bodies.state[b].omega, p.rb);
-            let vt = t.dot(vb - va);
-            let max_f = c.friction * p.normal_impulse;
-            let new = (p.tangent_impulse - p.tangent_mass * vt).clamp(-max_f, max_f);
-            let applied = new - p.tangent_impulse;
-            c.points[i].tangent_impulse = new;
-            bodies.apply_impulse_pair(a, b, p.ra, p.rb, t * applied);
-        }
-    }
 }
 
 /// Makes fast-approaching contacts bounce: target normal speed −e·v_before.

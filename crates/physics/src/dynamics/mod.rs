@@ -7,8 +7,10 @@
 pub(crate) mod broad_phase;
 pub mod builder;
 pub(crate) mod contact;
+pub(crate) mod contact_batch;
 pub(crate) mod rope;
 pub mod settings;
+pub(crate) mod simd;
 pub(crate) mod soft;
 pub(crate) mod spring;
 pub mod world;

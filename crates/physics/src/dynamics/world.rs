@@ -1,12 +1,13 @@
 //! The world: simulated state, the step pipeline and queries.
 
-use super::broad_phase::{StaticIndex, SweepAndPrune};
+use super::broad_phase::{ExcludedPairs, StaticIndex, SweepAndPrune};
 use super::builder::WorldBuilder;
-use super::contact::{apply_restitution, solve_contacts, ContactConstraint, ContactPass};
-use super::rope::{solve_ropes, Rope};
+use super::contact::{apply_restitution, ContactConstraint, ContactPass, ContactSchedule};
+use super::contact_batch::ContactBatches;
+use super::rope::{rope_batches, solve_ropes, Rope, RopeBatch};
 use super::settings::WorldSettings;
 use super::soft::Softness;
-use super::spring::{solve_springs, Spring, SpringModel};
+use super::spring::{Spring, SpringModel, SpringSet};
 use crate::geometry::aabb::Aabb;
 use crate::geometry::collide::collide_polygons;
 use crate::geometry::raycast::ray_cast_polygon;
@@ -27,7 +28,10 @@ pub struct RopeHandle(pub u32);
 const NONE: u32 = u32::MAX;
 
 /// Position, velocity and inverse mass of one body: everything the solver touches, together.
+/// The layout is fixed (`repr(C)`: position, rotation, velocity, angular velocity, inverse mass,
+/// inverse inertia) because the vectorised spring solver loads it in pairs of f64.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
 pub(crate) struct BodyState {
     pub pos: Vec2,
     pub rot: Rot,
@@ -107,6 +111,14 @@ struct Shape {
     collide_within_group: bool,
 }
 
+/// What the broad phase checks of a shape before the narrow phase, kept compact.
+#[derive(Debug, Clone, Copy)]
+struct ShapeFilter {
+    part: u32,
+    group: u32,
+    collide_within_group: bool,
+}
+
 #[derive(Debug, Clone, Copy)]
 struct StaticShape {
     polygon: Polygon,
@@ -122,16 +134,21 @@ pub struct World {
     pub(crate) bodies: Bodies,
     parts: Vec<Part>,
     shapes: Vec<Shape>,
+    /// Per shape (same order): its broad-phase filter.
+    filters: Vec<ShapeFilter>,
     statics: Vec<StaticShape>,
     static_index: StaticIndex,
-    springs: Vec<Spring>,
-    spring_models: Vec<SpringModel>,
+    springs: SpringSet,
     spring_slot: Vec<u32>,
     ropes: Vec<Rope>,
+    /// The ropes by colour, for the slack test of the first sub-step.
+    rope_batches: Vec<RopeBatch>,
     rope_slot: Vec<u32>,
-    /// Sorted keys (min part, max part) of part pairs that never collide.
-    excluded: Vec<u64>,
+    /// Part pairs that never collide.
+    excluded: ExcludedPairs,
     contacts: Vec<ContactConstraint>,
+    contact_schedule: ContactSchedule,
+    contact_batches: ContactBatches,
     world_polys: Vec<Polygon>,
     aabbs: Vec<Aabb>,
     /// Speculative margin of each shape this step.
@@ -143,10 +160,6 @@ pub struct World {
     sap: SweepAndPrune,
     step_count: u64,
     time: f64,
-}
-
-fn pair_key(a: u32, b: u32) -> u64 {
-    ((a.min(b) as u64) << 32) | a.max(b) as u64
 }
 
 /// A permutation of constraints (given as body pairs) grouped by greedy colour, and the range of
@@ -299,13 +312,13 @@ impl World {
             .collect();
         statics.sort_by(|x, y| x.aabb.min.x.total_cmp(&y.aabb.min.x));
         let static_aabbs: Vec<Aabb> = statics.iter().map(|s| s.aabb).collect();
-        let mut excluded: Vec<u64> = b.excluded.iter().map(|&(x, y)| pair_key(x.0, y.0)).collect();
+        let mut excluded: Vec<(u32, u32)> = b.excluded.iter().map(|&(x, y)| (x.0, y.0)).collect();
         let mut springs = Vec::new();
         let mut spring_models = Vec::new();
         let mut spring_slot = Vec::new();
         for s in &b.springs {
             if !s.collide_connected {
-                excluded.push(pair_key(s.part_a.0, s.part_b.0));
+                excluded.push((s.part_a.0, s.part_b.0));
             }
             let (pa, pb) = (s.part_a.0 as usize, s.part_b.0 as usize);
             let (ba, bb) = (part_body[pa], part_body[pb]);
@@ -323,10 +336,6 @@ impl World {
                 local_a: world_a - bodies.state[ba as usize].pos,
                 local_b: world_b - bodies.state[bb as usize].pos,
                 rest: s.rest_length,
-                bias_coef: 0.0,
-                mass: 0.0,
-                gamma: 0.0,
-                acc: 0.0,
             });
             spring_models.push(SpringModel {
                 arm_a: world_a - props[pa].1,
@@ -345,7 +354,7 @@ impl World {
         let mut rope_slot = Vec::new();
         for r in &b.ropes {
             if !r.collide_connected {
-                excluded.push(pair_key(r.part_a.0, r.part_b.0));
+                excluded.push((r.part_a.0, r.part_b.0));
             }
             let (pa, pb) = (r.part_a.0 as usize, r.part_b.0 as usize);
             let (ba, bb) = (part_body[pa], part_body[pb]);
@@ -364,15 +373,18 @@ impl World {
                 active: true,
             });
         }
-        excluded.sort_unstable();
-        excluded.dedup();
+        let excluded = ExcludedPairs::new(n, excluded);
         // order constraints so that neighbours in the solver loop touch different bodies: the
         // result is the same Gauss–Seidel sweep, but the CPU can overlap independent constraints
-        let (order, _) = color_order(&springs.iter().map(|s| (s.a, s.b)).collect::<Vec<_>>());
+        let (order, ranges) = color_order(&springs.iter().map(|s| (s.a, s.b)).collect::<Vec<_>>());
         let springs: Vec<Spring> = order.iter().map(|&i| springs[i]).collect();
         let spring_models: Vec<SpringModel> = order.iter().map(|&i| spring_models[i]).collect();
+        let (springs, batch_slot) = SpringSet::new(&springs, &spring_models, &ranges, &bodies);
         remap_slots(&mut spring_slot, &order);
-        let (order, _) = color_order(&ropes.iter().map(|r| (r.a, r.b)).collect::<Vec<_>>());
+        for s in spring_slot.iter_mut().filter(|s| **s != NONE) {
+            *s = batch_slot[*s as usize];
+        }
+        let (order, rope_ranges) = color_order(&ropes.iter().map(|r| (r.a, r.b)).collect::<Vec<_>>());
         let ropes: Vec<Rope> = order.iter().map(|&i| ropes[i].clone()).collect();
         remap_slots(&mut rope_slot, &order);
         let mut shapes = shapes;
@@ -408,16 +420,26 @@ impl World {
             ],
             body_shapes,
             parts,
+            filters: shapes
+                .iter()
+                .map(|s| ShapeFilter {
+                    part: s.part,
+                    group: s.group,
+                    collide_within_group: s.collide_within_group,
+                })
+                .collect(),
             shapes,
             static_index: StaticIndex::new(&static_aabbs),
             statics,
             springs,
-            spring_models,
             spring_slot,
+            rope_batches: rope_batches(&ropes, &rope_ranges),
             ropes,
             rope_slot,
             excluded,
             contacts: Vec::new(),
+            contact_schedule: ContactSchedule::default(),
+            contact_batches: ContactBatches::default(),
             step_count: 0,
             time: 0.0,
         }
@@ -452,7 +474,11 @@ impl World {
     pub fn step(&mut self) -> Result<(), PhysicsError> {
         self.integrate_velocities();
         self.detect_contacts();
+        self.contact_schedule.build(&self.contacts, self.bodies.len());
+        self.contact_batches
+            .build(&self.contacts, &self.contact_schedule, &self.bodies);
         self.solve_substeps();
+        self.contact_batches.write_back(&mut self.contacts);
         apply_restitution(
             &mut self.contacts,
             &mut self.bodies,
@@ -465,6 +491,7 @@ impl World {
     }
 
     /// Gravity, external forces and damping, once per step (semi-implicit Euler).
+    #[inline(never)]
     fn integrate_velocities(&mut self) {
         let dt = self.settings.dt;
         let g = self.settings.gravity;
@@ -480,6 +507,7 @@ impl World {
     }
 
     /// Finds touching (or nearly touching) shape pairs and turns them into contact constraints.
+    #[inline(never)]
     fn detect_contacts(&mut self) {
         self.contacts.clear();
         // speculative margin of each shape: the base gap plus how far its body may travel this
@@ -488,11 +516,11 @@ impl World {
         let dt = self.settings.dt;
         for (k, s) in self.shapes.iter().enumerate() {
             let st = &self.bodies.state[s.body as usize];
-            let poly = s.local.transformed(st.rot, st.pos);
+            let poly = &mut self.world_polys[k];
+            poly.set_transformed(&s.local, st.rot, st.pos);
             let reach = s.radius * st.omega.abs() + st.vel.length();
             self.margins[k] = 0.5 * base + reach * dt;
             self.aabbs[k] = Aabb::of_points(poly.verts()).inflated(self.margins[k]);
-            self.world_polys[k] = poly;
         }
         for (b, &(lo, hi)) in self.body_shapes.iter().enumerate().skip(1) {
             let boxes = &self.aabbs[lo as usize..hi as usize];
@@ -503,6 +531,7 @@ impl World {
         }
         let Self {
             shapes,
+            filters,
             statics,
             static_index,
             world_polys,
@@ -516,27 +545,37 @@ impl World {
             margins,
             ..
         } = self;
-        for (k, s) in shapes.iter().enumerate() {
-            let bb = aabbs[k].inflated(0.5 * base);
-            for st in &statics[static_index.candidates(bb.min.x, bb.max.x)] {
-                if !bb.overlaps(&st.aabb) {
-                    continue;
-                }
-                // static is A so that the normal points from the ground into the body
-                let m = collide_polygons(&st.polygon, &world_polys[k], 0.5 * base + margins[k]);
-                if m.count > 0 {
-                    let friction = (st.friction * s.friction).sqrt();
-                    let restitution = st.restitution.max(s.restitution);
-                    contacts.push(ContactConstraint::new(
-                        bodies,
-                        &m,
-                        NONE,
-                        k as u32,
-                        0,
-                        s.body,
-                        friction,
-                        restitution,
-                    ));
+        for (b, &(lo, hi)) in body_shapes.iter().enumerate().skip(1) {
+            // a body whose box misses every static polygon has no shape that touches one (its
+            // box is the union of its shapes' boxes)
+            let body_box = body_aabbs[b - 1].inflated(0.5 * base);
+            let near = &statics[static_index.candidates(body_box.min.x, body_box.max.x)];
+            if !near.iter().any(|st| body_box.overlaps(&st.aabb)) {
+                continue;
+            }
+            for k in lo as usize..hi as usize {
+                let s = &shapes[k];
+                let bb = aabbs[k].inflated(0.5 * base);
+                for st in &statics[static_index.candidates(bb.min.x, bb.max.x)] {
+                    if !bb.overlaps(&st.aabb) {
+                        continue;
+                    }
+                    // static is A so that the normal points from the ground into the body
+                    let m = collide_polygons(&st.polygon, &world_polys[k], 0.5 * base + margins[k]);
+                    if m.count > 0 {
+                        let friction = (st.friction * s.friction).sqrt();
+                        let restitution = st.restitution.max(s.restitution);
+                        contacts.push(ContactConstraint::new(
+                            bodies,
+                            &m,
+                            NONE,
+                            k as u32,
+                            0,
+                            s.body,
+                            friction,
+                            restitution,
+                        ));
+                    }
                 }
             }
         }
@@ -545,18 +584,26 @@ impl World {
             |k| k as u32,
             |ba, bb| {
                 let (ra, rb) = (body_shapes[ba as usize + 1], body_shapes[bb as usize + 1]);
-                for i in ra.0..ra.1 {
-                    for j in rb.0..rb.1 {
+                let (ra, rb) = (ra.0 as usize..ra.1 as usize, rb.0 as usize..rb.1 as usize);
+                for (i, (bi, fi)) in aabbs[ra.clone()].iter().zip(&filters[ra.clone()]).enumerate() {
+                    let i = (ra.start + i) as u32;
+                    for (j, (bj, fj)) in aabbs[rb.clone()].iter().zip(&filters[rb.clone()]).enumerate() {
+                        let j = (rb.start + j) as u32;
+                        // all four comparisons, without branches (the outcome is unpredictable)
+                        let overlap = (bi.min.x <= bj.max.x)
+                            & (bj.min.x <= bi.max.x)
+                            & (bi.min.y <= bj.max.y)
+                            & (bj.min.y <= bi.max.y);
+                        if !overlap {
+                            continue;
+                        }
+                        if fi.group == fj.group && !(fi.collide_within_group && fj.collide_within_group) {
+                            continue;
+                        }
+                        if excluded.contains(fi.part, fj.part) {
+                            continue;
+                        }
                         let (si, sj) = (&shapes[i as usize], &shapes[j as usize]);
-                        if !aabbs[i as usize].overlaps(&aabbs[j as usize]) {
-                            continue;
-                        }
-                        if si.group == sj.group && !(si.collide_within_group && sj.collide_within_group) {
-                            continue;
-                        }
-                        if excluded.binary_search(&pair_key(si.part, sj.part)).is_ok() {
-                            continue;
-                        }
                         let margin = margins[i as usize] + margins[j as usize];
                         let m = collide_polygons(&world_polys[i as usize], &world_polys[j as usize], margin);
                         if m.count > 0 {
@@ -580,6 +627,7 @@ impl World {
     }
 
     /// Sub-steps: solve springs, ropes and contacts, integrate positions, relax contacts.
+    #[inline(never)]
     fn solve_substeps(&mut self) {
         let s = &self.settings;
         let n = self.substep_count();
@@ -596,18 +644,13 @@ impl World {
         };
         let (max_v, max_w) = (s.max_translation / s.dt, s.max_rotation / s.dt);
         for sub in 0..n {
-            for it in 0..s.iterations {
-                solve_springs(
-                    &mut self.springs,
-                    &self.spring_models,
-                    &mut self.bodies,
-                    h,
-                    sub == 0 && it == 0,
-                    it == 0,
-                );
+            self.springs.prepare(&self.bodies, h, sub == 0);
+            for _ in 0..s.iterations {
+                self.springs.solve(&mut self.bodies);
             }
             solve_ropes(
                 &mut self.ropes,
+                &self.rope_batches,
                 &mut self.bodies,
                 soft,
                 h,
@@ -617,10 +660,10 @@ impl World {
                 sub == 0,
             );
             pass.use_bias = true;
-            solve_contacts(&mut self.contacts, &mut self.bodies, &pass);
+            self.contact_batches.solve(&mut self.bodies, &pass);
             integrate_positions(&mut self.bodies, h, max_v, max_w);
             pass.use_bias = false;
-            solve_contacts(&mut self.contacts, &mut self.bodies, &pass);
+            self.contact_batches.solve(&mut self.bodies, &pass);
         }
     }
 
@@ -645,6 +688,7 @@ impl World {
     }
 
     /// Marks parts that touch static geometry or a part of another group.
+    #[inline(never)]
     fn update_touching(&mut self) {
         for p in &mut self.parts {
             p.touching = false;
@@ -668,6 +712,7 @@ impl World {
         }
     }
 
+    #[inline(never)]
     fn check_finite(&self) -> Result<(), PhysicsError> {
         let b = &self.bodies;
         for i in 1..b.len() {
@@ -745,13 +790,13 @@ impl World {
     pub fn set_spring_rest_length(&mut self, h: SpringHandle, rest: f64) {
         let slot = self.spring_slot[h.0 as usize];
         if slot != NONE {
-            self.springs[slot as usize].rest = rest;
+            self.springs.set_rest(slot, rest);
         }
     }
     /// A spring's current rest length (`None` when its two parts were welded together).
     pub fn spring_rest_length(&self, h: SpringHandle) -> Option<f64> {
         let slot = self.spring_slot[h.0 as usize];
-        (slot != NONE).then(|| self.springs[slot as usize].rest)
+        (slot != NONE).then(|| self.springs.rest(slot))
     }
     /// Whether a rope is simulated (false when its two parts were welded together).
     pub fn rope_active(&self, h: RopeHandle) -> bool {
@@ -792,6 +837,7 @@ impl World {
 }
 
 /// x += v·h and θ += ω·h, after clamping speeds to the per-step limits.
+#[inline(never)]
 fn integrate_positions(b: &mut Bodies, h: f64, max_v: f64, max_w: f64) {
     for s in &mut b.state[1..] {
         let v2 = s.vel.length_squared();

@@ -95,11 +95,22 @@ impl Polygon {
     /// The polygon moved by a rotation and a translation.
     pub fn transformed(&self, rot: Rot, pos: Vec2) -> Polygon {
         let mut out = *self;
-        for i in 0..self.count {
-            out.vertices[i] = rot.apply(self.vertices[i]) + pos;
-            out.normals[i] = rot.apply(self.normals[i]);
-        }
+        out.set_transformed(self, rot, pos);
         out
+    }
+
+    /// Makes this polygon `src` moved by a rotation and a translation, writing only the used
+    /// vertices and normals (the unused ones keep whatever they held).
+    #[inline]
+    pub(crate) fn set_transformed(&mut self, src: &Polygon, rot: Rot, pos: Vec2) {
+        let n = src.count.min(MAX_POLYGON_VERTICES);
+        self.count = n;
+        for (v, s) in self.vertices[..n].iter_mut().zip(&src.vertices[..n]) {
+            *v = rot.apply(*s) + pos;
+        }
+        for (v, s) in self.normals[..n].iter_mut().zip(&src.normals[..n]) {
+            *v = rot.apply(*s);
+        }
     }
 }
 

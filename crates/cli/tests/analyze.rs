@@ -1,0 +1,104 @@
+//! End to end: two tiny experiments → `vsrlab label --auto` → `vsrlab analyze` with and without
+//! labels; every figure and table must appear.
+
+use std::path::Path;
+use std::process::Command;
+
+const VSRLAB: &str = env!("CARGO_BIN_EXE_vsrlab");
+
+fn vsrlab(args: &[&str]) -> String {
+    let out = Command::new(VSRLAB).args(args).output().expect("vsrlab runs");
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(out.status.success(), "vsrlab {args:?} failed:\n{text}");
+    text
+}
+
+fn experiment(dir: &Path, name: &str, optimizer: &str) -> String {
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(
+        &path,
+        format!(
+            "name = \"{name}\"\nruns = 2\nseed = 3\n\n[representation]\n\
+             body = {{ kind = \"direct\", width = 3, height = 3, on_empty = \"single-voxel\" }}\n\
+             sensors = \"uniform-vxy+a+t-0\"\n\
+             brain = {{ kind = \"distributed-mlp\", layout = \"homogeneous\", signals = 1, hidden = [] }}\n\n\
+             [task]\nduration = 2.0\n\n[optimizer]\n{optimizer}\n\n[stop]\nevaluations = 48\n\n[output]\nsnapshot_every = 16\n"
+        ),
+    )
+    .unwrap();
+    path.display().to_string()
+}
+
+#[test]
+fn label_then_analyze_two_settings() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let ga = experiment(d, "tiny-ga", "kind = \"ga\"\npopulation_size = 8\noffspring_size = 8");
+    let es = experiment(d, "tiny-es", "kind = \"es\"\npopulation_size = 8");
+    let (out_ga, out_es) = (d.join("out/ga"), d.join("out/es"));
+    vsrlab(&["run", &ga, "--out", out_ga.to_str().unwrap()]);
+    vsrlab(&["run", &es, "--out", out_es.to_str().unwrap()]);
+    let results = d.join("out");
+    let results = results.to_str().unwrap();
+
+    let plain = d.join("plain");
+    vsrlab(&["analyze", results, "--out", plain.to_str().unwrap()]);
+    for f in ["fitness", "best-boxplot", "descriptors", "pca-best"] {
+        for ext in ["png", "svg"] {
+            assert!(plain.join(format!("{f}.{ext}")).is_file(), "{f}.{ext}");
+        }
+    }
+    let md = std::fs::read_to_string(plain.join("summary.md")).unwrap();
+    assert!(
+        md.contains("tiny-es") && md.contains("tiny-ga") && md.contains("No labels given"),
+        "{md}"
+    );
+
+    let lab = d.join("lab");
+    vsrlab(&[
+        "label",
+        results,
+        "--out",
+        lab.to_str().unwrap(),
+        "--count",
+        "12",
+        "--auto",
+        "--width",
+        "160",
+    ]);
+    assert!(lab.join("index.html").is_file() && lab.join("videos/r-0001.gif").is_file());
+    let labels = lab.join("labels.csv");
+    assert_eq!(std::fs::read_to_string(&labels).unwrap().lines().count(), 13);
+
+    let full = d.join("full");
+    vsrlab(&[
+        "analyze",
+        results,
+        "--labels",
+        labels.to_str().unwrap(),
+        "--out",
+        full.to_str().unwrap(),
+        "--folds",
+        "3",
+    ]);
+    for f in [
+        "fitness",
+        "best-boxplot",
+        "descriptors",
+        "pca-best",
+        "isi",
+        "isi-boxplot",
+        "species",
+    ] {
+        assert!(full.join(format!("{f}.png")).is_file(), "{f}.png");
+    }
+    let csv = std::fs::read_to_string(full.join("summary.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 3, "{csv}");
+    assert!(std::fs::read_to_string(full.join("pvalues.csv"))
+        .unwrap()
+        .contains("isi,tiny-es,tiny-ga"));
+}

@@ -58,7 +58,7 @@ pub mod test_functions;
 
 pub use error::EvolutionError;
 pub use operators::{RealVector, Representation, SbxPolynomial};
-pub use optimizer::{Candidate, Evaluation, Individual, Optimizer, Sense, Tell, Told};
+pub use optimizer::{Candidate, Counters, Evaluation, Individual, Optimizer, Sense, Tell, Told};
 pub use optimizers::canonical_es::{CanonicalEs, CanonicalEsConfig};
 pub use optimizers::cma_es::{CmaEs, CmaEsConfig, CmaParameters};
 pub use optimizers::ga::{GaConfig, GeneticAlgorithm};

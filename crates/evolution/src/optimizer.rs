@@ -159,14 +159,23 @@ pub trait Optimizer {
     /// The batch to evaluate now. Calling it again before [`Tell::tell`] returns the same batch.
     fn ask(&mut self) -> Vec<Candidate<Self::Genotype>>;
 
+    /// Generations, evaluations and births so far.
+    fn counters(&self) -> &Counters;
+
     /// Completed generations (number of successful `tell`s).
-    fn generation(&self) -> u64;
+    fn generation(&self) -> u64 {
+        self.counters().generation
+    }
 
     /// Fitness evaluations told so far (births plus re-evaluations).
-    fn evaluations(&self) -> u64;
+    fn evaluations(&self) -> u64 {
+        self.counters().evaluations
+    }
 
     /// New genotypes evaluated so far.
-    fn births(&self) -> u64;
+    fn births(&self) -> u64 {
+        self.counters().births
+    }
 
     /// Whether each objective is maximised or minimised.
     fn senses(&self) -> &[Sense];
@@ -188,11 +197,14 @@ pub trait Tell<O = ()>: Optimizer {
     fn tell(&mut self, results: Vec<Told<O>>) -> Result<(), EvolutionError>;
 }
 
-/// Counters shared by all optimizers.
+/// How far an optimizer has gone (the same three counters for every optimizer).
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-pub(crate) struct Counters {
+pub struct Counters {
+    /// Completed generations.
     pub generation: u64,
+    /// Evaluations told (births plus re-evaluations).
     pub evaluations: u64,
+    /// New genotypes evaluated.
     pub births: u64,
 }
 
@@ -234,6 +246,21 @@ pub(crate) fn collect_results<O>(
         *slot = Some(told.evaluation);
     }
     Ok(slots.into_iter().map(|s| s.expect("all ids present")).collect())
+}
+
+/// A batch of candidates and their evaluations, in the same order.
+pub(crate) type Evaluated<G, O> = (Vec<Candidate<G>>, Vec<Evaluation<O>>);
+
+/// Checks `results` against the pending batch and, when they match, takes the batch: a failed
+/// check leaves the batch pending so that the caller may tell again.
+pub(crate) fn take_evaluated<G, O>(
+    pending: &mut Option<Vec<Candidate<G>>>,
+    results: Vec<Told<O>>,
+    n_objectives: usize,
+) -> Result<Evaluated<G, O>, EvolutionError> {
+    let batch = pending.as_ref().ok_or(EvolutionError::NoPendingBatch)?;
+    let evaluations = collect_results(results, batch.len(), n_objectives)?;
+    Ok((pending.take().expect("checked above"), evaluations))
 }
 
 /// Lexicographic comparison of two objective vectors, `Greater` meaning `a` is better.

@@ -141,8 +141,8 @@ impl RobotEvaluator {
     ) -> Evaluated {
         let features_len = match self.extract {
             Extract::Nothing => 0,
-            Extract::Pose => features::POSE_SIDE * features::POSE_SIDE,
-            Extract::Spectrum => features::SPECTRUM_BINS,
+            Extract::Pose => features::POSE_LEN,
+            Extract::Spectrum => features::spectrum_len(),
         };
         Evaluated {
             fitness: f64::NAN,
@@ -165,12 +165,13 @@ impl RobotEvaluator {
     }
 
     fn descriptor(&self, body: &vsrlab_body::Morphology) -> Vec<f64> {
+        let [voxels, elongation, compactness] = features::morphology_descriptors(body);
         self.descriptors
             .iter()
             .map(|d| match d {
-                Descriptor::Voxels => features::voxel_count(body),
-                Descriptor::Elongation => features::elongation(body),
-                Descriptor::Compactness => features::compactness(body),
+                Descriptor::Voxels => voxels,
+                Descriptor::Elongation => elongation,
+                Descriptor::Compactness => compactness,
             })
             .collect()
     }
@@ -209,8 +210,8 @@ impl Evaluator for RobotEvaluator {
             return self.failed_with(seed, Some(&robot.body), format!("non-finite fitness {fitness}"), start);
         }
         let features = match (&self.extract, &outcome.trace) {
-            (Extract::Pose, Some(trace)) => features::dynamic_pose((0..trace.len()).map(|k| trace.polygons_at(k))),
-            (Extract::Spectrum, Some(trace)) => features::center_spectrum(&trace.centers, trace.dt),
+            (Extract::Pose, Some(trace)) => features::dynamic_pose(trace),
+            (Extract::Spectrum, Some(trace)) => features::center_spectrum(trace),
             _ => Vec::new(),
         };
         Evaluated {

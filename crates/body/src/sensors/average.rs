@@ -30,9 +30,17 @@ impl Average {
         self.inner.sense(frame, &mut self.scratch);
         self.samples.push(frame.t, &self.scratch);
         out.fill(0.0);
-        for k in 0..self.samples.len() {
-            for (o, v) in out.iter_mut().zip(self.samples.values(k)) {
-                *o += v;
+        // oldest sample first, as a plain loop over `values(k)` would add them (same bits)
+        let dim = out.len();
+        for run in self.samples.value_runs() {
+            if dim == 1 {
+                out[0] = run.iter().fold(out[0], |acc, v| acc + v);
+            } else {
+                for sample in run.chunks_exact(dim) {
+                    for (o, v) in out.iter_mut().zip(sample) {
+                        *o += v;
+                    }
+                }
             }
         }
         let n = self.samples.len() as f64;

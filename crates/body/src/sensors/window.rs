@@ -84,6 +84,18 @@ impl TimeWindow {
         &self.values[s * self.dim..(s + 1) * self.dim]
     }
 
+    /// The values of every sample, oldest first, as at most two contiguous runs of the ring (`dim`
+    /// values per sample): the fast way to visit the whole window in order.
+    pub(crate) fn value_runs(&self) -> [&[f64]; 2] {
+        let end = self.head + self.len;
+        if end <= self.capacity() {
+            [&self.values[self.head * self.dim..end * self.dim], &[]]
+        } else {
+            let wrapped = end - self.capacity();
+            [&self.values[self.head * self.dim..], &self.values[..wrapped * self.dim]]
+        }
+    }
+
     fn capacity(&self) -> usize {
         self.times.len()
     }
@@ -142,6 +154,18 @@ mod tests {
         assert_eq!(w.len(), 61);
         assert_eq!(w.values(0), &[939.0]);
         assert!((w.time(60) - 999.0 / 600.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn value_runs_visit_the_window_in_order_across_the_wrap() {
+        let mut w = TimeWindow::new(0.05, 2, 0.01);
+        for k in 0..40 {
+            let t = k as f64 * 0.01;
+            w.push(t, &[k as f64, -(k as f64)]);
+            let flat: Vec<f64> = w.value_runs().concat();
+            let expected: Vec<f64> = (0..w.len()).flat_map(|i| w.values(i).to_vec()).collect();
+            assert_eq!(flat, expected, "after sample {k}");
+        }
     }
 
     #[test]

@@ -16,7 +16,7 @@
 
 use crate::error::EvolutionError;
 use crate::optimizer::{
-    collect_results, ensure, keep_best, make_batch, Candidate, Counters, Individual, Optimizer, Sense, Tell, Told,
+    ensure, keep_best, make_batch, take_evaluated, Candidate, Counters, Individual, Optimizer, Sense, Tell, Told,
 };
 use crate::rng::{SeededRng, Stream};
 use serde::{Deserialize, Serialize};
@@ -136,16 +136,8 @@ impl Optimizer for CanonicalEs {
         batch
     }
 
-    fn generation(&self) -> u64 {
-        self.counters.generation
-    }
-
-    fn evaluations(&self) -> u64 {
-        self.counters.evaluations
-    }
-
-    fn births(&self) -> u64 {
-        self.counters.births
+    fn counters(&self) -> &Counters {
+        &self.counters
     }
 
     fn senses(&self) -> &[Sense] {
@@ -163,9 +155,7 @@ impl Optimizer for CanonicalEs {
 
 impl<O> Tell<O> for CanonicalEs {
     fn tell(&mut self, results: Vec<Told<O>>) -> Result<(), EvolutionError> {
-        let batch = self.pending.as_ref().ok_or(EvolutionError::NoPendingBatch)?;
-        let evaluations = collect_results(results, batch.len(), 1)?;
-        let batch = self.pending.take().expect("checked above");
+        let (batch, evaluations) = take_evaluated(&mut self.pending, results, 1)?;
         let generation = self.counters.generation;
         self.last = batch
             .iter()

@@ -28,7 +28,7 @@
 use crate::error::EvolutionError;
 use crate::linalg::symmetric_eigen_from;
 use crate::optimizer::{
-    collect_results, ensure, keep_best, make_batch, Candidate, Counters, Individual, Optimizer, Sense, Tell, Told,
+    ensure, keep_best, make_batch, take_evaluated, Candidate, Counters, Individual, Optimizer, Sense, Tell, Told,
 };
 use crate::rng::{SeededRng, Stream};
 use serde::{Deserialize, Serialize};
@@ -278,16 +278,8 @@ impl Optimizer for CmaEs {
         batch
     }
 
-    fn generation(&self) -> u64 {
-        self.counters.generation
-    }
-
-    fn evaluations(&self) -> u64 {
-        self.counters.evaluations
-    }
-
-    fn births(&self) -> u64 {
-        self.counters.births
+    fn counters(&self) -> &Counters {
+        &self.counters
     }
 
     fn senses(&self) -> &[Sense] {
@@ -305,9 +297,7 @@ impl Optimizer for CmaEs {
 
 impl<O> Tell<O> for CmaEs {
     fn tell(&mut self, results: Vec<Told<O>>) -> Result<(), EvolutionError> {
-        let batch = self.pending.as_ref().ok_or(EvolutionError::NoPendingBatch)?;
-        let evaluations = collect_results(results, batch.len(), 1)?;
-        let batch = self.pending.take().expect("checked above");
+        let (batch, evaluations) = take_evaluated(&mut self.pending, results, 1)?;
         let generation = self.counters.generation;
         let sense = self.config.sense;
         self.last = batch

@@ -18,7 +18,7 @@
 use crate::error::EvolutionError;
 use crate::operators::Representation;
 use crate::optimizer::{
-    collect_results, ensure, keep_best, make_batch, Candidate, Counters, Individual, Optimizer, Sense, Tell, Told,
+    ensure, keep_best, make_batch, take_evaluated, Candidate, Counters, Individual, Optimizer, Sense, Tell, Told,
 };
 use crate::rng::{SeededRng, Stream};
 use crate::selection::{sort_best_first, tournament};
@@ -142,16 +142,8 @@ impl<R: Representation> Optimizer for GeneticAlgorithm<R> {
         batch
     }
 
-    fn generation(&self) -> u64 {
-        self.counters.generation
-    }
-
-    fn evaluations(&self) -> u64 {
-        self.counters.evaluations
-    }
-
-    fn births(&self) -> u64 {
-        self.counters.births
+    fn counters(&self) -> &Counters {
+        &self.counters
     }
 
     fn senses(&self) -> &[Sense] {
@@ -169,9 +161,7 @@ impl<R: Representation> Optimizer for GeneticAlgorithm<R> {
 
 impl<R: Representation, O> Tell<O> for GeneticAlgorithm<R> {
     fn tell(&mut self, results: Vec<Told<O>>) -> Result<(), EvolutionError> {
-        let batch = self.pending.as_ref().ok_or(EvolutionError::NoPendingBatch)?;
-        let evaluations = collect_results(results, batch.len(), 1)?;
-        let batch = self.pending.take().expect("checked above");
+        let (batch, evaluations) = take_evaluated(&mut self.pending, results, 1)?;
         let generation = self.counters.generation;
         let mut merged = Vec::with_capacity(batch.len() + self.population.len());
         let mut survivors = std::mem::take(&mut self.population);

@@ -189,16 +189,8 @@ impl<R: Representation> Optimizer for MapElites<R> {
         batch
     }
 
-    fn generation(&self) -> u64 {
-        self.counters.generation
-    }
-
-    fn evaluations(&self) -> u64 {
-        self.counters.evaluations
-    }
-
-    fn births(&self) -> u64 {
-        self.counters.births
+    fn counters(&self) -> &Counters {
+        &self.counters
     }
 
     fn senses(&self) -> &[Sense] {

@@ -24,7 +24,7 @@
 use crate::error::EvolutionError;
 use crate::operators::Representation;
 use crate::optimizer::{
-    collect_results, ensure, keep_best, make_batch, Candidate, Counters, Individual, Optimizer, Sense, Tell, Told,
+    ensure, keep_best, make_batch, take_evaluated, Candidate, Counters, Individual, Optimizer, Sense, Tell, Told,
 };
 use crate::pareto::{crowding_distances, non_dominated_sort};
 use crate::rng::{SeededRng, Stream};
@@ -193,16 +193,8 @@ impl<R: Representation> Optimizer for Nsga2<R> {
         batch
     }
 
-    fn generation(&self) -> u64 {
-        self.counters.generation
-    }
-
-    fn evaluations(&self) -> u64 {
-        self.counters.evaluations
-    }
-
-    fn births(&self) -> u64 {
-        self.counters.births
+    fn counters(&self) -> &Counters {
+        &self.counters
     }
 
     fn senses(&self) -> &[Sense] {
@@ -220,9 +212,7 @@ impl<R: Representation> Optimizer for Nsga2<R> {
 
 impl<R: Representation, O> Tell<O> for Nsga2<R> {
     fn tell(&mut self, results: Vec<Told<O>>) -> Result<(), EvolutionError> {
-        let batch = self.pending.as_ref().ok_or(EvolutionError::NoPendingBatch)?;
-        let evaluations = collect_results(results, batch.len(), self.config.senses.len())?;
-        let batch = self.pending.take().expect("checked above");
+        let (batch, evaluations) = take_evaluated(&mut self.pending, results, self.config.senses.len())?;
         let generation = self.counters.generation;
         let mut merged = std::mem::take(&mut self.population);
         for (candidate, evaluation) in batch.iter().zip(evaluations) {

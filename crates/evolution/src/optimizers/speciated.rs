@@ -33,7 +33,7 @@ use crate::error::EvolutionError;
 use crate::kmeans::{kmeans, normalise, squared_distance};
 use crate::operators::Representation;
 use crate::optimizer::{
-    collect_results, ensure, keep_best, make_batch, Candidate, Counters, Individual, Optimizer, Sense, Tell, Told,
+    ensure, keep_best, make_batch, take_evaluated, Candidate, Counters, Individual, Optimizer, Sense, Tell, Told,
 };
 use crate::rng::{SeededRng, Stream};
 use serde::{Deserialize, Serialize};
@@ -295,16 +295,8 @@ impl<R: Representation, P> Optimizer for SpeciatedEvolver<R, P> {
         batch
     }
 
-    fn generation(&self) -> u64 {
-        self.counters.generation
-    }
-
-    fn evaluations(&self) -> u64 {
-        self.counters.evaluations
-    }
-
-    fn births(&self) -> u64 {
-        self.counters.births
+    fn counters(&self) -> &Counters {
+        &self.counters
     }
 
     fn senses(&self) -> &[Sense] {
@@ -326,9 +318,7 @@ where
     P: FeatureProvider<R::Genotype, O>,
 {
     fn tell(&mut self, results: Vec<Told<O>>) -> Result<(), EvolutionError> {
-        let batch = self.pending.as_ref().ok_or(EvolutionError::NoPendingBatch)?;
-        let evaluations = collect_results(results, batch.len(), 1)?;
-        let batch = self.pending.take().expect("checked above");
+        let (batch, evaluations) = take_evaluated(&mut self.pending, results, 1)?;
         let generation = self.counters.generation;
         let mut next: Vec<Member<R::Genotype>> = self
             .pending_elites

@@ -444,14 +444,7 @@ pub fn run(args: AnalyzeArgs) -> Result<(), String> {
         let fig = BoxFigure {
             title: "Final species diversity per run (Inverse Simpson Index)".into(),
             y_label: "ISI of the final population".into(),
-            groups: settings
-                .iter()
-                .map(|s| BoxGroup {
-                    label: s.name.clone(),
-                    color: s.color,
-                    values: final_isi[s.color].clone(),
-                })
-                .collect(),
+            groups: box_groups(&settings, &final_isi),
             pvalues: pairs(&final_isi),
             max_brackets: 6,
         };
@@ -519,14 +512,7 @@ pub fn run(args: AnalyzeArgs) -> Result<(), String> {
     let fig = BoxFigure {
         title: format!("Best {fitness} of each run"),
         y_label: format!("best {fitness}"),
-        groups: settings
-            .iter()
-            .map(|s| BoxGroup {
-                label: s.name.clone(),
-                color: s.color,
-                values: best_values[s.color].clone(),
-            })
-            .collect(),
+        groups: box_groups(&settings, &best_values),
         pvalues: pairs(&best_values),
         max_brackets: 6,
     };
@@ -609,6 +595,18 @@ fn fitness_label(experiments: &[ExperimentData]) -> String {
     } else {
         "fitness".into()
     }
+}
+
+/// One box per setting, from `values[setting colour]`.
+fn box_groups(settings: &[Setting], values: &[Vec<f64>]) -> Vec<BoxGroup> {
+    settings
+        .iter()
+        .map(|s| BoxGroup {
+            label: s.name.clone(),
+            color: s.color,
+            values: values[s.color].clone(),
+        })
+        .collect()
 }
 
 fn pairs(values: &[Vec<f64>]) -> Vec<(usize, usize, f64)> {

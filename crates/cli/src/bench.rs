@@ -36,6 +36,10 @@ pub struct BenchArgs {
     /// weights), to measure what a brain costs per step.
     #[arg(long, default_value = "phase")]
     pub brain: String,
+    /// Sensors of every voxel (as `vsrlab simulate --sensors`); `empty` measures the body and the
+    /// physics alone.
+    #[arg(long, default_value = DEFAULT_SENSORS)]
+    pub sensors: String,
     /// Skip the parallel rows.
     #[arg(long)]
     pub single_only: bool,
@@ -125,7 +129,7 @@ pub fn run(a: BenchArgs) -> Result<(), String> {
         if wanted.as_ref().is_some_and(|w| !w.contains(&body)) {
             continue;
         }
-        let robot = robot_from_args(body, &a.preset, DEFAULT_SENSORS, &a.brain)?;
+        let robot = robot_from_args(body, &a.preset, &a.sensors, &a.brain)?;
         let mut task = Locomotion {
             terrain: terrain.parse()?,
             duration: a.duration,

@@ -185,15 +185,7 @@ pub fn run(args: AnalyzeArgs) -> Result<(), String> {
                     })
                     .filter(|c: &Vec<(f64, f64)>| !c.is_empty())
                     .collect();
-                let grid = grid_for(&curves, 200);
-                let b = band(&curves, &grid, true);
-                BandSeries {
-                    label: s.name.clone(),
-                    color: s.color,
-                    x: b.x,
-                    center: b.median,
-                    spread: b.sd,
-                }
+                median_band(s, &curves)
             })
             .collect();
         BandChart {
@@ -407,15 +399,7 @@ pub fn run(args: AnalyzeArgs) -> Result<(), String> {
                         .filter(|(si, _, _)| *si == s.color)
                         .map(|(_, _, snaps)| snaps.iter().map(|x| (x.evaluations as f64, pick(x))).collect())
                         .collect();
-                    let grid = grid_for(&curves, 200);
-                    let b = band(&curves, &grid, true);
-                    BandSeries {
-                        label: s.name.clone(),
-                        color: s.color,
-                        x: b.x,
-                        center: b.median,
-                        spread: b.sd,
-                    }
+                    median_band(s, &curves)
                 })
                 .collect();
             BandChart {
@@ -594,6 +578,19 @@ fn fitness_label(experiments: &[ExperimentData]) -> String {
         kinds.remove(0)
     } else {
         "fitness".into()
+    }
+}
+
+/// The median ± sd band across runs of one setting's curves, on a common grid of 200 points.
+fn median_band(setting: &Setting, curves: &[Vec<(f64, f64)>]) -> BandSeries {
+    let grid = grid_for(curves, 200);
+    let b = band(curves, &grid, true);
+    BandSeries {
+        label: setting.name.clone(),
+        color: setting.color,
+        x: b.x,
+        center: b.median,
+        spread: b.sd,
     }
 }
 

@@ -63,6 +63,12 @@ pub struct Row {
     steps_per_s: f64,
     voxel_steps_per_s: f64,
     voxel_seconds_per_cpu_s: f64,
+    /// The original simulator's single-thread steps/s on this robot (vsr-model.md §7), if measured.
+    original_steps_per_s: Option<f64>,
+    /// Which version of the original that figure is for.
+    original_version: Option<&'static str>,
+    /// steps/s ÷ the original's (single-threaded rows only).
+    ratio_to_original: Option<f64>,
 }
 
 const CASES: [(&str, &str); 4] = [
@@ -71,6 +77,20 @@ const CASES: [(&str, &str); 4] = [
     ("box-5x5", "hilly-1-10"),
     ("box-10x10", "flat"),
 ];
+
+/// The original simulator's speed (steps/s, one thread, phase controller, after JIT warm-up) on the
+/// same robot and terrain, from the version each preset reproduces (vsr-model.md §7): HEAD for
+/// preset 2022, v1.10.0 for preset 2021. `None` where the original was not measured.
+fn original_speed(preset: &str, robot: &str) -> Option<(f64, &'static str)> {
+    match (preset, robot) {
+        ("2022", "biped-4x3") => Some((2300.0, "HEAD")),
+        ("2022", "worm-10x4") => Some((910.0, "HEAD")),
+        ("2022", "box-5x5") => Some((900.0, "HEAD")),
+        ("2021", "biped-4x3") => Some((1900.0, "v1.10.0")),
+        ("2021", "worm-10x4") => Some((1150.0, "v1.10.0")),
+        _ => None,
+    }
+}
 
 fn episode(robot: &RobotSpec, task: &Locomotion, seed: u64) -> Result<u64, String> {
     locomotion::run(robot, task, seed, TraceLevel::None)
@@ -90,6 +110,7 @@ fn row(
     cpu: f64,
     wall: f64,
     dt: f64,
+    preset: &str,
 ) -> Row {
     // single-threaded rates use CPU time (robust to other load on the machine); parallel rates use
     // wall time (throughput of the whole machine); the cross-simulator unit always uses CPU time
@@ -98,6 +119,7 @@ fn row(
     } else {
         steps as f64 / wall
     };
+    let original = original_speed(preset, body);
     Row {
         robot: body.into(),
         terrain: terrain.into(),
@@ -111,6 +133,9 @@ fn row(
         steps_per_s,
         voxel_steps_per_s: steps_per_s * voxels as f64,
         voxel_seconds_per_cpu_s: voxels as f64 * steps as f64 * dt / cpu,
+        original_steps_per_s: original.map(|o| o.0),
+        original_version: original.map(|o| o.1),
+        ratio_to_original: original.filter(|_| mode == "single").map(|o| steps_per_s / o.0),
     }
 }
 
@@ -140,8 +165,8 @@ pub fn run(a: BenchArgs) -> Result<(), String> {
         }
         let voxels = robot.body.voxel_count();
         let dt = task.physics.dt;
-        episode(&robot, &task, 0)?; // warm-up
-                                    // single thread: run episodes until min_seconds of CPU time
+        // warm-up, then single thread: run episodes until min_seconds of CPU time
+        episode(&robot, &task, 0)?;
         let (c0, w0) = (thread_cpu_seconds(), Instant::now());
         let (mut episodes, mut steps) = (0usize, 0u64);
         while episodes == 0 || thread_cpu_seconds() - c0 < a.min_seconds {
@@ -149,7 +174,9 @@ pub fn run(a: BenchArgs) -> Result<(), String> {
             episodes += 1;
         }
         let (cpu, wall) = (thread_cpu_seconds() - c0, w0.elapsed().as_secs_f64());
-        rows.push(row(body, terrain, voxels, "single", 1, episodes, steps, cpu, wall, dt));
+        rows.push(row(
+            body, terrain, voxels, "single", 1, episodes, steps, cpu, wall, dt, &a.preset,
+        ));
         if !a.single_only {
             let n = (episodes * threads).max(threads);
             let (c0, w0) = (process_cpu_seconds(), Instant::now());
@@ -161,7 +188,9 @@ pub fn run(a: BenchArgs) -> Result<(), String> {
             });
             let steps: u64 = results?.iter().sum();
             let (cpu, wall) = (process_cpu_seconds() - c0, w0.elapsed().as_secs_f64());
-            rows.push(row(body, terrain, voxels, "parallel", threads, n, steps, cpu, wall, dt));
+            rows.push(row(
+                body, terrain, voxels, "parallel", threads, n, steps, cpu, wall, dt, &a.preset,
+            ));
         }
     }
     if a.json {
@@ -175,7 +204,7 @@ pub fn run(a: BenchArgs) -> Result<(), String> {
 
 fn print_table(rows: &[Row]) {
     println!(
-        "{:<10} {:<11} {:>6} {:<8} {:>7} {:>8} {:>10} {:>14} {:>16} {:>8}",
+        "{:<10} {:<11} {:>6} {:<8} {:>7} {:>8} {:>10} {:>14} {:>14} {:>8} {:>22}",
         "robot",
         "terrain",
         "voxels",
@@ -185,7 +214,8 @@ fn print_table(rows: &[Row]) {
         "steps/s",
         "voxel-steps/s",
         "voxel·s/CPU-s",
-        "speedup"
+        "speedup",
+        "vs original"
     );
     for r in rows {
         let speedup = rows
@@ -193,8 +223,13 @@ fn print_table(rows: &[Row]) {
             .find(|s| s.robot == r.robot && s.mode == "single")
             .map(|s| r.steps_per_s / s.steps_per_s)
             .unwrap_or(1.0);
+        // e.g. "25.9× of 910 (HEAD)": the single-thread ratio to the original's steps/s
+        let original = match (r.ratio_to_original, r.original_steps_per_s, r.original_version) {
+            (Some(x), Some(o), Some(v)) => format!("{x:.1}× of {o:.0} ({v})"),
+            _ => "-".into(),
+        };
         println!(
-            "{:<10} {:<11} {:>6} {:<8} {:>7} {:>8} {:>10.0} {:>14.0} {:>16.0} {:>7.2}x",
+            "{:<10} {:<11} {:>6} {:<8} {:>7} {:>8} {:>10.0} {:>14.0} {:>14.0} {:>7.2}x {:>22}",
             r.robot,
             r.terrain,
             r.voxels,
@@ -204,7 +239,8 @@ fn print_table(rows: &[Row]) {
             r.steps_per_s,
             r.voxel_steps_per_s,
             r.voxel_seconds_per_cpu_s,
-            speedup
+            speedup,
+            original
         );
     }
 }

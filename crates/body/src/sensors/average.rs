@@ -31,12 +31,23 @@ impl Average {
         self.samples.push(frame.t, &self.scratch);
         out.fill(0.0);
         // oldest sample first, as a plain loop over `values(k)` would add them (same bits)
-        let dim = out.len();
-        for run in self.samples.value_runs() {
-            if dim == 1 {
-                out[0] = run.iter().fold(out[0], |acc, v| acc + v);
-            } else {
-                for sample in run.chunks_exact(dim) {
+        // one and two readings (touch, velocity) keep their sums in registers: a sum kept in `out`
+        // would wait on a store and a load for every sample
+        let runs = self.samples.value_runs();
+        match out {
+            [s] => {
+                for run in runs {
+                    *s = run.iter().fold(*s, |acc, v| acc + v);
+                }
+            }
+            [sx, sy] => {
+                for run in runs {
+                    (*sx, *sy) = run.chunks_exact(2).fold((*sx, *sy), |(x, y), v| (x + v[0], y + v[1]));
+                }
+            }
+            _ => {
+                let dim = out.len();
+                for sample in runs.iter().flat_map(|r| r.chunks_exact(dim)) {
                     for (o, v) in out.iter_mut().zip(sample) {
                         *o += v;
                     }

@@ -585,16 +585,19 @@ impl World {
             |ba, bb| {
                 let (ra, rb) = (body_shapes[ba as usize + 1], body_shapes[bb as usize + 1]);
                 let (ra, rb) = (ra.0 as usize..ra.1 as usize, rb.0 as usize..rb.1 as usize);
-                for (i, (bi, fi)) in aabbs[ra.clone()].iter().zip(&filters[ra.clone()]).enumerate() {
-                    let i = (ra.start + i) as u32;
-                    for (j, (bj, fj)) in aabbs[rb.clone()].iter().zip(&filters[rb.clone()]).enumerate() {
-                        let j = (rb.start + j) as u32;
-                        // all four comparisons, without branches (the outcome is unpredictable)
-                        let overlap = (bi.min.x <= bj.max.x)
-                            & (bj.min.x <= bi.max.x)
-                            & (bi.min.y <= bj.max.y)
-                            & (bj.min.y <= bi.max.y);
-                        if !overlap {
+                // a shape can only touch a shape of the other body if it reaches that body's box
+                // (the union of its shapes' boxes): filtering both sides first keeps the pairs, and
+                // their order, and skips most of the pairwise tests
+                let (box_a, box_b) = (&body_aabbs[ba as usize], &body_aabbs[bb as usize]);
+                let near_b = ShapeSubset::reaching(&aabbs[rb.clone()], box_a);
+                for i in ra {
+                    let (bi, fi) = (&aabbs[i], &filters[i]);
+                    if !overlaps(bi, box_b) {
+                        continue;
+                    }
+                    for j in near_b.iter().map(|k| rb.start + k) {
+                        let (bj, fj) = (&aabbs[j], &filters[j]);
+                        if !overlaps(bi, bj) {
                             continue;
                         }
                         if fi.group == fj.group && !(fi.collide_within_group && fj.collide_within_group) {
@@ -603,17 +606,17 @@ impl World {
                         if excluded.contains(fi.part, fj.part) {
                             continue;
                         }
-                        let (si, sj) = (&shapes[i as usize], &shapes[j as usize]);
-                        let margin = margins[i as usize] + margins[j as usize];
-                        let m = collide_polygons(&world_polys[i as usize], &world_polys[j as usize], margin);
+                        let (si, sj) = (&shapes[i], &shapes[j]);
+                        let margin = margins[i] + margins[j];
+                        let m = collide_polygons(&world_polys[i], &world_polys[j], margin);
                         if m.count > 0 {
                             let friction = (si.friction * sj.friction).sqrt();
                             let restitution = si.restitution.max(sj.restitution);
                             contacts.push(ContactConstraint::new(
                                 bodies,
                                 &m,
-                                i,
-                                j,
+                                i as u32,
+                                j as u32,
                                 si.body,
                                 sj.body,
                                 friction,
@@ -836,6 +839,54 @@ impl World {
     }
 }
 
+/// Whether two boxes overlap, with all four comparisons evaluated (no branches: the outcome is
+/// unpredictable in the broad phase).
+#[inline(always)]
+fn overlaps(a: &Aabb, b: &Aabb) -> bool {
+    (a.min.x <= b.max.x) & (b.min.x <= a.max.x) & (a.min.y <= b.max.y) & (b.min.y <= a.max.y)
+}
+
+/// The shapes of one body (by index within the body) whose boxes reach a given box, in order.
+#[derive(Debug, Clone, Copy)]
+enum ShapeSubset {
+    /// Bit k set: shape k reaches the box (bodies of at most 64 shapes).
+    Mask(u64),
+    /// Every shape (larger bodies are not filtered).
+    All(usize),
+}
+
+impl ShapeSubset {
+    /// The shapes among `boxes` that overlap `target`.
+    #[inline]
+    fn reaching(boxes: &[Aabb], target: &Aabb) -> ShapeSubset {
+        if boxes.len() > 64 {
+            return ShapeSubset::All(boxes.len());
+        }
+        let mask = boxes
+            .iter()
+            .enumerate()
+            .fold(0u64, |m, (k, b)| m | (u64::from(overlaps(b, target)) << k));
+        ShapeSubset::Mask(mask)
+    }
+
+    /// Indices of the shapes in the subset, in increasing order.
+    #[inline]
+    fn iter(self) -> impl Iterator<Item = usize> {
+        let (mut mask, all) = match self {
+            ShapeSubset::Mask(m) => (m, 0..0),
+            ShapeSubset::All(n) => (0, 0..n),
+        };
+        let bits = std::iter::from_fn(move || {
+            (mask != 0).then(|| {
+                let k = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                k
+            })
+        });
+        bits.chain(all)
+    }
+}
+
 /// x += v·h and θ += ω·h, after clamping speeds to the per-step limits.
 #[inline(never)]
 fn integrate_positions(b: &mut Bodies, h: f64, max_v: f64, max_w: f64) {
@@ -857,5 +908,69 @@ fn integrate_positions(b: &mut Bodies, h: f64, max_v: f64, max_w: f64) {
             c: c * inv,
             s: sn * inv,
         };
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn boxes(n: std::ops::Range<usize>) -> impl Strategy<Value = Vec<Aabb>> {
+        prop::collection::vec((-5.0..5.0f64, -5.0..5.0f64, 0.0..3.0f64, 0.0..3.0f64), n).prop_map(|v| {
+            v.into_iter()
+                .map(|(x, y, w, h)| Aabb {
+                    min: Vec2::new(x, y),
+                    max: Vec2::new(x + w, y + h),
+                })
+                .collect()
+        })
+    }
+
+    fn union(b: &[Aabb]) -> Aabb {
+        b.iter().skip(1).fold(b[0], |acc, x| Aabb {
+            min: acc.min.min(x.min),
+            max: acc.max.max(x.max),
+        })
+    }
+
+    proptest! {
+        /// Filtering both bodies' shapes by the other body's box finds exactly the overlapping
+        /// shape pairs of the full double loop, in the same order.
+        #[test]
+        fn body_box_filter_keeps_every_overlapping_pair_in_order(a in boxes(1..6), b in boxes(1..70)) {
+            let (box_a, box_b) = (union(&a), union(&b));
+            let all: Vec<(usize, usize)> = (0..a.len())
+                .flat_map(|i| (0..b.len()).map(move |j| (i, j)))
+                .filter(|&(i, j)| a[i].overlaps(&b[j]))
+                .collect();
+            let near_b = ShapeSubset::reaching(&b, &box_a);
+            let filtered: Vec<(usize, usize)> = (0..a.len())
+                .filter(|&i| overlaps(&a[i], &box_b))
+                .flat_map(|i| near_b.iter().map(move |j| (i, j)))
+                .filter(|&(i, j)| overlaps(&a[i], &b[j]))
+                .collect();
+            prop_assert_eq!(filtered, all);
+        }
+    }
+
+    #[test]
+    fn shape_subset_lists_reaching_shapes_in_order_and_all_of_a_large_body() {
+        let unit = |x: f64| Aabb {
+            min: Vec2::new(x, 0.0),
+            max: Vec2::new(x + 1.0, 1.0),
+        };
+        let target = Aabb {
+            min: Vec2::new(2.5, 0.5),
+            max: Vec2::new(6.0, 0.6),
+        };
+        let row: Vec<Aabb> = (0..10).map(|k| unit(k as f64)).collect();
+        // boxes [k, k+1] that reach [2.5, 6]: k = 2 … 6
+        assert_eq!(
+            ShapeSubset::reaching(&row, &target).iter().collect::<Vec<_>>(),
+            vec![2, 3, 4, 5, 6]
+        );
+        let long: Vec<Aabb> = (0..65).map(|k| unit(k as f64)).collect();
+        assert_eq!(ShapeSubset::reaching(&long, &target).iter().count(), 65);
     }
 }

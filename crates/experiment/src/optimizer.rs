@@ -9,8 +9,8 @@ use crate::config::{OptimizerConfig, SeFeatures};
 use serde::{Deserialize, Serialize};
 use vsrlab_evolution::{
     Candidate, CanonicalEs, CanonicalEsConfig, CmaEs, CmaEsConfig, EvolutionError, FeatureProvider, GaConfig,
-    GeneticAlgorithm, GridAxis, Individual, MapElites, MapElitesConfig, Optimizer, RealVector, SeConfig, Sense,
-    SpeciatedEvolver, Tell, Told,
+    GeneticAlgorithm, GridAxis, Individual, MapElites, MapElitesConfig, RealVector, SeConfig, Sense, SpeciatedEvolver,
+    Tell, Told,
 };
 
 /// Where the speciated evolver takes its features from.
@@ -57,18 +57,6 @@ fn real_vector(dimension: usize, init: [f64; 2], sigma: f64, crossover: [f64; 2]
         crossover_max: crossover[1],
         crossover_sigma,
     }
-}
-
-macro_rules! each {
-    ($self:expr, $o:ident => $body:expr) => {
-        match $self {
-            AnyOptimizer::Ga($o) => $body,
-            AnyOptimizer::Es($o) => $body,
-            AnyOptimizer::CmaEs($o) => $body,
-            AnyOptimizer::Se($o) => $body,
-            AnyOptimizer::MapElites($o) => $body,
-        }
-    };
 }
 
 impl AnyOptimizer {
@@ -161,39 +149,61 @@ impl AnyOptimizer {
         })
     }
 
+    /// The optimizer inside, behind the common ask/tell interface.
+    fn inner(&self) -> &dyn Tell<Vec<f64>, Genotype = Vec<f64>> {
+        match self {
+            AnyOptimizer::Ga(o) => o,
+            AnyOptimizer::Es(o) => o,
+            AnyOptimizer::CmaEs(o) => o,
+            AnyOptimizer::Se(o) => o,
+            AnyOptimizer::MapElites(o) => o,
+        }
+    }
+
+    /// The optimizer inside, mutably.
+    fn inner_mut(&mut self) -> &mut dyn Tell<Vec<f64>, Genotype = Vec<f64>> {
+        match self {
+            AnyOptimizer::Ga(o) => o,
+            AnyOptimizer::Es(o) => o,
+            AnyOptimizer::CmaEs(o) => o,
+            AnyOptimizer::Se(o) => o,
+            AnyOptimizer::MapElites(o) => o,
+        }
+    }
+
     /// The batch to evaluate now (the same batch again until [`tell`](Self::tell)).
     pub fn ask(&mut self) -> Vec<Candidate<Vec<f64>>> {
-        each!(self, o => o.ask())
+        self.inner_mut().ask()
     }
 
     /// Hands back the results of the pending batch.
     pub fn tell(&mut self, results: Vec<Told<Vec<f64>>>) -> Result<(), EvolutionError> {
-        each!(self, o => o.tell(results))
+        self.inner_mut().tell(results)
     }
 
     /// Completed generations.
     pub fn generation(&self) -> u64 {
-        each!(self, o => o.generation())
+        self.inner().generation()
     }
 
     /// Evaluations told.
     pub fn evaluations(&self) -> u64 {
-        each!(self, o => o.evaluations())
+        self.inner().evaluations()
     }
 
     /// New genotypes evaluated.
     pub fn births(&self) -> u64 {
-        each!(self, o => o.births())
+        self.inner().births()
     }
 
     /// The best individual so far.
     pub fn best(&self) -> Option<&Individual<Vec<f64>>> {
-        each!(self, o => o.best())
+        self.inner().best()
     }
 
     /// The current population (survivors, last batch, or archive).
     pub fn population(&self) -> Vec<&Individual<Vec<f64>>> {
-        each!(self, o => o.population())
+        self.inner().population()
     }
 
     /// Number of species (speciated evolver only).

@@ -592,12 +592,12 @@ impl World {
                 let near_b = ShapeSubset::reaching(&aabbs[rb.clone()], box_a);
                 for i in ra {
                     let (bi, fi) = (&aabbs[i], &filters[i]);
-                    if !overlaps(bi, box_b) {
+                    if !bi.overlaps(box_b) {
                         continue;
                     }
                     for j in near_b.iter().map(|k| rb.start + k) {
                         let (bj, fj) = (&aabbs[j], &filters[j]);
-                        if !overlaps(bi, bj) {
+                        if !bi.overlaps(bj) {
                             continue;
                         }
                         if fi.group == fj.group && !(fi.collide_within_group && fj.collide_within_group) {
@@ -839,13 +839,6 @@ impl World {
     }
 }
 
-/// Whether two boxes overlap, with all four comparisons evaluated (no branches: the outcome is
-/// unpredictable in the broad phase).
-#[inline(always)]
-fn overlaps(a: &Aabb, b: &Aabb) -> bool {
-    (a.min.x <= b.max.x) & (b.min.x <= a.max.x) & (a.min.y <= b.max.y) & (b.min.y <= a.max.y)
-}
-
 /// The shapes of one body (by index within the body) whose boxes reach a given box, in order.
 #[derive(Debug, Clone, Copy)]
 enum ShapeSubset {
@@ -865,7 +858,7 @@ impl ShapeSubset {
         let mask = boxes
             .iter()
             .enumerate()
-            .fold(0u64, |m, (k, b)| m | (u64::from(overlaps(b, target)) << k));
+            .fold(0u64, |m, (k, b)| m | (u64::from(b.overlaps(target)) << k));
         ShapeSubset::Mask(mask)
     }
 
@@ -946,9 +939,9 @@ mod tests {
                 .collect();
             let near_b = ShapeSubset::reaching(&b, &box_a);
             let filtered: Vec<(usize, usize)> = (0..a.len())
-                .filter(|&i| overlaps(&a[i], &box_b))
+                .filter(|&i| a[i].overlaps(&box_b))
                 .flat_map(|i| near_b.iter().map(move |j| (i, j)))
-                .filter(|&(i, j)| overlaps(&a[i], &b[j]))
+                .filter(|&(i, j)| a[i].overlaps(&b[j]))
                 .collect();
             prop_assert_eq!(filtered, all);
         }

@@ -29,9 +29,10 @@ impl Aabb {
             max: self.max + Vec2::new(margin, margin),
         }
     }
-    /// True when the two boxes overlap (touching counts).
-    #[inline]
+    /// True when the two boxes overlap (touching counts). All four comparisons are evaluated,
+    /// without branches: in the broad phase the outcome is unpredictable.
+    #[inline(always)]
     pub fn overlaps(&self, o: &Aabb) -> bool {
-        self.min.x <= o.max.x && o.min.x <= self.max.x && self.min.y <= o.max.y && o.min.y <= self.max.y
+        (self.min.x <= o.max.x) & (o.min.x <= self.max.x) & (self.min.y <= o.max.y) & (o.min.y <= self.max.y)
     }
 }

@@ -136,6 +136,7 @@ mod tests {
             dt,
             side_length: 3.0,
             cells: vec![(0, 0)],
+            outline_corners: vec![4],
             ..Default::default()
         };
         t.terrain = vec![Vec2::new(-1e3, 0.0), Vec2::new(1e3, 0.0)];
@@ -145,7 +146,7 @@ mod tests {
             let x = 0.3 * time;
             t.times.push(time);
             t.centers.push(Vec2::new(x + 1.5, h + 1.5));
-            t.polygons.push([
+            t.outlines.extend_from_slice(&[
                 Vec2::new(x, h + 3.0),
                 Vec2::new(x + 3.0, h + 3.0),
                 Vec2::new(x + 3.0, h),
@@ -185,14 +186,15 @@ mod tests {
         let mut t = Trace {
             dt: 0.01,
             cells: vec![(0, 0)],
+            outline_corners: vec![4],
             ..Default::default()
         };
         for k in 0..=300 {
             let a = -2.0 * std::f64::consts::PI * 3.0 * k as f64 / 300.0;
             let c = |dx: f64, dy: f64| Vec2::new(dx * a.cos() - dy * a.sin(), dx * a.sin() + dy * a.cos());
             t.times.push(k as f64 * 0.01);
-            t.polygons
-                .push([c(-0.5, 0.5), c(0.5, 0.5), c(0.5, -0.5), c(-0.5, -0.5)]);
+            t.outlines
+                .extend_from_slice(&[c(-0.5, 0.5), c(0.5, 0.5), c(0.5, -0.5), c(-0.5, -0.5)]);
         }
         assert!((net_turns(&t) + 3.0).abs() < 1e-9);
     }

@@ -129,14 +129,14 @@ pub fn terrain_height(terrain: &[Vec2], x: f64) -> Option<f64> {
 }
 
 /// The footprint of one step.
-pub fn footprint_of(
-    polygons: &[[Vec2; 4]],
+pub fn footprint_of<P: AsRef<[Vec2]>>(
+    polygons: &[P],
     touching: &[bool],
     terrain: &[Vec2],
     side_length: f64,
     tolerance: f64,
 ) -> Footprint {
-    let xs = polygons.iter().flat_map(|p| p.iter().map(|v| v.x));
+    let xs = polygons.iter().flat_map(|p| p.as_ref().iter().map(|v| v.x));
     let (min, max) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
     if max.partial_cmp(&min) != Some(std::cmp::Ordering::Greater) {
         return 0;
@@ -148,6 +148,7 @@ pub fn footprint_of(
         if !touch {
             continue;
         }
+        let poly = poly.as_ref();
         let clearance: Vec<f64> = poly
             .iter()
             .map(|v| v.y - terrain_height(terrain, v.x).unwrap_or(f64::NEG_INFINITY))
@@ -173,10 +174,10 @@ pub fn step_footprints(trace: &Trace, params: &FootprintParams) -> Vec<Footprint
     let n = trace.voxels();
     (0..trace.len())
         .map(|k| {
-            let polys = trace.polygons_at(k);
+            let polys: Vec<&[Vec2]> = trace.polygons_at(k).iter().collect();
             let touch = trace.touching.get(k * n..(k + 1) * n).unwrap_or(&[]);
             footprint_of(
-                polys,
+                &polys,
                 touch,
                 &trace.terrain,
                 trace.side_length,

@@ -54,7 +54,7 @@ pub(crate) fn java_round(x: f64) -> i64 {
 }
 
 /// The pose of one step, from the voxels' outer polygons.
-pub fn pose_of(polygons: &[[Vec2; 4]]) -> Pose {
+pub fn pose_of<P: AsRef<[Vec2]>>(polygons: &[P]) -> Pose {
     let mut pose = Pose::empty();
     if polygons.is_empty() {
         return pose;
@@ -63,7 +63,7 @@ pub fn pose_of(polygons: &[[Vec2; 4]]) -> Pose {
         .iter()
         .map(|p| {
             let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
-            for v in p {
+            for v in p.as_ref() {
                 x0 = x0.min(v.x);
                 y0 = y0.min(v.y);
                 x1 = x1.max(v.x);
@@ -120,12 +120,12 @@ pub fn dynamic_pose(trace: &Trace) -> Pose {
     let mut counts = [0usize; POSE_SIDE * POSE_SIDE];
     let mut n = 0usize;
     for k in 0..trace.len() {
-        let polys = trace.polygons_at(k);
+        let polys: Vec<&[Vec2]> = trace.polygons_at(k).iter().collect();
         if polys.is_empty() {
             continue;
         }
         n += 1;
-        for (c, &b) in counts.iter_mut().zip(&pose_of(polys).0) {
+        for (c, &b) in counts.iter_mut().zip(&pose_of(&polys).0) {
             *c += b as usize;
         }
     }
@@ -191,6 +191,7 @@ mod tests {
         let mut t = Trace {
             dt: 1.0 / 60.0,
             cells: vec![(0, 0), (1, 0)],
+            outline_corners: vec![4, 4],
             ..Default::default()
         };
         for k in 0..3 {
@@ -201,7 +202,8 @@ mod tests {
             } else {
                 square(0.0, 1.0, 1.0)
             };
-            t.polygons.extend_from_slice(&[square(0.0, 0.0, 1.0), second]);
+            t.outlines.extend_from_slice(&square(0.0, 0.0, 1.0));
+            t.outlines.extend_from_slice(&second);
         }
         let p = dynamic_pose(&t);
         let expected = pose_of(&[square(0.0, 0.0, 1.0), square(1.0, 0.0, 1.0)]);

@@ -6,6 +6,7 @@
 //! holds morphologies (named shapes and text grids) and sensors.
 #![warn(missing_docs)]
 
+pub mod body;
 pub mod encodings;
 pub mod morphology;
 pub mod params;
@@ -13,6 +14,7 @@ pub mod robot;
 pub mod sensors;
 pub mod voxel;
 
+pub use body::Body;
 pub use morphology::{Morphology, MorphologyError};
 pub use params::{Preset, VoxelParams};
 pub use robot::{VoxelState, Vsr};

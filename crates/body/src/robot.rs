@@ -1,5 +1,6 @@
 //! A voxel-based soft robot assembled into a physics world, its actuation and its per-voxel state.
 
+use crate::body::Body;
 use crate::morphology::Morphology;
 use crate::params::VoxelParams;
 use crate::voxel::{
@@ -32,6 +33,20 @@ pub struct VoxelState {
     pub angle: f64,
     /// Whether any corner touches the ground, an obstacle or another robot.
     pub touching: bool,
+}
+
+impl Default for VoxelState {
+    /// A voxel at rest at the origin: upright, undeformed, still, touching nothing.
+    fn default() -> Self {
+        VoxelState {
+            polygon: [Vec2::ZERO; 4],
+            area_ratio: 1.0,
+            center: Vec2::ZERO,
+            velocity: Vec2::ZERO,
+            angle: 0.0,
+            touching: false,
+        }
+    }
 }
 
 /// An assembled robot: its morphology, constants and handles into the world.
@@ -169,16 +184,23 @@ impl Vsr {
         }
     }
 
-    /// The current state of voxel `i` (grid order).
-    pub fn voxel_state(&self, world: &World, i: usize) -> VoxelState {
+    /// Outer polygon of voxel `i`: NW's top-left, NE's top-right, SE's bottom-right, SW's
+    /// bottom-left corners.
+    pub fn voxel_polygon(&self, world: &World, i: usize) -> [Vec2; 4] {
         let c = &self.voxels[i].corners;
         let h = self.params.corner_side() / 2.0;
-        let polygon = [
+        [
             world.part_point(c[NW], Vec2::new(-h, h)),
             world.part_point(c[NE], Vec2::new(h, h)),
             world.part_point(c[SE], Vec2::new(h, -h)),
             world.part_point(c[SW], Vec2::new(-h, -h)),
-        ];
+        ]
+    }
+
+    /// The current state of voxel `i` (grid order).
+    pub fn voxel_state(&self, world: &World, i: usize) -> VoxelState {
+        let c = &self.voxels[i].corners;
+        let polygon = self.voxel_polygon(world, i);
         let mut twice_area = 0.0;
         for k in 0..4 {
             twice_area += polygon[k].cross(polygon[(k + 1) % 4]);
@@ -208,18 +230,37 @@ impl Vsr {
         });
         sum / self.voxels.len() as f64
     }
+}
 
-    /// Axis-aligned bounding box (min, max) of all voxel polygons.
-    pub fn bounding_box(&self, world: &World) -> (Vec2, Vec2) {
-        let mut min = Vec2::new(f64::INFINITY, f64::INFINITY);
-        let mut max = -min;
+impl Body for Vsr {
+    fn actuator_count(&self) -> usize {
+        self.voxels.len()
+    }
+
+    fn actuate(&self, world: &mut World, values: &[f64]) {
+        Vsr::actuate(self, world, values)
+    }
+
+    fn center(&self, world: &World) -> Vec2 {
+        Vsr::center(self, world)
+    }
+
+    fn sensing_units(&self) -> usize {
+        self.voxels.len()
+    }
+
+    fn unit_state(&self, world: &World, i: usize) -> VoxelState {
+        self.voxel_state(world, i)
+    }
+
+    fn outline_corners(&self) -> Vec<usize> {
+        vec![4; self.voxels.len()]
+    }
+
+    fn outline(&self, world: &World, out: &mut Vec<Vec2>) {
         for i in 0..self.voxels.len() {
-            for p in self.voxel_state(world, i).polygon {
-                min = min.min(p);
-                max = max.max(p);
-            }
+            out.extend_from_slice(&self.voxel_polygon(world, i));
         }
-        (min, max)
     }
 }
 

@@ -4,7 +4,7 @@ use rayon::prelude::*;
 use vsrlab_body::sensors::SensorConfig;
 use vsrlab_body::{Morphology, Preset};
 use vsrlab_brain::BrainSpec;
-use vsrlab_tasks::{locomotion, Locomotion, RobotSpec, TraceLevel};
+use vsrlab_tasks::{episode, Locomotion, RobotSpec, TraceLevel};
 
 fn main() {
     let n: usize = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(50);
@@ -31,7 +31,9 @@ fn main() {
                     initial_x: 11.0 + k as f64 * 1e-6,
                     ..Default::default()
                 };
-                locomotion::run(&robot, &task, 0, TraceLevel::None).unwrap().velocity
+                episode::run(&robot, &task, 0, TraceLevel::None)
+                    .unwrap()
+                    .metric("velocity")
             })
             .collect();
         v.sort_by(f64::total_cmp);

@@ -21,7 +21,7 @@ use vsrlab_analysis::report::{csv_field, SettingSummary, Summary};
 use vsrlab_analysis::results::{self, ExperimentData, SnapshotRow};
 use vsrlab_body::Morphology;
 use vsrlab_tasks::files::load_robot;
-use vsrlab_tasks::{locomotion, Locomotion, RobotSpec, Terrain, Trace, TraceLevel};
+use vsrlab_tasks::{episode, Locomotion, RobotSpec, TaskSpec, Terrain, Trace, TraceLevel};
 
 /// Arguments of `vsrlab analyze`.
 #[derive(Args, Debug)]
@@ -55,7 +55,7 @@ pub struct AnalyzeArgs {
 /// How to replay an individual of an experiment.
 pub(crate) struct Replay {
     pub representation: vsrlab_tasks::Representation,
-    pub task: Locomotion,
+    pub task: TaskSpec,
     pub episode_seed: u64,
     pub random_terrain: bool,
 }
@@ -65,7 +65,7 @@ impl Replay {
         let e = vsrlab_experiment::config::load(&exp.dir.join("experiment.toml")).map_err(|e| e.to_string())?;
         Ok(Replay {
             representation: e.representation.clone(),
-            task: e.task.locomotion(),
+            task: e.task.spec.clone(),
             episode_seed: e.task.episode_seed,
             random_terrain: e.task.random_terrain_per_evaluation,
         })
@@ -80,8 +80,8 @@ impl Replay {
 }
 
 /// Runs one episode with a full trace.
-pub(crate) fn full_trace(robot: &RobotSpec, task: &Locomotion, seed: u64) -> Result<Trace, String> {
-    let outcome = locomotion::run(robot, task, seed, TraceLevel::Full).map_err(|e| e.to_string())?;
+pub(crate) fn full_trace(robot: &RobotSpec, task: &TaskSpec, seed: u64) -> Result<Trace, String> {
+    let outcome = episode::run(robot, task.task(), seed, TraceLevel::Full).map_err(|e| e.to_string())?;
     outcome.trace.ok_or_else(|| "the episode recorded no trace".to_string())
 }
 
@@ -669,7 +669,7 @@ fn train_classifiers(labels: &Path, folds: usize, seed: u64, pool: &rayon::Threa
                     transient: r.transient,
                     ..Locomotion::default()
                 };
-                let trace = full_trace(&robot, &task, r.seed)?;
+                let trace = full_trace(&robot, &TaskSpec::Locomotion(task), r.seed)?;
                 Ok(RobotFeatures::from_trace(&trace, &FeatureParams::default()))
             })
             .collect()

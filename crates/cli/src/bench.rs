@@ -9,7 +9,7 @@ use clap::Args;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::time::Instant;
-use vsrlab_tasks::{locomotion, Locomotion, RobotSpec, TraceLevel};
+use vsrlab_tasks::{Locomotion, RobotSpec, TraceLevel};
 
 /// Arguments of `vsrlab bench`.
 #[derive(Args, Debug)]
@@ -93,7 +93,7 @@ fn original_speed(preset: &str, robot: &str) -> Option<(f64, &'static str)> {
 }
 
 fn episode(robot: &RobotSpec, task: &Locomotion, seed: u64) -> Result<u64, String> {
-    locomotion::run(robot, task, seed, TraceLevel::None)
+    vsrlab_tasks::episode::run(robot, task, seed, TraceLevel::None)
         .map(|o| o.steps)
         .map_err(|e| e.to_string())
 }

@@ -150,6 +150,13 @@ pub fn run(args: LabelArgs) -> Result<(), String> {
                 let rp = replays[c.experiment]
                     .as_ref()
                     .ok_or_else(|| format!("{}: cannot replay", experiments[c.experiment].dir.display()))?;
+                let vsrlab_tasks::TaskSpec::Locomotion(locomotion) = &rp.task else {
+                    return Err(format!(
+                        "{}: labelling needs a locomotion task, not {}",
+                        experiments[c.experiment].dir.display(),
+                        rp.task.kind()
+                    ));
+                };
                 let (robot, trace) = rp.row(&c.row)?;
                 let id = format!("r-{:04}", k + 1);
                 let robot_rel = format!("robots/{id}.robot.json");
@@ -169,9 +176,9 @@ pub fn run(args: LabelArgs) -> Result<(), String> {
                     id,
                     robot: robot_rel,
                     video: video_rel,
-                    terrain: rp.task.terrain.to_string(),
-                    duration: rp.task.duration,
-                    transient: rp.task.transient,
+                    terrain: locomotion.terrain.to_string(),
+                    duration: locomotion.duration,
+                    transient: locomotion.transient,
                     seed: c.row.seed,
                     candidate: i,
                     proposal,

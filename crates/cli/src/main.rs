@@ -1,5 +1,7 @@
 //! `vsrlab`: the command-line front end. It parses arguments, builds the pieces from the library
 //! crates and hands over; it holds no domain logic.
+// Doc comments here are clap help texts, with `<placeholders>` that are not HTML.
+#![allow(rustdoc::invalid_html_tags)]
 
 mod analyze;
 mod bench;

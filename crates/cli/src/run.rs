@@ -140,7 +140,7 @@ pub fn run(a: RunArgs) -> Result<(), String> {
     eprintln!(
         "{name}: {} run(s), {} genes per genotype, output in {}",
         experiment.runs,
-        vsrlab_experiment::Evaluator::genotype_length(&evaluator),
+        evaluator.genotype_length(),
         out.display()
     );
     let start = Instant::now();

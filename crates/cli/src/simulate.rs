@@ -8,7 +8,7 @@ use vsrlab_body::sensors::SensorConfig;
 use vsrlab_body::{Morphology, Preset};
 use vsrlab_brain::BrainSpec;
 use vsrlab_tasks::files::{load_robot, save_robot};
-use vsrlab_tasks::{locomotion, Locomotion, RobotSpec, Terrain, TraceLevel};
+use vsrlab_tasks::{episode, RobotSpec, TaskSpec, TraceLevel};
 
 /// Default sensors: area ratio, velocity and touch on every voxel (thesis ch. 3), no noise.
 pub const DEFAULT_SENSORS: &str = "uniform-a+vxy+t-0";
@@ -26,7 +26,8 @@ pub struct SimulateArgs {
     /// Brains with parameters get seeded random ones in [-1, 1]; evolved ones come in robot files.
     #[arg(long, default_value = "phase")]
     pub brain: String,
-    /// Task: locomotion:<terrain>, terrain = flat | hilly-H-W[-SEED] | steppy-H-W[-SEED] | uphill-DEG | downhill-DEG.
+    /// Task: locomotion:<terrain> (terrain = flat | hilly-H-W[-SEED] | steppy-H-W[-SEED] | uphill-DEG |
+    /// downhill-DEG) or jump.
     #[arg(long, default_value = "locomotion:flat")]
     pub task: String,
     /// Sensors: uniform-<s1>+<s2>…-<noise σ>, spinedTouch-…, spinedTouchSighted-…, or empty.
@@ -35,9 +36,9 @@ pub struct SimulateArgs {
     /// Episode length in simulated seconds.
     #[arg(long, default_value_t = 30.0)]
     pub duration: f64,
-    /// Initial seconds excluded from distance and velocity.
-    #[arg(long, default_value_t = 0.0)]
-    pub transient: f64,
+    /// Initial seconds excluded from distance and velocity (locomotion).
+    #[arg(long)]
+    pub transient: Option<f64>,
     /// Seed of the episode (random terrains, sensor noise).
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
@@ -61,13 +62,30 @@ pub struct SimulateArgs {
     pub save_robot: Option<PathBuf>,
 }
 
-/// Parses `locomotion:<terrain>`.
-pub fn parse_task(s: &str) -> Result<Terrain, String> {
-    let (kind, terrain) = s.split_once(':').unwrap_or((s, "flat"));
-    if kind != "locomotion" {
-        return Err(format!("--task: unknown task '{kind}': expected locomotion:<terrain>"));
+/// The task of `--task`, with the episode settings of the other options.
+pub fn task_from_args(
+    task: &str,
+    duration: f64,
+    transient: Option<f64>,
+    substeps: Option<u32>,
+) -> Result<TaskSpec, String> {
+    let spec = TaskSpec::parse(task).map_err(|e| format!("--task: {e}"))?;
+    let mut settings = vec![("duration", json!(duration))];
+    if let Some(t) = transient {
+        settings.push(("transient", json!(t)));
     }
-    terrain.parse().map_err(|e| format!("--task: {e}"))
+    if let Some(n) = substeps {
+        settings.push(("physics.substeps", json!(n)));
+    }
+    let spec = spec.with_settings(&settings).map_err(|e| {
+        let option = match e.path.as_str() {
+            "physics.substeps" => "substeps",
+            other => other,
+        };
+        format!("--{option}: {}", e.message)
+    })?;
+    spec.task().validate().map_err(|e| e.to_string())?;
+    Ok(spec)
 }
 
 /// Builds the robot description from command-line strings; errors name the option.
@@ -107,22 +125,14 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         Some(path) => path.display().to_string(),
         None => a.body.clone(),
     };
-    let mut task = Locomotion {
-        terrain: parse_task(&a.task)?,
-        duration: a.duration,
-        transient: a.transient,
-        ..Default::default()
-    };
-    if let Some(n) = a.substeps {
-        task.physics.substeps = n;
-    }
+    let task = task_from_args(&a.task, a.duration, a.transient, a.substeps)?;
     let level = if a.video.is_some() {
         TraceLevel::Full
     } else {
         TraceLevel::None
     };
     let start = Instant::now();
-    let outcome = locomotion::run(&robot, &task, a.seed, level).map_err(|e| e.to_string())?;
+    let outcome = episode::run(&robot, task.task(), a.seed, level).map_err(|e| e.to_string())?;
     let wall = start.elapsed().as_secs_f64();
     let mut video_note = None;
     if let (Some(path), Some(trace)) = (&a.video, &outcome.trace) {
@@ -130,24 +140,29 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
             .map_err(|e| e.to_string())?;
         video_note = Some(format!("{} ({} frames)", path.display(), info.frames));
     }
+    let transient = a.transient.unwrap_or(0.0);
     if a.json {
-        let v = json!({
+        let mut v = json!({
             "body": body_name, "brain": robot.brain.kind(), "task": a.task, "sensors": robot.sensors.to_string(),
             "preset": robot.preset.to_string(),
-            "seed": a.seed, "duration": a.duration, "transient": a.transient,
-            "distance": outcome.distance, "velocity": outcome.velocity, "elapsed": outcome.elapsed,
-            "steps": outcome.steps, "voxels": outcome.voxels, "wall_seconds": wall,
+            "seed": a.seed, "duration": a.duration, "transient": transient,
+            "steps": outcome.steps, "voxels": outcome.units, "wall_seconds": wall,
             "video": a.video.as_ref().map(|p| p.display().to_string()),
         });
+        for (name, value) in &outcome.metrics {
+            if v.get(name).is_none() {
+                v[name] = json!(value);
+            }
+        }
         println!("{}", serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?);
     } else {
         println!(
             "body      {} ({} voxels, preset {})",
-            body_name, outcome.voxels, robot.preset
+            body_name, outcome.units, robot.preset
         );
         println!(
             "task      {} for {} s (seed {}, transient {} s)",
-            a.task, a.duration, a.seed, a.transient
+            a.task, a.duration, a.seed, transient
         );
         println!(
             "brain     {} ({} parameters)",
@@ -155,8 +170,11 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
             robot.brain.parameters().len()
         );
         println!("sensors   {}", robot.sensors);
-        println!("distance  {:.4}", outcome.distance);
-        println!("velocity  {:.4}", outcome.velocity);
+        for (name, value) in &outcome.metrics {
+            if name != "elapsed" && name != "voxels" {
+                println!("{name:<9} {value:.4}");
+            }
+        }
         println!(
             "steps     {} in {:.3} s wall ({:.0} steps/s)",
             outcome.steps,

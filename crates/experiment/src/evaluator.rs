@@ -1,16 +1,19 @@
-//! From a genotype to what the optimizer and the logs need: fitness, descriptor, speciation
-//! features and a small record for snapshots.
+//! From a genotype to what the optimizer and the logs need: fitness values, descriptor,
+//! speciation features and a small record for snapshots.
 //!
-//! [`Evaluator`] is the seam between the runner and the robots: [`RobotEvaluator`] runs
-//! locomotion episodes; tests plug in cheap functions. Evaluations are pure and thread-safe: the
-//! same genotype and seed give the same result on any thread.
+//! [`Evaluator`] is the seam between the runner and the robots: [`RobotEvaluator`] maps genotypes
+//! to robots through a [`Mapper`] and calls [`vsrlab_tasks::evaluate_traced`], the one
+//! genotype → outcome path; tests plug in cheap functions. Evaluations are pure and thread-safe:
+//! the same genotype and seed give the same result on any thread.
 
-use crate::config::{Descriptor, Experiment, Fitness, OptimizerConfig, SeFeatures};
+use crate::config::Experiment;
 use crate::features;
+use crate::optimizers::{Descriptor, Extract};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::time::Instant;
-use vsrlab_tasks::{locomotion, Locomotion, Representation, TraceLevel};
+use vsrlab_body::Morphology;
+use vsrlab_tasks::{evaluate_traced, Mapper, Representation, TaskSpec, TraceLevel};
 
 /// The summary of one evaluation that population snapshots carry (serialisable: checkpoints
 /// hold the records of the current population).
@@ -18,7 +21,7 @@ use vsrlab_tasks::{locomotion, Locomotion, Representation, TraceLevel};
 pub struct Record {
     /// The episode seed used.
     pub seed: u64,
-    /// The fitness (`None` when the evaluation failed).
+    /// The (first) fitness value (`None` when the evaluation failed).
     pub fitness: Option<f64>,
     /// Distance travelled.
     pub distance: Option<f64>,
@@ -30,13 +33,16 @@ pub struct Record {
     pub body: Option<String>,
     /// Why the evaluation failed.
     pub error: Option<String>,
+    /// Every fitness value, for multi-objective tasks.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub objectives: Option<Vec<f64>>,
 }
 
 /// What one evaluation produced.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Evaluated {
-    /// The fitness; NaN (the optimizers' worst value) when the evaluation failed.
-    pub fitness: f64,
+    /// The fitness values; NaN (the optimizers' worst value) when the evaluation failed.
+    pub objectives: Vec<f64>,
     /// MAP-Elites descriptor (empty when unused).
     pub descriptor: Vec<f64>,
     /// Speciation features (empty unless SE-s / SE-b).
@@ -52,20 +58,26 @@ impl Evaluated {
     pub fn failed(&self) -> bool {
         self.record.error.is_some()
     }
+
+    /// The first fitness value (NaN when there is none).
+    pub fn fitness(&self) -> f64 {
+        self.objectives.first().copied().unwrap_or(f64::NAN)
+    }
 }
 
-/// Evaluates genotypes. Implementations must be deterministic in (genotype, seed).
-pub trait Evaluator: Sync {
-    /// Genes per genotype.
-    fn genotype_length(&self) -> usize;
+/// Evaluates genotypes of type `G`. Implementations must be deterministic in (genotype, seed).
+pub trait Evaluator<G>: Sync {
     /// Evaluates a genotype; `candidate_seed` is the optimizer's per-candidate seed.
-    fn evaluate(&self, genotype: &[f64], candidate_seed: u64) -> Evaluated;
+    fn evaluate(&self, genotype: &G, candidate_seed: u64) -> Evaluated;
+    /// Number of fitness values of every evaluation (1 unless multi-objective).
+    fn objectives(&self) -> usize {
+        1
+    }
     /// The result of an evaluation that failed with `error` before producing anything (used
-    /// when an evaluation panics): NaN fitness and zero descriptor and features of the right
-    /// lengths. The default has empty descriptor and features.
+    /// when an evaluation panics): NaN fitness values and empty descriptor and features.
     fn failure(&self, seed: u64, error: String) -> Evaluated {
         Evaluated {
-            fitness: f64::NAN,
+            objectives: vec![f64::NAN; self.objectives()],
             descriptor: Vec::new(),
             features: Vec::new(),
             record: Record {
@@ -76,76 +88,67 @@ pub trait Evaluator: Sync {
                 voxels: None,
                 body: None,
                 error: Some(error),
+                objectives: None,
             },
             seconds: 0.0,
         }
     }
     /// Saves the robot of a genotype to a file (the best of a run); a no-op by default.
-    fn save_robot(&self, _genotype: &[f64], _path: &Path, _note: &str) -> Result<(), String> {
+    fn save_robot(&self, _genotype: &G, _path: &Path, _note: &str) -> Result<(), String> {
         Ok(())
     }
 }
 
-/// Which extra data an evaluation must extract from its episode.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Extract {
-    Nothing,
-    Pose,
-    Spectrum,
-}
-
-/// Evaluates genotypes as robots on the experiment's locomotion task.
+/// Evaluates genotypes as robots on the experiment's task.
 #[derive(Debug, Clone)]
-pub struct RobotEvaluator {
-    representation: Representation,
-    task: Locomotion,
-    fitness: Fitness,
+pub struct RobotEvaluator<M = Representation> {
+    mapper: M,
+    task: TaskSpec,
     random_terrain: bool,
     episode_seed: u64,
     extract: Extract,
     descriptors: Vec<Descriptor>,
-    genes: usize,
 }
 
-impl RobotEvaluator {
+impl RobotEvaluator<Representation> {
     /// The evaluator of an experiment (already validated by [`crate::config::parse`]).
     pub fn new(experiment: &Experiment) -> Result<Self, String> {
-        let genes = experiment.representation.genotype_length().map_err(|e| e.to_string())?;
-        let (extract, descriptors) = match &experiment.optimizer {
-            OptimizerConfig::Se(p) => match p.features {
-                SeFeatures::Shape => (Extract::Pose, vec![]),
-                SeFeatures::Behaviour => (Extract::Spectrum, vec![]),
-                SeFeatures::Genotype => (Extract::Nothing, vec![]),
-            },
-            OptimizerConfig::MapElites(p) => (Extract::Nothing, p.axes.iter().map(|a| a.descriptor).collect()),
-            _ => (Extract::Nothing, vec![]),
-        };
-        Ok(Self {
-            representation: experiment.representation.clone(),
-            task: experiment.task.locomotion(),
-            fitness: experiment.task.fitness,
-            random_terrain: experiment.task.random_terrain_per_evaluation,
-            episode_seed: experiment.task.episode_seed,
-            extract,
-            descriptors,
-            genes,
-        })
+        experiment.representation.genotype_length().map_err(|e| e.to_string())?;
+        Ok(Self::with_mapper(experiment.representation.clone(), experiment))
     }
 
-    fn failed_with(
-        &self,
-        seed: u64,
-        body: Option<&vsrlab_body::Morphology>,
-        error: String,
-        start: Instant,
-    ) -> Evaluated {
+    /// Genes per genotype.
+    pub fn genotype_length(&self) -> usize {
+        self.mapper.genotype_length().unwrap_or(0)
+    }
+}
+
+impl<M> RobotEvaluator<M> {
+    /// An evaluator of an experiment's task and optimizer needs, with another genotype mapper.
+    pub fn with_mapper(mapper: M, experiment: &Experiment) -> Self {
+        let kind = experiment.optimizer.kind();
+        Self {
+            mapper,
+            task: experiment.task.spec.clone(),
+            random_terrain: experiment.task.random_terrain_per_evaluation,
+            episode_seed: experiment.task.episode_seed,
+            extract: kind.extract(),
+            descriptors: kind.descriptors(),
+        }
+    }
+
+    fn objective_count(&self) -> usize {
+        self.task.task().objectives().len()
+    }
+
+    fn failed_with(&self, seed: u64, body: Option<&Morphology>, error: String, start: Instant) -> Evaluated {
         let features_len = match self.extract {
             Extract::Nothing => 0,
             Extract::Pose => features::POSE_LEN,
             Extract::Spectrum => features::spectrum_len(),
         };
         Evaluated {
-            fitness: f64::NAN,
+            objectives: vec![f64::NAN; self.objective_count()],
             descriptor: match body {
                 Some(b) => self.descriptor(b),
                 None => vec![0.0; self.descriptors.len()],
@@ -159,12 +162,13 @@ impl RobotEvaluator {
                 voxels: body.map(|b| b.voxel_count()),
                 body: body.map(|b| b.to_rows().join("/")),
                 error: Some(error),
+                objectives: None,
             },
             seconds: start.elapsed().as_secs_f64(),
         }
     }
 
-    fn descriptor(&self, body: &vsrlab_body::Morphology) -> Vec<f64> {
+    fn descriptor(&self, body: &Morphology) -> Vec<f64> {
         let [voxels, elongation, compactness] = features::morphology_descriptors(body);
         self.descriptors
             .iter()
@@ -177,56 +181,55 @@ impl RobotEvaluator {
     }
 }
 
-impl Evaluator for RobotEvaluator {
-    fn genotype_length(&self) -> usize {
-        self.genes
+impl<G, M: Mapper<G>> Evaluator<G> for RobotEvaluator<M> {
+    fn objectives(&self) -> usize {
+        self.objective_count()
     }
 
-    fn evaluate(&self, genotype: &[f64], candidate_seed: u64) -> Evaluated {
+    fn evaluate(&self, genotype: &G, candidate_seed: u64) -> Evaluated {
         let start = Instant::now();
         let seed = if self.random_terrain {
             candidate_seed
         } else {
             self.episode_seed
         };
-        let robot = match self.representation.robot(genotype) {
-            Ok(robot) => robot,
-            Err(e) => return self.failed_with(seed, None, e.to_string(), start),
-        };
         let level = match self.extract {
             Extract::Nothing => TraceLevel::None,
             Extract::Pose => TraceLevel::Full,
             Extract::Spectrum => TraceLevel::Center,
         };
-        let outcome = match locomotion::run(&robot, &self.task, seed, level) {
-            Ok(outcome) => outcome,
-            Err(e) => return self.failed_with(seed, Some(&robot.body), e.to_string(), start),
+        let (outcome, robot) = match evaluate_traced(&self.mapper, genotype, self.task.task(), seed, level) {
+            Ok(done) => done,
+            Err(e) => {
+                // the body of a robot whose episode failed still goes into the record
+                let robot = self.mapper.robot(genotype).ok();
+                return self.failed_with(seed, robot.as_ref().and_then(|r| r.grid()), e.to_string(), start);
+            }
         };
-        let fitness = match self.fitness {
-            Fitness::Velocity => outcome.velocity,
-            Fitness::Distance => outcome.distance,
-        };
-        if !fitness.is_finite() {
-            return self.failed_with(seed, Some(&robot.body), format!("non-finite fitness {fitness}"), start);
+        let grid = robot.grid();
+        if let Some(bad) = outcome.fitness.iter().find(|f| !f.is_finite()) {
+            return self.failed_with(seed, grid, format!("non-finite fitness {bad}"), start);
         }
         let features = match (&self.extract, &outcome.trace) {
             (Extract::Pose, Some(trace)) => features::dynamic_pose(trace),
             (Extract::Spectrum, Some(trace)) => features::center_spectrum(trace),
             _ => Vec::new(),
         };
+        let metric = |name: &str| outcome.metrics.get(name).copied();
         Evaluated {
-            fitness,
-            descriptor: self.descriptor(&robot.body),
+            descriptor: grid.map_or_else(|| vec![0.0; self.descriptors.len()], |g| self.descriptor(g)),
             features,
             record: Record {
                 seed,
-                fitness: Some(fitness),
-                distance: Some(outcome.distance),
-                velocity: Some(outcome.velocity),
-                voxels: Some(outcome.voxels),
-                body: Some(robot.body.to_rows().join("/")),
+                fitness: outcome.fitness.first().copied(),
+                distance: metric("distance"),
+                velocity: metric("velocity"),
+                voxels: Some(outcome.units),
+                body: grid.map(|g| g.to_rows().join("/")),
                 error: None,
+                objectives: (outcome.fitness.len() > 1).then(|| outcome.fitness.clone()),
             },
+            objectives: outcome.fitness,
             seconds: start.elapsed().as_secs_f64(),
         }
     }
@@ -235,8 +238,11 @@ impl Evaluator for RobotEvaluator {
         self.failed_with(seed, None, error, Instant::now())
     }
 
-    fn save_robot(&self, genotype: &[f64], path: &Path, note: &str) -> Result<(), String> {
-        let robot = self.representation.robot(genotype).map_err(|e| e.to_string())?;
-        vsrlab_tasks::files::save_robot(path, &robot, Some(note)).map_err(|e| e.to_string())
+    fn save_robot(&self, genotype: &G, path: &Path, note: &str) -> Result<(), String> {
+        let robot = self.mapper.robot(genotype).map_err(|e| e.to_string())?;
+        let text = robot
+            .robot_file(Some(note))
+            .ok_or_else(|| "this kind of robot has no robot file".to_string())?;
+        vsrlab_tasks::files::write_atomic(path, text.as_bytes()).map_err(|e| format!("{}: {e}", path.display()))
     }
 }

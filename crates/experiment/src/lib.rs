@@ -5,8 +5,10 @@
 //! optimizer, stop criterion, runs and outputs.
 //!
 //! - [`config`]: the experiment file, parsed with errors that name the field and the line.
-//! - [`optimizer`]: the optimizers of `vsrlab-evolution` behind one serialisable value.
-//! - [`evaluator`]: genotype → fitness, descriptor, speciation features, snapshot record.
+//! - [`optimizers`]: the registry of optimizer kinds and their `[optimizer]` parameters, and
+//!   [`optimizers::SearchOptimizer`], what the runner needs of an optimizer over any genotype.
+//! - [`genotype`]: what the runner needs of a genotype type (serde and a key).
+//! - [`evaluator`]: genotype → fitness values, descriptor, speciation features, snapshot record.
 //! - [`features`]: simple morphology descriptors, dynamic pose and behaviour spectrum.
 //! - [`runner`]: the ask → parallel evaluate → tell loop, with CSV logs, snapshots, the best
 //!   robot, checkpoints and resume.
@@ -33,9 +35,13 @@
 pub mod config;
 pub mod evaluator;
 pub mod features;
-pub mod optimizer;
+pub mod genotype;
+pub mod optimizers;
 pub mod runner;
 
 pub use config::{ConfigError, Experiment};
 pub use evaluator::{Evaluated, Evaluator, Record, RobotEvaluator};
-pub use runner::{run_experiment, Flow, Observer, Progress, RunError, RunOptions, RunSummary, Silent};
+pub use genotype::Genotype;
+pub use runner::{
+    run_experiment, run_search, Flow, Observer, Plan, Progress, RunError, RunOptions, RunSummary, Silent,
+};

@@ -20,16 +20,18 @@
 //! interrupted and resumed. Only `timings.csv` and the `summary.json` files hold wall-clock
 //! figures. (A `stop.wall_seconds` criterion makes the stopping point machine-dependent.)
 
-use crate::config::{Experiment, StopConfig};
+use crate::config::{Experiment, OutputConfig, StopConfig};
 use crate::evaluator::{Evaluated, Evaluator, Record};
-use crate::optimizer::AnyOptimizer;
+use crate::genotype::Genotype;
+use crate::optimizers::{AnyOptimizer, SearchOptimizer};
 use rayon::prelude::*;
+use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use vsrlab_evolution::{Evaluation, Told};
+use vsrlab_evolution::{Evaluation, Sense, Told};
 use vsrlab_tasks::files::write_atomic;
 
 /// Format tag of checkpoint files.
@@ -189,17 +191,18 @@ struct RunState {
 }
 
 #[derive(Serialize, Deserialize)]
-struct Checkpoint {
+#[serde(bound(deserialize = "O: DeserializeOwned"))]
+struct Checkpoint<O> {
     format: String,
     run: usize,
     seed: u64,
     state: RunState,
-    optimizer: AnyOptimizer,
+    optimizer: O,
 }
 
 /// A snapshot line: one population member.
 #[derive(Serialize)]
-struct SnapshotLine<'a> {
+struct SnapshotLine<'a, G> {
     generation: u64,
     evaluations: u64,
     index: usize,
@@ -207,19 +210,35 @@ struct SnapshotLine<'a> {
     #[serde(flatten)]
     record: Option<&'a Record>,
     descriptor: &'a [f64],
-    genotype: &'a [f64],
+    genotype: &'a G,
 }
 
-/// FNV-1a over the bits of the genes: the key of a genotype's record.
-fn genotype_hash(genotype: &[f64]) -> u64 {
-    let mut h = 0xcbf2_9ce4_8422_2325u64;
-    for g in genotype {
-        for b in g.to_bits().to_le_bytes() {
-            h ^= u64::from(b);
-            h = h.wrapping_mul(0x0100_0000_01b3);
+/// What the runner needs of an experiment besides its optimizer and evaluator.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plan {
+    /// A short name, for notes.
+    pub name: Option<String>,
+    /// The resolved configuration, written to `experiment.toml` and compared on resume.
+    pub resolved: String,
+    /// One seed per run.
+    pub run_seeds: Vec<u64>,
+    /// When each run stops.
+    pub stop: StopConfig,
+    /// What is written.
+    pub output: OutputConfig,
+}
+
+impl Plan {
+    /// The plan of an experiment file.
+    pub fn of(experiment: &Experiment) -> Plan {
+        Plan {
+            name: experiment.name.clone(),
+            resolved: experiment.to_toml(),
+            run_seeds: experiment.run_seeds(),
+            stop: experiment.stop.clone(),
+            output: experiment.output.clone(),
         }
     }
-    h
 }
 
 /// Formats a float for the CSV: shortest round-trip form, `NaN` for failures.
@@ -227,23 +246,25 @@ fn num(v: f64) -> String {
     format!("{v}")
 }
 
-/// The element at index n/2 of the sorted values (jgea's median), NaN first (the worst).
-fn median(values: &[f64]) -> f64 {
+/// The element at index n/2 of the values sorted from worst to best (jgea's median), NaN
+/// first (the worst).
+fn median(values: &[f64], sense: Sense) -> f64 {
     if values.is_empty() {
         return f64::NAN;
     }
     let mut v = values.to_vec();
-    v.sort_by(|a, b| match (a.is_nan(), b.is_nan()) {
-        (true, true) => std::cmp::Ordering::Equal,
-        (true, false) => std::cmp::Ordering::Less,
-        (false, true) => std::cmp::Ordering::Greater,
-        _ => a.total_cmp(b),
-    });
+    v.sort_by(|&a, &b| sense.compare(a, b));
     v[v.len() / 2]
 }
 
-fn best_of(values: &[f64]) -> f64 {
-    values.iter().copied().filter(|v| !v.is_nan()).fold(f64::NAN, f64::max)
+/// The best value under `sense` (NaN when every value is NaN).
+fn best_of(values: &[f64], sense: Sense) -> f64 {
+    values
+        .iter()
+        .copied()
+        .filter(|v| !v.is_nan())
+        .reduce(|a, b| if sense.compare(b, a).is_gt() { b } else { a })
+        .unwrap_or(f64::NAN)
 }
 
 /// The folder of run `run` out of `runs`.
@@ -252,16 +273,48 @@ pub fn run_dir(out: &Path, run: usize, runs: usize) -> PathBuf {
     out.join(format!("run-{run:0width$}"))
 }
 
-/// Runs every run of an experiment into `out` (see the module docs for the files).
+/// Runs every run of a flat-vector experiment file into `out` (see the module docs for the
+/// files), with the optimizer its `[optimizer]` table names.
 pub fn run_experiment(
     experiment: &Experiment,
-    evaluator: &dyn Evaluator,
+    evaluator: &dyn Evaluator<Vec<f64>>,
+    out: &Path,
+    options: &RunOptions,
+    observer: &mut dyn Observer,
+) -> Result<Vec<RunSummary>, RunError> {
+    let dimension = experiment
+        .representation
+        .genotype_length()
+        .map_err(|e| RunError::Other(e.to_string()))?;
+    let senses: Vec<Sense> = experiment
+        .task
+        .spec
+        .task()
+        .objectives()
+        .iter()
+        .map(|o| match o.sense {
+            vsrlab_tasks::Sense::Maximize => Sense::Maximize,
+            vsrlab_tasks::Sense::Minimize => Sense::Minimize,
+        })
+        .collect();
+    let new_optimizer = |seed: u64| -> Result<AnyOptimizer, RunError> {
+        Ok(experiment.optimizer.kind().build(dimension, &senses, seed)?)
+    };
+    run_search(&Plan::of(experiment), &new_optimizer, evaluator, out, options, observer)
+}
+
+/// Runs every run of a plan into `out` with optimizers of any genotype type: `new_optimizer`
+/// builds the optimizer of a run from its seed.
+pub fn run_search<G: Genotype, O: SearchOptimizer<G>>(
+    plan: &Plan,
+    new_optimizer: &dyn Fn(u64) -> Result<O, RunError>,
+    evaluator: &dyn Evaluator<G>,
     out: &Path,
     options: &RunOptions,
     observer: &mut dyn Observer,
 ) -> Result<Vec<RunSummary>, RunError> {
     std::fs::create_dir_all(out).map_err(io_error(out))?;
-    let resolved = experiment.to_toml();
+    let resolved = &plan.resolved;
     let config_path = out.join("experiment.toml");
     match std::fs::read_to_string(&config_path) {
         Ok(existing) if !options.resume => {
@@ -271,7 +324,7 @@ pub fn run_experiment(
                 out.display()
             )));
         }
-        Ok(existing) if existing != resolved => {
+        Ok(existing) if &existing != resolved => {
             return Err(RunError::Mismatch(format!(
                 "{} was written by a different experiment configuration: resuming needs the same file \
                  (compare with {})",
@@ -286,9 +339,16 @@ pub fn run_experiment(
         .build()
         .map_err(|e| RunError::Other(format!("thread pool: {e}")))?;
     let mut summaries = Vec::new();
-    for (run, seed) in experiment.run_seeds().into_iter().enumerate() {
-        let dir = run_dir(out, run, experiment.runs);
-        match run_one(experiment, evaluator, run, seed, &dir, options, &pool, observer)? {
+    for (run, &seed) in plan.run_seeds.iter().enumerate() {
+        let dir = run_dir(out, run, plan.run_seeds.len());
+        let session = Session {
+            plan,
+            evaluator,
+            new_optimizer,
+            options,
+            pool: &pool,
+        };
+        match run_one(&session, run, seed, &dir, observer)? {
             Some(summary) => summaries.push(summary),
             None => return Ok(summaries),
         }
@@ -299,9 +359,9 @@ pub fn run_experiment(
 }
 
 /// Which stop criterion holds, if any.
-fn stop_reason(stop: &StopConfig, optimizer: &AnyOptimizer, wall: f64) -> Option<&'static str> {
+fn stop_reason<G, O: SearchOptimizer<G>>(stop: &StopConfig, optimizer: &O, wall: f64) -> Option<&'static str> {
     if let (Some(target), Some(best)) = (stop.target_fitness, optimizer.best()) {
-        if best.fitness() >= target {
+        if first_sense(optimizer).reaches(best.fitness(), target) {
             return Some("target_fitness");
         }
     }
@@ -320,7 +380,12 @@ fn stop_reason(stop: &StopConfig, optimizer: &AnyOptimizer, wall: f64) -> Option
     None
 }
 
-fn fraction(stop: &StopConfig, optimizer: &AnyOptimizer, wall: f64) -> f64 {
+/// The sense of the first objective.
+fn first_sense<G, O: SearchOptimizer<G>>(optimizer: &O) -> Sense {
+    optimizer.senses().first().copied().unwrap_or_default()
+}
+
+fn fraction<G, O: SearchOptimizer<G>>(stop: &StopConfig, optimizer: &O, wall: f64) -> f64 {
     let mut f: f64 = 0.0;
     if let Some(n) = stop.evaluations {
         f = f.max(optimizer.evaluations() as f64 / n.max(1) as f64);
@@ -351,17 +416,29 @@ fn read_truncated(path: &Path, bytes: u64) -> Result<String, RunError> {
     Ok(text[..cut].to_string())
 }
 
-#[allow(clippy::too_many_arguments)]
-fn run_one(
-    experiment: &Experiment,
-    evaluator: &dyn Evaluator,
+/// What every run of one call shares.
+struct Session<'a, G, O> {
+    plan: &'a Plan,
+    evaluator: &'a dyn Evaluator<G>,
+    new_optimizer: &'a dyn Fn(u64) -> Result<O, RunError>,
+    options: &'a RunOptions,
+    pool: &'a rayon::ThreadPool,
+}
+
+fn run_one<G: Genotype, O: SearchOptimizer<G>>(
+    session: &Session<'_, G, O>,
     run: usize,
     seed: u64,
     dir: &Path,
-    options: &RunOptions,
-    pool: &rayon::ThreadPool,
     observer: &mut dyn Observer,
 ) -> Result<Option<RunSummary>, RunError> {
+    let Session {
+        plan,
+        evaluator,
+        new_optimizer,
+        options,
+        pool,
+    } = *session;
     let summary_path = dir.join("summary.json");
     let checkpoint_path = dir.join("checkpoint.json");
     let csv_path = dir.join("generations.csv");
@@ -380,10 +457,10 @@ fn run_one(
         remove_stale_temporaries(dir);
         remove_stale_temporaries(&snapshots);
     }
-    let every = experiment.output.snapshot_every;
+    let every = plan.output.snapshot_every;
     let (mut optimizer, mut state, mut csv, mut timings) = match std::fs::read(&checkpoint_path) {
         Ok(bytes) if options.resume => {
-            let checkpoint: Checkpoint = serde_json::from_slice(&bytes)
+            let checkpoint: Checkpoint<O> = serde_json::from_slice(&bytes)
                 .map_err(|e| RunError::Mismatch(format!("{}: {e}", checkpoint_path.display())))?;
             if checkpoint.format != CHECKPOINT_FORMAT || checkpoint.run != run || checkpoint.seed != seed {
                 return Err(RunError::Mismatch(format!(
@@ -396,7 +473,7 @@ fn run_one(
             (checkpoint.optimizer, checkpoint.state, csv, timings)
         }
         _ => {
-            let optimizer = AnyOptimizer::new(&experiment.optimizer, evaluator.genotype_length(), seed)?;
+            let optimizer = new_optimizer(seed)?;
             let state = RunState {
                 next_snapshot: every,
                 ..RunState::default()
@@ -412,19 +489,19 @@ fn run_one(
     let session_start = Instant::now();
     let wall_before = state.wall_seconds;
     let wall = |start: &Instant| wall_before + start.elapsed().as_secs_f64();
-    let progress = |optimizer: &AnyOptimizer, wall: f64| Progress {
+    let progress = |optimizer: &O, wall: f64| Progress {
         run,
-        runs: experiment.runs,
+        runs: plan.run_seeds.len(),
         generation: optimizer.generation(),
         evaluations: optimizer.evaluations(),
         best_fitness: optimizer.best().map_or(f64::NAN, |b| b.fitness()),
-        fraction: fraction(&experiment.stop, optimizer, wall),
+        fraction: fraction(&plan.stop, optimizer, wall),
         elapsed: wall,
     };
     observer.run_started(&progress(&optimizer, wall_before));
     let mut last_checkpoint = Instant::now();
     let reason = loop {
-        if let Some(reason) = stop_reason(&experiment.stop, &optimizer, wall(&session_start)) {
+        if let Some(reason) = stop_reason(&plan.stop, &optimizer, wall(&session_start)) {
             break reason;
         }
         let generation_start = Instant::now();
@@ -437,18 +514,17 @@ fn run_one(
                 .collect()
         });
         let evaluation_seconds = evaluation_start.elapsed().as_secs_f64();
-        let batch_fitness: Vec<f64> = results.iter().map(|e| e.fitness).collect();
+        let batch_fitness: Vec<f64> = results.iter().map(|e| e.fitness()).collect();
+        let sense = first_sense(&optimizer);
         let failures = results.iter().filter(|e| e.failed()).count() as u64;
         let episode_cpu: f64 = results.iter().map(|e| e.seconds).sum();
         let mut told = Vec::with_capacity(batch.len());
         for (candidate, evaluated) in batch.iter().zip(results) {
-            state
-                .records
-                .insert(genotype_hash(&candidate.genotype), evaluated.record);
+            state.records.insert(candidate.genotype.key(), evaluated.record);
             told.push(Told {
                 id: candidate.id,
                 evaluation: Evaluation {
-                    objectives: vec![evaluated.fitness],
+                    objectives: evaluated.objectives,
                     descriptor: evaluated.descriptor,
                     outcome: evaluated.features,
                 },
@@ -456,20 +532,20 @@ fn run_one(
         }
         optimizer.tell(told)?;
         if let Some(best) = optimizer.best() {
-            let hash = genotype_hash(&best.genotype);
+            let hash = best.genotype.key();
             if state.best.as_ref().map(|b| b.0) != Some(hash) {
                 state.best = state.records.get(&hash).map(|r| (hash, r.clone()));
             }
         }
         let population = optimizer.population();
-        let keep: BTreeSet<u64> = population.iter().map(|i| genotype_hash(&i.genotype)).collect();
+        let keep: BTreeSet<u64> = population.iter().map(|i| i.genotype.key()).collect();
         state.records.retain(|k, _| keep.contains(k));
 
         // Per-generation statistics (deterministic columns).
         let population_fitness: Vec<f64> = population.iter().map(|i| i.fitness()).collect();
         let records: Vec<Option<&Record>> = population
             .iter()
-            .map(|i| state.records.get(&genotype_hash(&i.genotype)))
+            .map(|i| state.records.get(&i.genotype.key()))
             .collect();
         let bodies: BTreeSet<&str> = records
             .iter()
@@ -491,10 +567,10 @@ fn run_one(
             optimizer.births(),
             failures,
             num(best),
-            num(best_of(&batch_fitness)),
-            num(median(&batch_fitness)),
-            num(best_of(&population_fitness)),
-            num(median(&population_fitness)),
+            num(best_of(&batch_fitness, sense)),
+            num(median(&batch_fitness, sense)),
+            num(best_of(&population_fitness, sense)),
+            num(median(&population_fitness, sense)),
             population.len(),
             bodies.len(),
             num(mean_voxels),
@@ -531,7 +607,7 @@ fn run_one(
 
         // Checkpoint.
         state.wall_seconds = wall(&session_start);
-        if last_checkpoint.elapsed().as_secs_f64() >= experiment.output.checkpoint_interval {
+        if last_checkpoint.elapsed().as_secs_f64() >= plan.output.checkpoint_interval {
             state.csv_bytes = csv.len() as u64;
             state.timings_bytes = timings.len() as u64;
             write_checkpoint(&checkpoint_path, run, seed, &state, &optimizer)?;
@@ -547,11 +623,11 @@ fn run_one(
         write_snapshot(&snapshots, &optimizer, &state)?;
     }
     let best = optimizer.best();
-    if experiment.output.save_best {
+    if plan.output.save_best {
         if let Some(best) = best {
             let note = format!(
                 "{}: run {run} (seed {seed}), best of {} evaluations, born in generation {}, fitness {}",
-                experiment.name.as_deref().unwrap_or("experiment"),
+                plan.name.as_deref().unwrap_or("experiment"),
                 optimizer.evaluations(),
                 best.birth_generation,
                 best.fitness()
@@ -595,7 +671,7 @@ fn run_one(
 
 /// Evaluates a genotype, turning a panic inside the evaluation into a failed evaluation so that
 /// one bad genotype never ends a run.
-fn evaluate_guarded(evaluator: &dyn Evaluator, genotype: &[f64], seed: u64) -> Evaluated {
+fn evaluate_guarded<G>(evaluator: &dyn Evaluator<G>, genotype: &G, seed: u64) -> Evaluated {
     let start = Instant::now();
     std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| evaluator.evaluate(genotype, seed))).unwrap_or_else(
         |panic| {
@@ -624,20 +700,20 @@ fn remove_stale_temporaries(dir: &Path) {
     }
 }
 
-fn write_checkpoint(
+fn write_checkpoint<O: Serialize>(
     path: &Path,
     run: usize,
     seed: u64,
     state: &RunState,
-    optimizer: &AnyOptimizer,
+    optimizer: &O,
 ) -> Result<(), RunError> {
     #[derive(Serialize)]
-    struct CheckpointRef<'a> {
+    struct CheckpointRef<'a, O> {
         format: &'a str,
         run: usize,
         seed: u64,
         state: &'a RunState,
-        optimizer: &'a AnyOptimizer,
+        optimizer: &'a O,
     }
     let bytes = serde_json::to_vec(&CheckpointRef {
         format: CHECKPOINT_FORMAT,
@@ -650,7 +726,11 @@ fn write_checkpoint(
     write_file(path, &bytes)
 }
 
-fn write_snapshot(folder: &Path, optimizer: &AnyOptimizer, state: &RunState) -> Result<(), RunError> {
+fn write_snapshot<G: Genotype, O: SearchOptimizer<G>>(
+    folder: &Path,
+    optimizer: &O,
+    state: &RunState,
+) -> Result<(), RunError> {
     let mut text = String::new();
     for (index, individual) in optimizer.population().into_iter().enumerate() {
         let line = SnapshotLine {
@@ -658,7 +738,7 @@ fn write_snapshot(folder: &Path, optimizer: &AnyOptimizer, state: &RunState) -> 
             evaluations: optimizer.evaluations(),
             index,
             birth_generation: individual.birth_generation,
-            record: state.records.get(&genotype_hash(&individual.genotype)),
+            record: state.records.get(&individual.genotype.key()),
             descriptor: &individual.descriptor,
             genotype: &individual.genotype,
         };

@@ -2,7 +2,8 @@
 //! the resolved configuration round-trips.
 
 use std::path::{Path, PathBuf};
-use vsrlab_experiment::config::{self, OptimizerConfig, SeFeatures};
+use vsrlab_experiment::config;
+use vsrlab_experiment::optimizers::{OptimizerConfig, SeFeatures};
 
 const BASE: &str = r#"name = "demo"
 runs = 2
@@ -156,7 +157,7 @@ fn shipped_experiments_parse_with_the_thesis_sizes() {
         assert_eq!(genes, expected, "{name}");
         assert_eq!(e.runs, 10, "{name}");
         assert_eq!(e.stop.evaluations, Some(30_000), "{name}");
-        assert_eq!(e.task.duration, 30.0, "{name}");
+        assert_eq!(e.task.spec.task().duration(), 30.0, "{name}");
         let features = match &e.optimizer {
             OptimizerConfig::Se(p) => Some(p.features),
             _ => None,

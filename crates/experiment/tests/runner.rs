@@ -2,10 +2,18 @@
 //! populations): thread count does not change results; an interrupted then resumed run ends
 //! with the same files as an uninterrupted one; failed evaluations are counted, not fatal.
 
+mod common;
+
+use common::deterministic_files;
+
 use std::path::Path;
+use vsrlab_evolution::Sense;
 use vsrlab_experiment::config::{self, Experiment};
 use vsrlab_experiment::evaluator::{Evaluated, Evaluator, Record, RobotEvaluator};
-use vsrlab_experiment::runner::{run_dir, run_experiment, Flow, Observer, Progress, RunOptions, Silent};
+use vsrlab_experiment::optimizers::AnyOptimizer;
+use vsrlab_experiment::runner::{
+    run_dir, run_experiment, run_search, Flow, Observer, Plan, Progress, RunError, RunOptions, Silent,
+};
 
 /// The brain of the tiny experiments.
 const BRAIN: &str = r#"{ kind = "distributed-mlp", layout = "homogeneous", signals = 1, hidden = [] }"#;
@@ -37,29 +45,6 @@ snapshot_every = 20
 "####
     );
     config::parse(&text, "tiny.toml").unwrap()
-}
-
-/// The deterministic files of a finished experiment, as (relative path, content).
-fn deterministic_files(out: &Path) -> Vec<(String, String)> {
-    let mut files = Vec::new();
-    let mut stack = vec![out.to_path_buf()];
-    while let Some(dir) = stack.pop() {
-        for entry in std::fs::read_dir(&dir).unwrap() {
-            let path = entry.unwrap().path();
-            if path.is_dir() {
-                stack.push(path);
-                continue;
-            }
-            let name = path.file_name().unwrap().to_string_lossy().into_owned();
-            if name == "timings.csv" || name == "summary.json" {
-                continue;
-            }
-            let rel = path.strip_prefix(out).unwrap().display().to_string();
-            files.push((rel, std::fs::read_to_string(&path).unwrap()));
-        }
-    }
-    files.sort();
-    files
 }
 
 fn run(experiment: &Experiment, out: &Path, threads: usize) {
@@ -203,12 +188,8 @@ fn resuming_with_another_configuration_is_refused() {
 /// fitness = −Σx² otherwise.
 struct Flaky;
 
-impl Evaluator for Flaky {
-    fn genotype_length(&self) -> usize {
-        3
-    }
-
-    fn evaluate(&self, genotype: &[f64], seed: u64) -> Evaluated {
+impl Evaluator<Vec<f64>> for Flaky {
+    fn evaluate(&self, genotype: &Vec<f64>, seed: u64) -> Evaluated {
         assert!(genotype[1] < 0.9, "gene 1 too large");
         let ok = genotype[0] >= 0.0;
         let fitness = if ok {
@@ -217,7 +198,7 @@ impl Evaluator for Flaky {
             f64::NAN
         };
         Evaluated {
-            fitness,
+            objectives: vec![fitness],
             descriptor: vec![],
             features: vec![],
             record: Record {
@@ -228,6 +209,7 @@ impl Evaluator for Flaky {
                 voxels: None,
                 body: None,
                 error: (!ok).then(|| "negative first gene".to_string()),
+                objectives: None,
             },
             seconds: 0.0,
         }
@@ -245,7 +227,19 @@ fn failed_and_panicking_evaluations_get_the_worst_fitness_and_are_counted() {
         threads: 2,
         resume: false,
     };
-    let summaries = run_experiment(&experiment, &Flaky, dir.path(), &options, &mut Silent).unwrap();
+    // three genes, whatever the representation says: the optimizer comes from the plan's kind
+    let new_optimizer = |seed: u64| -> Result<AnyOptimizer, RunError> {
+        Ok(experiment.optimizer.kind().build(3, &[Sense::Maximize], seed)?)
+    };
+    let summaries = run_search(
+        &Plan::of(&experiment),
+        &new_optimizer,
+        &Flaky,
+        dir.path(),
+        &options,
+        &mut Silent,
+    )
+    .unwrap();
     let s = &summaries[0];
     assert!(s.failures > 0 && s.generations == 15);
     let best = s.best_fitness.unwrap();
@@ -262,4 +256,52 @@ fn failed_and_panicking_evaluations_get_the_worst_fitness_and_are_counted() {
     // Survivors are never failed ones once enough good genotypes exist.
     let last: Vec<&str> = csv.lines().last().unwrap().split(',').collect();
     assert_ne!(last[8], "NaN", "population median");
+}
+
+#[test]
+fn nsga2_runs_a_two_objective_task_from_a_config() {
+    let experiment = two_objectives(tiny(
+        "kind = \"nsga2\"\npopulation_size = 8\noffspring_size = 8",
+        "generations = 3",
+    ));
+    let dir = tempfile::tempdir().unwrap();
+    run(&experiment, dir.path(), 2);
+    let snapshots = std::fs::read_dir(dir.path().join("run-00/snapshots")).unwrap();
+    let last = snapshots.map(|e| e.unwrap().path()).max().unwrap();
+    let text = std::fs::read_to_string(last).unwrap();
+    let lines: Vec<serde_json::Value> = text.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    assert_eq!(lines.len(), 8);
+    for line in &lines {
+        let objectives = line["objectives"].as_array().unwrap();
+        assert_eq!(objectives.len(), 2, "{line}");
+        assert_eq!(objectives[0], line["velocity"]);
+        assert_eq!(objectives[1].as_f64().unwrap(), line["voxels"].as_f64().unwrap());
+    }
+}
+
+#[test]
+fn a_single_objective_optimizer_refuses_two_objectives() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../experiments/two-objectives.toml"
+    ))
+    .unwrap();
+    assert!(config::parse(&text, "two-objectives.toml").is_ok());
+    let ga = text.replace("kind = \"nsga2\"", "kind = \"ga\"");
+    let err = config::parse(&ga, "x.toml").unwrap_err();
+    assert_eq!(err.field, "optimizer.kind");
+    assert!(err.to_string().contains("use nsga2"), "{err}");
+}
+
+/// The experiment with two objectives: velocity maximised, voxel count minimised.
+fn two_objectives(mut experiment: Experiment) -> Experiment {
+    experiment.task.spec = experiment
+        .task
+        .spec
+        .with_settings(&[(
+            "fitness",
+            serde_json::json!(["velocity", {"metric": "voxels", "sense": "minimize"}]),
+        )])
+        .unwrap();
+    experiment
 }

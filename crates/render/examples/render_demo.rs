@@ -66,6 +66,7 @@ fn synthetic(seconds: f64) -> Trace {
         side_length: side,
         terrain: terrain.clone(),
         cells: cells.clone(),
+        outline_corners: vec![4; cells.len()],
         readings_per_voxel,
         rays: rays.clone(),
         ..Trace::default()
@@ -98,7 +99,7 @@ fn synthetic(seconds: f64) -> Trace {
                 Vec2::new(-half, -half),
             ];
             let poly = corners.map(|q| origin + rot(c + q));
-            tr.polygons.push(poly);
+            tr.outlines.extend_from_slice(&poly);
             tr.area_ratios.push(s * s);
             tr.angles.push(theta);
             tr.touching
@@ -111,9 +112,9 @@ fn synthetic(seconds: f64) -> Trace {
             }
         }
         tr.centers.push(center * (1.0 / cells.len() as f64));
-        let polys = &tr.polygons[k * cells.len()..];
+        let polys = &tr.outlines[k * 4 * cells.len()..];
         for ray in &rays {
-            let p = polys[ray.voxel];
+            let p = &polys[4 * ray.voxel..4 * ray.voxel + 4];
             let c = (p[0] + p[1] + p[2] + p[3]) * 0.25;
             let a = theta + ray.relative_angle;
             tr.ray_distances

@@ -158,9 +158,9 @@ mod tests {
         let t = moving_square(301, 10.0);
         let k = 300;
         let v = camera_view(&t, k, &RenderOptions::default());
-        let now = t.polygons_at(k)[0];
-        let two_s_ago = t.polygons_at(k - 120)[0];
-        let older = t.polygons_at(k - 240)[0];
+        let now = t.polygons_at(k).first().unwrap();
+        let two_s_ago = t.polygons_at(k - 120).first().unwrap();
+        let older = t.polygons_at(k - 240).first().unwrap();
         for p in now.iter().chain(two_s_ago.iter()) {
             assert!(v.contains(*p), "{p:?} not in {v:?}");
         }

@@ -5,7 +5,7 @@ use crate::{RenderOptions, MAX_SIDE};
 use std::f64::consts::PI;
 use tiny_skia::{Color, FillRule, LineCap, LineJoin, Paint, PathBuilder, Pixmap, Rect, Stroke, Transform};
 use vsrlab_physics::Vec2;
-use vsrlab_tasks::Trace;
+use vsrlab_tasks::{Polygons, Trace};
 
 /// An opaque or translucent colour: red, green, blue, alpha.
 pub(crate) type Rgba = [u8; 4];
@@ -121,8 +121,9 @@ impl<'a> Scene<'a> {
         let n = t.voxels();
         for (v, poly) in polys.iter().enumerate() {
             let idx = step * n + v;
+            let Some(&first) = poly.first() else { continue };
             let mut pb = PathBuilder::new();
-            let (x, y) = px(poly[0]);
+            let (x, y) = px(first);
             pb.move_to(x, y);
             for &p in &poly[1..] {
                 let (x, y) = px(p);
@@ -189,7 +190,7 @@ impl<'a> Scene<'a> {
     }
 
     /// Half-disks of sensor readings, one sector per reading.
-    fn draw_sensors(&self, pm: &mut Pixmap, view: &View, step: usize, polys: &[[Vec2; 4]]) {
+    fn draw_sensors(&self, pm: &mut Pixmap, view: &View, step: usize, polys: Polygons<'_>) {
         let t = self.trace;
         let px = |p: Vec2| view.to_pixel(p, self.opts.width);
         let fill = paint(SENSOR_FILL, self.anti_alias);
@@ -225,7 +226,7 @@ impl<'a> Scene<'a> {
     }
 
     /// Lidar rays from each voxel centre, with a circle at each hit closer than the range.
-    fn draw_lidar(&self, pm: &mut Pixmap, view: &View, step: usize, polys: &[[Vec2; 4]]) {
+    fn draw_lidar(&self, pm: &mut Pixmap, view: &View, step: usize, polys: Polygons<'_>) {
         let t = self.trace;
         let px = |p: Vec2| view.to_pixel(p, self.opts.width);
         let red = paint(LIDAR, self.anti_alias);
@@ -277,28 +278,30 @@ impl<'a> Scene<'a> {
 
     /// Angle of voxel `v` at `step`: the recorded one, or else the mean direction of its top and
     /// bottom edges.
-    fn angle(&self, step: usize, v: usize, poly: &[Vec2; 4]) -> f64 {
+    fn angle(&self, step: usize, v: usize, poly: &[Vec2]) -> f64 {
         let t = self.trace;
-        match t.angles.get(step * t.voxels() + v) {
-            Some(&a) if a.is_finite() => a,
-            _ => {
-                let d = (poly[1] - poly[0]) + (poly[2] - poly[3]);
+        match (t.angles.get(step * t.voxels() + v), poly) {
+            (Some(&a), _) if a.is_finite() => a,
+            (_, [nw, ne, se, sw]) => {
+                let d = (*ne - *nw) + (*se - *sw);
                 d.y.atan2(d.x)
             }
+            _ => 0.0,
         }
     }
 }
 
 /// Mean of the polygon's corners.
-fn center(poly: &[Vec2; 4]) -> Vec2 {
-    (poly[0] + poly[1] + poly[2] + poly[3]) * 0.25
+fn center(poly: &[Vec2]) -> Vec2 {
+    poly.iter().fold(Vec2::ZERO, |acc, &p| acc + p) / poly.len().max(1) as f64
 }
 
 /// Unsigned (shoelace) area of the polygon.
-fn area(poly: &[Vec2; 4]) -> f64 {
+fn area(poly: &[Vec2]) -> f64 {
+    let n = poly.len();
     let mut twice = 0.0;
-    for i in 0..4 {
-        twice += poly[i].cross(poly[(i + 1) % 4]);
+    for i in 0..n {
+        twice += poly[i].cross(poly[(i + 1) % n]);
     }
     (twice / 2.0).abs()
 }
@@ -436,7 +439,7 @@ mod tests {
         // 10 s at 100 units/s: ends near x = 1000, with 200 units of history in the camera window
         let t = moving_square(601, 100.0);
         let last = t.len() - 1;
-        let poly = t.polygons_at(last)[0];
+        let poly = t.polygons_at(last).first().unwrap().to_vec();
         assert!(poly[0].x > 990.0);
         let pm = render_frame(&t, last, &opts);
         let c = at(&t, last, &opts, &pm, center(&poly));
@@ -462,9 +465,7 @@ mod tests {
         // 3×3 voxel at 80 px per unit: about 240×240 pixels
         assert!(yellow > 40_000, "only {yellow} voxel pixels");
         let mut t2 = t.clone();
-        t2.polygons
-            .iter_mut()
-            .for_each(|p| p.iter_mut().for_each(|q| q.x -= 500.0));
+        t2.outlines.iter_mut().for_each(|q| q.x -= 500.0);
         let pm2 = render_frame(&t2, last, &opts);
         let worst = pm.data().iter().zip(pm2.data()).map(|(a, b)| a.abs_diff(*b)).max();
         assert!(
@@ -585,7 +586,7 @@ mod tests {
             relative_angle: 0.0,
             range: f64::INFINITY,
         }];
-        t.polygons[0][2] = Vec2::new(f64::NAN, 1.0);
+        t.outlines[2] = Vec2::new(f64::NAN, 1.0);
         let _ = render_frame(&t, 10, &RenderOptions::default());
         let _ = render_frame(
             &Trace::default(),

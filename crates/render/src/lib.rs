@@ -204,10 +204,7 @@ fn check_trace(trace: &Trace, path: &Path) -> Result<(), RenderError> {
     if trace.is_empty() {
         return Err(problem("the trace has no steps"));
     }
-    if trace.voxels() == 0 {
-        return Err(problem("the trace has no voxels"));
-    }
-    if trace.polygons.len() < trace.len() * trace.voxels() {
+    if trace.outline_corners.is_empty() || trace.outlines.len() < trace.len() * trace.corners_per_step() {
         return Err(problem(
             "the trace has no voxel polygons for every step (record it with trace level \"full\")",
         ));

@@ -158,7 +158,7 @@ fn bad_requests_fail_and_leave_nothing() {
     let err = save_video(&Trace::default(), &opts, dir.join("e.gif")).unwrap_err();
     assert!(matches!(err, RenderError::InvalidTrace { .. }), "{err:?}");
     let mut centres_only = t.clone();
-    centres_only.polygons.clear();
+    centres_only.outlines.clear();
     let err = save_video(&centres_only, &opts, dir.join("c.gif")).unwrap_err();
     assert!(
         err.to_string().contains("c.gif") && err.to_string().contains("polygons"),

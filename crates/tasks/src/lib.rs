@@ -1,19 +1,38 @@
-//! `vsrlab-tasks`: worlds, terrains, the episode loop and fitness.
+//! `vsrlab-tasks`: worlds, tasks, the one episode loop, outcomes and fitness.
 //!
-//! An episode is a pure function of (robot, task, seed): [`locomotion::run`] builds the world,
-//! places the robot, and steps physics → sense → control → set rest lengths (vsr-model.md §2.2).
+//! - [`Task`] (`task.rs`): what a robot is asked to do; [`TaskSpec`] and [`registry::TASKS`]
+//!   list the kinds ([`Locomotion`], [`Jump`]) for configs and the command line.
+//! - [`Robot`] / [`Agent`] (`agent.rs`): a robot before and after it is put in a world;
+//!   [`RobotSpec`] (the voxel robot of robot files) is one.
+//! - [`episode::run`]: the one loop, physics → sense → control → actuate (vsr-model.md §2.2),
+//!   pure in (robot, task, seed).
+//! - [`evaluate`] (`representation.rs`): genotype → robot → episode → outcome, through a
+//!   [`Mapper`] for any genotype type.
 #![warn(missing_docs)]
 
+pub mod agent;
+pub mod episode;
 pub mod files;
+pub mod fitness;
 pub mod java_random;
+pub mod jump;
 pub mod locomotion;
 pub mod outcome;
+pub mod registry;
 pub mod representation;
 pub mod robot;
+pub mod task;
 pub mod terrain;
+pub mod voxel_robot;
 
-pub use locomotion::{EpisodeError, Locomotion};
-pub use outcome::{Outcome, Trace, TraceLevel};
-pub use representation::{evaluate, evaluate_traced, BodyPart, EvaluationError, Representation};
+pub use agent::{Agent, Robot};
+pub use episode::EpisodeError;
+pub use fitness::Fitness;
+pub use jump::Jump;
+pub use locomotion::Locomotion;
+pub use outcome::{Outcome, Polygons, Trace, TraceLevel};
+pub use registry::{FieldError, TaskSpec};
+pub use representation::{evaluate, evaluate_traced, BodyPart, EvaluationError, Mapper, Representation};
 pub use robot::RobotSpec;
+pub use task::{Metrics, Objective, Sense, Task};
 pub use terrain::Terrain;

@@ -1,28 +1,19 @@
 //! The locomotion task (vsr-model.md §5.1): walk as far right as possible in a given time.
+//!
+//! Metrics: `distance` (x displacement of the centre over the evaluated window, which starts
+//! after `transient` seconds), `velocity` (distance ÷ the window's duration), `elapsed` (the
+//! window's duration) and `voxels` (actuated units of the body). Fitness: `velocity` unless
+//! `fitness` says otherwise.
 
-use crate::outcome::{Outcome, RayInfo, Trace, TraceLevel};
-use crate::robot::RobotSpec;
+use crate::episode::EpisodeError;
+use crate::fitness::Fitness;
+use crate::task::{check_duration, check_objectives, Flow, Metrics, Objective, Scene, StepView, Task, TaskEpisode};
 use crate::terrain::{add_ground, height_at, Terrain};
 use serde::{Deserialize, Serialize};
-use vsrlab_body::sensors::SensorSuite;
-use vsrlab_body::{VoxelState, Vsr};
-use vsrlab_physics::{PhysicsError, Vec2, World, WorldBuilder, WorldSettings};
+use vsrlab_physics::{Vec2, WorldBuilder, WorldSettings};
 
-/// Why an episode could not be run or completed.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum EpisodeError {
-    /// The description is invalid; the message names the field.
-    #[error("{0}")]
-    Invalid(String),
-    /// The simulation produced non-finite values.
-    #[error("episode failed at t = {time:.4} s: {source}")]
-    Physics {
-        /// Simulated time when it happened.
-        time: f64,
-        /// The engine's report.
-        source: PhysicsError,
-    },
-}
+/// The metrics of a locomotion episode.
+pub const METRICS: &[&str] = &["distance", "velocity", "elapsed", "voxels"];
 
 /// Locomotion task settings.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -38,6 +29,8 @@ pub struct Locomotion {
     pub initial_x: f64,
     /// Gap between the lowest voxel and the ground below it at the start.
     pub initial_gap: f64,
+    /// Which metrics are the fitness values (default `velocity`).
+    pub fitness: Fitness,
     /// Physics engine settings.
     pub physics: WorldSettings,
 }
@@ -50,21 +43,20 @@ impl Default for Locomotion {
             transient: 0.0,
             initial_x: 11.0,
             initial_gap: 1.0,
+            fitness: Fitness::maximize("velocity"),
             physics: WorldSettings::default(),
         }
     }
 }
 
-impl Locomotion {
-    /// Checks the settings; errors name the field.
-    pub fn validate(&self) -> Result<(), EpisodeError> {
+impl Task for Locomotion {
+    fn kind(&self) -> &'static str {
+        "locomotion"
+    }
+
+    fn validate(&self) -> Result<(), EpisodeError> {
         let bad = |m: String| Err(EpisodeError::Invalid(m));
-        if !(self.duration.is_finite() && self.duration > 0.0 && self.duration <= 1e5) {
-            return bad(format!(
-                "task.duration must be in (0, 100000] seconds, got {}",
-                self.duration
-            ));
-        }
+        check_duration(self.duration)?;
         if !(self.transient.is_finite() && self.transient >= 0.0 && self.transient < self.duration) {
             return bad(format!(
                 "task.transient must be ≥ 0 and shorter than the duration ({}), got {}",
@@ -74,100 +66,62 @@ impl Locomotion {
         if !(self.initial_x.is_finite() && self.initial_gap.is_finite() && self.initial_gap >= 0.0) {
             return bad("task.initial_x and task.initial_gap must be finite (gap ≥ 0)".into());
         }
+        check_objectives(&self.fitness.0, METRICS)?;
         self.physics
             .validate()
             .map_err(|m| EpisodeError::Invalid(format!("task.physics.{m}")))
     }
-}
 
-/// The lower-left corner of the robot's grid such that its left edge is at `initial_x` and its
-/// lowest voxel is `initial_gap` above the ground beneath it (vsr-model.md §2.4).
-fn placement(robot: &RobotSpec, profile: &[Vec2], task: &Locomotion) -> Vec2 {
-    let l = robot.voxel_params().side_length;
-    let x0 = task.initial_x;
-    let y0 = robot
-        .body
-        .voxels()
-        .map(|(x, y)| {
-            let cx = x0 + (x as f64 + 0.5) * l;
-            height_at(profile, cx).unwrap_or(0.0) - y as f64 * l
-        })
-        .fold(f64::NEG_INFINITY, f64::max)
-        + task.initial_gap;
-    Vec2::new(x0, y0)
-}
-
-/// Runs one locomotion episode. Pure: the same inputs give bit-identical outcomes.
-pub fn run(robot: &RobotSpec, task: &Locomotion, seed: u64, trace_level: TraceLevel) -> Result<Outcome, EpisodeError> {
-    task.validate()?;
-    let params = robot.voxel_params();
-    params.validate().map_err(EpisodeError::Invalid)?;
-    let profile = task.terrain.profile(seed);
-    let mut builder = WorldBuilder::new(task.physics.clone());
-    add_ground(&mut builder, &profile);
-    let origin = placement(robot, &profile, task);
-    let vsr = Vsr::assemble(&mut builder, &robot.body, &params, origin, 1);
-    let mut world = builder.build().map_err(|e| EpisodeError::Invalid(e.to_string()))?;
-    let mut sensors = SensorSuite::new(&robot.sensors, &robot.body, seed)
-        .map_err(|e| EpisodeError::Invalid(format!("robot.sensors: {e}")))?;
-    let per_voxel: Vec<usize> = (0..robot.body.voxel_count())
-        .map(|v| sensors.readings_per_voxel(v))
-        .collect();
-    let mut brain = robot
-        .brain
-        .build(&robot.body, &per_voxel)
-        .map_err(|e| EpisodeError::Invalid(format!("robot.{e}")))?;
-    brain.reset();
-
-    let n = vsr.voxel_count();
-    let mut states = vec![vsr.voxel_state(&world, 0); n];
-    let mut readings = vec![0.0; sensors.total_readings()];
-    let mut actuations = vec![0.0; n];
-    let mut recorder = Recorder::new(trace_level, task, &vsr, &sensors, &profile, &world);
-    let dt = task.physics.dt;
-    let mut t = 0.0;
-    let mut window = Window::default();
-    while t < task.duration {
-        t += dt;
-        world
-            .step()
-            .map_err(|source| EpisodeError::Physics { time: t, source })?;
-        for (i, s) in states.iter_mut().enumerate() {
-            *s = vsr.voxel_state(&world, i);
-        }
-        sensors.sense(&world, &vsr, &states, t, &mut readings);
-        brain.control(t, &readings, &mut actuations);
-        vsr.actuate(&mut world, &actuations);
-        let center = vsr.center(&world);
-        if !center.is_finite() {
-            return Err(EpisodeError::Physics {
-                time: t,
-                source: PhysicsError::NonFinite {
-                    step: world.step_count(),
-                    body: 0,
-                },
-            });
-        }
-        if t >= task.transient {
-            window.observe(t, center.x);
-        }
-        recorder.record(t, center, &states, &actuations, &readings, &sensors);
+    fn duration(&self) -> f64 {
+        self.duration
     }
-    let elapsed = window.last_t - window.first_t;
-    let distance = window.last_x - window.first_x;
-    Ok(Outcome {
-        distance,
-        velocity: if elapsed > 0.0 { distance / elapsed } else { 0.0 },
-        elapsed,
-        steps: world.step_count(),
-        voxels: n,
-        trace: recorder.finish(),
-    })
+
+    fn physics(&self) -> &WorldSettings {
+        &self.physics
+    }
+
+    fn build_world(&self, builder: &mut WorldBuilder, seed: u64) -> Scene {
+        let terrain = self.terrain.profile(seed);
+        add_ground(builder, &terrain);
+        Scene { terrain }
+    }
+
+    fn place(&self, scene: &Scene, footprint: &[Vec2]) -> Vec2 {
+        place_on_ground(&scene.terrain, footprint, self.initial_x, self.initial_gap)
+    }
+
+    fn start(&self) -> Box<dyn TaskEpisode> {
+        Box::new(LocomotionEpisode {
+            transient: self.transient,
+            ..Default::default()
+        })
+    }
+
+    fn metric_names(&self) -> &'static [&'static str] {
+        METRICS
+    }
+
+    fn objectives(&self) -> &[Objective] {
+        &self.fitness.0
+    }
+}
+
+/// The origin that puts the body's left edge at `x0` and its lowest footprint point `gap` above
+/// the ground beneath it (vsr-model.md §2.4).
+pub fn place_on_ground(terrain: &[Vec2], footprint: &[Vec2], x0: f64, gap: f64) -> Vec2 {
+    let y0 = footprint
+        .iter()
+        .map(|p| height_at(terrain, x0 + p.x).unwrap_or(0.0) - p.y)
+        .fold(f64::NEG_INFINITY, f64::max)
+        + gap;
+    Vec2::new(x0, y0)
 }
 
 /// First and last observation of the evaluated window.
 #[derive(Debug, Default)]
-struct Window {
+struct LocomotionEpisode {
+    transient: f64,
+    voxels: usize,
     started: bool,
     first_t: f64,
     first_x: f64,
@@ -175,102 +129,33 @@ struct Window {
     last_x: f64,
 }
 
-impl Window {
-    fn observe(&mut self, t: f64, x: f64) {
-        if !self.started {
-            self.started = true;
-            self.first_t = t;
-            self.first_x = x;
-        }
-        self.last_t = t;
-        self.last_x = x;
-    }
-}
-
-/// Accumulates the trace at the requested level.
-struct Recorder {
-    level: TraceLevel,
-    trace: Trace,
-    domains: Vec<(f64, f64)>,
-}
-
-impl Recorder {
-    fn new(
-        level: TraceLevel,
-        task: &Locomotion,
-        vsr: &Vsr,
-        sensors: &SensorSuite,
-        profile: &[Vec2],
-        _world: &World,
-    ) -> Recorder {
-        let n = vsr.voxel_count();
-        let steps = (task.duration / task.physics.dt).ceil() as usize + 1;
-        let mut trace = Trace {
-            dt: task.physics.dt,
-            side_length: vsr.params().side_length,
-            ..Default::default()
-        };
-        let mut domains = Vec::new();
-        if level != TraceLevel::None {
-            trace.times.reserve(steps);
-            trace.centers.reserve(steps);
-        }
-        if level == TraceLevel::Full {
-            trace.terrain = profile.to_vec();
-            trace.cells = vsr.voxels().iter().map(|v| v.cell).collect();
-            trace.polygons.reserve(steps * n);
-            for v in 0..n {
-                trace.readings_per_voxel.push(sensors.readings_per_voxel(v));
-                domains.extend(sensors.domains(v));
-                for ray in sensors.lidar_rays(v) {
-                    trace.rays.push(RayInfo {
-                        voxel: v,
-                        relative_angle: ray.relative_angle,
-                        range: ray.range,
-                    });
-                }
+impl TaskEpisode for LocomotionEpisode {
+    fn observe(&mut self, step: &StepView) -> Flow {
+        self.voxels = step.body.actuator_count();
+        if step.t >= self.transient {
+            if !self.started {
+                self.started = true;
+                self.first_t = step.t;
+                self.first_x = step.center.x;
             }
+            self.last_t = step.t;
+            self.last_x = step.center.x;
         }
-        Recorder { level, trace, domains }
+        Flow::Continue
     }
 
-    fn record(
-        &mut self,
-        t: f64,
-        center: Vec2,
-        states: &[VoxelState],
-        actuations: &[f64],
-        readings: &[f64],
-        sensors: &SensorSuite,
-    ) {
-        if self.level == TraceLevel::None {
-            return;
-        }
-        self.trace.times.push(t);
-        self.trace.centers.push(center);
-        if self.level != TraceLevel::Full {
-            return;
-        }
-        for s in states {
-            self.trace.polygons.push(s.polygon);
-            self.trace.area_ratios.push(s.area_ratio);
-            self.trace.angles.push(s.angle);
-            self.trace.touching.push(s.touching);
-        }
-        self.trace.actuations.extend_from_slice(actuations);
-        for (r, (lo, hi)) in readings.iter().zip(&self.domains) {
-            let span = hi - lo;
-            let v = if span > 0.0 { (r - lo) / span } else { 0.0 };
-            self.trace.readings.push(v.clamp(0.0, 1.0) as f32);
-        }
-        for v in 0..states.len() {
-            for ray in sensors.lidar_rays(v) {
-                self.trace.ray_distances.push(ray.distance as f32);
-            }
-        }
-    }
-
-    fn finish(self) -> Option<Trace> {
-        (self.level != TraceLevel::None).then_some(self.trace)
+    fn metrics(&self) -> Metrics {
+        let elapsed = self.last_t - self.first_t;
+        let distance = self.last_x - self.first_x;
+        let velocity = if elapsed > 0.0 { distance / elapsed } else { 0.0 };
+        [
+            ("distance", distance),
+            ("velocity", velocity),
+            ("elapsed", elapsed),
+            ("voxels", self.voxels as f64),
+        ]
+        .into_iter()
+        .map(|(k, v)| (k.to_string(), v))
+        .collect()
     }
 }

@@ -1,5 +1,7 @@
-//! What an episode returns: distance, velocity, and optionally a per-step trace.
+//! What an episode returns: the task's metrics and fitness values, and optionally a per-step
+//! trace.
 
+use crate::task::Metrics;
 use serde::{Deserialize, Serialize};
 use vsrlab_physics::Vec2;
 
@@ -19,18 +21,23 @@ pub enum TraceLevel {
 /// The result of one episode.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Outcome {
-    /// x displacement of the robot's centre over the evaluated window.
-    pub distance: f64,
-    /// distance / elapsed time of the window (the usual fitness).
-    pub velocity: f64,
-    /// Simulated time spanned by the window (t_last − t_first).
-    pub elapsed: f64,
+    /// Named figures the task measured (locomotion: `distance`, `velocity`, `elapsed`).
+    pub metrics: Metrics,
+    /// The task's fitness values, one per objective, in order.
+    pub fitness: Vec<f64>,
     /// Number of physics steps simulated.
     pub steps: u64,
-    /// Number of voxels of the robot.
-    pub voxels: usize,
+    /// Number of actuated units of the robot (voxels of a VSR).
+    pub units: usize,
     /// Per-step record, when asked for.
     pub trace: Option<Trace>,
+}
+
+impl Outcome {
+    /// The metric called `name`, or NaN when the task does not report it.
+    pub fn metric(&self, name: &str) -> f64 {
+        self.metrics.get(name).copied().unwrap_or(f64::NAN)
+    }
 }
 
 /// A lidar ray of one voxel: direction relative to the voxel angle, and its range.
@@ -44,39 +51,90 @@ pub struct RayInfo {
     pub range: f64,
 }
 
-/// Per-step record of an episode. Arrays indexed [step][voxel] are stored flat, step-major.
+/// Per-step record of an episode. Arrays indexed `[step][unit]` are stored flat, step-major.
+///
+/// The body's outline is a list of polygons with any number of corners each
+/// ([`Trace::outline_corners`], the same at every step); per-unit arrays (area ratios, touch,
+/// actuations, readings) have one entry per sensing unit (voxel) and step, and stay empty for
+/// bodies that have no such units.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 pub struct Trace {
     /// Time step (s).
     pub dt: f64,
-    /// Voxel side length.
+    /// Typical size of the body's parts (a voxel's side), for drawing.
     pub side_length: f64,
     /// Terrain polyline.
     pub terrain: Vec<Vec2>,
-    /// Grid cell of each voxel (grid order).
+    /// Grid cell of each voxel (grid order); empty for bodies that are not grids.
     pub cells: Vec<(usize, usize)>,
     /// Time of each recorded step.
     pub times: Vec<f64>,
     /// Robot centre at each step.
     pub centers: Vec<Vec2>,
-    /// Voxel outer polygons (NW, NE, SE, SW corners), [step][voxel].
-    pub polygons: Vec<[Vec2; 4]>,
-    /// Area ratios, [step][voxel].
+    /// Corner count of each outline polygon (a voxel: 4, NW, NE, SE, SW).
+    pub outline_corners: Vec<usize>,
+    /// Outline corners, `[step][polygon][corner]`.
+    pub outlines: Vec<Vec2>,
+    /// Area ratios, `[step][unit]`.
     pub area_ratios: Vec<f64>,
-    /// Voxel angles, [step][voxel].
+    /// Unit angles, `[step][unit]`.
     pub angles: Vec<f64>,
-    /// Touch flags, [step][voxel].
+    /// Touch flags, `[step][unit]`.
     pub touching: Vec<bool>,
-    /// Actuation applied after sensing, [step][voxel].
+    /// Actuation applied after sensing, `[step][unit]`.
     pub actuations: Vec<f64>,
-    /// Number of sensor readings of each voxel.
+    /// Number of sensor readings of each unit.
     pub readings_per_voxel: Vec<usize>,
-    /// Sensor readings scaled to [0, 1] by each reading's domain, [step][reading].
+    /// Sensor readings scaled to [0, 1] by each reading's domain, `[step][reading]`.
     pub readings: Vec<f32>,
     /// The lidar rays, in order.
     pub rays: Vec<RayInfo>,
-    /// Lidar distances, [step][ray].
+    /// Lidar distances, `[step][ray]`.
     pub ray_distances: Vec<f32>,
+}
+
+/// The outline polygons of one step (see [`Trace::polygons_at`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Polygons<'a> {
+    corners: &'a [usize],
+    points: &'a [Vec2],
+}
+
+impl<'a> Polygons<'a> {
+    /// Number of polygons (zero when the step was not recorded).
+    pub fn len(&self) -> usize {
+        if self.points.is_empty() {
+            0
+        } else {
+            self.corners.len()
+        }
+    }
+    /// Whether there is no polygon.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// The polygons, in order.
+    pub fn iter(&self) -> impl Iterator<Item = &'a [Vec2]> + 'a {
+        let points = self.points;
+        let corners = if points.is_empty() { &[][..] } else { self.corners };
+        corners.iter().scan(0usize, move |start, &n| {
+            let polygon = &points[*start..*start + n];
+            *start += n;
+            Some(polygon)
+        })
+    }
+    /// Polygon `i`, if any.
+    pub fn get(&self, i: usize) -> Option<&'a [Vec2]> {
+        self.iter().nth(i)
+    }
+    /// The first polygon, if any.
+    pub fn first(&self) -> Option<&'a [Vec2]> {
+        self.get(0)
+    }
+    /// Every corner of every polygon.
+    pub fn points(&self) -> &'a [Vec2] {
+        self.points
+    }
 }
 
 impl Trace {
@@ -88,13 +146,43 @@ impl Trace {
     pub fn is_empty(&self) -> bool {
         self.times.is_empty()
     }
-    /// Number of voxels.
+    /// Number of sensing units (voxels).
     pub fn voxels(&self) -> usize {
         self.cells.len()
     }
-    /// Voxel polygons at step `k`.
-    pub fn polygons_at(&self, k: usize) -> &[[Vec2; 4]] {
-        let n = self.voxels();
-        self.polygons.get(k * n..(k + 1) * n).unwrap_or(&[])
+    /// Corners per step: the sum of [`Trace::outline_corners`].
+    pub fn corners_per_step(&self) -> usize {
+        self.outline_corners.iter().sum()
+    }
+    /// The outline polygons at step `k` (empty when step `k` holds no outline).
+    pub fn polygons_at(&self, k: usize) -> Polygons<'_> {
+        let n = self.corners_per_step();
+        Polygons {
+            corners: &self.outline_corners,
+            points: self.outlines.get(k * n..(k + 1) * n).unwrap_or(&[]),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn polygons_of_any_corner_count_are_cut_per_step() {
+        let p = |x: f64| Vec2::new(x, 0.0);
+        let trace = Trace {
+            outline_corners: vec![3, 4],
+            outlines: (0..14).map(|i| p(i as f64)).collect(),
+            ..Default::default()
+        };
+        assert_eq!(trace.corners_per_step(), 7);
+        let second = trace.polygons_at(1);
+        assert_eq!(second.len(), 2);
+        assert_eq!(second.first().unwrap(), &[p(7.0), p(8.0), p(9.0)]);
+        assert_eq!(second.get(1).unwrap().len(), 4);
+        assert_eq!(second.get(1).unwrap()[3], p(13.0));
+        assert!(trace.polygons_at(2).is_empty());
+        assert_eq!(trace.polygons_at(2).iter().count(), 0);
     }
 }

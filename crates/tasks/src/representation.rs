@@ -8,12 +8,14 @@
 //!   the decoded body occupies (distributed MLPs, homogeneous or one block per grid cell); a brain
 //!   whose count does (a centralised MLP) needs a fixed body, and is rejected otherwise.
 //!
-//! [`evaluate`] is the pure function (representation, genotype, task, seed) → outcome that the
-//! optimizers call, from as many threads as they like.
+//! [`evaluate`] is the pure function (mapper, genotype, task, seed) → outcome that the optimizers
+//! call, from as many threads as they like; [`Mapper`] makes it generic over the genotype.
 
-use crate::locomotion::{self, EpisodeError, Locomotion};
+use crate::agent::Robot;
+use crate::episode::{self, EpisodeError};
 use crate::outcome::{Outcome, TraceLevel};
 use crate::robot::RobotSpec;
+use crate::task::Task;
 use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
 use serde::de::{self, MapAccess, SeqAccess, Visitor};
 use serde::{Deserialize, Deserializer, Serialize};
@@ -179,24 +181,40 @@ fn representation_error<E: std::fmt::Display>(field: &'static str) -> impl Fn(E)
     move |e| EvaluationError::Representation(format!("{field}: {e}"))
 }
 
-/// Evaluates a genotype on a locomotion task: pure, thread-safe, summary outcome only (no trace).
-pub fn evaluate(
-    representation: &Representation,
-    genotype: &[f64],
-    task: &Locomotion,
-    seed: u64,
-) -> Result<Outcome, EvaluationError> {
-    evaluate_traced(representation, genotype, task, seed, TraceLevel::None)
+/// A genotype → robot mapping (JGEA's "mapper"): flat vectors through [`Representation`]; graph
+/// genomes or material grids through their own types.
+pub trait Mapper<G>: Send + Sync {
+    /// The robot a genotype stands for.
+    fn robot(&self, genotype: &G) -> Result<Box<dyn Robot>, EvaluationError>;
 }
 
-/// [`evaluate`] with a per-step trace at the given level (for analyses and videos).
-pub fn evaluate_traced(
-    representation: &Representation,
-    genotype: &[f64],
-    task: &Locomotion,
+impl Mapper<Vec<f64>> for Representation {
+    fn robot(&self, genotype: &Vec<f64>) -> Result<Box<dyn Robot>, EvaluationError> {
+        Ok(Box::new(Representation::robot(self, genotype)?))
+    }
+}
+
+/// Evaluates a genotype on a task: pure, thread-safe, summary outcome only (no trace). The one
+/// genotype → outcome path of vsrlab: the experiment runner, replays and bindings call it.
+pub fn evaluate<G, M: Mapper<G> + ?Sized>(
+    mapper: &M,
+    genotype: &G,
+    task: &dyn Task,
+    seed: u64,
+) -> Result<Outcome, EvaluationError> {
+    evaluate_traced(mapper, genotype, task, seed, TraceLevel::None).map(|(outcome, _)| outcome)
+}
+
+/// [`evaluate`] with a per-step trace at the given level (for analyses and videos); also
+/// returns the robot the genotype became.
+pub fn evaluate_traced<G, M: Mapper<G> + ?Sized>(
+    mapper: &M,
+    genotype: &G,
+    task: &dyn Task,
     seed: u64,
     trace: TraceLevel,
-) -> Result<Outcome, EvaluationError> {
-    let robot = representation.robot(genotype)?;
-    Ok(locomotion::run(&robot, task, seed, trace)?)
+) -> Result<(Outcome, Box<dyn Robot>), EvaluationError> {
+    let robot = mapper.robot(genotype)?;
+    let outcome = episode::run(robot.as_ref(), task, seed, trace)?;
+    Ok((outcome, robot))
 }

@@ -6,7 +6,7 @@ use common::*;
 use rayon::prelude::*;
 use vsrlab_body::Preset;
 use vsrlab_brain::BrainSpec;
-use vsrlab_tasks::{locomotion, Outcome, TraceLevel};
+use vsrlab_tasks::{episode, Outcome, TraceLevel};
 
 fn batch(threads: usize) -> Vec<Outcome> {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
@@ -23,7 +23,7 @@ fn batch(threads: usize) -> Vec<Outcome> {
             .enumerate()
             .map(|(i, (body, terrain, brain))| {
                 let r = robot(body, Preset::Y2021, brain.clone());
-                locomotion::run(&r, &task(terrain, 4.0), i as u64, TraceLevel::Full).unwrap()
+                episode::run(&r, &task(terrain, 4.0), i as u64, TraceLevel::Full).unwrap()
             })
             .collect()
     })
@@ -39,14 +39,14 @@ fn outcomes_are_bit_identical_across_runs_and_thread_counts() {
     assert_eq!(one, batch(1));
     // bit-identical, not merely equal within tolerance
     for (a, b) in one.iter().zip(&four) {
-        assert_eq!(a.distance.to_bits(), b.distance.to_bits());
+        assert_eq!(a.metric("distance").to_bits(), b.metric("distance").to_bits());
     }
 }
 
 #[test]
 fn different_seeds_change_random_terrain_outcomes() {
     let r = robot("biped-4x3", Preset::Y2021, phase());
-    let a = locomotion::run(&r, &task("hilly-2-5", 5.0), 1, TraceLevel::None).unwrap();
-    let b = locomotion::run(&r, &task("hilly-2-5", 5.0), 2, TraceLevel::None).unwrap();
-    assert_ne!(a.distance, b.distance);
+    let a = episode::run(&r, &task("hilly-2-5", 5.0), 1, TraceLevel::None).unwrap();
+    let b = episode::run(&r, &task("hilly-2-5", 5.0), 2, TraceLevel::None).unwrap();
+    assert_ne!(a.metric("distance"), b.metric("distance"));
 }

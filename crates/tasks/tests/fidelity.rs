@@ -5,12 +5,12 @@ mod common;
 use common::*;
 use vsrlab_body::Preset;
 use vsrlab_brain::BrainSpec;
-use vsrlab_tasks::{locomotion, TraceLevel};
+use vsrlab_tasks::{episode, TraceLevel};
 
 /// Mean area ratio at the last step and (min, max) over the last 2 s, plus centre y at the end and
 /// the lowest voxel corner at the first step.
 fn calibrate(body: &str, preset: Preset, brain: BrainSpec) -> (f64, f64, f64, f64, f64, u64) {
-    let o = locomotion::run(&robot(body, preset, brain), &task("flat", 5.0), 0, TraceLevel::Full).unwrap();
+    let o = episode::run(&robot(body, preset, brain), &task("flat", 5.0), 0, TraceLevel::Full).unwrap();
     let tr = o.trace.unwrap();
     let n = tr.voxels();
     let mean = |k: usize| tr.area_ratios[k * n..(k + 1) * n].iter().sum::<f64>() / n as f64;
@@ -109,16 +109,16 @@ fn phase_gaits_walk_and_are_reported_beside_the_original() {
         ("worm-10x4", Preset::Y2022, 0.7035),
     ];
     for (body, preset, original) in cases {
-        let o = locomotion::run(&robot(body, preset, phase()), &task("flat", 30.0), 0, TraceLevel::None).unwrap();
+        let o = episode::run(&robot(body, preset, phase()), &task("flat", 30.0), 0, TraceLevel::None).unwrap();
         println!(
             "{body} preset {preset}: velocity {:.4} (original {original})",
-            o.velocity
+            o.metric("velocity")
         );
         assert_eq!(o.steps, 1801);
         assert!(
-            o.velocity.is_finite() && o.velocity.abs() < 3.0,
+            o.metric("velocity").is_finite() && o.metric("velocity").abs() < 3.0,
             "{body}: {}",
-            o.velocity
+            o.metric("velocity")
         );
     }
 }

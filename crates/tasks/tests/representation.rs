@@ -3,8 +3,8 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use vsrlab_tasks::episode;
 use vsrlab_tasks::files::{robot_from_json, robot_to_json};
-use vsrlab_tasks::locomotion;
 use vsrlab_tasks::{evaluate, EvaluationError, Locomotion, Representation, TraceLevel};
 
 /// A ch. 3 representation: `body` and `brain` as JSON, velocity + area + touch on every voxel.
@@ -56,7 +56,7 @@ fn a_brain_whose_size_follows_the_body_is_rejected_with_an_evolved_body() {
 #[test]
 fn a_genotype_of_the_wrong_length_is_an_error_naming_both_counts() {
     let r = representation(DIRECT_10, HOMOGENEOUS);
-    let err = evaluate(&r, &[0.5; 144], &Locomotion::default(), 0).unwrap_err();
+    let err = evaluate(&r, &vec![0.5; 144], &Locomotion::default(), 0).unwrap_err();
     assert!(matches!(err, EvaluationError::Genotype(_)), "{err}");
     let msg = err.to_string();
     assert!(msg.contains("145") && msg.contains("144"), "{msg}");
@@ -100,8 +100,8 @@ fn random_genotypes_of_every_combination_walk_for_thirty_seconds() {
         }
         let outcome = evaluate(&r, &genotype, &task, 1).unwrap_or_else(|e| panic!("{body} {brain}: {e}"));
         assert!(outcome.steps >= 1800, "{}", outcome.steps);
-        assert!(outcome.velocity.is_finite() && outcome.distance.is_finite());
-        assert!(outcome.voxels >= 1 && outcome.voxels <= 100);
+        assert!(outcome.metric("velocity").is_finite() && outcome.metric("distance").is_finite());
+        assert!(outcome.units >= 1 && outcome.units <= 100);
     }
 }
 
@@ -118,8 +118,11 @@ fn evaluate_then_save_load_and_replay_gives_the_identical_outcome() {
         let json = robot_to_json(&r.robot(&genotype).unwrap(), Some("round trip"));
         let loaded = robot_from_json(&json, "memory").unwrap();
         assert_eq!(loaded, r.robot(&genotype).unwrap());
-        let replayed = locomotion::run(&loaded, &task, 3, TraceLevel::None).unwrap();
-        assert_eq!(direct.distance.to_bits(), replayed.distance.to_bits());
+        let replayed = episode::run(&loaded, &task, 3, TraceLevel::None).unwrap();
+        assert_eq!(
+            direct.metric("distance").to_bits(),
+            replayed.metric("distance").to_bits()
+        );
         assert_eq!(direct, replayed);
     }
 }

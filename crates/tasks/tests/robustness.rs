@@ -9,7 +9,7 @@ use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use vsrlab_body::{Morphology, Preset};
 use vsrlab_brain::BrainSpec;
-use vsrlab_tasks::{locomotion, EpisodeError, TraceLevel};
+use vsrlab_tasks::{episode, EpisodeError, TraceLevel};
 
 /// Sane area-ratio bounds (see docs/physics.md): the actuation range is [0.775, 1.225]; impacts and
 /// loads may squash or stretch a voxel further, but below 0.3 or above 2.0 it has collapsed or
@@ -83,9 +83,10 @@ fn run_case(i: usize, only: Option<usize>) -> Result<(f64, f64), String> {
             serde_json::to_string(&r.brain).unwrap()
         )
     };
-    let o = locomotion::run(&r, &tk, i as u64, TraceLevel::Full).map_err(|e| format!("{}: {e}", describe()))?;
+    let o = episode::run(&r, &tk, i as u64, TraceLevel::Full).map_err(|e| format!("{}: {e}", describe()))?;
+    let velocity = o.metric("velocity");
     let tr = o.trace.unwrap();
-    if !o.velocity.is_finite() || !tr.polygons.iter().flatten().all(|p| p.is_finite()) {
+    if !velocity.is_finite() || !tr.outlines.iter().all(|p| p.is_finite()) {
         return Err(format!("{}: non-finite state", describe()));
     }
     if only.is_some() {
@@ -153,7 +154,7 @@ fn a_state_that_blows_up_is_reported_as_an_error() {
     let mut params = vsrlab_body::VoxelParams::preset(Preset::Y2021);
     params.spring_frequency = 1e200;
     r.voxel = Some(params);
-    match locomotion::run(&r, &t, 0, TraceLevel::None) {
+    match episode::run(&r, &t, 0, TraceLevel::None) {
         Err(EpisodeError::Physics { time, .. }) => assert!(time > 0.0),
         other => panic!("expected a physics error, got {other:?}"),
     }
@@ -164,10 +165,10 @@ fn invalid_tasks_are_rejected_with_the_field_named() {
     let r = robot("biped-4x3", Preset::Y2021, phase());
     let mut t = task("flat", 2.0);
     t.duration = -1.0;
-    let e = locomotion::run(&r, &t, 0, TraceLevel::None).unwrap_err();
+    let e = episode::run(&r, &t, 0, TraceLevel::None).unwrap_err();
     assert!(e.to_string().contains("task.duration"), "{e}");
     let mut t = task("flat", 2.0);
     t.physics.substeps = 0;
-    let e = locomotion::run(&r, &t, 0, TraceLevel::None).unwrap_err();
+    let e = episode::run(&r, &t, 0, TraceLevel::None).unwrap_err();
     assert!(e.to_string().contains("substeps"), "{e}");
 }

@@ -41,7 +41,7 @@ pub use placement::SensorConfig;
 pub use spec::{Axes, Axis, SensorSpec, MAX_RAYS, MAX_WINDOW};
 
 use crate::morphology::Morphology;
-use crate::robot::{VoxelState, Vsr};
+use crate::robot::VoxelState;
 use constant::relative_position;
 use node::{Frame, Node, Site};
 use noise::{NoiseKey, MAX_SENSORS_PER_VOXEL};
@@ -262,19 +262,14 @@ impl SensorSuite {
     }
 
     /// Reads every sensor at simulated time `t` and writes all readings into `out`
-    /// (length [`SensorSuite::total_readings`]). `states` are the voxel states in grid order; `vsr`
-    /// is the robot they belong to. Call once per step, with increasing `t`.
+    /// (length [`SensorSuite::total_readings`]). `states` are the states of the body's sensing
+    /// units ([`crate::Body::unit_state`]) in grid order. Call once per step, with increasing `t`.
     ///
     /// # Panics
     /// If `states` does not have one entry per voxel or `out` is not exactly the readings' length.
-    pub fn sense(&mut self, world: &World, vsr: &Vsr, states: &[VoxelState], t: f64, out: &mut [f64]) {
+    pub fn sense(&mut self, world: &World, states: &[VoxelState], t: f64, out: &mut [f64]) {
         assert_eq!(states.len(), self.voxel_count(), "one voxel state per voxel");
         assert_eq!(out.len(), self.total_readings(), "one slot per reading");
-        debug_assert_eq!(
-            vsr.voxel_count(),
-            self.voxel_count(),
-            "the suite was built for another body"
-        );
         for (v, state) in states.iter().enumerate() {
             let frame = Frame { world, state, t };
             for placed in &mut self.sensors[self.first_sensor[v]..self.first_sensor[v + 1]] {

@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::params::VoxelParams;
+use crate::Vsr;
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
 use vsrlab_physics::{Polygon, Vec2, WorldBuilder, WorldSettings};
 
@@ -74,7 +75,7 @@ impl Scene {
         for k in 1..=steps {
             self.world.step().unwrap();
             let states = self.states();
-            suite.sense(&self.world, &self.vsr, &states, k as f64 * DEFAULT_TIME_STEP, &mut out);
+            suite.sense(&self.world, &states, k as f64 * DEFAULT_TIME_STEP, &mut out);
             all.push(out.clone());
         }
         all
@@ -171,7 +172,7 @@ fn rotated_velocity_is_read_in_the_voxel_frame() {
     state.velocity = Vec2::new(1.0, -3.0);
     state.angle = -FRAC_PI_2;
     let mut out = [0.0; 2];
-    suite.sense(&scene.world, &scene.vsr, &[state], 0.1, &mut out);
+    suite.sense(&scene.world, &[state], 0.1, &mut out);
     assert!((out[0] - 3.0).abs() < 1e-12 && (out[1] - 1.0).abs() < 1e-12, "{out:?}");
 }
 
@@ -221,13 +222,7 @@ fn sensing_does_not_allocate() {
             *s = scene.vsr.voxel_state(&scene.world, i);
         }
         let before = counting::allocations();
-        suite.sense(
-            &scene.world,
-            &scene.vsr,
-            &states,
-            k as f64 * DEFAULT_TIME_STEP,
-            &mut out,
-        );
+        suite.sense(&scene.world, &states, k as f64 * DEFAULT_TIME_STEP, &mut out);
         assert_eq!(counting::allocations(), before, "step {k} allocated");
     }
     assert!(out.iter().all(|v| v.is_finite()));

@@ -1,0 +1,300 @@
+//! The experiment file: one TOML document describing representation, task, optimizer, stop
+//! criterion, runs and outputs (documented field by field in `docs/experiments.md`).
+//!
+//! Every table denies unknown fields. Errors name the file, the line and the dotted field path,
+//! e.g. `quickstart.toml, line 14: field 'optimizer.population_size': invalid type: string
+//! "many", expected usize`. The `[task]` and `[optimizer]` tables are decoded through their
+//! registries ([`vsrlab_tasks::registry`], [`crate::optimizers`]) by `kind`.
+
+mod error;
+mod task;
+
+pub use error::ConfigError;
+pub use task::TaskConfig;
+
+use crate::optimizers::{self, OptimizerConfig};
+use error::{dotted, line_column, locate, Step};
+use serde::{Deserialize, Serialize};
+use vsrlab_tasks::{BodyPart, Representation};
+
+/// A whole experiment.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Experiment {
+    /// A short name (defaults to the file name without extension).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Free text.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
+    /// Number of independent runs.
+    pub runs: usize,
+    /// Base seed; run r uses [`run_seed`]`(seed, r)`.
+    pub seed: u64,
+    /// Genotype → robot mapping.
+    pub representation: Representation,
+    /// The task, its fitness and how episodes are seeded.
+    pub task: TaskConfig,
+    /// The optimizer and its parameters.
+    pub optimizer: OptimizerConfig,
+    /// When each run stops.
+    pub stop: StopConfig,
+    /// What is written.
+    pub output: OutputConfig,
+}
+
+/// The experiment file as written: `[task]` and `[optimizer]` kept as tables until their kind
+/// is known.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ExperimentFile {
+    #[serde(default)]
+    name: Option<String>,
+    #[serde(default)]
+    description: Option<String>,
+    #[serde(default = "one")]
+    runs: usize,
+    #[serde(default)]
+    seed: u64,
+    representation: Representation,
+    task: toml::Table,
+    optimizer: toml::Table,
+    stop: StopConfig,
+    #[serde(default)]
+    output: OutputConfig,
+}
+
+fn one() -> usize {
+    1
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// The seed of run `run` derived from the base seed (SplitMix64 of both), so runs of one
+/// experiment are independent and adding runs never changes earlier ones.
+pub fn run_seed(base: u64, run: usize) -> u64 {
+    let mut z = base
+        .wrapping_add(0x9E37_79B9_7F4A_7C15u64.wrapping_mul(run as u64 + 1))
+        .wrapping_add(0x5851_F42D_4C95_7F2D);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// Stop criteria, checked after every generation; the run stops when any holds. At least one of
+/// `evaluations`, `births`, `generations` and `wall_seconds` must be set.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StopConfig {
+    /// Fitness evaluations (births plus re-evaluations).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub evaluations: Option<u64>,
+    /// New genotypes evaluated.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub births: Option<u64>,
+    /// Generations (ask/tell cycles).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub generations: Option<u64>,
+    /// Wall-clock seconds of this run (summed over resumed sessions). Makes results depend on
+    /// the machine.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wall_seconds: Option<f64>,
+    /// Stop once the best fitness reaches this value.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub target_fitness: Option<f64>,
+}
+
+/// What a run writes besides its per-generation CSV and its checkpoint.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputConfig {
+    /// Write the population every this many evaluations (0: never; the final population is
+    /// always written).
+    #[serde(default = "thousand")]
+    pub snapshot_every: u64,
+    /// Save the best robot of each run as a robot file.
+    #[serde(default = "yes")]
+    pub save_best: bool,
+    /// Minimum seconds between checkpoints (0: after every generation). Large populations of
+    /// long genotypes make big checkpoints; a few tens of seconds bounds the cost.
+    #[serde(default)]
+    pub checkpoint_interval: f64,
+}
+
+fn thousand() -> u64 {
+    1000
+}
+
+impl Default for OutputConfig {
+    fn default() -> Self {
+        Self {
+            snapshot_every: 1000,
+            save_best: true,
+            checkpoint_interval: 0.0,
+        }
+    }
+}
+
+/// Turns a serde_path_to_error path into steps.
+fn steps(path: &serde_path_to_error::Path) -> Vec<Step> {
+    path.iter()
+        .filter_map(|segment| match segment {
+            serde_path_to_error::Segment::Map { key } => Some(Step::Key(key.clone())),
+            serde_path_to_error::Segment::Seq { index } => Some(Step::Index(*index)),
+            _ => None,
+        })
+        .collect()
+}
+
+/// Parses an experiment from TOML text; `origin` names the source in errors. Also validates
+/// the values (see [`Experiment::validate`]) and fills in defaults that depend on other fields
+/// (see [`Experiment::resolve`]).
+pub fn parse(text: &str, origin: &str) -> Result<Experiment, ConfigError> {
+    let deserializer = toml::de::Deserializer::parse(text).map_err(|e| {
+        let position = e.span().map(|s| line_column(text, s.start));
+        ConfigError {
+            origin: origin.to_string(),
+            line: position.map(|p| p.0),
+            column: position.map(|p| p.1),
+            field: String::new(),
+            message: format!("invalid TOML: {}", e.message()),
+        }
+    })?;
+    let file: ExperimentFile = serde_path_to_error::deserialize(deserializer).map_err(|e| {
+        let mut path = steps(e.path());
+        let inner = e.into_inner();
+        let message = inner.message().to_string();
+        // An unknown field: point at the field itself.
+        if let Some(name) = message
+            .strip_prefix("unknown field `")
+            .and_then(|rest| rest.split('`').next())
+        {
+            if path.last() != Some(&Step::Key(name.to_string())) {
+                path.push(Step::Key(name.to_string()));
+            }
+        }
+        let span = locate(text, &path).or_else(|| inner.span());
+        let position = span.map(|s| line_column(text, s.start));
+        ConfigError {
+            origin: origin.to_string(),
+            line: position.map(|p| p.0),
+            column: position.map(|p| p.1),
+            field: dotted(&path),
+            message,
+        }
+    })?;
+    let in_table = |table: &str, (field, message): (String, String)| {
+        let field = if field.is_empty() {
+            table.to_string()
+        } else {
+            format!("{table}.{field}")
+        };
+        ConfigError::at_field(origin, text, &field, message)
+    };
+    let task = TaskConfig::decode(file.task).map_err(|e| in_table("task", e))?;
+    let optimizer = optimizers::decode_table(file.optimizer).map_err(|e| in_table("optimizer", e))?;
+    let experiment = Experiment {
+        name: file.name,
+        description: file.description,
+        runs: file.runs,
+        seed: file.seed,
+        representation: file.representation,
+        task,
+        optimizer,
+        stop: file.stop,
+        output: file.output,
+    }
+    .resolve();
+    experiment
+        .validate()
+        .map_err(|(field, message)| ConfigError::at_field(origin, text, &field, message))?;
+    Ok(experiment)
+}
+
+/// Reads and parses an experiment file.
+pub fn load(path: &std::path::Path) -> Result<Experiment, ConfigError> {
+    let origin = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| ConfigError {
+        origin: origin.clone(),
+        line: None,
+        column: None,
+        field: String::new(),
+        message: e.to_string(),
+    })?;
+    let mut experiment = parse(&text, &origin)?;
+    if experiment.name.is_none() {
+        experiment.name = path.file_stem().map(|s| s.to_string_lossy().into_owned());
+    }
+    Ok(experiment)
+}
+
+impl Experiment {
+    /// Fills in defaults that depend on other fields (e.g. MAP-Elites axes over the body grid,
+    /// the ES parent count).
+    pub fn resolve(mut self) -> Self {
+        let cells = match &self.representation.body {
+            BodyPart::Encoded(e) => e.width() * e.height(),
+            BodyPart::Fixed(m) => m.width() * m.height(),
+        };
+        self.optimizer.kind_mut().resolve(cells);
+        self
+    }
+
+    /// Checks values that the types cannot: returns the dotted field path and the message.
+    pub fn validate(&self) -> Result<(), (String, String)> {
+        let err = |field: &str, msg: String| Err((field.to_string(), msg));
+        if self.runs == 0 {
+            return err("runs", "must be at least 1".into());
+        }
+        if let Err(e) = self.representation.validate() {
+            // Messages read "representation.<field>: …".
+            let text = e.to_string();
+            let (field, msg) = match text.split_once(": ") {
+                Some((f, m)) if f.starts_with("representation.") => (f.to_string(), m.to_string()),
+                _ => ("representation".to_string(), text.clone()),
+            };
+            return err(&field, msg);
+        }
+        self.task.validate()?;
+        let s = &self.stop;
+        if s.evaluations.is_none() && s.births.is_none() && s.generations.is_none() && s.wall_seconds.is_none() {
+            return err(
+                "stop",
+                "set at least one of evaluations, births, generations, wall_seconds".into(),
+            );
+        }
+        if let Some(w) = s.wall_seconds {
+            if !(w.is_finite() && w > 0.0) {
+                return err("stop.wall_seconds", format!("must be a positive number, got {w}"));
+            }
+        }
+        let o = &self.output;
+        if !(o.checkpoint_interval.is_finite() && o.checkpoint_interval >= 0.0) {
+            return err("output.checkpoint_interval", "must be ≥ 0 seconds".into());
+        }
+        let kind = self.optimizer.kind();
+        kind.validate().map_err(|(f, m)| (format!("optimizer.{f}"), m))?;
+        let objectives = self.task.spec.task().objectives().len();
+        if objectives > 1 && !kind.multi_objective() {
+            return err(
+                "optimizer.kind",
+                format!(
+                    "{} optimizes one objective but task.fitness has {objectives}: use nsga2, or one objective",
+                    kind.name()
+                ),
+            );
+        }
+        Ok(())
+    }
+
+    /// The experiment as TOML, every default written out (the "resolved config").
+    pub fn to_toml(&self) -> String {
+        toml::to_string(self).expect("experiments always serialise to TOML")
+    }
+
+    /// The run seeds, in order.
+    pub fn run_seeds(&self) -> Vec<u64> {
+        (0..self.runs).map(|r| run_seed(self.seed, r)).collect()
+    }
+}

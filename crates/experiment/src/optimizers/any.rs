@@ -1,0 +1,176 @@
+//! [`SearchOptimizer`]: what the runner needs of an optimizer over any genotype, and
+//! [`AnyOptimizer`], the optimizers of flat-vector experiments behind one serialisable value
+//! (checkpoints hold it).
+
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
+use vsrlab_evolution::{
+    Candidate, CanonicalEs, CmaEs, EvolutionError, FeatureProvider, GeneticAlgorithm, Individual, MapElites, Nsga2,
+    RealVector, Sense, SpeciatedEvolver, Tell, Told,
+};
+
+/// An optimizer as the runner drives it: ask, tell, counters, best and population, and serde
+/// for checkpoints. Evaluations carry the speciation features as their outcome.
+pub trait SearchOptimizer<G>: Serialize + DeserializeOwned {
+    /// The batch to evaluate now (the same batch again until [`SearchOptimizer::tell`]).
+    fn ask(&mut self) -> Vec<Candidate<G>>;
+    /// Hands back the results of the pending batch.
+    fn tell(&mut self, results: Vec<Told<Vec<f64>>>) -> Result<(), EvolutionError>;
+    /// Completed generations.
+    fn generation(&self) -> u64;
+    /// Evaluations told.
+    fn evaluations(&self) -> u64;
+    /// New genotypes evaluated.
+    fn births(&self) -> u64;
+    /// Whether each objective is maximised or minimised.
+    fn senses(&self) -> Vec<Sense>;
+    /// The best individual so far.
+    fn best(&self) -> Option<&Individual<G>>;
+    /// The current population (survivors, last batch, or archive).
+    fn population(&self) -> Vec<&Individual<G>>;
+    /// Number of species (speciated evolvers only).
+    fn species(&self) -> Option<usize> {
+        None
+    }
+    /// Number of filled cells (archive-based optimizers only).
+    fn archive_cells(&self) -> Option<usize> {
+        None
+    }
+}
+
+/// Any ask/tell optimizer of `vsrlab-evolution` as a [`SearchOptimizer`]: how a genotype that is
+/// not a flat vector (a graph, a material grid) goes through the runner.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct Searcher<T>(pub T);
+
+impl<G, T> SearchOptimizer<G> for Searcher<T>
+where
+    T: Tell<Vec<f64>, Genotype = G> + Serialize + DeserializeOwned,
+{
+    fn ask(&mut self) -> Vec<Candidate<G>> {
+        self.0.ask()
+    }
+    fn tell(&mut self, results: Vec<Told<Vec<f64>>>) -> Result<(), EvolutionError> {
+        self.0.tell(results)
+    }
+    fn generation(&self) -> u64 {
+        self.0.generation()
+    }
+    fn evaluations(&self) -> u64 {
+        self.0.evaluations()
+    }
+    fn births(&self) -> u64 {
+        self.0.births()
+    }
+    fn senses(&self) -> Vec<Sense> {
+        self.0.senses().to_vec()
+    }
+    fn best(&self) -> Option<&Individual<G>> {
+        self.0.best()
+    }
+    fn population(&self) -> Vec<&Individual<G>> {
+        self.0.population()
+    }
+}
+
+/// Where the speciated evolver takes its features from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum SpeciationFeatures {
+    /// The genotype itself (SE-g).
+    Genotype,
+    /// The feature vector the evaluator computed (SE-s: pose, SE-b: spectrum).
+    Outcome,
+}
+
+impl FeatureProvider<Vec<f64>, Vec<f64>> for SpeciationFeatures {
+    fn features(&self, genotype: &Vec<f64>, outcome: &Vec<f64>) -> Vec<f64> {
+        match self {
+            SpeciationFeatures::Genotype => genotype.clone(),
+            SpeciationFeatures::Outcome => outcome.clone(),
+        }
+    }
+}
+
+/// One of the flat-vector optimizers, as a single serialisable value.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[allow(clippy::large_enum_variant)]
+pub enum AnyOptimizer {
+    /// μ + λ GA.
+    Ga(GeneticAlgorithm<RealVector>),
+    /// Canonical ES.
+    Es(CanonicalEs),
+    /// CMA-ES.
+    CmaEs(CmaEs),
+    /// Speciated evolver.
+    Se(SpeciatedEvolver<RealVector, SpeciationFeatures>),
+    /// MAP-Elites.
+    MapElites(MapElites<RealVector>),
+    /// NSGA-II.
+    Nsga2(Nsga2<RealVector>),
+}
+
+impl AnyOptimizer {
+    /// The optimizer inside, behind the common ask/tell interface.
+    fn inner(&self) -> &dyn Tell<Vec<f64>, Genotype = Vec<f64>> {
+        match self {
+            AnyOptimizer::Ga(o) => o,
+            AnyOptimizer::Es(o) => o,
+            AnyOptimizer::CmaEs(o) => o,
+            AnyOptimizer::Se(o) => o,
+            AnyOptimizer::MapElites(o) => o,
+            AnyOptimizer::Nsga2(o) => o,
+        }
+    }
+
+    /// The optimizer inside, mutably.
+    fn inner_mut(&mut self) -> &mut dyn Tell<Vec<f64>, Genotype = Vec<f64>> {
+        match self {
+            AnyOptimizer::Ga(o) => o,
+            AnyOptimizer::Es(o) => o,
+            AnyOptimizer::CmaEs(o) => o,
+            AnyOptimizer::Se(o) => o,
+            AnyOptimizer::MapElites(o) => o,
+            AnyOptimizer::Nsga2(o) => o,
+        }
+    }
+}
+
+impl SearchOptimizer<Vec<f64>> for AnyOptimizer {
+    fn ask(&mut self) -> Vec<Candidate<Vec<f64>>> {
+        self.inner_mut().ask()
+    }
+    fn tell(&mut self, results: Vec<Told<Vec<f64>>>) -> Result<(), EvolutionError> {
+        self.inner_mut().tell(results)
+    }
+    fn generation(&self) -> u64 {
+        self.inner().generation()
+    }
+    fn evaluations(&self) -> u64 {
+        self.inner().evaluations()
+    }
+    fn births(&self) -> u64 {
+        self.inner().births()
+    }
+    fn senses(&self) -> Vec<Sense> {
+        self.inner().senses().to_vec()
+    }
+    fn best(&self) -> Option<&Individual<Vec<f64>>> {
+        self.inner().best()
+    }
+    fn population(&self) -> Vec<&Individual<Vec<f64>>> {
+        self.inner().population()
+    }
+    fn species(&self) -> Option<usize> {
+        match self {
+            AnyOptimizer::Se(se) => Some(se.species().len()),
+            _ => None,
+        }
+    }
+    fn archive_cells(&self) -> Option<usize> {
+        match self {
+            AnyOptimizer::MapElites(me) => Some(me.archive().count()),
+            _ => None,
+        }
+    }
+}

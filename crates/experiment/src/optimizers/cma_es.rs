@@ -1,0 +1,63 @@
+//! CMA-ES (thesis ch. 6).
+
+use super::check::range;
+use super::{single, AnyOptimizer, OptimizerKind};
+use serde::{Deserialize, Serialize};
+use vsrlab_evolution::{CmaEs, CmaEsConfig, EvolutionError, Sense};
+
+/// Parameters of CMA-ES.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CmaParams {
+    /// λ (default 4 + ⌊3 ln n⌋).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub population_size: Option<usize>,
+    /// σ0 (thesis ch. 6: 0.5).
+    pub sigma0: f64,
+    /// Initial mean uniform in [min, max).
+    pub init_range: [f64; 2],
+    /// Active covariance update (negative weights).
+    pub active: bool,
+}
+
+impl Default for CmaParams {
+    fn default() -> Self {
+        Self {
+            population_size: None,
+            sigma0: 0.5,
+            init_range: [-1.0, 1.0],
+            active: true,
+        }
+    }
+}
+
+impl OptimizerKind for CmaParams {
+    fn name(&self) -> &'static str {
+        "cma-es"
+    }
+
+    fn validate(&self) -> Result<(), (String, String)> {
+        if self.population_size == Some(0) || self.population_size == Some(1) {
+            return Err(("population_size".into(), "must be at least 2".into()));
+        }
+        if !(self.sigma0.is_finite() && self.sigma0 > 0.0) {
+            return Err(("sigma0".into(), format!("must be > 0, got {}", self.sigma0)));
+        }
+        range("init_range", self.init_range)
+    }
+
+    fn build(&self, dimension: usize, senses: &[Sense], seed: u64) -> Result<AnyOptimizer, EvolutionError> {
+        Ok(AnyOptimizer::CmaEs(CmaEs::new(
+            CmaEsConfig {
+                population_size: self.population_size,
+                sigma0: self.sigma0,
+                init_min: self.init_range[0],
+                init_max: self.init_range[1],
+                active: self.active,
+                sense: single(senses),
+            },
+            dimension,
+            seed,
+        )?))
+    }
+}

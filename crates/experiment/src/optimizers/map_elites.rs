@@ -1,0 +1,131 @@
+//! MAP-Elites over the thesis' morphology descriptors (ME, §3.3.5.2).
+
+use super::check::{positive, range, sigma};
+use super::{real_vector, single, AnyOptimizer, OptimizerKind};
+use serde::{Deserialize, Serialize};
+use vsrlab_evolution::{EvolutionError, GridAxis, MapElites, MapElitesConfig, Sense};
+
+/// A morphology descriptor usable as a MAP-Elites axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Descriptor {
+    /// d_num: number of voxels.
+    Voxels,
+    /// d_elong: eccentricity of the moment-equivalent ellipse.
+    Elongation,
+    /// d_compact: voxels ÷ cells in the convex hull.
+    Compactness,
+}
+
+/// One MAP-Elites axis.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Axis {
+    /// The descriptor.
+    pub descriptor: Descriptor,
+    /// Lower bound.
+    pub min: f64,
+    /// Upper bound.
+    pub max: f64,
+    /// Bins (thesis 10).
+    #[serde(default = "ten")]
+    pub bins: usize,
+}
+
+fn ten() -> usize {
+    10
+}
+
+/// Parameters of MAP-Elites.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct MapElitesParams {
+    /// The grid (default: the thesis' d_num over [0, W·H], d_elong and d_compact over [0, 1],
+    /// 10 bins each).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub axes: Vec<Axis>,
+    /// Random genotypes of the first generation (thesis n_parents = 20).
+    pub initial_population: usize,
+    /// Children per generation (thesis n_parents = 20).
+    pub batch_size: usize,
+    /// Initial genes uniform in [min, max).
+    pub init_range: [f64; 2],
+    /// σ of the Gaussian mutation (thesis 0.35).
+    pub mutation_sigma: f64,
+}
+
+impl Default for MapElitesParams {
+    fn default() -> Self {
+        Self {
+            axes: Vec::new(),
+            initial_population: 20,
+            batch_size: 20,
+            init_range: [-1.0, 1.0],
+            mutation_sigma: 0.35,
+        }
+    }
+}
+
+impl OptimizerKind for MapElitesParams {
+    fn name(&self) -> &'static str {
+        "map-elites"
+    }
+
+    fn validate(&self) -> Result<(), (String, String)> {
+        positive("initial_population", self.initial_population)?;
+        positive("batch_size", self.batch_size)?;
+        range("init_range", self.init_range)?;
+        sigma("mutation_sigma", self.mutation_sigma)?;
+        for (i, axis) in self.axes.iter().enumerate() {
+            if !(axis.min.is_finite() && axis.max.is_finite() && axis.min < axis.max) {
+                return Err((format!("axes[{i}]"), "needs finite min < max".into()));
+            }
+            if axis.bins == 0 {
+                return Err((format!("axes[{i}].bins"), "must be at least 1".into()));
+            }
+        }
+        Ok(())
+    }
+
+    /// The thesis' grid: d_num over [0, W·H], d_elong and d_compact over [0, 1], 10 bins each.
+    fn resolve(&mut self, cells: usize) {
+        if self.axes.is_empty() {
+            let axis = |descriptor, max| Axis {
+                descriptor,
+                min: 0.0,
+                max,
+                bins: 10,
+            };
+            self.axes = vec![
+                axis(Descriptor::Voxels, cells as f64),
+                axis(Descriptor::Elongation, 1.0),
+                axis(Descriptor::Compactness, 1.0),
+            ];
+        }
+    }
+
+    fn descriptors(&self) -> Vec<Descriptor> {
+        self.axes.iter().map(|a| a.descriptor).collect()
+    }
+
+    fn build(&self, dimension: usize, senses: &[Sense], seed: u64) -> Result<AnyOptimizer, EvolutionError> {
+        Ok(AnyOptimizer::MapElites(MapElites::new(
+            MapElitesConfig {
+                axes: self
+                    .axes
+                    .iter()
+                    .map(|a| GridAxis {
+                        min: a.min,
+                        max: a.max,
+                        bins: a.bins,
+                    })
+                    .collect(),
+                initial_population: self.initial_population,
+                batch_size: self.batch_size,
+                sense: single(senses),
+            },
+            real_vector(dimension, self.init_range, self.mutation_sigma, [0.0, 1.0], 0.0),
+            seed,
+        )?))
+    }
+}

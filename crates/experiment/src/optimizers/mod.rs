@@ -1,0 +1,246 @@
+//! The optimizers an experiment file can name, as a registry.
+//!
+//! Each kind is one file here: its `[optimizer]` parameters (thesis defaults) and an
+//! [`OptimizerKind`] implementation that validates them, fills defaults that depend on the
+//! representation, and builds the optimizer. [`OptimizerConfig`] is the registration list, matched
+//! only in [`OptimizerConfig::kind`], [`OptimizerConfig::kind_mut`] and [`OPTIMIZERS`].
+//!
+//! Adding an optimizer for flat vectors: a file with its parameters and `OptimizerKind` impl, a
+//! variant in [`OptimizerConfig`] and [`AnyOptimizer`], and an entry in [`OPTIMIZERS`].
+
+mod any;
+mod cma_es;
+mod es;
+mod ga;
+mod map_elites;
+mod nsga2;
+mod se;
+
+pub use any::{AnyOptimizer, SearchOptimizer, Searcher, SpeciationFeatures};
+pub use cma_es::CmaParams;
+pub use es::EsParams;
+pub use ga::GaParams;
+pub use map_elites::{Axis, Descriptor, MapElitesParams};
+pub use nsga2::Nsga2Params;
+pub use se::{SeFeatures, SeParams};
+
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
+use vsrlab_evolution::{EvolutionError, RealVector, Sense};
+
+/// Which extra data an evaluation must extract from its episode for the optimizer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Extract {
+    /// Nothing beyond the fitness.
+    #[default]
+    Nothing,
+    /// The 16×16 dynamic pose (SE-s).
+    Pose,
+    /// The centre-of-mass spectrum (SE-b).
+    Spectrum,
+}
+
+/// What every optimizer kind provides to the experiment.
+pub trait OptimizerKind {
+    /// The `kind` tag.
+    fn name(&self) -> &'static str;
+    /// Checks the parameters: the field (inside `optimizer`) and the message on error.
+    fn validate(&self) -> Result<(), (String, String)>;
+    /// Fills defaults that depend on the representation (`cells`: W·H of the body grid).
+    fn resolve(&mut self, _cells: usize) {}
+    /// Whether it optimizes several objectives at once.
+    fn multi_objective(&self) -> bool {
+        false
+    }
+    /// Builds the optimizer for genotypes of `dimension` genes, objectives of these senses, and
+    /// a run seed.
+    fn build(&self, dimension: usize, senses: &[Sense], seed: u64) -> Result<AnyOptimizer, EvolutionError>;
+    /// What the evaluation must extract for it (speciation features).
+    fn extract(&self) -> Extract {
+        Extract::Nothing
+    }
+    /// The MAP-Elites descriptors it needs (empty for others).
+    fn descriptors(&self) -> Vec<Descriptor> {
+        Vec::new()
+    }
+}
+
+/// The optimizer of an experiment, by `kind`, with its parameters.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum OptimizerConfig {
+    /// μ + λ genetic algorithm (thesis GA).
+    Ga(GaParams),
+    /// Canonical evolution strategy (thesis ES).
+    Es(EsParams),
+    /// CMA-ES.
+    CmaEs(CmaParams),
+    /// Speciated evolver (thesis SE-g / SE-s / SE-b).
+    Se(SeParams),
+    /// MAP-Elites (thesis ME).
+    MapElites(MapElitesParams),
+    /// NSGA-II, multi-objective (thesis ch. 5.1).
+    Nsga2(Nsga2Params),
+}
+
+impl OptimizerConfig {
+    /// The kind behind the value.
+    pub fn kind(&self) -> &dyn OptimizerKind {
+        match self {
+            OptimizerConfig::Ga(p) => p,
+            OptimizerConfig::Es(p) => p,
+            OptimizerConfig::CmaEs(p) => p,
+            OptimizerConfig::Se(p) => p,
+            OptimizerConfig::MapElites(p) => p,
+            OptimizerConfig::Nsga2(p) => p,
+        }
+    }
+
+    /// The kind behind the value, mutably.
+    pub fn kind_mut(&mut self) -> &mut dyn OptimizerKind {
+        match self {
+            OptimizerConfig::Ga(p) => p,
+            OptimizerConfig::Es(p) => p,
+            OptimizerConfig::CmaEs(p) => p,
+            OptimizerConfig::Se(p) => p,
+            OptimizerConfig::MapElites(p) => p,
+            OptimizerConfig::Nsga2(p) => p,
+        }
+    }
+}
+
+/// An error inside the `[optimizer]` table: the dotted path inside it and what is wrong.
+pub type FieldError = (String, String);
+
+/// One registered optimizer kind: its tag and its decoder from a TOML table (without `kind`).
+pub struct OptimizerEntry {
+    /// The `kind` tag.
+    pub name: &'static str,
+    /// Builds the config from the table, naming the field on error.
+    pub decode: fn(toml::Value) -> Result<OptimizerConfig, FieldError>,
+}
+
+/// Every optimizer kind.
+pub const OPTIMIZERS: &[OptimizerEntry] = &[
+    OptimizerEntry {
+        name: "ga",
+        decode: |v| decode::<GaParams>(v).map(OptimizerConfig::Ga),
+    },
+    OptimizerEntry {
+        name: "es",
+        decode: |v| decode::<EsParams>(v).map(OptimizerConfig::Es),
+    },
+    OptimizerEntry {
+        name: "cma-es",
+        decode: |v| decode::<CmaParams>(v).map(OptimizerConfig::CmaEs),
+    },
+    OptimizerEntry {
+        name: "se",
+        decode: |v| decode::<SeParams>(v).map(OptimizerConfig::Se),
+    },
+    OptimizerEntry {
+        name: "map-elites",
+        decode: |v| decode::<MapElitesParams>(v).map(OptimizerConfig::MapElites),
+    },
+    OptimizerEntry {
+        name: "nsga2",
+        decode: |v| decode::<Nsga2Params>(v).map(OptimizerConfig::Nsga2),
+    },
+];
+
+/// Builds an optimizer config from its `[optimizer]` table, naming the field on error.
+pub fn decode_table(mut table: toml::Table) -> Result<OptimizerConfig, FieldError> {
+    let names = || OPTIMIZERS.iter().map(|o| o.name).collect::<Vec<_>>().join(", ");
+    let kind = match table.remove("kind") {
+        Some(toml::Value::String(s)) => s,
+        Some(other) => return Err(("kind".into(), format!("expected one of {}, got {other}", names()))),
+        None => return Err(("kind".into(), format!("missing: give one of {}", names()))),
+    };
+    let entry = OPTIMIZERS.iter().find(|o| o.name == kind).ok_or_else(|| {
+        (
+            "kind".to_string(),
+            format!("unknown optimizer '{kind}': expected one of {}", names()),
+        )
+    })?;
+    (entry.decode)(toml::Value::Table(table))
+}
+
+/// Deserializes a parameter struct, keeping the path of a failing field (the tasks' decoder,
+/// over the table as JSON).
+fn decode<T: DeserializeOwned>(value: toml::Value) -> Result<T, FieldError> {
+    let json = serde_json::to_value(&value).map_err(|e| (String::new(), e.to_string()))?;
+    vsrlab_tasks::registry::decode(json).map_err(|e| (e.path, e.message))
+}
+
+/// The thesis' real-vector operators with an experiment's parameters.
+pub(crate) fn real_vector(
+    dimension: usize,
+    init: [f64; 2],
+    sigma: f64,
+    crossover: [f64; 2],
+    crossover_sigma: f64,
+) -> RealVector {
+    RealVector {
+        dimension,
+        init_min: init[0],
+        init_max: init[1],
+        mutation_sigma: sigma,
+        crossover_min: crossover[0],
+        crossover_max: crossover[1],
+        crossover_sigma,
+    }
+}
+
+/// Checks the parameters of the thesis' real-vector operators (GA, SE, NSGA-II).
+pub(crate) fn check_operators(
+    init: [f64; 2],
+    sigma: f64,
+    crossover: [f64; 2],
+    crossover_sigma: f64,
+) -> Result<(), (String, String)> {
+    check::range("init_range", init)?;
+    check::range("crossover_range", crossover)?;
+    check::sigma("mutation_sigma", sigma)?;
+    check::sigma("crossover_sigma", crossover_sigma)
+}
+
+/// The one objective of a single-objective optimizer.
+pub(crate) fn single(senses: &[Sense]) -> Sense {
+    senses.first().copied().unwrap_or_default()
+}
+
+/// Shared checks of parameter values; each returns the field and message on error.
+pub(crate) mod check {
+    /// `v ≥ 1`.
+    pub fn positive(field: &str, v: usize) -> Result<(), (String, String)> {
+        if v > 0 {
+            Ok(())
+        } else {
+            Err((field.into(), "must be at least 1".into()))
+        }
+    }
+    /// `p ∈ [0, 1]`.
+    pub fn probability(field: &str, p: f64) -> Result<(), (String, String)> {
+        if (0.0..=1.0).contains(&p) {
+            Ok(())
+        } else {
+            Err((field.into(), format!("must be in [0, 1], got {p}")))
+        }
+    }
+    /// A finite `[min, max]` with min ≤ max.
+    pub fn range(field: &str, r: [f64; 2]) -> Result<(), (String, String)> {
+        if r[0].is_finite() && r[1].is_finite() && r[0] <= r[1] {
+            Ok(())
+        } else {
+            Err((field.into(), format!("must be [min, max] with min ≤ max, got {r:?}")))
+        }
+    }
+    /// A finite `s ≥ 0`.
+    pub fn sigma(field: &str, s: f64) -> Result<(), (String, String)> {
+        if s.is_finite() && s >= 0.0 {
+            Ok(())
+        } else {
+            Err((field.into(), format!("must be ≥ 0, got {s}")))
+        }
+    }
+}

@@ -1,0 +1,120 @@
+//! The speciated evolver of the thesis (SE-g / SE-s / SE-b, §3.3.5.2).
+
+use super::check::{positive, probability};
+use super::{check_operators, real_vector, single, AnyOptimizer, Extract, OptimizerKind, SpeciationFeatures};
+use serde::{Deserialize, Serialize};
+use vsrlab_evolution::{EvolutionError, SeConfig, Sense, SpeciatedEvolver};
+
+/// What the speciated evolver clusters on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SeFeatures {
+    /// SE-g: the genotype.
+    #[default]
+    Genotype,
+    /// SE-s: the 16×16 dynamic pose (256 values).
+    Shape,
+    /// SE-b: the centre-of-mass |Δy| spectrum (100 values).
+    Behaviour,
+}
+
+/// Parameters of the speciated evolver.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SeParams {
+    /// Speciation features: `genotype` (SE-g), `shape` (SE-s), `behaviour` (SE-b).
+    pub features: SeFeatures,
+    /// n_pop (thesis 100).
+    pub population_size: usize,
+    /// k of k-means (thesis 10).
+    pub species: usize,
+    /// α, species preference (thesis 0.75).
+    pub alpha: f64,
+    /// n_elite, minimum species size whose best survives (thesis 5).
+    pub elite_min_species_size: usize,
+    /// p_mut (thesis 0.2).
+    pub mutation_probability: f64,
+    /// Maximum Lloyd iterations of k-means.
+    pub kmeans_iterations: usize,
+    /// Initial genes uniform in [min, max).
+    pub init_range: [f64; 2],
+    /// σ of the Gaussian mutation.
+    pub mutation_sigma: f64,
+    /// Per-gene α range of the extended geometric crossover.
+    pub crossover_range: [f64; 2],
+    /// σ′ of the Gaussian perturbation after crossover.
+    pub crossover_sigma: f64,
+}
+
+impl Default for SeParams {
+    fn default() -> Self {
+        Self {
+            features: SeFeatures::Genotype,
+            population_size: 100,
+            species: 10,
+            alpha: 0.75,
+            elite_min_species_size: 5,
+            mutation_probability: 0.2,
+            kmeans_iterations: 200,
+            init_range: [-1.0, 1.0],
+            mutation_sigma: 0.35,
+            crossover_range: [-1.0, 2.0],
+            crossover_sigma: 0.1,
+        }
+    }
+}
+
+impl OptimizerKind for SeParams {
+    fn name(&self) -> &'static str {
+        "se"
+    }
+
+    fn validate(&self) -> Result<(), (String, String)> {
+        positive("population_size", self.population_size)?;
+        positive("species", self.species)?;
+        if !(self.alpha > 0.0 && self.alpha <= 1.0) {
+            return Err(("alpha".into(), format!("must be in (0, 1], got {}", self.alpha)));
+        }
+        probability("mutation_probability", self.mutation_probability)?;
+        check_operators(
+            self.init_range,
+            self.mutation_sigma,
+            self.crossover_range,
+            self.crossover_sigma,
+        )
+    }
+
+    fn extract(&self) -> Extract {
+        match self.features {
+            SeFeatures::Genotype => Extract::Nothing,
+            SeFeatures::Shape => Extract::Pose,
+            SeFeatures::Behaviour => Extract::Spectrum,
+        }
+    }
+
+    fn build(&self, dimension: usize, senses: &[Sense], seed: u64) -> Result<AnyOptimizer, EvolutionError> {
+        Ok(AnyOptimizer::Se(SpeciatedEvolver::new(
+            SeConfig {
+                population_size: self.population_size,
+                species: self.species,
+                rank_base: self.alpha,
+                min_species_size_for_elitism: self.elite_min_species_size,
+                mutation_probability: self.mutation_probability,
+                kmeans_iterations: self.kmeans_iterations,
+                sense: single(senses),
+            },
+            real_vector(
+                dimension,
+                self.init_range,
+                self.mutation_sigma,
+                self.crossover_range,
+                self.crossover_sigma,
+            ),
+            match self.features {
+                SeFeatures::Genotype => SpeciationFeatures::Genotype,
+                SeFeatures::Shape | SeFeatures::Behaviour => SpeciationFeatures::Outcome,
+            },
+            seed,
+        )?))
+    }
+}

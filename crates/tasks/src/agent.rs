@@ -1,0 +1,39 @@
+//! [`Robot`] and [`Agent`]: a robot as the episode loop sees it, before and after it is put in a
+//! world. The voxel robot of a robot file ([`crate::RobotSpec`]) is one implementation; a body
+//! that is not a voxel grid is another type implementing these two traits.
+
+use crate::episode::EpisodeError;
+use crate::outcome::Trace;
+use vsrlab_body::{Body, Morphology};
+use vsrlab_physics::{Vec2, World, WorldBuilder};
+
+/// A robot description that can be put in a world.
+pub trait Robot: Send + Sync {
+    /// Points of the body's underside relative to its origin: the task places the robot so that
+    /// the lowest of them clears the ground.
+    fn footprint(&self) -> Vec<Vec2>;
+    /// Adds the body to `builder` with its origin at `origin`, and builds its sensors and brain.
+    /// `seed` is the episode seed (sensor noise).
+    fn assemble(&self, builder: &mut WorldBuilder, origin: Vec2, seed: u64) -> Result<Box<dyn Agent>, EpisodeError>;
+    /// The voxel grid of the body, for bodies that are grids (descriptors, records).
+    fn grid(&self) -> Option<&Morphology> {
+        None
+    }
+    /// The robot as a robot file (JSON), when its kind has one.
+    fn robot_file(&self, _note: Option<&str>) -> Option<String> {
+        None
+    }
+}
+
+/// A robot in a world: its body, and what it does at every step.
+pub trait Agent: Send {
+    /// The body, for tasks, traces and drawing.
+    fn body(&self) -> &dyn Body;
+    /// One control step at time `t`, right after the physics step: sense, think, set the
+    /// actuation for the next physics step (vsr-model.md §2.2).
+    fn act(&mut self, world: &mut World, t: f64);
+    /// Writes what does not change during the episode into a trace (grid cells, sensor layout).
+    fn describe(&mut self, trace: &mut Trace);
+    /// Appends this step's per-unit data (states, readings, actuations) to a trace.
+    fn record(&self, trace: &mut Trace);
+}

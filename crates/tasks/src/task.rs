@@ -1,0 +1,145 @@
+//! [`Task`]: what a robot is asked to do. A task builds its world, says where the robot starts,
+//! watches every step, may end the episode early, and turns what it saw into named metrics and
+//! fitness values. The one episode loop ([`crate::episode::run`]) drives every task.
+//!
+//! A new task is one module with a settings struct that implements [`Task`], plus one line in
+//! the registry ([`crate::registry`]).
+
+use crate::episode::EpisodeError;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use vsrlab_body::Body;
+use vsrlab_physics::{Vec2, World, WorldBuilder, WorldSettings};
+
+/// Named figures a task measured in one episode (e.g. `distance`, `velocity`).
+pub type Metrics = BTreeMap<String, f64>;
+
+/// Whether larger or smaller values of an objective are better.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Sense {
+    /// Larger is better (velocity, distance, height).
+    #[default]
+    Maximize,
+    /// Smaller is better (energy, voxel count).
+    Minimize,
+}
+
+/// One fitness value of a task: which metric, and whether to maximise or minimise it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Objective {
+    /// The metric's name (one of the task's [`Task::metric_names`]).
+    pub metric: String,
+    /// Maximise (default) or minimise.
+    #[serde(default)]
+    pub sense: Sense,
+}
+
+impl Objective {
+    /// An objective to maximise.
+    pub fn maximize(metric: &str) -> Self {
+        Self {
+            metric: metric.to_string(),
+            sense: Sense::Maximize,
+        }
+    }
+}
+
+/// The world a task built: what placement and drawing need to know of it.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Scene {
+    /// The ground's polyline, (x, y) with increasing x.
+    pub terrain: Vec<Vec2>,
+}
+
+/// What a task sees after each step (physics → sense → control → actuate, vsr-model.md §2.2).
+pub struct StepView<'a> {
+    /// Simulated time at the end of the step.
+    pub t: f64,
+    /// The world.
+    pub world: &'a World,
+    /// The robot's body.
+    pub body: &'a dyn Body,
+    /// The body's centre ([`Body::center`]), already checked to be finite.
+    pub center: Vec2,
+}
+
+/// Whether the episode goes on after a step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Flow {
+    /// Go on until the task's duration.
+    Continue,
+    /// End the episode now (e.g. the goal was reached or the robot fell).
+    Stop,
+}
+
+/// A task's state during one episode: the per-step hook and the final metrics.
+pub trait TaskEpisode: Send {
+    /// Called after every step; may end the episode.
+    fn observe(&mut self, step: &StepView) -> Flow;
+    /// The metrics of the episode so far.
+    fn metrics(&self) -> Metrics;
+}
+
+/// A task: settings that build a world, place a robot, watch the episode and score it.
+pub trait Task: Send + Sync + std::fmt::Debug {
+    /// The task's kind, as in configs (`locomotion`, `jump`).
+    fn kind(&self) -> &'static str;
+    /// Checks the settings; errors name the field.
+    fn validate(&self) -> Result<(), EpisodeError>;
+    /// Longest episode, in simulated seconds.
+    fn duration(&self) -> f64;
+    /// Physics engine settings.
+    fn physics(&self) -> &WorldSettings;
+    /// Adds the static world (ground, obstacles) to `builder`; `seed` is the episode seed.
+    fn build_world(&self, builder: &mut WorldBuilder, seed: u64) -> Scene;
+    /// Where the robot's origin goes, given the underside points of its body relative to its
+    /// origin ([`crate::Robot::footprint`]).
+    fn place(&self, scene: &Scene, footprint: &[Vec2]) -> Vec2;
+    /// A fresh per-episode state.
+    fn start(&self) -> Box<dyn TaskEpisode>;
+    /// The metrics this task reports.
+    fn metric_names(&self) -> &'static [&'static str];
+    /// The fitness values, in order (one for single-objective tasks).
+    fn objectives(&self) -> &[Objective];
+}
+
+/// The fitness values of `objectives` read from `metrics` (NaN for a missing metric, which
+/// [`Task::validate`] rules out).
+pub fn fitness_values(objectives: &[Objective], metrics: &Metrics) -> Vec<f64> {
+    objectives
+        .iter()
+        .map(|o| metrics.get(&o.metric).copied().unwrap_or(f64::NAN))
+        .collect()
+}
+
+/// Checks that every objective names one of `names`; the error names the field.
+pub fn check_objectives(objectives: &[Objective], names: &[&str]) -> Result<(), EpisodeError> {
+    if objectives.is_empty() {
+        return Err(EpisodeError::Invalid(
+            "task.fitness: give at least one objective".into(),
+        ));
+    }
+    for (i, o) in objectives.iter().enumerate() {
+        if !names.contains(&o.metric.as_str()) {
+            return Err(EpisodeError::Invalid(format!(
+                "task.fitness[{i}]: unknown metric '{}': expected one of {}",
+                o.metric,
+                names.join(", ")
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Checks an episode length: in (0, 100000] simulated seconds; the error names `task.duration`.
+pub fn check_duration(duration: f64) -> Result<(), EpisodeError> {
+    if duration.is_finite() && duration > 0.0 && duration <= 1e5 {
+        Ok(())
+    } else {
+        Err(EpisodeError::Invalid(format!(
+            "task.duration must be in (0, 100000] seconds, got {duration}"
+        )))
+    }
+}

@@ -1,0 +1,129 @@
+//! The 2D-VSR-Sim voxel robot as a [`Robot`]: a [`RobotSpec`] assembles into a [`Vsr`] body, its
+//! [`SensorSuite`] and its brain; at every step its [`VoxelAgent`] reads the voxel states, senses,
+//! controls and actuates, in that order (vsr-model.md §2.2).
+
+use crate::agent::{Agent, Robot};
+use crate::episode::EpisodeError;
+use crate::outcome::{RayInfo, Trace};
+use crate::robot::RobotSpec;
+use vsrlab_body::sensors::SensorSuite;
+use vsrlab_body::{Body, Morphology, VoxelState, Vsr};
+use vsrlab_brain::Controller;
+use vsrlab_physics::{Vec2, World, WorldBuilder};
+
+/// Collision group of the robot (touch sensing and self-collision).
+const ROBOT_GROUP: u32 = 1;
+
+impl Robot for RobotSpec {
+    fn footprint(&self) -> Vec<Vec2> {
+        let l = self.voxel_params().side_length;
+        self.body
+            .voxels()
+            .map(|(x, y)| Vec2::new((x as f64 + 0.5) * l, y as f64 * l))
+            .collect()
+    }
+
+    fn assemble(&self, builder: &mut WorldBuilder, origin: Vec2, seed: u64) -> Result<Box<dyn Agent>, EpisodeError> {
+        let params = self.voxel_params();
+        params.validate().map_err(EpisodeError::Invalid)?;
+        let vsr = Vsr::assemble(builder, &self.body, &params, origin, ROBOT_GROUP);
+        let sensors = SensorSuite::new(&self.sensors, &self.body, seed)
+            .map_err(|e| EpisodeError::Invalid(format!("robot.sensors: {e}")))?;
+        let per_voxel: Vec<usize> = (0..self.body.voxel_count())
+            .map(|v| sensors.readings_per_voxel(v))
+            .collect();
+        let mut brain = self
+            .brain
+            .build(&self.body, &per_voxel)
+            .map_err(|e| EpisodeError::Invalid(format!("robot.{e}")))?;
+        brain.reset();
+        Ok(Box::new(VoxelAgent::new(vsr, sensors, brain)))
+    }
+
+    fn grid(&self) -> Option<&Morphology> {
+        Some(&self.body)
+    }
+
+    fn robot_file(&self, note: Option<&str>) -> Option<String> {
+        Some(crate::files::robot_to_json(self, note))
+    }
+}
+
+/// A voxel robot in a world: body, sensors, brain and the buffers they share each step.
+pub struct VoxelAgent {
+    vsr: Vsr,
+    sensors: SensorSuite,
+    brain: Box<dyn Controller>,
+    states: Vec<VoxelState>,
+    readings: Vec<f64>,
+    actuations: Vec<f64>,
+    /// Domain of every reading, for scaling recorded readings to [0, 1] (filled by `describe`).
+    domains: Vec<(f64, f64)>,
+}
+
+impl VoxelAgent {
+    /// Wires a body, its sensors and a brain built for them.
+    pub fn new(vsr: Vsr, sensors: SensorSuite, brain: Box<dyn Controller>) -> Self {
+        let n = vsr.voxel_count();
+        let readings = vec![0.0; sensors.total_readings()];
+        VoxelAgent {
+            vsr,
+            sensors,
+            brain,
+            states: vec![VoxelState::default(); n],
+            readings,
+            actuations: vec![0.0; n],
+            domains: Vec::new(),
+        }
+    }
+}
+
+impl Agent for VoxelAgent {
+    fn body(&self) -> &dyn Body {
+        &self.vsr
+    }
+
+    fn act(&mut self, world: &mut World, t: f64) {
+        for (i, s) in self.states.iter_mut().enumerate() {
+            *s = self.vsr.unit_state(world, i);
+        }
+        self.sensors.sense(world, &self.states, t, &mut self.readings);
+        self.brain.control(t, &self.readings, &mut self.actuations);
+        self.vsr.actuate(world, &self.actuations);
+    }
+
+    fn describe(&mut self, trace: &mut Trace) {
+        trace.side_length = self.vsr.params().side_length;
+        trace.cells = self.vsr.voxels().iter().map(|v| v.cell).collect();
+        for v in 0..self.vsr.voxel_count() {
+            trace.readings_per_voxel.push(self.sensors.readings_per_voxel(v));
+            self.domains.extend(self.sensors.domains(v));
+            for ray in self.sensors.lidar_rays(v) {
+                trace.rays.push(RayInfo {
+                    voxel: v,
+                    relative_angle: ray.relative_angle,
+                    range: ray.range,
+                });
+            }
+        }
+    }
+
+    fn record(&self, trace: &mut Trace) {
+        for s in &self.states {
+            trace.area_ratios.push(s.area_ratio);
+            trace.angles.push(s.angle);
+            trace.touching.push(s.touching);
+        }
+        trace.actuations.extend_from_slice(&self.actuations);
+        for (r, (lo, hi)) in self.readings.iter().zip(&self.domains) {
+            let span = hi - lo;
+            let v = if span > 0.0 { (r - lo) / span } else { 0.0 };
+            trace.readings.push(v.clamp(0.0, 1.0) as f32);
+        }
+        for v in 0..self.states.len() {
+            for ray in self.sensors.lidar_rays(v) {
+                trace.ray_distances.push(ray.distance as f32);
+            }
+        }
+    }
+}

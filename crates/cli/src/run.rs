@@ -132,7 +132,7 @@ pub fn run(a: RunArgs) -> Result<(), String> {
     let experiment = config::load(&a.experiment).map_err(|e| e.to_string())?;
     let name = experiment.name.clone().unwrap_or_else(|| "experiment".to_string());
     let out = a.out.clone().unwrap_or_else(|| PathBuf::from("out").join(&name));
-    let evaluator = RobotEvaluator::new(&experiment)?;
+    let evaluator = RobotEvaluator::new(&experiment).map_err(|e| e.to_string())?;
     let options = RunOptions {
         threads: a.threads.unwrap_or(0),
         resume: a.resume,

@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::time::Instant;
 use vsrlab_body::Morphology;
-use vsrlab_tasks::{evaluate_traced, Mapper, Representation, TaskSpec, TraceLevel};
+use vsrlab_tasks::{evaluate_traced, EvaluationError, Mapper, Representation, TaskSpec, TraceLevel};
 
 /// The summary of one evaluation that population snapshots carry (serialisable: checkpoints
 /// hold the records of the current population).
@@ -112,8 +112,8 @@ pub struct RobotEvaluator<M = Representation> {
 
 impl RobotEvaluator<Representation> {
     /// The evaluator of an experiment (already validated by [`crate::config::parse`]).
-    pub fn new(experiment: &Experiment) -> Result<Self, String> {
-        experiment.representation.genotype_length().map_err(|e| e.to_string())?;
+    pub fn new(experiment: &Experiment) -> Result<Self, EvaluationError> {
+        experiment.representation.genotype_length()?;
         Ok(Self::with_mapper(experiment.representation.clone(), experiment))
     }
 

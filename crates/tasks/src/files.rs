@@ -95,7 +95,7 @@ pub fn robot_from_json(text: &str, origin: &str) -> Result<RobotSpec, FileError>
             file.format
         )));
     }
-    file.robot.validate().map_err(invalid)?;
+    file.robot.validate().map_err(|e| invalid(e.to_string()))?;
     Ok(file.robot)
 }
 

@@ -38,6 +38,27 @@ pub struct FieldError {
     pub message: String,
 }
 
+/// Why a command-line task could not be parsed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TaskParseError {
+    /// No task kind has this name.
+    #[error("unknown task '{name}': expected {expected}")]
+    Unknown {
+        /// The name given.
+        name: String,
+        /// Every short form, for the message.
+        expected: String,
+    },
+    /// The kind is known but its argument is not.
+    #[error("{kind}: {message}")]
+    Argument {
+        /// The task kind.
+        kind: &'static str,
+        /// What is wrong with the argument.
+        message: String,
+    },
+}
+
 /// One registered task kind.
 pub struct TaskKind {
     /// The `kind` tag.
@@ -126,13 +147,19 @@ impl TaskSpec {
 
     /// Parses a command-line short form: `locomotion:<terrain>` (`locomotion` alone is flat),
     /// `jump`, … (see [`TASKS`]).
-    pub fn parse(s: &str) -> Result<TaskSpec, String> {
+    pub fn parse(s: &str) -> Result<TaskSpec, TaskParseError> {
         let (name, arg) = s.split_once(':').map_or((s, None), |(a, b)| (a, Some(b)));
-        let kind = TASKS.iter().find(|k| k.name == name).ok_or_else(|| {
-            let forms: Vec<&str> = TASKS.iter().map(|k| k.usage).collect();
-            format!("unknown task '{name}': expected {}", forms.join(" or "))
-        })?;
-        (kind.parse)(arg)
+        let kind = TASKS
+            .iter()
+            .find(|k| k.name == name)
+            .ok_or_else(|| TaskParseError::Unknown {
+                name: name.to_string(),
+                expected: TASKS.iter().map(|k| k.usage).collect::<Vec<_>>().join(" or "),
+            })?;
+        (kind.parse)(arg).map_err(|message| TaskParseError::Argument {
+            kind: kind.name,
+            message,
+        })
     }
 
     /// Builds a task from its config table; `kind` defaults to `locomotion`.
@@ -194,7 +221,7 @@ mod tests {
         assert_eq!(TaskSpec::parse("locomotion:flat"), Ok(TaskSpec::default()));
         assert_eq!(TaskSpec::parse("locomotion").unwrap().kind(), "locomotion");
         assert_eq!(TaskSpec::parse("jump").unwrap().kind(), "jump");
-        let err = TaskSpec::parse("swim:deep").unwrap_err();
+        let err = TaskSpec::parse("swim:deep").unwrap_err().to_string();
         assert!(err.contains("locomotion:<terrain> or jump"), "{err}");
         assert!(TaskSpec::parse("locomotion:bumpy").is_err());
 

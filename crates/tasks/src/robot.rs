@@ -30,22 +30,53 @@ impl RobotSpec {
     }
 }
 
+/// Why a robot description does not hold together: the field and what is wrong.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("robot{}{message}", if field.is_empty() { ": ".to_string() } else { format!(".{field}: ") })]
+pub struct RobotError {
+    /// The offending field of the robot (`sensors`, `brain.weights`, `voxel.…`).
+    pub field: String,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl RobotError {
+    /// An error on `field`.
+    fn at(field: &str, message: impl std::fmt::Display) -> Self {
+        RobotError {
+            field: field.to_string(),
+            message: message.to_string(),
+        }
+    }
+}
+
 impl RobotSpec {
     /// Readings per voxel (grid order) that this robot's sensors produce.
-    pub fn readings_per_voxel(&self) -> Result<Vec<usize>, String> {
-        let sensors = SensorSuite::new(&self.sensors, &self.body, 0).map_err(|e| format!("robot.sensors: {e}"))?;
+    pub fn readings_per_voxel(&self) -> Result<Vec<usize>, RobotError> {
+        let sensors = SensorSuite::new(&self.sensors, &self.body, 0).map_err(|e| RobotError::at("sensors", e))?;
         Ok((0..self.body.voxel_count())
             .map(|v| sensors.readings_per_voxel(v))
             .collect())
     }
 
     /// Checks that body, constants, sensors and brain fit together; the error names the field.
-    pub fn validate(&self) -> Result<(), String> {
-        self.voxel_params().validate().map_err(|e| format!("robot.{e}"))?;
+    pub fn validate(&self) -> Result<(), RobotError> {
+        self.voxel_params().validate().map_err(|e| split_field(&e))?;
         let per_voxel = self.readings_per_voxel()?;
         self.brain
             .build(&self.body, &per_voxel)
             .map(|_| ())
-            .map_err(|e| format!("robot.{e}"))
+            .map_err(|e| split_field(&e.to_string()))
+    }
+}
+
+/// `"brain.field: message"` (brain errors) or `"voxel.field must …"` (voxel constants) as a
+/// [`RobotError`].
+fn split_field(text: &str) -> RobotError {
+    let field_like = |f: &str| !f.is_empty() && !f.contains(' ');
+    match (text.split_once(": "), text.split_once(' ')) {
+        (Some((field, message)), _) if field_like(field) => RobotError::at(field, message),
+        (_, Some((field, message))) if field.contains('.') => RobotError::at(field, message),
+        _ => RobotError::at("", text),
     }
 }

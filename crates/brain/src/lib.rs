@@ -10,47 +10,54 @@
 //! [`BrainSpec::parameter_count`], [`BrainSpec::parameters`] and [`BrainSpec::with_parameters`], so
 //! that an optimizer can treat the brain as a flat genotype; each controller module documents its
 //! parameter layout.
+//!
+//! # Where things are
+//!
+//! - `controllers/<name>.rs`: one brain kind each — the controller, its description (e.g.
+//!   [`MlpSpec`]) with its serde form and its [`BrainKind`] implementation, and its command-line
+//!   short form(s);
+//! - `kind.rs`: the [`BrainKind`] trait every description implements;
+//! - `spec.rs`: [`BrainSpec`], the list of registered kinds (the only `match` over them);
+//! - `short_form.rs`: [`SHORT_FORMS`], the registry of command-line forms;
+//! - `mlp.rs`: the network shared by the MLP controllers; `validation.rs`: field checks.
+//!
+//! # How to add a brain
+//!
+//! 1. Write `controllers/my_brain.rs` (and `pub mod my_brain;` in `controllers/mod.rs`): the
+//!    [`Controller`]; a description struct `MyBrainSpec` deriving `Debug, Clone, PartialEq,
+//!    Serialize, Deserialize` with `#[serde(deny_unknown_fields)]`; `impl BrainKind for
+//!    MyBrainSpec` (`name` is the kebab-case variant name; the other methods default to a
+//!    parameterless brain); and `pub const SHORT_FORM: ShortForm` with its parse function.
+//! 2. Register it in `spec.rs`: a variant `MyBrain(MyBrainSpec)` of [`BrainSpec`] (its JSON/TOML
+//!    tag is `"my-brain"`) and one arm in each of [`BrainSpec::as_kind`] and
+//!    [`BrainSpec::as_kind_mut`].
+//! 3. Add `controllers::my_brain::SHORT_FORM` to [`SHORT_FORMS`] in `short_form.rs`: the command
+//!    line accepts it and the "unknown brain" message lists it.
+//!
+//! Nothing else matches on the kinds; the tests in `spec.rs` check every variant's `name` against
+//! its tag.
 #![warn(missing_docs)]
 
+mod controller;
 pub mod controllers;
+mod error;
+mod kind;
 pub mod mlp;
+mod short_form;
 mod spec;
+mod validation;
 
-pub use controllers::centralized_mlp::CentralizedMlpController;
-pub use controllers::constant::ConstantController;
-pub use controllers::distributed_mlp::{DistributedConfig, DistributedMlpController, Layout};
-pub use controllers::phase::PhaseController;
-pub use controllers::phase_grid::{PhaseGridController, PhaseLayout};
-pub use controllers::random::RandomController;
-pub use controllers::smoothed::SmoothedController;
-pub use controllers::step::StepController;
+pub use controller::Controller;
+pub use controllers::centralized_mlp::{CentralizedMlpController, MlpSpec};
+pub use controllers::constant::{ConstantController, ConstantSpec};
+pub use controllers::distributed_mlp::{DistributedConfig, DistributedMlpController, DistributedMlpSpec, Layout};
+pub use controllers::phase::{PhaseController, PhaseSpec};
+pub use controllers::phase_grid::{PhaseGridController, PhaseGridSpec, PhaseLayout};
+pub use controllers::random::{RandomController, RandomSpec};
+pub use controllers::smoothed::{SmoothedController, SmoothedSpec};
+pub use controllers::step::{StepController, StepSpec};
+pub use error::BrainError;
+pub use kind::BrainKind;
 pub use mlp::{Activation, Mlp};
+pub use short_form::{ShortForm, SHORT_FORMS};
 pub use spec::BrainSpec;
-
-/// A brain: maps (time, readings) to actuations, possibly with internal state.
-pub trait Controller: Send {
-    /// Clears internal state, as at the start of an episode.
-    fn reset(&mut self);
-    /// Computes one actuation per voxel (grid order) from all readings (grid order).
-    fn control(&mut self, t: f64, readings: &[f64], actuations: &mut [f64]);
-}
-
-/// Why a brain could not be built.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum BrainError {
-    /// A parameter is out of range.
-    #[error("brain.{field}: {msg}")]
-    Invalid {
-        /// The offending field.
-        field: &'static str,
-        /// What is wrong.
-        msg: String,
-    },
-    /// The brain name is unknown.
-    #[error(
-        "unknown brain '{0}': expected phase, phase-grid[:freq], constant:<value>, random[:<period s>], \
-         mlp[:<hidden sizes, comma separated, or none>], distributed-mlp[:<signals>], \
-         distributed-mlp-hetero[:<signals>], step:<period s>:<brain> or smoothed:<speed>:<brain>"
-    )]
-    Unknown(String),
-}

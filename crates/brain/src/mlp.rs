@@ -17,6 +17,7 @@
 //! the output layer included, and, when `input_activation` is set (2D-VSR-Sim ≥ v1.9.1), also to the
 //! raw inputs before the first layer.
 
+use crate::validation::check_finite;
 use crate::BrainError;
 use serde::{Deserialize, Serialize};
 
@@ -205,17 +206,6 @@ impl Mlp {
             std::mem::swap(&mut current, &mut next);
         }
         outputs[..n_out].copy_from_slice(&current[..n_out]);
-    }
-}
-
-/// Errors with the index of the first non-finite value.
-pub(crate) fn check_finite(field: &'static str, values: &[f64]) -> Result<(), BrainError> {
-    match values.iter().position(|v| !v.is_finite()) {
-        None => Ok(()),
-        Some(i) => Err(BrainError::Invalid {
-            field,
-            msg: format!("value {i} is {}, all must be finite numbers", values[i]),
-        }),
     }
 }
 

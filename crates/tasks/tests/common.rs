@@ -3,7 +3,7 @@
 
 use vsrlab_body::sensors::SensorConfig;
 use vsrlab_body::{Morphology, Preset};
-use vsrlab_brain::BrainSpec;
+use vsrlab_brain::{BrainSpec, PhaseSpec};
 use vsrlab_tasks::{Locomotion, RobotSpec, Terrain};
 
 pub fn robot(body: &str, preset: Preset, brain: BrainSpec) -> RobotSpec {
@@ -29,10 +29,10 @@ pub fn phase() -> BrainSpec {
 }
 
 pub fn sine() -> BrainSpec {
-    BrainSpec::Phase {
+    BrainSpec::Phase(PhaseSpec {
         frequency: 1.0,
         amplitude: 1.0,
         phase_x: 0.0,
         phase_y: 0.0,
-    }
+    })
 }

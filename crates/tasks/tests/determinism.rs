@@ -5,16 +5,24 @@ mod common;
 use common::*;
 use rayon::prelude::*;
 use vsrlab_body::Preset;
-use vsrlab_brain::BrainSpec;
+use vsrlab_brain::{BrainSpec, RandomSpec};
 use vsrlab_tasks::{episode, Outcome, TraceLevel};
 
 fn batch(threads: usize) -> Vec<Outcome> {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
     let cases: Vec<(&str, &str, BrainSpec)> = vec![
         ("biped-4x3", "flat", phase()),
-        ("worm-6x2", "hilly-1-10", BrainSpec::Random { period: 0.2, seed: 3 }),
+        (
+            "worm-6x2",
+            "hilly-1-10",
+            BrainSpec::Random(RandomSpec { period: 0.2, seed: 3 }),
+        ),
         ("comb-5x2", "steppy-1-5", phase()),
-        ("box-3x3", "uphill-10", BrainSpec::Random { period: 0.0, seed: 9 }),
+        (
+            "box-3x3",
+            "uphill-10",
+            BrainSpec::Random(RandomSpec { period: 0.0, seed: 9 }),
+        ),
         ("tripod-5x3", "downhill-10", phase()),
     ];
     pool.install(|| {

@@ -4,7 +4,7 @@ mod common;
 
 use common::*;
 use vsrlab_body::Preset;
-use vsrlab_brain::BrainSpec;
+use vsrlab_brain::{BrainSpec, ConstantSpec};
 use vsrlab_tasks::{episode, TraceLevel};
 
 /// Mean area ratio at the last step and (min, max) over the last 2 s, plus centre y at the end and
@@ -67,15 +67,16 @@ const REFERENCES: [Reference; 4] = [
 fn constant_and_sine_actuation_match_reference_area_ratios() {
     for (body, preset, a0, a_pos, a_neg, sine_range, rest_y) in REFERENCES {
         let what = |s: &str| format!("{body} preset {preset} {s}");
-        let (a, _, _, y, first_min_y, steps) = calibrate(body, preset, BrainSpec::Constant { value: 0.0 });
+        let (a, _, _, y, first_min_y, steps) =
+            calibrate(body, preset, BrainSpec::Constant(ConstantSpec { value: 0.0 }));
         assert_eq!(steps, 301, "5 s at 1/60 s is 301 steps, as in the original");
         within(a, a0, 0.01, &what("f = 0 area"));
         // rest height and first-step fall within 2 %
         within(y, rest_y, 0.02 * rest_y, &what("centre y at rest"));
         let fall = 6.0 - first_min_y;
         within(fall, 6.0 - 5.9973, 0.02 * (6.0 - 5.9973), &what("first-step fall"));
-        let a_plus = calibrate(body, preset, BrainSpec::Constant { value: 1.0 }).0;
-        let a_minus = calibrate(body, preset, BrainSpec::Constant { value: -1.0 }).0;
+        let a_plus = calibrate(body, preset, BrainSpec::Constant(ConstantSpec { value: 1.0 })).0;
+        let a_minus = calibrate(body, preset, BrainSpec::Constant(ConstantSpec { value: -1.0 })).0;
         within(a_plus, a_pos, 0.01, &what("f = +1 area"));
         within(a_minus, a_neg, 0.01, &what("f = -1 area"));
         println!(
@@ -94,7 +95,11 @@ fn constant_and_sine_actuation_match_reference_area_ratios() {
 #[test]
 fn rest_height_is_close_to_nominal() {
     // a resting 1×1 voxel sits on the ground at y = 5: its centre is near 5 + L/2 = 6.5
-    let (_, _, _, y, _, _) = calibrate("box-1x1", Preset::Y2021, BrainSpec::Constant { value: 0.0 });
+    let (_, _, _, y, _, _) = calibrate(
+        "box-1x1",
+        Preset::Y2021,
+        BrainSpec::Constant(ConstantSpec { value: 0.0 }),
+    );
     assert!(y < 6.5 && y > 6.45, "{y}");
 }
 

@@ -8,7 +8,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use vsrlab_body::{Morphology, Preset};
-use vsrlab_brain::BrainSpec;
+use vsrlab_brain::{BrainSpec, PhaseSpec, RandomSpec};
 use vsrlab_tasks::{episode, EpisodeError, TraceLevel};
 
 /// Sane area-ratio bounds (see docs/physics.md): the actuation range is [0.775, 1.225]; impacts and
@@ -42,20 +42,20 @@ fn random_body(rng: &mut ChaCha8Rng) -> Morphology {
 
 fn random_brain(rng: &mut ChaCha8Rng) -> BrainSpec {
     match rng.random_range(0..3) {
-        0 => BrainSpec::Random {
+        0 => BrainSpec::Random(RandomSpec {
             period: 0.0,
             seed: rng.random(),
-        },
-        1 => BrainSpec::Random {
+        }),
+        1 => BrainSpec::Random(RandomSpec {
             period: rng.random_range(0.05..1.0),
             seed: rng.random(),
-        },
-        _ => BrainSpec::Phase {
+        }),
+        _ => BrainSpec::Phase(PhaseSpec {
             frequency: rng.random_range(0.1..5.0),
             amplitude: 1.0,
             phase_x: rng.random_range(-2.0..2.0),
             phase_y: rng.random_range(-2.0..2.0),
-        },
+        }),
     }
 }
 

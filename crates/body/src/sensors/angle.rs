@@ -1,6 +1,7 @@
 //! Angle (vsr-model.md §3.1, §1.9): the voxel's orientation in radians.
 
-use super::node::Frame;
+use super::kind::SensorKind;
+use super::node::{Frame, Node, Site};
 use std::f64::consts::PI;
 
 /// Declared domain.
@@ -14,6 +15,19 @@ impl Angle {
     /// Writes the one reading.
     pub(crate) fn sense(&self, frame: &Frame, out: &mut [f64]) {
         out[0] = frame.state.angle;
+    }
+}
+
+/// The angle sensor's description (it has no parameters): `SensorSpec::Angle`.
+pub(crate) struct AngleSpec;
+
+impl SensorKind for AngleSpec {
+    fn domains(&self) -> Vec<(f64, f64)> {
+        vec![DOMAIN]
+    }
+
+    fn build(&self, _site: Site) -> Node {
+        Node::Angle(Angle)
     }
 }
 

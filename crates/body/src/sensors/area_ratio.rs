@@ -1,6 +1,7 @@
 //! Area ratio (vsr-model.md §3.1): the voxel's current area over its rest area L².
 
-use super::node::Frame;
+use super::kind::SensorKind;
+use super::node::{Frame, Node, Site};
 
 /// Declared domain: half to one and a half times the rest area.
 pub(crate) const DOMAIN: (f64, f64) = (0.5, 1.5);
@@ -13,6 +14,19 @@ impl AreaRatio {
     /// Writes the one reading.
     pub(crate) fn sense(&self, frame: &Frame, out: &mut [f64]) {
         out[0] = frame.state.area_ratio;
+    }
+}
+
+/// The area ratio sensor's description (it has no parameters): `SensorSpec::AreaRatio`.
+pub(crate) struct AreaRatioSpec;
+
+impl SensorKind for AreaRatioSpec {
+    fn domains(&self) -> Vec<(f64, f64)> {
+        vec![DOMAIN]
+    }
+
+    fn build(&self, _site: Site) -> Node {
+        Node::AreaRatio(AreaRatio)
     }
 }
 

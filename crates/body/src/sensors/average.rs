@@ -3,8 +3,11 @@
 //! sample taken at or after t − window (16 samples for 0.25 s at 60 Hz, 31 for 0.5 s). The domain
 //! is the inner sensor's.
 
-use super::node::{Frame, Node};
-use super::window::TimeWindow;
+use super::kind::SensorKind;
+use super::node::{Frame, Node, Site};
+use super::spec::SensorSpec;
+use super::window::{check_window, TimeWindow};
+use serde::{Deserialize, Serialize};
 
 /// Running mean over a time window.
 #[derive(Debug, Clone)]
@@ -70,6 +73,36 @@ impl Average {
     }
 }
 
+/// Description of an average wrapper (`{"kind": "average", "window": 0.5, "inner": {…}}`): Mean of the inner readings over the samples taken at or after t − window; domain unchanged.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AverageSpec {
+    /// Window (s), > 0 and at most [`super::MAX_WINDOW`].
+    pub window: f64,
+    /// The wrapped sensor.
+    pub inner: Box<SensorSpec>,
+}
+
+impl SensorKind for AverageSpec {
+    fn dimension(&self) -> usize {
+        self.inner.dimension()
+    }
+
+    fn domains(&self) -> Vec<(f64, f64)> {
+        self.inner.domains()
+    }
+
+    fn validate(&self, noisy_depth: usize) -> Result<(), String> {
+        check_window(self.window)?;
+        self.inner.validate_at(noisy_depth)
+    }
+
+    fn build(&self, site: Site) -> Node {
+        let inner = Box::new(Node::build(&self.inner, site));
+        Node::Average(Average::new(inner, self.inner.dimension(), self.window, site.dt))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use crate::sensors::node::testing::{run, still_state};
@@ -96,12 +129,12 @@ mod tests {
 
     #[test]
     fn averages_each_component_of_a_ramp() {
-        use crate::sensors::spec::Axes;
-        let spec = SensorSpec::Velocity {
+        use crate::sensors::{Axes, VelocitySpec};
+        let spec = SensorSpec::Velocity(VelocitySpec {
             rotated: false,
             vmax: 8.0,
             axes: Axes::Xy,
-        }
+        })
         .averaged(0.5);
         let dt = 1.0 / 60.0;
         let states: Vec<_> = (1..=120)

@@ -5,7 +5,19 @@
 //! bottom). A grid one cell wide (or tall) reads 0.5 on that axis: the original divides by zero
 //! there and reads NaN.
 
-use super::node::Frame;
+use super::kind::SensorKind;
+use super::node::{Frame, Node, Site};
+use serde::{Deserialize, Serialize};
+
+/// A grid axis, for the constant position sensor.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Axis {
+    /// Column: x/(W − 1).
+    X,
+    /// Row: y/(H − 1), row 0 at the bottom.
+    Y,
+}
 
 /// Declared domain (the original's `Constant` domain [min(0, v), max(1, v)] with v in [0, 1]).
 pub(crate) const DOMAIN: (f64, f64) = (0.0, 1.0);
@@ -34,6 +46,27 @@ impl ConstantPosition {
     /// Writes the one reading.
     pub(crate) fn sense(&self, _frame: &Frame, out: &mut [f64]) {
         out[0] = self.value;
+    }
+}
+
+/// Description of a constant position sensor (`{"kind": "constant-position", "axis": "x"}`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ConstantPositionSpec {
+    /// Which axis.
+    pub axis: Axis,
+}
+
+impl SensorKind for ConstantPositionSpec {
+    fn domains(&self) -> Vec<(f64, f64)> {
+        vec![DOMAIN]
+    }
+
+    fn build(&self, site: Site) -> Node {
+        Node::ConstantPosition(ConstantPosition::new(match self.axis {
+            Axis::X => site.rel.0,
+            Axis::Y => site.rel.1,
+        }))
     }
 }
 

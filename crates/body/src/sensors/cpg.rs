@@ -1,7 +1,8 @@
 //! Central pattern generator (vsr-model.md §3.3, `cpg`): a 1 Hz sine of simulated time,
 //! sin(−2πt), the same on every voxel that carries it.
 
-use super::node::Frame;
+use super::kind::SensorKind;
+use super::node::{Frame, Node, Site};
 use std::f64::consts::TAU;
 
 /// Declared domain.
@@ -15,6 +16,19 @@ impl Cpg {
     /// Writes the one reading.
     pub(crate) fn sense(&self, frame: &Frame, out: &mut [f64]) {
         out[0] = (-TAU * frame.t).sin();
+    }
+}
+
+/// The CPG sensor's description (it has no parameters): `SensorSpec::Cpg`.
+pub(crate) struct CpgSpec;
+
+impl SensorKind for CpgSpec {
+    fn domains(&self) -> Vec<(f64, f64)> {
+        vec![DOMAIN]
+    }
+
+    fn build(&self, _site: Site) -> Node {
+        Node::Cpg(Cpg)
     }
 }
 

@@ -14,9 +14,14 @@
 //! Only static geometry is hit (the original skipped robot fixtures; here other robots are
 //! dynamic parts and are not seen either). A ray that hits nothing within its range reads the range.
 
-use super::node::Frame;
+use super::kind::{check_positive, SensorKind};
+use super::node::{Frame, Node, Site};
+use serde::{Deserialize, Serialize};
 use std::f64::consts::FRAC_PI_4;
 use vsrlab_physics::Vec2;
+
+/// Most rays one lidar may cast.
+pub const MAX_RAYS: usize = 1024;
 
 /// Declared domain of each ray: [0, range].
 pub(crate) fn domain(range: f64) -> (f64, f64) {
@@ -117,6 +122,39 @@ impl Lidar {
     /// Distances measured at the last reading.
     pub(crate) fn last_distances(&self) -> &[f64] {
         &self.last
+    }
+}
+
+/// Description of a lidar (`{"kind": "lidar", "range": 10.0, "rays": 5}`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LidarSpec {
+    /// Ray length (> 0); a ray that hits nothing reads this.
+    pub range: f64,
+    /// Number of rays (1 to [`MAX_RAYS`]).
+    pub rays: usize,
+}
+
+impl SensorKind for LidarSpec {
+    fn dimension(&self) -> usize {
+        self.rays
+    }
+
+    fn domains(&self) -> Vec<(f64, f64)> {
+        vec![domain(self.range); self.rays]
+    }
+
+    fn validate(&self, _noisy_depth: usize) -> Result<(), String> {
+        check_positive("lidar range", self.range)?;
+        if (1..=MAX_RAYS).contains(&self.rays) {
+            Ok(())
+        } else {
+            Err(format!("lidar rays must be 1 to {MAX_RAYS}, got {}", self.rays))
+        }
+    }
+
+    fn build(&self, site: Site) -> Node {
+        Node::Lidar(Lidar::new(self.range, self.rays, site.rel))
     }
 }
 

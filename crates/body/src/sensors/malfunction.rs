@@ -3,7 +3,8 @@
 //! vsrlab has no breakable voxels yet, so this sensor always reads 0. It exists so that placements
 //! which request it (`spinedTouch-…-t-…`, `uniform-…+m-…`) keep the published input sizes.
 
-use super::node::Frame;
+use super::kind::SensorKind;
+use super::node::{Frame, Node, Site};
 
 /// Declared domain.
 pub(crate) const DOMAIN: (f64, f64) = (0.0, 1.0);
@@ -16,6 +17,19 @@ impl Malfunction {
     /// Writes the one reading.
     pub(crate) fn sense(&self, _frame: &Frame, out: &mut [f64]) {
         out[0] = 0.0;
+    }
+}
+
+/// The malfunction sensor's description (it has no parameters): `SensorSpec::Malfunction`.
+pub(crate) struct MalfunctionSpec;
+
+impl SensorKind for MalfunctionSpec {
+    fn domains(&self) -> Vec<(f64, f64)> {
+        vec![DOMAIN]
+    }
+
+    fn build(&self, _site: Site) -> Node {
+        Node::Malfunction(Malfunction)
     }
 }
 

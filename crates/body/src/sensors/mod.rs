@@ -5,13 +5,21 @@
 //!   [`SensorSpec::Cpg`], [`SensorSpec::ConstantPosition`], [`SensorSpec::Malfunction`]), possibly
 //!   inside wrappers ([`SensorSpec::Average`], [`SensorSpec::Trend`], [`SensorSpec::Normalization`],
 //!   [`SensorSpec::SoftNormalization`], [`SensorSpec::Noisy`]). [`SensorSpec::named`] gives the
-//!   named sensors of 2D-VSR-Sim (`a`, `t`, `vxy`, …).
+//!   named sensors of 2D-VSR-Sim (`a`, `t`, `vxy`, …), listed in [`NAMED_SENSORS`].
 //! - A [`SensorConfig`] places sensors on a body: a placement string (`uniform-a+vxy+t-0.01`,
 //!   `spinedTouchSighted-f-f-0.01`, `empty`, …) or a list of sensor names per voxel.
 //! - A [`SensorSuite`] runs the sensors of one robot during an episode. Each step,
 //!   [`SensorSuite::sense`] writes every reading, voxel by voxel in grid order (row-major from the
 //!   bottom row), each voxel's sensors in list order. It never allocates: windows are ring buffers
 //!   sized when the suite is built.
+//!
+//! Each sensor kind lives in its own file (`velocity.rs`, `average.rs`, …): the running sensor, its
+//! description (e.g. [`VelocitySpec`]) and how that description gives its readings count, domains,
+//! checks and running form (the crate-internal `SensorKind` trait). To add a sensor: write its file;
+//! add a variant to [`SensorSpec`] and its arm in `SensorSpec::as_kind` (`spec.rs`); add a variant
+//! to the running `Node` enum and its arm in `Node::sense`, `Node::reset` and, for wrappers,
+//! `Node::for_each_lidar` (`node.rs`, kept an enum so that sensing is statically dispatched); give
+//! it a name in [`NAMED_SENSORS`] (`named.rs`) if placements should offer it.
 //!
 //! Noise differs from the original on purpose: every `Noisy` instance draws from its own ChaCha8
 //! stream, keyed by (episode seed, voxel index, sensor index), instead of the original's seed-0
@@ -22,6 +30,7 @@ mod area_ratio;
 mod average;
 mod constant;
 mod cpg;
+mod kind;
 mod lidar;
 mod malfunction;
 mod named;
@@ -36,9 +45,18 @@ mod trend;
 mod velocity;
 mod window;
 
-pub use named::SENSOR_NAMES;
+pub use average::AverageSpec;
+pub use constant::{Axis, ConstantPositionSpec};
+pub use lidar::{LidarSpec, MAX_RAYS};
+pub use named::{NamedSensor, NAMED_SENSORS, SENSOR_NAMES};
+pub use noise::NoisySpec;
+pub use normalization::NormalizationSpec;
 pub use placement::SensorConfig;
-pub use spec::{Axes, Axis, SensorSpec, MAX_RAYS, MAX_WINDOW};
+pub use soft_normalization::SoftNormalizationSpec;
+pub use spec::SensorSpec;
+pub use trend::TrendSpec;
+pub use velocity::{Axes, VelocitySpec};
+pub use window::MAX_WINDOW;
 
 use crate::morphology::Morphology;
 use crate::robot::VoxelState;

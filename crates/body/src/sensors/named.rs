@@ -16,47 +16,124 @@
 //! 2021-08; earlier versions used a one-step `Derivative`), and the lidars are normalised (since
 //! 2021-08; raw before).
 
-use super::spec::{Axes, Axis, SensorSpec};
+use super::constant::{Axis, ConstantPositionSpec};
+use super::lidar::LidarSpec;
+use super::spec::SensorSpec;
+use super::velocity::{Axes, VelocitySpec};
 
-/// Every sensor name accepted in placements, in the order used by `uniformAll` (the original's
-/// sorted key order).
-pub const SENSOR_NAMES: [&str; 15] = [
-    "a", "ax", "axy", "ay", "cpg", "l1", "l5", "m", "px", "py", "r", "t", "vx", "vxy", "vy",
+/// One named sensor: its name in placements and the sensor tree it stands for.
+#[derive(Debug, Clone, Copy)]
+pub struct NamedSensor {
+    /// The name, as written in placement strings and per-voxel lists.
+    pub name: &'static str,
+    /// Builds the sensor tree.
+    pub spec: fn() -> SensorSpec,
+}
+
+/// Every named sensor, in the order used by `uniformAll` (the original's sorted key order). A new
+/// named sensor is one entry here.
+pub const NAMED_SENSORS: &[NamedSensor] = &[
+    NamedSensor {
+        name: "a",
+        spec: || SensorSpec::AreaRatio.soft_normalized(),
+    },
+    NamedSensor {
+        name: "ax",
+        spec: || velocity(4.0, Axes::X).trend(0.5).soft_normalized(),
+    },
+    NamedSensor {
+        name: "axy",
+        spec: || velocity(4.0, Axes::Xy).trend(0.5).soft_normalized(),
+    },
+    NamedSensor {
+        name: "ay",
+        spec: || velocity(4.0, Axes::Y).trend(0.5).soft_normalized(),
+    },
+    NamedSensor {
+        name: "cpg",
+        spec: || SensorSpec::Cpg.normalized(),
+    },
+    NamedSensor {
+        name: "l1",
+        spec: || lidar(1).normalized(),
+    },
+    NamedSensor {
+        name: "l5",
+        spec: || lidar(5).normalized(),
+    },
+    NamedSensor {
+        name: "m",
+        spec: || SensorSpec::Malfunction,
+    },
+    NamedSensor {
+        name: "px",
+        spec: || SensorSpec::ConstantPosition(ConstantPositionSpec { axis: Axis::X }),
+    },
+    NamedSensor {
+        name: "py",
+        spec: || SensorSpec::ConstantPosition(ConstantPositionSpec { axis: Axis::Y }),
+    },
+    NamedSensor {
+        name: "r",
+        spec: || SensorSpec::Angle.soft_normalized(),
+    },
+    NamedSensor {
+        name: "t",
+        spec: || SensorSpec::Touch.averaged(0.25),
+    },
+    NamedSensor {
+        name: "vx",
+        spec: || velocity(8.0, Axes::X).averaged(0.5).soft_normalized(),
+    },
+    NamedSensor {
+        name: "vxy",
+        spec: || velocity(8.0, Axes::Xy).averaged(0.5).soft_normalized(),
+    },
+    NamedSensor {
+        name: "vy",
+        spec: || velocity(8.0, Axes::Y).averaged(0.5).soft_normalized(),
+    },
 ];
 
+/// Every sensor name accepted in placements: the names of [`NAMED_SENSORS`], in that order.
+pub const SENSOR_NAMES: [&str; NAMED_SENSORS.len()] = {
+    let mut names = [""; NAMED_SENSORS.len()];
+    let mut i = 0;
+    while i < names.len() {
+        names[i] = NAMED_SENSORS[i].name;
+        i += 1;
+    }
+    names
+};
+
+/// A velocity sensor in the voxel's frame.
+fn velocity(vmax: f64, axes: Axes) -> SensorSpec {
+    SensorSpec::Velocity(VelocitySpec {
+        rotated: true,
+        vmax,
+        axes,
+    })
+}
+
+/// A lidar of range 10.
+fn lidar(rays: usize) -> SensorSpec {
+    SensorSpec::Lidar(LidarSpec { range: 10.0, rays })
+}
+
 impl SensorSpec {
-    /// The named sensor `name` (see [`SENSOR_NAMES`]), or `None` if there is no such name.
+    /// The named sensor `name` (see [`NAMED_SENSORS`]), or `None` if there is no such name.
     pub fn named(name: &str) -> Option<SensorSpec> {
-        let velocity = |vmax: f64, axes| SensorSpec::Velocity {
-            rotated: true,
-            vmax,
-            axes,
-        };
-        let lidar = |rays| SensorSpec::Lidar { range: 10.0, rays };
-        Some(match name {
-            "a" => SensorSpec::AreaRatio.soft_normalized(),
-            "t" => SensorSpec::Touch.averaged(0.25),
-            "r" => SensorSpec::Angle.soft_normalized(),
-            "vx" => velocity(8.0, Axes::X).averaged(0.5).soft_normalized(),
-            "vy" => velocity(8.0, Axes::Y).averaged(0.5).soft_normalized(),
-            "vxy" => velocity(8.0, Axes::Xy).averaged(0.5).soft_normalized(),
-            "ax" => velocity(4.0, Axes::X).trend(0.5).soft_normalized(),
-            "ay" => velocity(4.0, Axes::Y).trend(0.5).soft_normalized(),
-            "axy" => velocity(4.0, Axes::Xy).trend(0.5).soft_normalized(),
-            "px" => SensorSpec::ConstantPosition { axis: Axis::X },
-            "py" => SensorSpec::ConstantPosition { axis: Axis::Y },
-            "m" => SensorSpec::Malfunction,
-            "cpg" => SensorSpec::Cpg.normalized(),
-            "l5" => lidar(5).normalized(),
-            "l1" => lidar(1).normalized(),
-            _ => return None,
-        })
+        NAMED_SENSORS
+            .iter()
+            .find(|named| named.name == name)
+            .map(|named| (named.spec)())
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sensors::{AverageSpec, SoftNormalizationSpec};
 
     #[test]
     fn every_listed_name_resolves_and_no_other() {
@@ -74,31 +151,31 @@ mod tests {
 
     #[test]
     fn names_map_to_the_published_trees() {
-        let vxy = SensorSpec::SoftNormalization {
+        let vxy = SensorSpec::SoftNormalization(SoftNormalizationSpec {
             clip: false,
-            inner: Box::new(SensorSpec::Average {
+            inner: Box::new(SensorSpec::Average(AverageSpec {
                 window: 0.5,
-                inner: Box::new(SensorSpec::Velocity {
+                inner: Box::new(SensorSpec::Velocity(VelocitySpec {
                     rotated: true,
                     vmax: 8.0,
                     axes: Axes::Xy,
-                }),
-            }),
-        };
+                })),
+            })),
+        });
         assert_eq!(SensorSpec::named("vxy"), Some(vxy));
-        let t = SensorSpec::Average {
+        let t = SensorSpec::Average(AverageSpec {
             window: 0.25,
             inner: Box::new(SensorSpec::Touch),
-        };
+        });
         assert_eq!(SensorSpec::named("t"), Some(t));
         let ay = SensorSpec::named("ay").unwrap();
         assert_eq!(
             ay,
-            SensorSpec::Velocity {
+            SensorSpec::Velocity(VelocitySpec {
                 rotated: true,
                 vmax: 4.0,
                 axes: Axes::Y
-            }
+            })
             .trend(0.5)
             .soft_normalized()
         );

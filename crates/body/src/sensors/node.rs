@@ -1,6 +1,7 @@
 //! Running sensors: a tree of [`Node`]s mirroring a [`SensorSpec`], each holding the state it needs
-//! (sample windows, noise generators, last lidar distances). Built once per episode; sensing never
-//! allocates.
+//! (sample windows, noise generators, last lidar distances). Built once per episode by each sensor
+//! kind ([`super::kind::SensorKind::build`]); sensing never allocates. `Node` is an enum so that
+//! [`Node::sense`], called for every sensor at every step, is dispatched statically.
 
 use super::angle::Angle;
 use super::area_ratio::AreaRatio;
@@ -12,7 +13,7 @@ use super::malfunction::Malfunction;
 use super::noise::{NoiseKey, Noisy};
 use super::normalization::Normalization;
 use super::soft_normalization::SoftNormalization;
-use super::spec::{Axis, SensorSpec};
+use super::spec::SensorSpec;
 use super::touch::Touch;
 use super::trend::Trend;
 use super::velocity::Velocity;
@@ -59,44 +60,9 @@ pub(crate) enum Node {
 }
 
 impl Node {
-    /// The running form of a (validated) `spec` placed at `site`.
+    /// The running form of a (validated) `spec` placed at `site` (built by the spec's kind).
     pub(crate) fn build(spec: &SensorSpec, site: Site) -> Node {
-        let inner = |of: &SensorSpec| Box::new(Node::build(of, site));
-        match spec {
-            SensorSpec::AreaRatio => Node::AreaRatio(AreaRatio),
-            SensorSpec::Touch => Node::Touch(Touch),
-            SensorSpec::Velocity { rotated, axes, .. } => Node::Velocity(Velocity::new(*rotated, *axes)),
-            SensorSpec::Angle => Node::Angle(Angle),
-            SensorSpec::Lidar { range, rays } => Node::Lidar(Lidar::new(*range, *rays, site.rel)),
-            SensorSpec::Cpg => Node::Cpg(Cpg),
-            SensorSpec::ConstantPosition { axis } => Node::ConstantPosition(ConstantPosition::new(match axis {
-                Axis::X => site.rel.0,
-                Axis::Y => site.rel.1,
-            })),
-            SensorSpec::Malfunction => Node::Malfunction(Malfunction),
-            SensorSpec::Average { window, inner: of } => {
-                Node::Average(Average::new(inner(of), of.dimension(), *window, site.dt))
-            }
-            SensorSpec::Trend { window, inner: of } => {
-                Node::Trend(Trend::new(inner(of), of.dimension(), *window, site.dt))
-            }
-            SensorSpec::Normalization { inner: of } => Node::Normalization(Normalization::new(inner(of), of.domains())),
-            SensorSpec::SoftNormalization { clip, inner: of } => {
-                Node::SoftNormalization(SoftNormalization::new(inner(of), of.domains(), *clip))
-            }
-            SensorSpec::Noisy { sigma, inner: of } => {
-                let below = Site {
-                    noise: site.noise.nested(),
-                    ..site
-                };
-                Node::Noisy(Noisy::new(
-                    Box::new(Node::build(of, below)),
-                    &of.domains(),
-                    *sigma,
-                    site.noise,
-                ))
-            }
-        }
+        spec.as_kind().build(site)
     }
 
     /// Writes this sensor's readings into `out` (exactly its dimension).

@@ -11,9 +11,12 @@
 //! sensor). Distinct instances therefore draw independent noise, the same seed reproduces the same
 //! noise, and [`Noisy::reset`] restarts the stream from its beginning.
 
-use super::node::{Frame, Node};
+use super::kind::SensorKind;
+use super::node::{Frame, Node, Site};
+use super::spec::SensorSpec;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use serde::{Deserialize, Serialize};
 
 /// Bits of the stream number given to the voxel index.
 const VOXEL_BITS: u32 = 32;
@@ -125,6 +128,52 @@ impl Noisy {
     /// The sensor the noise is added to.
     pub(crate) fn inner(&self) -> &Node {
         &self.inner
+    }
+}
+
+/// Description of a noisy wrapper (`{"kind": "noisy", "sigma": 0.01, "inner": {…}}`): adds
+/// N(0, (σ·extent)²) to each inner reading, extent being the width of its domain; domain unchanged.
+/// Each instance has its own noise stream (module documentation).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NoisySpec {
+    /// Standard deviation relative to the domain's extent (≥ 0).
+    pub sigma: f64,
+    /// The sensor the noise is added to.
+    pub inner: Box<SensorSpec>,
+}
+
+impl SensorKind for NoisySpec {
+    fn dimension(&self) -> usize {
+        self.inner.dimension()
+    }
+
+    fn domains(&self) -> Vec<(f64, f64)> {
+        self.inner.domains()
+    }
+
+    fn validate(&self, noisy_depth: usize) -> Result<(), String> {
+        let sigma = self.sigma;
+        if !(sigma.is_finite() && sigma >= 0.0) {
+            return Err(format!("noise sigma must be a finite number ≥ 0, got {sigma}"));
+        }
+        if noisy_depth + 1 >= MAX_NOISY_DEPTH {
+            return Err(format!("at most {} nested noisy wrappers", MAX_NOISY_DEPTH - 1));
+        }
+        self.inner.validate_at(noisy_depth + 1)
+    }
+
+    fn build(&self, site: Site) -> Node {
+        let below = Site {
+            noise: site.noise.nested(),
+            ..site
+        };
+        Node::Noisy(Noisy::new(
+            Box::new(Node::build(&self.inner, below)),
+            &self.inner.domains(),
+            self.sigma,
+            site.noise,
+        ))
     }
 }
 

@@ -1,7 +1,10 @@
 //! Normalization (vsr-model.md §3.2): each inner reading is clipped to its domain [lo, hi], then
 //! mapped linearly to [0, 1]. The result's domain is [0, 1].
 
-use super::node::{Frame, Node};
+use super::kind::SensorKind;
+use super::node::{Frame, Node, Site};
+use super::spec::SensorSpec;
+use serde::{Deserialize, Serialize};
 
 /// (v − lo)/(hi − lo), not clipped.
 pub(crate) fn linear(v: f64, (lo, hi): (f64, f64)) -> f64 {
@@ -43,6 +46,34 @@ impl Normalization {
     /// The normalised sensor, mutably.
     pub(crate) fn inner_mut(&mut self) -> &mut Node {
         &mut self.inner
+    }
+}
+
+/// Description of a normalization wrapper (`{"kind": "normalization", "inner": {…}}`): clip to the
+/// inner domain, then map linearly to [0, 1].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NormalizationSpec {
+    /// The normalised sensor.
+    pub inner: Box<SensorSpec>,
+}
+
+impl SensorKind for NormalizationSpec {
+    fn dimension(&self) -> usize {
+        self.inner.dimension()
+    }
+
+    fn domains(&self) -> Vec<(f64, f64)> {
+        vec![(0.0, 1.0); self.inner.dimension()]
+    }
+
+    fn validate(&self, noisy_depth: usize) -> Result<(), String> {
+        self.inner.validate_at(noisy_depth)
+    }
+
+    fn build(&self, site: Site) -> Node {
+        let inner = Box::new(Node::build(&self.inner, site));
+        Node::Normalization(Normalization::new(inner, self.inner.domains()))
     }
 }
 

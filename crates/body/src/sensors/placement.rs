@@ -345,7 +345,7 @@ mod tests {
                 list.iter()
                     .map(|spec| {
                         let plain = match spec {
-                            SensorSpec::Noisy { inner, .. } => inner.as_ref(),
+                            SensorSpec::Noisy(noisy) => noisy.inner.as_ref(),
                             s => s,
                         };
                         SENSOR_NAMES

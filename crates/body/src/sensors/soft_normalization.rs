@@ -6,8 +6,11 @@
 //! (2021-12-28) v is first clipped to [0, 1], so the output stays in [0.018, 0.982]. `clip = false`
 //! (the default) is the thesis era. Area ratio examples: 0.8 → 0.168, 1.0 → 0.5, 1.2 → 0.832.
 
-use super::node::{Frame, Node};
+use super::kind::SensorKind;
+use super::node::{Frame, Node, Site};
 use super::normalization::linear;
+use super::spec::SensorSpec;
+use serde::{Deserialize, Serialize};
 
 /// tanh(2(2v − 1))/2 + 1/2 of `x` mapped linearly from `domain` to v, clipping v to [0, 1] first
 /// if `clip`.
@@ -50,6 +53,38 @@ impl SoftNormalization {
     /// The normalised sensor, mutably.
     pub(crate) fn inner_mut(&mut self) -> &mut Node {
         &mut self.inner
+    }
+}
+
+/// Description of a soft normalization wrapper (`{"kind": "soft-normalization", "clip": false,
+/// "inner": {…}}`): tanh(2(2v − 1))/2 + 1/2 of the linearly normalised value v; domain [0, 1].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SoftNormalizationSpec {
+    /// Clip v to [0, 1] first: false (default) as in the thesis era (2D-VSR-Sim ≤ v1.10), true
+    /// as in v1.11 and later.
+    #[serde(default)]
+    pub clip: bool,
+    /// The normalised sensor.
+    pub inner: Box<SensorSpec>,
+}
+
+impl SensorKind for SoftNormalizationSpec {
+    fn dimension(&self) -> usize {
+        self.inner.dimension()
+    }
+
+    fn domains(&self) -> Vec<(f64, f64)> {
+        vec![(0.0, 1.0); self.inner.dimension()]
+    }
+
+    fn validate(&self, noisy_depth: usize) -> Result<(), String> {
+        self.inner.validate_at(noisy_depth)
+    }
+
+    fn build(&self, site: Site) -> Node {
+        let inner = Box::new(Node::build(&self.inner, site));
+        Node::SoftNormalization(SoftNormalization::new(inner, self.inner.domains(), self.clip))
     }
 }
 

@@ -127,9 +127,9 @@ fn lidar_rays_report_directions_and_last_distances() {
     let mut scene = Scene::new("worm-3x1", 0.0);
     let body = scene.body.clone();
     let specs = vec![
-        vec![SensorSpec::Lidar { range: 10.0, rays: 3 }],
-        vec![SensorSpec::Lidar { range: 10.0, rays: 1 }],
-        vec![SensorSpec::Lidar { range: 10.0, rays: 5 }.normalized()],
+        vec![SensorSpec::Lidar(LidarSpec { range: 10.0, rays: 3 })],
+        vec![SensorSpec::Lidar(LidarSpec { range: 10.0, rays: 1 })],
+        vec![SensorSpec::Lidar(LidarSpec { range: 10.0, rays: 5 }).normalized()],
     ];
     let mut suite = SensorSuite::from_specs(specs, &body, 0, DEFAULT_TIME_STEP).unwrap();
     let before = suite.lidar_rays(0);
@@ -162,11 +162,11 @@ fn lidar_rays_report_directions_and_last_distances() {
 fn rotated_velocity_is_read_in_the_voxel_frame() {
     // a voxel turned by −90° has its x axis along world −y and its y axis along world +x
     let scene = Scene::new("box-1x1", 20.0);
-    let specs = vec![vec![SensorSpec::Velocity {
+    let specs = vec![vec![SensorSpec::Velocity(VelocitySpec {
         rotated: true,
         vmax: 8.0,
         axes: Axes::Xy,
-    }]];
+    })]];
     let mut suite = SensorSuite::from_specs(specs, &scene.body, 0, DEFAULT_TIME_STEP).unwrap();
     let mut state = scene.states()[0];
     state.velocity = Vec2::new(1.0, -3.0);

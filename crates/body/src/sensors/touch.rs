@@ -1,7 +1,8 @@
 //! Touch (vsr-model.md §3.1): 1 while any corner of the voxel touches something that is not part of
 //! the same robot (ground, obstacles, other robots), else 0.
 
-use super::node::Frame;
+use super::kind::SensorKind;
+use super::node::{Frame, Node, Site};
 
 /// Declared domain.
 pub(crate) const DOMAIN: (f64, f64) = (0.0, 1.0);
@@ -14,6 +15,19 @@ impl Touch {
     /// Writes the one reading.
     pub(crate) fn sense(&self, frame: &Frame, out: &mut [f64]) {
         out[0] = if frame.state.touching { 1.0 } else { 0.0 };
+    }
+}
+
+/// The touch sensor's description (it has no parameters): `SensorSpec::Touch`.
+pub(crate) struct TouchSpec;
+
+impl SensorKind for TouchSpec {
+    fn domains(&self) -> Vec<(f64, f64)> {
+        vec![DOMAIN]
+    }
+
+    fn build(&self, _site: Site) -> Node {
+        Node::Touch(Touch)
     }
 }
 

@@ -3,8 +3,11 @@
 //! inclusive window. With a single sample (the first step) it reads 0. Its domain is
 //! ±extent/window per reading, where extent is the width of the inner sensor's domain.
 
-use super::node::{Frame, Node};
-use super::window::TimeWindow;
+use super::kind::SensorKind;
+use super::node::{Frame, Node, Site};
+use super::spec::SensorSpec;
+use super::window::{check_window, TimeWindow};
+use serde::{Deserialize, Serialize};
 
 /// Declared domain for an inner domain `(lo, hi)` over `window` seconds.
 pub(crate) fn domain((lo, hi): (f64, f64), window: f64) -> (f64, f64) {
@@ -59,20 +62,55 @@ impl Trend {
     }
 }
 
+/// Description of a trend wrapper (`{"kind": "trend", "window": 0.5, "inner": {…}}`): (last − first)/(t_last − t_first) over the window; domain ±extent/window.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TrendSpec {
+    /// Window (s), > 0 and at most [`super::MAX_WINDOW`].
+    pub window: f64,
+    /// The wrapped sensor.
+    pub inner: Box<SensorSpec>,
+}
+
+impl SensorKind for TrendSpec {
+    fn dimension(&self) -> usize {
+        self.inner.dimension()
+    }
+
+    fn domains(&self) -> Vec<(f64, f64)> {
+        self.inner
+            .domains()
+            .into_iter()
+            .map(|d| domain(d, self.window))
+            .collect()
+    }
+
+    fn validate(&self, noisy_depth: usize) -> Result<(), String> {
+        check_window(self.window)?;
+        self.inner.validate_at(noisy_depth)
+    }
+
+    fn build(&self, site: Site) -> Node {
+        let inner = Box::new(Node::build(&self.inner, site));
+        Node::Trend(Trend::new(inner, self.inner.dimension(), self.window, site.dt))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::sensors::node::testing::{run, still_state};
-    use crate::sensors::spec::{Axes, SensorSpec};
+    use crate::sensors::spec::SensorSpec;
+    use crate::sensors::{Axes, VelocitySpec};
     use vsrlab_physics::Vec2;
 
     #[test]
     fn the_trend_of_a_ramp_is_its_slope() {
-        let spec = SensorSpec::Velocity {
+        let spec = SensorSpec::Velocity(VelocitySpec {
             rotated: false,
             vmax: 4.0,
             axes: Axes::Xy,
-        }
+        })
         .trend(0.5);
         let dt = 1.0 / 60.0;
         let states: Vec<_> = (1..=90)

@@ -1,9 +1,22 @@
 //! Velocity (vsr-model.md §3.1): the voxel's linear velocity, either in world axes or, when
 //! `rotated`, projected on the voxel's own x axis (direction `angle`) and y axis (`angle + π/2`).
 
-use super::node::Frame;
-use super::spec::Axes;
+use super::kind::{check_positive, SensorKind};
+use super::node::{Frame, Node, Site};
+use serde::{Deserialize, Serialize};
 use vsrlab_physics::Vec2;
+
+/// Which velocity components a velocity sensor reports.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Axes {
+    /// The x component only.
+    X,
+    /// The y component only.
+    Y,
+    /// Both, x first.
+    Xy,
+}
 
 /// Declared domain of each component: [−vmax, vmax].
 pub(crate) fn domain(vmax: f64) -> (f64, f64) {
@@ -44,6 +57,40 @@ impl Velocity {
                 out[1] = v.y;
             }
         }
+    }
+}
+
+/// Description of a velocity sensor (`{"kind": "velocity", "rotated": true, "vmax": 8.0, "axes": "xy"}`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VelocitySpec {
+    /// Project on the voxel's own x axis (its angle) and y axis (angle + π/2) instead of the
+    /// world's.
+    pub rotated: bool,
+    /// Half-width of the domain (> 0).
+    pub vmax: f64,
+    /// Components reported.
+    pub axes: Axes,
+}
+
+impl SensorKind for VelocitySpec {
+    fn dimension(&self) -> usize {
+        match self.axes {
+            Axes::Xy => 2,
+            Axes::X | Axes::Y => 1,
+        }
+    }
+
+    fn domains(&self) -> Vec<(f64, f64)> {
+        vec![domain(self.vmax); self.dimension()]
+    }
+
+    fn validate(&self, _noisy_depth: usize) -> Result<(), String> {
+        check_positive("velocity vmax", self.vmax)
+    }
+
+    fn build(&self, _site: Site) -> Node {
+        Node::Velocity(Velocity::new(self.rotated, self.axes))
     }
 }
 

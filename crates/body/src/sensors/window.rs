@@ -7,6 +7,20 @@
 //! never allocates. Sampling faster than the nominal rate still gives the right window: the ring
 //! then grows once to fit, which is the only allocation it ever makes.
 
+use super::kind::check_positive;
+
+/// Longest accepted window of `Average` and `Trend` (s).
+pub const MAX_WINDOW: f64 = 3600.0;
+
+/// Errors unless `window` is finite, > 0 and at most [`MAX_WINDOW`] seconds.
+pub(crate) fn check_window(window: f64) -> Result<(), String> {
+    check_positive("window", window)?;
+    if window > MAX_WINDOW {
+        return Err(format!("window must be at most {MAX_WINDOW} s, got {window}"));
+    }
+    Ok(())
+}
+
 /// Relative tolerance on the window's lower edge, so that a sample lying exactly `span` before the
 /// newest one is kept even when the accumulated time has rounding error (`t += dt` over many steps).
 const EDGE_TOLERANCE: f64 = 1e-9;

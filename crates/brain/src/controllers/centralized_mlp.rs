@@ -8,9 +8,16 @@
 //! those of an [`Mlp`] with sizes `[n_in, hidden…, n_voxels]` (layout in [`crate::mlp`]). With the
 //! default hidden layer (one layer of max(2, round(0.65·n_in)) neurons, [`default_hidden`]) a
 //! biped-4x3 (10 voxels) with 4 readings per voxel has 40 inputs, 26 hidden neurons and 1336 weights.
+//!
+//! Short forms: `mlp` (default hidden layer), `mlp:<sizes>` (e.g. `mlp:26` or `mlp:16,8`),
+//! `mlp:none` (no hidden layer).
 
-use crate::mlp::Mlp;
-use crate::Controller;
+use crate::mlp::{Activation, Mlp};
+use crate::short_form::{self, ShortForm};
+use crate::validation::{check_count, check_finite, check_voxels};
+use crate::{BrainError, BrainKind, BrainSpec, Controller};
+use serde::{Deserialize, Serialize};
+use vsrlab_body::Morphology;
 
 /// The hidden layer 2D-VSR-Sim's drivers use by default: one layer of max(2, round(0.65·n_in)).
 pub fn default_hidden(n_inputs: usize) -> Vec<usize> {
@@ -51,10 +58,102 @@ impl Controller for CentralizedMlpController {
     }
 }
 
+/// Description of a centralized MLP brain (`{"kind": "mlp", …}`): all readings in, one actuation
+/// per voxel out (module documentation). Every field has a default.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct MlpSpec {
+    /// Hidden layer sizes; absent = one layer of max(2, round(0.65·n_inputs)) neurons
+    /// (2D-VSR-Sim's default, [`default_hidden`]), `[]` = no hidden layer.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hidden: Option<Vec<usize>>,
+    /// Activation of every layer (default tanh).
+    pub activation: Activation,
+    /// Apply the activation to the raw inputs first (2D-VSR-Sim ≥ v1.9.1; default true).
+    pub input_activation: bool,
+    /// The weights ([`crate::mlp`] layout), sizes `[n_inputs, hidden…, n_voxels]`; default none
+    /// (a template).
+    pub weights: Vec<f64>,
+}
+
+impl Default for MlpSpec {
+    fn default() -> Self {
+        MlpSpec {
+            hidden: None,
+            activation: Activation::Tanh,
+            input_activation: true,
+            weights: Vec::new(),
+        }
+    }
+}
+
+impl MlpSpec {
+    /// Layer sizes for a body: `[n_inputs, hidden…, n_voxels]`.
+    fn sizes(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Vec<usize> {
+        let n_in: usize = readings_per_voxel.iter().sum();
+        let mut sizes = vec![n_in];
+        match &self.hidden {
+            Some(h) => sizes.extend_from_slice(h),
+            None => sizes.extend(default_hidden(n_in)),
+        }
+        sizes.push(morphology.voxel_count());
+        sizes
+    }
+}
+
+impl BrainKind for MlpSpec {
+    fn name(&self) -> &'static str {
+        "mlp"
+    }
+
+    fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
+        check_voxels(morphology, readings_per_voxel)?;
+        let sizes = self.sizes(morphology, readings_per_voxel);
+        Mlp::check_sizes(&sizes)?;
+        Ok(Mlp::parameter_count(&sizes))
+    }
+
+    fn parameters(&self) -> &[f64] {
+        &self.weights
+    }
+
+    fn set_parameters(&mut self, params: &[f64]) -> Result<(), BrainError> {
+        check_finite("weights", params)?;
+        self.weights = params.to_vec();
+        Ok(())
+    }
+
+    fn build(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
+        let expected = self.parameter_count(morphology, readings_per_voxel)?;
+        check_count("weights", expected, self.weights.len())?;
+        let sizes = self.sizes(morphology, readings_per_voxel);
+        let mlp = Mlp::new(sizes, self.activation, self.input_activation, self.weights.clone())?;
+        Ok(Box::new(CentralizedMlpController::new(mlp)))
+    }
+}
+
+/// `mlp` (default hidden layer), `mlp:<sizes>` (comma separated) or `mlp:none` (no hidden layer).
+pub const SHORT_FORM: ShortForm = ShortForm {
+    name: "mlp",
+    usage: "mlp[:<hidden sizes, comma separated, or none>]",
+    parse: parse_short_form,
+};
+
+fn parse_short_form(argument: Option<&str>) -> Option<BrainSpec> {
+    let hidden = match argument.map(str::trim) {
+        None => None,
+        Some("none") => Some(Vec::new()),
+        Some(list) => Some(list.split(',').map(short_form::count).collect::<Option<Vec<_>>>()?),
+    };
+    Some(BrainSpec::Mlp(MlpSpec {
+        hidden,
+        ..MlpSpec::default()
+    }))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mlp::Activation;
 
     #[test]
     fn default_hidden_layer_follows_the_0_65_rule() {
@@ -74,5 +173,48 @@ mod tests {
         let mut a = [0.0; 3];
         c.control(1.0 / 60.0, &[0.3, -0.4], &mut a);
         assert_eq!(a, [0.1 + 0.3, -0.2 - 0.4, 1.0]);
+    }
+
+    fn biped() -> (Morphology, Vec<usize>) {
+        (Morphology::named("biped-4x3").unwrap(), vec![4; 10])
+    }
+
+    #[test]
+    fn the_spec_counts_the_check_values() {
+        let (m, rpv) = biped();
+        assert_eq!(BrainSpec::parse("mlp").unwrap().parameter_count(&m, &rpv), Ok(1336));
+        assert_eq!(
+            BrainSpec::parse("mlp:none").unwrap().parameter_count(&m, &rpv),
+            Ok(10 * 41)
+        );
+    }
+
+    #[test]
+    fn build_rejects_missing_weights_wrong_readings_and_empty_layers() {
+        let (m, rpv) = biped();
+        let err = BrainSpec::parse("mlp").unwrap().build(&m, &rpv).err().unwrap();
+        assert_eq!(
+            err,
+            BrainError::Invalid {
+                field: "weights",
+                msg: "expected 1336 for this body and sensors, got 0".into()
+            }
+        );
+        let err = BrainSpec::parse("mlp").unwrap().build(&m, &[4; 9]).err().unwrap();
+        assert!(
+            matches!(
+                err,
+                BrainError::Invalid {
+                    field: "readings_per_voxel",
+                    ..
+                }
+            ),
+            "{err}"
+        );
+        let err = BrainSpec::parse("mlp:4,0")
+            .unwrap()
+            .parameter_count(&m, &rpv)
+            .unwrap_err();
+        assert!(matches!(err, BrainError::Invalid { field: "hidden", .. }), "{err}");
     }
 }

@@ -25,9 +25,15 @@
 //! - homogeneous: the n_w weights are shared by all voxels (count n_w, whatever the body);
 //! - heterogeneous: one block per grid cell, empty cells included (count W·H·n_w); the voxel at
 //!   (x, y) uses `weights[(y·W + x)·n_w .. (y·W + x + 1)·n_w]`. 10×10 grid: 4500; 5×5: 1125.
+//!
+//! Short forms: `distributed-mlp[:<signals>]` (homogeneous) and
+//! `distributed-mlp-hetero[:<signals>]` (heterogeneous), both without hidden layer, default 1 signal.
 
 use crate::mlp::{Activation, Mlp};
-use crate::{BrainError, Controller};
+use crate::short_form::{self, ShortForm};
+use crate::validation::{check_finite, check_voxels};
+use crate::{BrainError, BrainKind, BrainSpec, Controller};
+use serde::{Deserialize, Serialize};
 use vsrlab_body::Morphology;
 
 /// Grid offsets (dx, dy) of the directions N, E, S, W, in this order.
@@ -39,7 +45,7 @@ pub const fn opposite(direction: usize) -> usize {
 }
 
 /// How the voxels' networks get their weights.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Layout {
     /// One weight vector shared by every voxel.
@@ -284,6 +290,118 @@ impl Controller for DistributedMlpController {
             self.emitted[v * s4..(v + 1) * s4].copy_from_slice(&self.outputs[1..self.n_out]);
         }
     }
+}
+
+/// Description of a distributed MLP brain (`{"kind": "distributed-mlp", …}`): one MLP per voxel with
+/// neighbour signals (module documentation). Every field has a default.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct DistributedMlpSpec {
+    /// Signals per direction s (default 1).
+    pub signals: usize,
+    /// Hidden layer sizes of each voxel's network (default none).
+    pub hidden: Vec<usize>,
+    /// Activation of every layer (default tanh).
+    pub activation: Activation,
+    /// Apply the activation to the raw inputs first (2D-VSR-Sim ≥ v1.9.1; default true).
+    pub input_activation: bool,
+    /// `homogeneous` (one shared weight vector, default) or `heterogeneous` (one per grid cell).
+    pub layout: Layout,
+    /// The weights: n_w (homogeneous) or W·H·n_w (heterogeneous); default none (a template).
+    pub weights: Vec<f64>,
+}
+
+impl Default for DistributedMlpSpec {
+    fn default() -> Self {
+        DistributedMlpSpec {
+            signals: 1,
+            hidden: Vec::new(),
+            activation: Activation::Tanh,
+            input_activation: true,
+            layout: Layout::Homogeneous,
+            weights: Vec::new(),
+        }
+    }
+}
+
+impl BrainKind for DistributedMlpSpec {
+    fn name(&self) -> &'static str {
+        "distributed-mlp"
+    }
+
+    fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
+        check_voxels(morphology, readings_per_voxel)?;
+        let readings = common_readings(morphology, readings_per_voxel)?;
+        Mlp::check_sizes(&network_sizes(readings, self.signals, &self.hidden))?;
+        Ok(parameter_count(
+            morphology,
+            readings,
+            self.signals,
+            &self.hidden,
+            self.layout,
+        ))
+    }
+
+    fn parameters(&self) -> &[f64] {
+        &self.weights
+    }
+
+    fn set_parameters(&mut self, params: &[f64]) -> Result<(), BrainError> {
+        check_finite("weights", params)?;
+        self.weights = params.to_vec();
+        Ok(())
+    }
+
+    fn build(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
+        let config = DistributedConfig {
+            signals: self.signals,
+            hidden: self.hidden.clone(),
+            activation: self.activation,
+            input_activation: self.input_activation,
+            layout: self.layout,
+        };
+        Ok(Box::new(DistributedMlpController::new(
+            morphology,
+            readings_per_voxel,
+            &config,
+            &self.weights,
+        )?))
+    }
+}
+
+/// `distributed-mlp[:<signals>]`: homogeneous, no hidden layer.
+pub const SHORT_FORM: ShortForm = ShortForm {
+    name: "distributed-mlp",
+    usage: "distributed-mlp[:<signals>]",
+    parse: parse_homogeneous,
+};
+
+/// `distributed-mlp-hetero[:<signals>]`: heterogeneous, no hidden layer.
+pub const HETEROGENEOUS_SHORT_FORM: ShortForm = ShortForm {
+    name: "distributed-mlp-hetero",
+    usage: "distributed-mlp-hetero[:<signals>]",
+    parse: parse_heterogeneous,
+};
+
+fn parse_homogeneous(argument: Option<&str>) -> Option<BrainSpec> {
+    parse_short_form(argument, Layout::Homogeneous)
+}
+
+fn parse_heterogeneous(argument: Option<&str>) -> Option<BrainSpec> {
+    parse_short_form(argument, Layout::Heterogeneous)
+}
+
+/// `[<signals>]`: signals per direction, default 1; no hidden layer.
+fn parse_short_form(argument: Option<&str>, layout: Layout) -> Option<BrainSpec> {
+    let signals = match argument {
+        None => 1,
+        Some(signals) => short_form::count(signals)?,
+    };
+    Some(BrainSpec::DistributedMlp(DistributedMlpSpec {
+        signals,
+        layout,
+        ..DistributedMlpSpec::default()
+    }))
 }
 
 #[cfg(test)]
@@ -558,5 +676,85 @@ mod tests {
                 msg: "expected 135 for this body and sensors, got 45".into()
             }
         );
+    }
+
+    fn biped() -> (Morphology, Vec<usize>) {
+        (Morphology::named("biped-4x3").unwrap(), vec![4; 10])
+    }
+
+    fn homogeneous() -> BrainSpec {
+        BrainSpec::parse("distributed-mlp").unwrap()
+    }
+
+    #[test]
+    fn the_spec_counts_the_thesis_values() {
+        let m10 = Morphology::named("box-10x10").unwrap();
+        let m5 = Morphology::named("box-5x5").unwrap();
+        let hetero = BrainSpec::parse("distributed-mlp-hetero").unwrap();
+        assert_eq!(homogeneous().parameter_count(&m10, &[4; 100]), Ok(45));
+        assert_eq!(hetero.parameter_count(&m10, &[4; 100]), Ok(4500));
+        assert_eq!(hetero.parameter_count(&m5, &[4; 25]), Ok(1125));
+        let single = Morphology::from_fn(5, 5, |x, y| (x, y) == (2, 2)).unwrap();
+        assert_eq!(hetero.parameter_count(&single, &[4]), Ok(1125));
+    }
+
+    #[test]
+    fn the_spec_rejects_wrong_and_non_finite_weights_and_unequal_readings() {
+        let (m, rpv) = biped();
+        let err = homogeneous()
+            .with_parameters(&[0.1; 44])
+            .unwrap()
+            .build(&m, &rpv)
+            .err()
+            .unwrap();
+        assert_eq!(
+            err.to_string(),
+            "brain.weights: expected 45 for this body and sensors, got 44"
+        );
+
+        let mut w = vec![0.0; 45];
+        w[3] = f64::INFINITY;
+        let with_inf = BrainSpec::DistributedMlp(DistributedMlpSpec {
+            weights: w,
+            ..DistributedMlpSpec::default()
+        });
+        let err = with_inf.build(&m, &rpv).err().unwrap();
+        assert!(matches!(err, BrainError::Invalid { field: "weights", .. }), "{err}");
+        assert!(err.to_string().contains("value 3 is inf"), "{err}");
+
+        let err = homogeneous().build(&m, &[4, 4, 4, 4, 4, 4, 4, 4, 4, 3]).err().unwrap();
+        assert!(
+            matches!(
+                err,
+                BrainError::Invalid {
+                    field: "readings_per_voxel",
+                    ..
+                }
+            ),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn a_built_distributed_brain_is_deterministic_across_reset() {
+        let (m, rpv) = biped();
+        let spec = BrainSpec::parse("distributed-mlp-hetero:2")
+            .unwrap()
+            .with_random_parameters(3, &m, &rpv)
+            .unwrap();
+        let mut c = spec.build(&m, &rpv).unwrap();
+        let run = |c: &mut Box<dyn Controller>| {
+            let mut a = vec![0.0; 10];
+            let mut all = Vec::new();
+            for k in 1..=30 {
+                let readings: Vec<f64> = (0..40).map(|i| ((k * 7 + i) as f64).cos()).collect();
+                c.control(k as f64 / 60.0, &readings, &mut a);
+                all.extend_from_slice(&a);
+            }
+            all
+        };
+        let first = run(&mut c);
+        c.reset();
+        assert_eq!(run(&mut c), first);
     }
 }

@@ -1,6 +1,10 @@
-//! Open-loop phase controller (vsr-model.md §4.5): a(x, y, t) = A·sin(2πft + φ(x, y)).
+//! Open-loop phase controller (vsr-model.md §4.5): a(x, y, t) = A·sin(2πft + φ(x, y)), with
+//! φ = phase_x·π·x/W + phase_y·π·y/H. No parameters. Short form: `phase`.
 
-use crate::Controller;
+use crate::short_form::ShortForm;
+use crate::validation::finite;
+use crate::{BrainError, BrainKind, BrainSpec, Controller};
+use serde::{Deserialize, Serialize};
 use vsrlab_body::Morphology;
 
 /// Each voxel oscillates with a common frequency and amplitude and its own phase.
@@ -38,6 +42,71 @@ impl Controller for PhaseController {
         for (a, phi) in actuations.iter_mut().zip(&self.phases) {
             *a = self.amplitude * (w + phi).sin();
         }
+    }
+}
+
+/// Description of a phase brain (`{"kind": "phase", …}`); every field has a default.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct PhaseSpec {
+    /// Frequency f (Hz); default 1.
+    pub frequency: f64,
+    /// Amplitude A; default 1.
+    pub amplitude: f64,
+    /// Phase shift across the width, in units of π; default 1.
+    pub phase_x: f64,
+    /// Phase shift across the height, in units of π; default 0.
+    pub phase_y: f64,
+}
+
+impl Default for PhaseSpec {
+    fn default() -> Self {
+        PhaseSpec {
+            frequency: 1.0,
+            amplitude: 1.0,
+            phase_x: 1.0,
+            phase_y: 0.0,
+        }
+    }
+}
+
+impl BrainKind for PhaseSpec {
+    fn name(&self) -> &'static str {
+        "phase"
+    }
+
+    fn build(&self, morphology: &Morphology, _readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
+        let PhaseSpec {
+            frequency,
+            amplitude,
+            phase_x,
+            phase_y,
+        } = *self;
+        for (field, v) in [
+            ("frequency", frequency),
+            ("amplitude", amplitude),
+            ("phase_x", phase_x),
+            ("phase_y", phase_y),
+        ] {
+            finite(field, v)?;
+        }
+        Ok(Box::new(PhaseController::for_morphology(
+            morphology, frequency, amplitude, phase_x, phase_y,
+        )))
+    }
+}
+
+/// `phase`: the defaults.
+pub const SHORT_FORM: ShortForm = ShortForm {
+    name: "phase",
+    usage: "phase",
+    parse: parse_short_form,
+};
+
+fn parse_short_form(argument: Option<&str>) -> Option<BrainSpec> {
+    match argument {
+        None => Some(BrainSpec::Phase(PhaseSpec::default())),
+        Some(_) => None,
     }
 }
 

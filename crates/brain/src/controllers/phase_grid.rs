@@ -9,8 +9,12 @@
 //! frequency is evolved too; the count is units × block size. The genes map to
 //! - φ_v = π·p_φ (radians; genes in [−1, 1] cover the whole circle),
 //! - f_v = f₀ + p_f (Hz), f₀ being the spec's `frequency` (f_v = f₀ when frequencies are fixed).
+//!
+//! Short forms: `phase-grid` (phases only) and `phase-grid:freq` (phases and frequencies).
 
-use crate::Controller;
+use crate::short_form::ShortForm;
+use crate::validation::{check_count, check_finite, finite};
+use crate::{BrainError, BrainKind, BrainSpec, Controller};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use vsrlab_body::Morphology;
@@ -101,6 +105,91 @@ impl Controller for PhaseGridController {
     }
 }
 
+/// Description of a phase-grid brain (`{"kind": "phase-grid", …}`): a_v = clamp(A·sin(2π·f_v·t +
+/// φ_v), −1, 1) with evolvable per-voxel phases and optionally frequencies (module documentation).
+/// Every field has a default.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct PhaseGridSpec {
+    /// Base frequency f₀ (Hz); default 1.
+    pub frequency: f64,
+    /// Amplitude A; default 1.
+    pub amplitude: f64,
+    /// Whether each voxel also has a frequency parameter; default false.
+    pub evolve_frequency: bool,
+    /// One block per grid cell (`grid`, default) or per voxel (`voxels`).
+    pub layout: PhaseLayout,
+    /// The parameters: units × (1 + evolve_frequency) values; default none (a template).
+    pub parameters: Vec<f64>,
+}
+
+impl Default for PhaseGridSpec {
+    fn default() -> Self {
+        PhaseGridSpec {
+            frequency: 1.0,
+            amplitude: 1.0,
+            evolve_frequency: false,
+            layout: PhaseLayout::Grid,
+            parameters: Vec::new(),
+        }
+    }
+}
+
+impl BrainKind for PhaseGridSpec {
+    fn name(&self) -> &'static str {
+        "phase-grid"
+    }
+
+    fn parameter_count(&self, morphology: &Morphology, _readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
+        Ok(parameter_count(morphology, self.layout, self.evolve_frequency))
+    }
+
+    fn parameters(&self) -> &[f64] {
+        &self.parameters
+    }
+
+    fn set_parameters(&mut self, params: &[f64]) -> Result<(), BrainError> {
+        check_finite("parameters", params)?;
+        self.parameters = params.to_vec();
+        Ok(())
+    }
+
+    fn build(&self, morphology: &Morphology, _readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
+        finite("frequency", self.frequency)?;
+        finite("amplitude", self.amplitude)?;
+        let expected = parameter_count(morphology, self.layout, self.evolve_frequency);
+        check_count("parameters", expected, self.parameters.len())?;
+        check_finite("parameters", &self.parameters)?;
+        Ok(Box::new(PhaseGridController::new(
+            morphology,
+            self.amplitude,
+            self.frequency,
+            self.layout,
+            self.evolve_frequency,
+            &self.parameters,
+        )))
+    }
+}
+
+/// `phase-grid` (per-cell phases) or `phase-grid:freq` (per-cell phases and frequencies).
+pub const SHORT_FORM: ShortForm = ShortForm {
+    name: "phase-grid",
+    usage: "phase-grid[:freq]",
+    parse: parse_short_form,
+};
+
+fn parse_short_form(argument: Option<&str>) -> Option<BrainSpec> {
+    let evolve_frequency = match argument {
+        None => false,
+        Some("freq") => true,
+        Some(_) => return None,
+    };
+    Some(BrainSpec::PhaseGrid(PhaseGridSpec {
+        evolve_frequency,
+        ..PhaseGridSpec::default()
+    }))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -144,5 +233,20 @@ mod tests {
             assert_eq!(a[0], (2.0 * (2.0 * PI * t).sin()).clamp(-1.0, 1.0));
             assert_eq!(a[1], (2.0 * (2.0 * PI * t + PI * 0.5).sin()).clamp(-1.0, 1.0));
         }
+    }
+
+    #[test]
+    fn the_spec_counts_and_checks_its_parameters() {
+        let m = Morphology::named("biped-4x3").unwrap();
+        let rpv = vec![4; 10];
+        assert_eq!(
+            BrainSpec::parse("phase-grid:freq").unwrap().parameter_count(&m, &rpv),
+            Ok(24)
+        );
+        let err = BrainSpec::parse("phase-grid").unwrap().build(&m, &rpv).err().unwrap();
+        assert_eq!(
+            err.to_string(),
+            "brain.parameters: expected 12 for this body and sensors, got 0"
+        );
     }
 }

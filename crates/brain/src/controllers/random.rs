@@ -1,8 +1,13 @@
-//! Uniform random actuations, redrawn periodically: a baseline and a physics stress test.
+//! Uniform random actuations, redrawn periodically: a baseline and a physics stress test. No
+//! parameters. Short form: `random[:<period s>]`.
 
-use crate::Controller;
+use crate::short_form::{self, ShortForm};
+use crate::validation::non_negative;
+use crate::{BrainError, BrainKind, BrainSpec, Controller};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use serde::{Deserialize, Serialize};
+use vsrlab_body::Morphology;
 
 /// Each voxel gets an independent uniform value in [-1, 1], redrawn every `period` seconds.
 #[derive(Debug, Clone)]
@@ -44,6 +49,47 @@ impl Controller for RandomController {
         }
         actuations.copy_from_slice(&self.current);
     }
+}
+
+/// Description of a random brain (`{"kind": "random", "period": 0.0, "seed": 0}`): independent
+/// uniform random actuations in [-1, 1], redrawn every `period` seconds. Every field has a default.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RandomSpec {
+    /// Seconds between redraws (0 = every step); default 0.
+    pub period: f64,
+    /// Seed of the generator; default 0.
+    pub seed: u64,
+}
+
+impl BrainKind for RandomSpec {
+    fn name(&self) -> &'static str {
+        "random"
+    }
+
+    fn build(
+        &self,
+        _morphology: &Morphology,
+        _readings_per_voxel: &[usize],
+    ) -> Result<Box<dyn Controller>, BrainError> {
+        non_negative("period", self.period, " seconds")?;
+        Ok(Box::new(RandomController::new(self.period, self.seed)))
+    }
+}
+
+/// `random` (a redraw every step) or `random:<period s>`, seed 0.
+pub const SHORT_FORM: ShortForm = ShortForm {
+    name: "random",
+    usage: "random[:<period s>]",
+    parse: parse_short_form,
+};
+
+fn parse_short_form(argument: Option<&str>) -> Option<BrainSpec> {
+    let period = match argument {
+        None => 0.0,
+        Some(period) => short_form::number(period)?,
+    };
+    Some(BrainSpec::Random(RandomSpec { period, seed: 0 }))
 }
 
 #[cfg(test)]

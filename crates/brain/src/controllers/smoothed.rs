@@ -2,8 +2,14 @@
 //! moves towards the inner controller's output by at most `speed·dt` per call, starting from 0, with
 //! dt the time since the previous call (the first call measures from t = 0). No parameters of its
 //! own.
+//!
+//! Short form: `smoothed:<speed>:<brain>`.
 
-use crate::Controller;
+use crate::short_form::{self, ShortForm};
+use crate::validation::non_negative;
+use crate::{BrainError, BrainKind, BrainSpec, Controller};
+use serde::{Deserialize, Serialize};
+use vsrlab_body::Morphology;
 
 /// Rate-limits the inner controller's output to `speed` per second.
 pub struct SmoothedController {
@@ -43,6 +49,60 @@ impl Controller for SmoothedController {
             *a = *c;
         }
     }
+}
+
+/// Description of a smoothed wrapper (`{"kind": "smoothed", "speed": 5.0, "inner": {…}}`): rate-limits
+/// the inner brain's output (module documentation).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SmoothedSpec {
+    /// Largest change of an actuation per second; required.
+    pub speed: f64,
+    /// The wrapped brain; required.
+    pub inner: Box<BrainSpec>,
+}
+
+impl BrainKind for SmoothedSpec {
+    fn name(&self) -> &'static str {
+        "smoothed"
+    }
+
+    /// The inner brain's.
+    fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
+        self.inner.parameter_count(morphology, readings_per_voxel)
+    }
+
+    /// The inner brain's.
+    fn parameters(&self) -> &[f64] {
+        self.inner.parameters()
+    }
+
+    /// Passed to the inner brain.
+    fn set_parameters(&mut self, params: &[f64]) -> Result<(), BrainError> {
+        self.inner.as_kind_mut().set_parameters(params)
+    }
+
+    fn build(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
+        non_negative("speed", self.speed, " per second")?;
+        let inner = self.inner.build(morphology, readings_per_voxel)?;
+        Ok(Box::new(SmoothedController::new(
+            inner,
+            self.speed,
+            morphology.voxel_count(),
+        )))
+    }
+}
+
+/// `smoothed:<speed>:<brain>`, wrapping any short form.
+pub const SHORT_FORM: ShortForm = ShortForm {
+    name: "smoothed",
+    usage: "smoothed:<speed>:<brain>",
+    parse: parse_short_form,
+};
+
+fn parse_short_form(argument: Option<&str>) -> Option<BrainSpec> {
+    let (speed, inner) = short_form::wrapped(argument)?;
+    Some(BrainSpec::Smoothed(SmoothedSpec { speed, inner }))
 }
 
 #[cfg(test)]
@@ -94,5 +154,23 @@ mod tests {
         c.reset();
         c.control(1.0 / 60.0, &[], &mut a);
         assert!((a[0] - 0.1).abs() < 1e-12, "reset starts from 0 again");
+    }
+
+    #[test]
+    fn the_spec_delegates_to_its_inner_brain_and_checks_its_speed() {
+        let m = vsrlab_body::Morphology::named("biped-4x3").unwrap();
+        let rpv = vec![4; 10];
+        assert_eq!(
+            BrainSpec::parse("smoothed:2:distributed-mlp-hetero")
+                .unwrap()
+                .parameter_count(&m, &rpv),
+            Ok(12 * 45)
+        );
+        let err = BrainSpec::parse("smoothed:nan:phase")
+            .unwrap()
+            .build(&m, &rpv)
+            .err()
+            .unwrap();
+        assert!(matches!(err, BrainError::Invalid { field: "speed", .. }), "{err}");
     }
 }

@@ -4,8 +4,14 @@
 //! between. AttentionVSRs used 0.33 s, i.e. a refresh every 20 steps at 1/60 s (20·(1/60) ≈ 0.3333 ≥
 //! 0.33 while 19 steps ≈ 0.3167 are not enough). A period of exactly k·dt is fragile with a time
 //! accumulated in floating point; give a slightly smaller one. No parameters of its own.
+//!
+//! Short form: `step:<period s>:<brain>`.
 
-use crate::Controller;
+use crate::short_form::{self, ShortForm};
+use crate::validation::non_negative;
+use crate::{BrainError, BrainKind, BrainSpec, Controller};
+use serde::{Deserialize, Serialize};
+use vsrlab_body::Morphology;
 
 /// Holds the inner controller's output for `period` seconds.
 pub struct StepController {
@@ -44,6 +50,60 @@ impl Controller for StepController {
         }
         actuations.copy_from_slice(&self.held);
     }
+}
+
+/// Description of a step wrapper (`{"kind": "step", "period": 0.33, "inner": {…}}`): holds the inner
+/// brain's output for `period` seconds (module documentation).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StepSpec {
+    /// Seconds between refreshes of the applied actuations (0 = every step); required.
+    pub period: f64,
+    /// The wrapped brain; required.
+    pub inner: Box<BrainSpec>,
+}
+
+impl BrainKind for StepSpec {
+    fn name(&self) -> &'static str {
+        "step"
+    }
+
+    /// The inner brain's.
+    fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
+        self.inner.parameter_count(morphology, readings_per_voxel)
+    }
+
+    /// The inner brain's.
+    fn parameters(&self) -> &[f64] {
+        self.inner.parameters()
+    }
+
+    /// Passed to the inner brain.
+    fn set_parameters(&mut self, params: &[f64]) -> Result<(), BrainError> {
+        self.inner.as_kind_mut().set_parameters(params)
+    }
+
+    fn build(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
+        non_negative("period", self.period, " seconds")?;
+        let inner = self.inner.build(morphology, readings_per_voxel)?;
+        Ok(Box::new(StepController::new(
+            inner,
+            self.period,
+            morphology.voxel_count(),
+        )))
+    }
+}
+
+/// `step:<period s>:<brain>`, wrapping any short form.
+pub const SHORT_FORM: ShortForm = ShortForm {
+    name: "step",
+    usage: "step:<period s>:<brain>",
+    parse: parse_short_form,
+};
+
+fn parse_short_form(argument: Option<&str>) -> Option<BrainSpec> {
+    let (period, inner) = short_form::wrapped(argument)?;
+    Some(BrainSpec::Step(StepSpec { period, inner }))
 }
 
 #[cfg(test)]
@@ -94,5 +154,30 @@ mod tests {
             c.control(k as f64 / 60.0, &[], &mut a);
             assert_eq!(a[0], k as f64);
         }
+    }
+
+    #[test]
+    fn the_spec_delegates_to_its_inner_brain_and_checks_its_period() {
+        let m = vsrlab_body::Morphology::named("biped-4x3").unwrap();
+        let rpv = vec![4; 10];
+        assert_eq!(
+            BrainSpec::parse("step:0.33:mlp").unwrap().parameter_count(&m, &rpv),
+            Ok(1336)
+        );
+        let err = BrainSpec::parse("step:0.3:distributed-mlp-hetero")
+            .unwrap()
+            .build(&m, &rpv)
+            .err()
+            .unwrap();
+        assert_eq!(
+            err.to_string(),
+            "brain.weights: expected 540 for this body and sensors, got 0"
+        );
+        let err = BrainSpec::parse("step:-1:phase")
+            .unwrap()
+            .build(&m, &rpv)
+            .err()
+            .unwrap();
+        assert!(matches!(err, BrainError::Invalid { field: "period", .. }), "{err}");
     }
 }

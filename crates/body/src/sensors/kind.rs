@@ -1,0 +1,39 @@
+//! [`SensorKind`]: what every kind of sensor description provides, so that `SensorSpec` only
+//! lists the kinds and delegates.
+//!
+//! Each sensor file (`velocity.rs`, `average.rs`, …) holds its running sensor, its description
+//! (`VelocitySpec`, … or a field-less marker for sensors without parameters) and this trait's
+//! implementation. The trait is crate-internal because it builds [`Node`]s, the statically
+//! dispatched running sensors of the simulation's hot loop.
+
+use super::node::{Node, Site};
+
+/// One kind of sensor: its readings, their domains, its checks and its running form.
+pub(crate) trait SensorKind {
+    /// Number of readings (default 1).
+    fn dimension(&self) -> usize {
+        1
+    }
+
+    /// Declared domain (min, max) of each reading, after wrapping.
+    fn domains(&self) -> Vec<(f64, f64)>;
+
+    /// Checks every parameter of the tree below; `noisy_depth` counts the `Noisy` wrappers above.
+    /// The message names the parameter and the accepted range. Default: nothing to check.
+    fn validate(&self, noisy_depth: usize) -> Result<(), String> {
+        let _ = noisy_depth;
+        Ok(())
+    }
+
+    /// The running form of this (validated) sensor placed at `site`.
+    fn build(&self, site: Site) -> Node;
+}
+
+/// Errors unless `v` is finite and > 0, naming the parameter.
+pub(crate) fn check_positive(name: &str, v: f64) -> Result<(), String> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(format!("{name} must be a finite number > 0, got {v}"))
+    }
+}

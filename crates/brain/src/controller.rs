@@ -1,0 +1,9 @@
+//! [`Controller`]: what every brain does at each control step.
+
+/// A brain: maps (time, readings) to actuations, possibly with internal state.
+pub trait Controller: Send {
+    /// Clears internal state, as at the start of an episode.
+    fn reset(&mut self);
+    /// Computes one actuation per voxel (grid order) from all readings (grid order).
+    fn control(&mut self, t: f64, readings: &[f64], actuations: &mut [f64]);
+}

@@ -1,0 +1,51 @@
+//! [`BrainKind`]: the behaviour every kind of brain description provides.
+
+use crate::{BrainError, Controller};
+use std::fmt::Debug;
+use vsrlab_body::Morphology;
+
+/// One kind of brain, as described in configs and robot files: its fields, its parameter vector and
+/// how it builds its [`Controller`] for a body.
+///
+/// Each controller module has a description struct implementing this trait (for example
+/// [`crate::MlpSpec`] next to [`crate::CentralizedMlpController`]); [`crate::BrainSpec`] wraps them
+/// all and delegates to this trait. The default methods are those of a parameterless brain.
+pub trait BrainKind: Debug + Send + Sync {
+    /// The `kind` tag, as in configs (the kebab-case name of the [`crate::BrainSpec`] variant).
+    fn name(&self) -> &'static str;
+
+    /// Number of parameters this brain needs for a body whose voxels (voxel order) have these
+    /// readings counts. Errors when the shape does not fit the body. Default: 0.
+    fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
+        let _ = (morphology, readings_per_voxel);
+        Ok(0)
+    }
+
+    /// The parameter vector (empty for an unfilled template). Default: empty.
+    fn parameters(&self) -> &[f64] {
+        &[]
+    }
+
+    /// Replaces the parameter vector; errors when a value is not finite (the count for a body is
+    /// checked by [`BrainKind::build`]). Default: only an empty vector is accepted, an error on
+    /// field `parameters` otherwise.
+    fn set_parameters(&mut self, params: &[f64]) -> Result<(), BrainError> {
+        if params.is_empty() {
+            Ok(())
+        } else {
+            Err(BrainError::Invalid {
+                field: "parameters",
+                msg: format!(
+                    "expected 0 for a {} brain (it has none), got {}",
+                    self.name(),
+                    params.len()
+                ),
+            })
+        }
+    }
+
+    /// Validates every field and builds the controller for a body whose voxels (voxel order) have
+    /// these readings counts; a parameter vector of the wrong length is an error naming its field:
+    /// "expected N for this body and sensors, got M".
+    fn build(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError>;
+}

@@ -14,6 +14,7 @@ pub mod plot;
 pub mod pose;
 pub mod report;
 pub mod results;
+pub mod run_folder;
 pub mod sampling;
 pub mod spectrum;
 pub mod stats;
@@ -25,5 +26,6 @@ pub use forest::{cross_validate, CvReport, Folds, ForestParams, MaxFeatures, Ran
 pub use morphology::MorphologyDescriptors;
 pub use pca::Pca;
 pub use pose::Pose;
+pub use run_folder::{RunFiles, RunFolder};
 pub use spectrum::{Axis, SpectrumParams};
 pub use stats::{mann_whitney_u, median, std_dev, MannWhitney};

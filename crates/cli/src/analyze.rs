@@ -653,7 +653,7 @@ fn write_best_csv(path: &Path, settings: &[Setting], bests: &[BestRobot]) -> Res
 }
 
 fn train_classifiers(labels: &Path, folds: usize, seed: u64, pool: &rayon::ThreadPool) -> Result<Classifiers, String> {
-    let rows = read_labels(labels)?;
+    let rows = read_labels(labels).map_err(|e| e.to_string())?;
     eprintln!("replaying {} labelled robots from {}…", rows.len(), labels.display());
     let feats: Vec<Result<RobotFeatures, String>> = pool.install(|| {
         rows.par_iter()

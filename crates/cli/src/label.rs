@@ -197,7 +197,7 @@ pub fn run(args: LabelArgs) -> Result<(), String> {
                 behaviour: e.proposal.1.clone(),
             })
             .collect();
-        write_labels(&args.out.join("labels.csv"), &rows)?;
+        write_labels(&args.out.join("labels.csv"), &rows).map_err(|e| e.to_string())?;
         println!(
             "wrote rule-of-thumb labels to {}",
             args.out.join("labels.csv").display()

@@ -6,6 +6,7 @@
 
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
+use vsrlab_tasks::files::write_atomic;
 
 /// One labelled robot.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -42,23 +43,62 @@ impl LabelRow {
     }
 }
 
+/// Why a labels CSV could not be read or written.
+#[derive(Debug, thiserror::Error)]
+pub enum LabelsError {
+    /// The file could not be opened, or a row is malformed.
+    #[error("{}{}: {source}", path.display(), row.map(|r| format!(", row {r}")).unwrap_or_default())]
+    Csv {
+        /// The labels file.
+        path: PathBuf,
+        /// The row (1 = the header), when a row is at fault.
+        row: Option<usize>,
+        /// The parser's report.
+        source: csv::Error,
+    },
+    /// The file could not be written.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The labels file.
+        path: PathBuf,
+        /// The OS error.
+        source: std::io::Error,
+    },
+}
+
 /// Reads a labels CSV.
-pub fn read_labels(path: &Path) -> Result<Vec<LabelRow>, String> {
-    let mut r = csv::Reader::from_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
+pub fn read_labels(path: &Path) -> Result<Vec<LabelRow>, LabelsError> {
+    let csv_error = |row: Option<usize>| {
+        move |source| LabelsError::Csv {
+            path: path.to_path_buf(),
+            row,
+            source,
+        }
+    };
+    let mut r = csv::Reader::from_path(path).map_err(csv_error(None))?;
     let mut out = Vec::new();
     for (i, row) in r.deserialize::<LabelRow>().enumerate() {
-        out.push(row.map_err(|e| format!("{}, row {}: {e}", path.display(), i + 2))?);
+        out.push(row.map_err(csv_error(Some(i + 2)))?);
     }
     Ok(out)
 }
 
-/// Writes a labels CSV.
-pub fn write_labels(path: &Path, rows: &[LabelRow]) -> Result<(), String> {
-    let mut w = csv::Writer::from_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
+/// Writes a labels CSV (atomically: a failure leaves no half-written file).
+pub fn write_labels(path: &Path, rows: &[LabelRow]) -> Result<(), LabelsError> {
+    let csv_error = |source| LabelsError::Csv {
+        path: path.to_path_buf(),
+        row: None,
+        source,
+    };
+    let mut w = csv::Writer::from_writer(Vec::new());
     for r in rows {
-        w.serialize(r).map_err(|e| format!("{}: {e}", path.display()))?;
+        w.serialize(r).map_err(csv_error)?;
     }
-    w.flush().map_err(|e| format!("{}: {e}", path.display()))
+    let bytes = w.into_inner().map_err(|e| csv_error(e.into_error().into()))?;
+    write_atomic(path, &bytes).map_err(|source| LabelsError::Io {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 #[cfg(test)]

@@ -1,28 +1,89 @@
 //! Reading the output of `vsrlab run` (docs/experiments.md): an experiment folder holds the
 //! resolved `experiment.toml` and one `run-NN/` folder per run with `generations.csv`,
-//! `snapshots/evaluations-NNNNNNN.jsonl`, `best.robot.json` and `summary.json`.
+//! `snapshots/evaluations-NNNNNNN.jsonl`, `best.robot.json` and `summary.json` (the layout is
+//! [`RunFolder`]'s).
 //!
 //! Only file formats are read here (no dependency on the experiment crate): the configuration
 //! stays a TOML table, CSV columns are looked up by name, snapshot lines keep what analysis uses.
 
+use crate::run_folder::{RunFiles, RunFolder};
 use serde::Deserialize;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+use vsrlab_body::Morphology;
 
-/// Why results could not be read.
+/// Why results could not be read; every variant names the file or folder.
 #[derive(Debug, thiserror::Error)]
-#[error("{path}: {msg}")]
-pub struct ResultsError {
-    /// The file or folder.
-    pub path: String,
-    /// What is wrong.
-    pub msg: String,
+pub enum ResultsError {
+    /// A file or folder could not be read.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file or folder.
+        path: PathBuf,
+        /// The OS error.
+        source: std::io::Error,
+    },
+    /// A CSV file is malformed.
+    #[error("{}: {source}", path.display())]
+    Csv {
+        /// The file.
+        path: PathBuf,
+        /// The parser's report.
+        source: csv::Error,
+    },
+    /// A CSV row lacks an integer column analysis needs.
+    #[error("{}: row {row}: no integer column '{column}'", path.display())]
+    MissingColumn {
+        /// The file.
+        path: PathBuf,
+        /// The row (1 = the header).
+        row: usize,
+        /// The column.
+        column: &'static str,
+    },
+    /// A snapshot line is not valid JSON of a population member.
+    #[error("{}: line {line}: {source}", path.display())]
+    Snapshot {
+        /// The snapshot file.
+        path: PathBuf,
+        /// The line (1-based).
+        line: usize,
+        /// The parser's report.
+        source: serde_json::Error,
+    },
+    /// `experiment.toml` is not valid TOML.
+    #[error("{}: {source}", path.display())]
+    Config {
+        /// The file.
+        path: PathBuf,
+        /// The parser's report.
+        source: toml::de::Error,
+    },
+    /// A results root is not a folder.
+    #[error("{}: not a folder", path.display())]
+    NotAFolder {
+        /// The path given.
+        path: PathBuf,
+    },
+    /// No experiment folder below the roots.
+    #[error("{roots}: no experiment.toml found (is this the output of `vsrlab run`?)")]
+    NoExperiment {
+        /// The roots searched, comma-separated.
+        roots: String,
+    },
 }
 
-fn fail(path: &Path, msg: impl std::fmt::Display) -> ResultsError {
-    ResultsError {
-        path: path.display().to_string(),
-        msg: msg.to_string(),
+fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> ResultsError + '_ {
+    move |source| ResultsError::Io {
+        path: path.to_path_buf(),
+        source,
+    }
+}
+
+fn csv_error(path: &Path) -> impl Fn(csv::Error) -> ResultsError + '_ {
+    move |source| ResultsError::Csv {
+        path: path.to_path_buf(),
+        source,
     }
 }
 
@@ -76,6 +137,13 @@ pub struct SnapshotRow {
     pub genotype: Vec<f64>,
 }
 
+impl SnapshotRow {
+    /// The body, when the row has one that parses.
+    pub fn morphology(&self) -> Option<Morphology> {
+        self.body.as_deref().and_then(|b| Morphology::parse(b).ok())
+    }
+}
+
 /// One run of an experiment.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunData {
@@ -107,6 +175,11 @@ impl RunData {
     pub fn final_snapshot(&self) -> Option<&(u64, PathBuf)> {
         self.snapshots.last()
     }
+
+    /// The run's files.
+    pub fn files(&self) -> RunFiles {
+        RunFiles::new(&self.dir, self.index)
+    }
 }
 
 /// One experiment folder.
@@ -133,6 +206,22 @@ impl ExperimentData {
         Some(v)
     }
 
+    /// The experiment's output folder.
+    pub fn folder(&self) -> RunFolder {
+        RunFolder::new(&self.dir)
+    }
+
+    /// How tables name one of its runs: the experiment folder and the run folder's name
+    /// (`out/ga/run-03`).
+    pub fn run_label(&self, run: &RunData) -> String {
+        let name = run
+            .dir
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        format!("{}/{name}", self.dir.display())
+    }
+
     /// What the fitness is (`velocity` or `distance`; `velocity` when unset).
     pub fn fitness_kind(&self) -> String {
         self.config_value("task.fitness")
@@ -144,23 +233,27 @@ impl ExperimentData {
 
 /// Reads `generations.csv`.
 pub fn read_generations(path: &Path) -> Result<Vec<GenerationRow>, ResultsError> {
-    let mut reader = csv::Reader::from_path(path).map_err(|e| fail(path, e))?;
-    let headers = reader.headers().map_err(|e| fail(path, e))?.clone();
+    let mut reader = csv::Reader::from_path(path).map_err(csv_error(path))?;
+    let headers = reader.headers().map_err(csv_error(path))?.clone();
     let col: HashMap<&str, usize> = headers.iter().enumerate().map(|(i, h)| (h, i)).collect();
     let mut rows = Vec::new();
     for (line, rec) in reader.records().enumerate() {
-        let rec = rec.map_err(|e| fail(path, e))?;
+        let rec = rec.map_err(csv_error(path))?;
         let num = |name: &str| -> f64 {
             col.get(name)
                 .and_then(|&i| rec.get(i))
                 .and_then(|v| v.trim().parse::<f64>().ok())
                 .unwrap_or(f64::NAN)
         };
-        let int = |name: &str| -> Result<u64, ResultsError> {
-            col.get(name)
+        let int = |column: &'static str| -> Result<u64, ResultsError> {
+            col.get(column)
                 .and_then(|&i| rec.get(i))
                 .and_then(|v| v.trim().parse::<u64>().ok())
-                .ok_or_else(|| fail(path, format!("row {}: no integer column '{name}'", line + 2)))
+                .ok_or_else(|| ResultsError::MissingColumn {
+                    path: path.to_path_buf(),
+                    row: line + 2,
+                    column,
+                })
         };
         rows.push(GenerationRow {
             generation: int("generation")?,
@@ -175,42 +268,36 @@ pub fn read_generations(path: &Path) -> Result<Vec<GenerationRow>, ResultsError>
 
 /// Reads a snapshot (JSON lines).
 pub fn read_snapshot(path: &Path) -> Result<Vec<SnapshotRow>, ResultsError> {
-    let text = std::fs::read_to_string(path).map_err(|e| fail(path, e))?;
+    let text = std::fs::read_to_string(path).map_err(io_error(path))?;
     text.lines()
         .enumerate()
         .filter(|(_, l)| !l.trim().is_empty())
-        .map(|(i, l)| serde_json::from_str(l).map_err(|e| fail(path, format!("line {}: {e}", i + 1))))
+        .map(|(i, l)| {
+            serde_json::from_str(l).map_err(|source| ResultsError::Snapshot {
+                path: path.to_path_buf(),
+                line: i + 1,
+                source,
+            })
+        })
         .collect()
 }
 
-fn read_run(dir: &Path, index: usize) -> Result<RunData, ResultsError> {
-    let gens = dir.join("generations.csv");
+fn read_run(files: &RunFiles) -> Result<RunData, ResultsError> {
+    let gens = files.generations_csv();
     let generations = if gens.exists() {
         read_generations(&gens)?
     } else {
         Vec::new()
     };
-    let mut snapshots = Vec::new();
-    if let Ok(entries) = std::fs::read_dir(dir.join("snapshots")) {
-        for e in entries.flatten() {
-            let name = e.file_name().to_string_lossy().into_owned();
-            if let Some(n) = name.strip_prefix("evaluations-").and_then(|s| s.strip_suffix(".jsonl")) {
-                if let Ok(n) = n.parse::<u64>() {
-                    snapshots.push((n, e.path()));
-                }
-            }
-        }
-    }
-    snapshots.sort();
-    let best = dir.join("best.robot.json");
-    let summary = std::fs::read_to_string(dir.join("summary.json"))
+    let best = files.best_robot();
+    let summary = std::fs::read_to_string(files.summary_json())
         .ok()
         .and_then(|t| serde_json::from_str(&t).ok());
     Ok(RunData {
-        dir: dir.to_path_buf(),
-        index,
+        dir: files.dir().to_path_buf(),
+        index: files.index(),
         generations,
-        snapshots,
+        snapshots: files.snapshots_on_disk(),
         best_robot: best.exists().then_some(best),
         summary,
     })
@@ -218,10 +305,14 @@ fn read_run(dir: &Path, index: usize) -> Result<RunData, ResultsError> {
 
 /// Reads one experiment folder (it must hold `experiment.toml`).
 pub fn read_experiment(dir: &Path) -> Result<ExperimentData, ResultsError> {
-    let cfg_path = dir.join("experiment.toml");
-    let text = std::fs::read_to_string(&cfg_path).map_err(|e| fail(&cfg_path, e))?;
-    let config: toml::Table = text.parse().map_err(|e| fail(&cfg_path, e))?;
-    let folder = dir
+    let folder = RunFolder::new(dir);
+    let cfg_path = folder.experiment_toml();
+    let text = std::fs::read_to_string(&cfg_path).map_err(io_error(&cfg_path))?;
+    let config: toml::Table = text.parse().map_err(|source| ResultsError::Config {
+        path: cfg_path.clone(),
+        source,
+    })?;
+    let folder_name = dir
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_else(|| "experiment".into());
@@ -229,18 +320,13 @@ pub fn read_experiment(dir: &Path) -> Result<ExperimentData, ResultsError> {
         .get("name")
         .and_then(|v| v.as_str())
         .map(str::to_string)
-        .unwrap_or(folder);
-    let mut runs = Vec::new();
-    let mut entries: Vec<_> = std::fs::read_dir(dir).map_err(|e| fail(dir, e))?.flatten().collect();
-    entries.sort_by_key(|e| e.file_name());
-    for e in entries {
-        let fname = e.file_name().to_string_lossy().into_owned();
-        if let Some(i) = fname.strip_prefix("run-").and_then(|s| s.parse::<usize>().ok()) {
-            if e.path().is_dir() {
-                runs.push(read_run(&e.path(), i)?);
-            }
-        }
-    }
+        .unwrap_or(folder_name);
+    let runs = folder
+        .runs_on_disk()
+        .map_err(io_error(dir))?
+        .iter()
+        .map(read_run)
+        .collect::<Result<_, _>>()?;
     Ok(ExperimentData {
         dir: dir.to_path_buf(),
         name,
@@ -252,7 +338,7 @@ pub fn read_experiment(dir: &Path) -> Result<ExperimentData, ResultsError> {
 /// Finds every experiment folder at or below each root (up to 4 levels deep), in path order.
 pub fn discover(roots: &[PathBuf]) -> Result<Vec<ExperimentData>, ResultsError> {
     fn walk(dir: &Path, depth: usize, out: &mut Vec<PathBuf>) {
-        if dir.join("experiment.toml").is_file() {
+        if RunFolder::new(dir).is_experiment() {
             out.push(dir.to_path_buf());
             return;
         }
@@ -270,7 +356,7 @@ pub fn discover(roots: &[PathBuf]) -> Result<Vec<ExperimentData>, ResultsError> 
     let mut found = Vec::new();
     for r in roots {
         if !r.is_dir() {
-            return Err(fail(r, "not a folder"));
+            return Err(ResultsError::NotAFolder { path: r.clone() });
         }
         walk(r, 4, &mut found);
     }
@@ -278,9 +364,8 @@ pub fn discover(roots: &[PathBuf]) -> Result<Vec<ExperimentData>, ResultsError> 
     found.dedup();
     if found.is_empty() {
         let names: Vec<String> = roots.iter().map(|r| r.display().to_string()).collect();
-        return Err(ResultsError {
-            path: names.join(", "),
-            msg: "no experiment.toml found (is this the output of `vsrlab run`?)".into(),
+        return Err(ResultsError::NoExperiment {
+            roots: names.join(", "),
         });
     }
     found.iter().map(|d| read_experiment(d)).collect()
@@ -348,6 +433,15 @@ mod tests {
         assert_eq!(rows[0].genotype, vec![0.1, -0.2]);
         assert_eq!(rows[0].body.as_deref(), Some("##/##"));
         assert_eq!(exps[0].fitness_kind(), "velocity");
-        assert!(discover(&[root.join("a/run-00")]).is_err());
+        assert_eq!(exps[0].run_label(run), format!("{}/run-00", root.join("a").display()));
+        assert_eq!(run.files().best_robot(), root.join("a/run-00/best.robot.json"));
+        assert!(matches!(
+            discover(&[root.join("a/run-00")]),
+            Err(ResultsError::NoExperiment { .. })
+        ));
+        assert!(matches!(
+            discover(&[root.join("missing")]),
+            Err(ResultsError::NotAFolder { .. })
+        ));
     }
 }

@@ -1,6 +1,7 @@
 //! Stratified sampling of robots for labelling (thesis §3.3.2.2): every descriptor is split into
 //! equal-size bins (by rank), the pool into the bins' product (4 × 4 × 4 = 64 by default), and
 //! robots are drawn round-robin from the non-empty bins, in a seeded random order within each.
+//! Also [`spread`], an even sample of a population.
 
 use crate::forest::stream;
 use rand_chacha::rand_core::RngCore;
@@ -61,9 +62,26 @@ pub fn stratified_sample(descriptors: &[Vec<f64>], bins: usize, count: usize, se
     out
 }
 
+/// Evenly spread indices: `k` of `0..n` (all when k = 0 or k ≥ n), e.g. to replay a sample of
+/// a population.
+pub fn spread(n: usize, k: usize) -> Vec<usize> {
+    if k == 0 || k >= n {
+        (0..n).collect()
+    } else {
+        (0..k).map(|i| i * n / k).collect()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn spread_picks_evenly() {
+        assert_eq!(spread(10, 0), (0..10).collect::<Vec<_>>());
+        assert_eq!(spread(10, 5), vec![0, 2, 4, 6, 8]);
+        assert_eq!(spread(3, 5), vec![0, 1, 2]);
+    }
 
     #[test]
     fn bins_are_equal_size() {

@@ -7,6 +7,7 @@ mod analyze;
 mod bench;
 mod cpu_time;
 mod label;
+mod replay_setup;
 mod run;
 mod simulate;
 

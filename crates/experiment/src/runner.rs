@@ -31,6 +31,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+use vsrlab_analysis::run_folder::{RunFiles, RunFolder};
 use vsrlab_evolution::{Evaluation, Sense, Told};
 use vsrlab_tasks::files::write_atomic;
 
@@ -267,10 +268,10 @@ fn best_of(values: &[f64], sense: Sense) -> f64 {
         .unwrap_or(f64::NAN)
 }
 
-/// The folder of run `run` out of `runs`.
+/// The folder of run `run` out of `runs` (the layout is [`RunFolder`]'s, shared with the
+/// analyses that read it).
 pub fn run_dir(out: &Path, run: usize, runs: usize) -> PathBuf {
-    let width = (runs.max(1) - 1).to_string().len().max(2);
-    out.join(format!("run-{run:0width$}"))
+    RunFolder::new(out).run_dir(run, runs)
 }
 
 /// Runs every run of a flat-vector experiment file into `out` (see the module docs for the
@@ -315,7 +316,8 @@ pub fn run_search<G: Genotype, O: SearchOptimizer<G>>(
 ) -> Result<Vec<RunSummary>, RunError> {
     std::fs::create_dir_all(out).map_err(io_error(out))?;
     let resolved = &plan.resolved;
-    let config_path = out.join("experiment.toml");
+    let folder = RunFolder::new(out);
+    let config_path = folder.experiment_toml();
     match std::fs::read_to_string(&config_path) {
         Ok(existing) if !options.resume => {
             let _ = existing;
@@ -340,7 +342,7 @@ pub fn run_search<G: Genotype, O: SearchOptimizer<G>>(
         .map_err(|e| RunError::Other(format!("thread pool: {e}")))?;
     let mut summaries = Vec::new();
     for (run, &seed) in plan.run_seeds.iter().enumerate() {
-        let dir = run_dir(out, run, plan.run_seeds.len());
+        let files = folder.run(run, plan.run_seeds.len());
         let session = Session {
             plan,
             evaluator,
@@ -348,13 +350,13 @@ pub fn run_search<G: Genotype, O: SearchOptimizer<G>>(
             options,
             pool: &pool,
         };
-        match run_one(&session, run, seed, &dir, observer)? {
+        match run_one(&session, run, seed, &files, observer)? {
             Some(summary) => summaries.push(summary),
             None => return Ok(summaries),
         }
     }
     let text = serde_json::to_string_pretty(&summaries).expect("summaries serialise");
-    write_file(&out.join("summary.json"), text.as_bytes())?;
+    write_file(&folder.summary_json(), text.as_bytes())?;
     Ok(summaries)
 }
 
@@ -429,7 +431,7 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
     session: &Session<'_, G, O>,
     run: usize,
     seed: u64,
-    dir: &Path,
+    files: &RunFiles,
     observer: &mut dyn Observer,
 ) -> Result<Option<RunSummary>, RunError> {
     let Session {
@@ -439,11 +441,12 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
         options,
         pool,
     } = *session;
-    let summary_path = dir.join("summary.json");
-    let checkpoint_path = dir.join("checkpoint.json");
-    let csv_path = dir.join("generations.csv");
-    let timings_path = dir.join("timings.csv");
-    let snapshots = dir.join("snapshots");
+    let dir = files.dir();
+    let summary_path = files.summary_json();
+    let checkpoint_path = files.checkpoint_json();
+    let csv_path = files.generations_csv();
+    let timings_path = files.timings_csv();
+    let snapshots = files.snapshots_dir();
     if options.resume {
         if let Ok(text) = std::fs::read_to_string(&summary_path) {
             let summary: RunSummary = serde_json::from_str(&text)
@@ -582,7 +585,7 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
 
         // Snapshots.
         if every > 0 && optimizer.evaluations() >= state.next_snapshot {
-            write_snapshot(&snapshots, &optimizer, &state)?;
+            write_snapshot(files, &optimizer, &state)?;
             state.last_snapshot = Some(optimizer.evaluations());
             while state.next_snapshot <= optimizer.evaluations() {
                 state.next_snapshot += every;
@@ -620,7 +623,7 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
 
     // The run is over: final population, best robot, summary; the checkpoint is no longer needed.
     if state.last_snapshot != Some(optimizer.evaluations()) {
-        write_snapshot(&snapshots, &optimizer, &state)?;
+        write_snapshot(files, &optimizer, &state)?;
     }
     let best = optimizer.best();
     if plan.output.save_best {
@@ -633,7 +636,7 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
                 best.fitness()
             );
             evaluator
-                .save_robot(&best.genotype, &dir.join("best.robot.json"), &note)
+                .save_robot(&best.genotype, &files.best_robot(), &note)
                 .map_err(|e| RunError::Other(format!("best robot of run {run}: {e}")))?;
         }
     }
@@ -727,7 +730,7 @@ fn write_checkpoint<O: Serialize>(
 }
 
 fn write_snapshot<G: Genotype, O: SearchOptimizer<G>>(
-    folder: &Path,
+    files: &RunFiles,
     optimizer: &O,
     state: &RunState,
 ) -> Result<(), RunError> {
@@ -745,8 +748,5 @@ fn write_snapshot<G: Genotype, O: SearchOptimizer<G>>(
         text.push_str(&serde_json::to_string(&line).map_err(|e| RunError::Other(format!("snapshot: {e}")))?);
         text.push('\n');
     }
-    write_file(
-        &folder.join(format!("evaluations-{:07}.jsonl", optimizer.evaluations())),
-        text.as_bytes(),
-    )
+    write_file(&files.snapshot(optimizer.evaluations()), text.as_bytes())
 }

@@ -2,7 +2,7 @@
 //! frame after the first holding only the rectangle that changed, unchanged pixels transparent.
 
 use crate::draw::Scene;
-use crate::file::{encode_err, write_atomically};
+use crate::file::{encode_err, write_file};
 use crate::palette::Palette;
 use crate::{RenderError, RenderOptions};
 use gif::{DisposalMethod, Encoder, Frame, Repeat};
@@ -86,8 +86,9 @@ pub(crate) fn save_gif(trace: &Trace, steps: &[usize], opts: &RenderOptions, pat
     let scene = Scene::new(trace, opts, false);
     let palette = Palette::get();
     let (width, height) = (opts.width as u16, opts.height as u16);
-    write_atomically(path, |w| {
-        let mut enc = Encoder::new(w, width, height, &palette.rgb).map_err(encode_err(path))?;
+    let mut bytes = Vec::new();
+    {
+        let mut enc = Encoder::new(&mut bytes, width, height, &palette.rgb).map_err(encode_err(path))?;
         enc.set_repeat(Repeat::Infinite).map_err(encode_err(path))?;
         let mut pm = scene.new_pixmap();
         let (mut prev, mut cur) = (Vec::new(), Vec::new());
@@ -107,8 +108,8 @@ pub(crate) fn save_gif(trace: &Trace, steps: &[usize], opts: &RenderOptions, pat
             std::mem::swap(&mut prev, &mut cur);
         }
         enc.into_inner().map_err(encode_err(path))?;
-        Ok(())
-    })
+    }
+    write_file(path, &bytes)
 }
 
 #[cfg(test)]

@@ -225,7 +225,9 @@ pub fn save_png(trace: &Trace, step: usize, opts: &RenderOptions, path: impl AsR
         });
     }
     let pixmap = render_frame(trace, step, opts);
-    file::write_atomically(path, |w| file::write_png(w, &pixmap, path))
+    let mut bytes = Vec::new();
+    file::write_png(&mut bytes, &pixmap, path)?;
+    file::write_file(path, &bytes)
 }
 
 /// Renders the whole episode to `path`, the format chosen by its extension (any case): `.gif`

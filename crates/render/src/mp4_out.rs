@@ -1,11 +1,12 @@
 //! MP4 output through an external `ffmpeg` reading raw RGB frames on its standard input.
 
 use crate::draw::Scene;
-use crate::file::{io_err, to_rgb, TempFile};
+use crate::file::{io_err, to_rgb};
 use crate::{RenderError, RenderOptions};
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
+use vsrlab_tasks::files::TempPath;
 use vsrlab_tasks::Trace;
 
 /// The `ffmpeg` executable on PATH, if any.
@@ -79,7 +80,7 @@ pub(crate) fn save_mp4(trace: &Trace, steps: &[usize], opts: &RenderOptions, pat
         )));
     };
     let codec = codec_args(&ffmpeg, path)?;
-    let tmp = TempFile::beside(path);
+    let tmp = TempPath::beside(path);
     let size = format!("{}x{}", opts.width, opts.height);
     let fps = format!("{}", opts.fps);
     let mut child = Command::new(&ffmpeg)
@@ -97,7 +98,7 @@ pub(crate) fn save_mp4(trace: &Trace, steps: &[usize], opts: &RenderOptions, pat
         .args(["-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2"])
         .args(codec)
         .args(["-f", "mp4"])
-        .arg(&tmp.path)
+        .arg(tmp.path())
         .stdin(Stdio::piped())
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
@@ -151,5 +152,5 @@ pub(crate) fn save_mp4(trace: &Trace, steps: &[usize], opts: &RenderOptions, pat
             message: format!("ffmpeg ({status}): {detail}"),
         });
     }
-    tmp.commit(path)
+    tmp.commit().map_err(io_err(path))
 }

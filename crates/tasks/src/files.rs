@@ -115,3 +115,91 @@ pub fn load_robot(path: &Path) -> Result<RobotSpec, FileError> {
     })?;
     robot_from_json(&text, &path.display().to_string())
 }
+
+/// A temporary path beside a destination file, for writers that must be given a path of their
+/// own (an encoder process, a library that saves by file name), where [`write_atomic`] cannot
+/// take the bytes: write to [`TempPath::path`], then [`TempPath::commit`] renames it onto the
+/// destination. Dropped uncommitted, it removes whatever was written there, so a failure leaves
+/// nothing behind. The name keeps the destination's extension (`.NAME.tmp-PID-N.EXT`), for
+/// writers that pick the format by extension.
+#[derive(Debug)]
+pub struct TempPath {
+    path: std::path::PathBuf,
+    dest: std::path::PathBuf,
+    committed: bool,
+}
+
+impl TempPath {
+    /// A fresh temporary name in `dest`'s folder (nothing is created yet).
+    pub fn beside(dest: &Path) -> TempPath {
+        static COUNTER: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+        let n = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let dir = dest
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        let stem = dest
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let ext = dest
+            .extension()
+            .map(|e| format!(".{}", e.to_string_lossy()))
+            .unwrap_or_default();
+        let path = dir.join(format!(".{stem}.tmp-{}-{n}{ext}", std::process::id()));
+        TempPath {
+            path,
+            dest: dest.to_path_buf(),
+            committed: false,
+        }
+    }
+
+    /// Where the writer writes.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Flushes the written file to disk and renames it onto the destination, replacing what is
+    /// there.
+    pub fn commit(mut self) -> std::io::Result<()> {
+        std::fs::File::open(&self.path)?.sync_all()?;
+        std::fs::rename(&self.path, &self.dest)?;
+        self.committed = true;
+        Ok(())
+    }
+}
+
+impl Drop for TempPath {
+    fn drop(&mut self) {
+        if !self.committed {
+            let _ = std::fs::remove_file(&self.path);
+        }
+    }
+}
+
+#[cfg(test)]
+mod temp_path_tests {
+    use super::*;
+
+    #[test]
+    fn temp_path_commits_or_leaves_nothing() {
+        let dir = std::env::temp_dir().join(format!("vsrlab-temp-path-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let dest = dir.join("figure.png");
+        let tmp = TempPath::beside(&dest);
+        assert_eq!(tmp.path().extension().unwrap(), "png");
+        std::fs::write(tmp.path(), b"abc").unwrap();
+        tmp.commit().unwrap();
+        assert_eq!(std::fs::read(&dest).unwrap(), b"abc");
+        let dropped = TempPath::beside(&dest);
+        std::fs::write(dropped.path(), b"half").unwrap();
+        drop(dropped);
+        let names: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .flatten()
+            .map(|e| e.file_name())
+            .collect();
+        assert_eq!(names, vec![std::ffi::OsString::from("figure.png")]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

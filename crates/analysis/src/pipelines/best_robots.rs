@@ -1,0 +1,112 @@
+//! The best robot of every run: its morphology descriptors, and its features from a replay on
+//! the experiment's task (for the PCA and `best.csv`).
+
+use super::settings::Setting;
+use crate::features::{FeatureParams, RobotFeatures};
+use crate::morphology::MorphologyDescriptors;
+use crate::progress::Progress;
+use crate::replay::{replay, ReplaySetup};
+use crate::report::csv_field;
+use crate::results::ExperimentData;
+use rayon::prelude::*;
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use vsrlab_tasks::files::load_robot;
+use vsrlab_tasks::TraceLevel;
+
+/// The best robot of one run and what was computed from it.
+#[derive(Debug, Clone)]
+pub(crate) struct BestRobot {
+    /// Its setting (colour index).
+    pub setting: usize,
+    /// Its run, as tables name it.
+    pub run: String,
+    /// The run's best fitness.
+    pub fitness: f64,
+    /// Morphology descriptors of its body.
+    pub descriptors: MorphologyDescriptors,
+    /// Features of its replay (None when it could not be replayed).
+    pub features: Option<RobotFeatures>,
+}
+
+/// One best robot to load and replay.
+struct Job<'a> {
+    setting: usize,
+    setup: Option<&'a ReplaySetup>,
+    run: String,
+    path: PathBuf,
+    fitness: f64,
+}
+
+/// Loads and replays the best robot of every run that saved one, on `pool`. Robots that cannot
+/// be loaded are left out, and robots that cannot be replayed have no features; both with a
+/// warning.
+pub(crate) fn best_robots(
+    settings: &[Setting],
+    experiments: &[ExperimentData],
+    setups: &[Option<ReplaySetup>],
+    pool: &rayon::ThreadPool,
+    progress: &dyn Progress,
+) -> Vec<BestRobot> {
+    let mut jobs = Vec::new();
+    for s in settings {
+        for &e in &s.experiments {
+            let exp = &experiments[e];
+            for r in &exp.runs {
+                if let Some(path) = &r.best_robot {
+                    jobs.push(Job {
+                        setting: s.color,
+                        setup: setups[e].as_ref(),
+                        run: exp.run_label(r),
+                        path: path.clone(),
+                        fitness: r.final_best(),
+                    });
+                }
+            }
+        }
+    }
+    pool.install(|| jobs.par_iter().filter_map(|job| best_robot(job, progress)).collect())
+}
+
+fn best_robot(job: &Job, progress: &dyn Progress) -> Option<BestRobot> {
+    let robot = load_robot(&job.path)
+        .map_err(|err| progress.note(&format!("warning: {err}")))
+        .ok()?;
+    let features = job.setup.and_then(|setup| {
+        replay(&robot, setup.task.task(), setup.best_robot_seed(), TraceLevel::Full)
+            .map_err(|err| progress.note(&format!("warning: {}: {err}", job.path.display())))
+            .ok()
+            .map(|t| RobotFeatures::from_trace(&t, &FeatureParams::default()))
+    });
+    Some(BestRobot {
+        setting: job.setting,
+        run: job.run.clone(),
+        fitness: job.fitness,
+        descriptors: MorphologyDescriptors::of(&robot.body),
+        features,
+    })
+}
+
+/// `best.csv`: every run's best robot with its fitness, descriptors and gait features (empty
+/// gait columns without a replay).
+pub(crate) fn best_csv(settings: &[Setting], bests: &[BestRobot]) -> String {
+    let mut s = String::from("setting,run,best_fitness,voxels,elongation,compactness,gait_duration,gait_touch_area,gait_occurrences,gait_mode_interval,gait_purity\n");
+    for b in bests {
+        let g = b
+            .features
+            .as_ref()
+            .map(|f| f.gait.features().map(|v| v.to_string()).join(","))
+            .unwrap_or_else(|| ",,,,".into());
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{},{},{g}",
+            csv_field(&settings[b.setting].name),
+            csv_field(&b.run),
+            b.fitness,
+            b.descriptors.voxels,
+            b.descriptors.elongation,
+            b.descriptors.compactness
+        );
+    }
+    s
+}

@@ -1,0 +1,53 @@
+//! The analysis pipelines behind `vsrlab analyze` and `vsrlab label`: each takes an options
+//! struct, reads the output folders of `vsrlab run`, replays robots where features are needed,
+//! writes its files and returns a typed report.
+//!
+//! The caller supplies what this crate cannot know: how to read an experiment's configuration
+//! ([`SetupReader`]), how to draw a video (for `label`, [`VideoWriter`]) and where progress
+//! goes ([`Progress`]).
+
+pub mod analyze;
+mod best_robots;
+mod candidates;
+mod classes;
+mod classifiers;
+mod figures;
+pub mod label;
+mod label_page;
+mod settings;
+mod species;
+mod summary_page;
+
+pub use analyze::{analyze, AnalysisReport, AnalyzeOptions, FigureNote};
+pub use classes::{parse_classes, THESIS_BEHAVIOURS, THESIS_SHAPES};
+pub use label::{label, LabelOptions, LabelReport, VideoSpec, VideoWriter};
+
+use crate::error::AnalysisError;
+use crate::progress::Progress;
+use crate::replay::{ReplaySetup, SetupReader};
+use crate::results::ExperimentData;
+
+/// A thread pool of `threads` workers (None or 0: every core).
+fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, AnalysisError> {
+    Ok(rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()?)
+}
+
+/// The replay setup of every experiment (None, with a warning, where it cannot be read).
+fn read_setups(
+    experiments: &[ExperimentData],
+    reader: &dyn SetupReader,
+    progress: &dyn Progress,
+) -> Vec<Option<ReplaySetup>> {
+    experiments
+        .iter()
+        .map(|e| match reader.read_setup(&e.folder()) {
+            Ok(setup) => Some(setup),
+            Err(msg) => {
+                progress.note(&format!("warning: {}: cannot replay robots: {msg}", e.dir.display()));
+                None
+            }
+        })
+        .collect()
+}

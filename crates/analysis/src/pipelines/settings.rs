@@ -1,0 +1,64 @@
+//! Settings: experiments with the same name pool their runs into one setting, which keeps one
+//! colour in every figure.
+
+use crate::results::{self, ExperimentData, RunData};
+
+/// One setting of an analysis.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Setting {
+    /// The experiments' name.
+    pub name: String,
+    /// Its colour index (its position among the settings, sorted by name).
+    pub color: usize,
+    /// Its experiments (indices into the experiments).
+    pub experiments: Vec<usize>,
+}
+
+impl Setting {
+    /// Every run of the setting, with its experiment, in experiment then run order.
+    pub fn runs<'a>(
+        &'a self,
+        experiments: &'a [ExperimentData],
+    ) -> impl Iterator<Item = (&'a ExperimentData, &'a RunData)> + 'a {
+        self.experiments
+            .iter()
+            .flat_map(move |&e| experiments[e].runs.iter().map(move |r| (&experiments[e], r)))
+    }
+}
+
+/// The settings of `experiments`, sorted by name.
+pub(crate) fn settings_of(experiments: &[ExperimentData]) -> Vec<Setting> {
+    results::settings(experiments)
+        .into_iter()
+        .enumerate()
+        .map(|(color, (name, experiments))| Setting {
+            name,
+            color,
+            experiments,
+        })
+        .collect()
+}
+
+/// What the fitness is when every experiment agrees (`velocity`, `distance`), else "fitness".
+pub(crate) fn fitness_label(experiments: &[ExperimentData]) -> String {
+    let mut kinds: Vec<String> = experiments.iter().map(|e| e.fitness_kind()).collect();
+    kinds.sort();
+    kinds.dedup();
+    if kinds.len() == 1 {
+        kinds.remove(0)
+    } else {
+        "fitness".into()
+    }
+}
+
+/// The values of one metric per setting (one vector per setting, by colour index).
+pub(crate) fn per_setting(
+    settings: &[Setting],
+    experiments: &[ExperimentData],
+    value: impl Fn(&RunData) -> f64,
+) -> Vec<Vec<f64>> {
+    settings
+        .iter()
+        .map(|s| s.runs(experiments).map(|(_, r)| value(r)).collect())
+        .collect()
+}

@@ -1,0 +1,67 @@
+//! Axes: value ranges with a margin, and tick labels (numbers, class names).
+
+/// `lo..hi` widened by `pad` of its length on each side; a point becomes a small interval and
+/// a non-finite range `0..1`.
+pub(super) fn nice_range(lo: f64, hi: f64, pad: f64) -> (f64, f64) {
+    if !(lo.is_finite() && hi.is_finite()) {
+        return (0.0, 1.0);
+    }
+    if hi - lo < 1e-12 {
+        let d = if lo.abs() > 1e-12 { lo.abs() * 0.1 } else { 1.0 };
+        return (lo - d, hi + d);
+    }
+    let d = (hi - lo) * pad;
+    (lo - d, hi + d)
+}
+
+/// Tick label: short, without trailing zeros; thousands as "k" above 10 000.
+pub fn format_tick(v: f64) -> String {
+    let a = v.abs();
+    if a >= 10_000.0 {
+        let k = v / 1000.0;
+        if (k - k.round()).abs() < 1e-9 {
+            format!("{}k", k.round())
+        } else {
+            format!("{k:.1}k")
+        }
+    } else if a >= 100.0 || a == 0.0 {
+        format!("{}", v.round())
+    } else if a >= 1.0 {
+        trim(format!("{v:.2}"))
+    } else {
+        trim(format!("{v:.3}"))
+    }
+}
+
+fn trim(s: String) -> String {
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+/// The class name at integer tick `v` of a categorical axis (empty between classes).
+pub(super) fn class_tick(v: f64, classes: &[String]) -> String {
+    let i = v.round();
+    if (v - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < classes.len() {
+        classes[i as usize].clone()
+    } else {
+        String::new()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ticks_read_well() {
+        assert_eq!(format_tick(30_000.0), "30k");
+        assert_eq!(format_tick(12_500.0), "12.5k");
+        assert_eq!(format_tick(250.0), "250");
+        assert_eq!(format_tick(2.5), "2.5");
+        assert_eq!(format_tick(0.125), "0.125");
+        assert_eq!(format_tick(0.0), "0");
+    }
+}

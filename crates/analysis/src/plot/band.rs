@@ -1,0 +1,164 @@
+//! Curves: median ± sd bands across runs, side-by-side panels with one shared legend.
+
+use super::axes::{format_tick, nice_range};
+use super::colors::setting_color;
+use super::legend::{draw_legend, legend_width};
+use super::text::{anchored, text_style};
+use super::{err, Figure, R};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, VPos};
+
+/// One setting's curve: centre line and ± spread band over x.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BandSeries {
+    /// Legend label.
+    pub label: String,
+    /// Colour index ([`setting_color`]).
+    pub color: usize,
+    /// x values.
+    pub x: Vec<f64>,
+    /// Centre (e.g. median across runs); NaN points are skipped.
+    pub center: Vec<f64>,
+    /// Half-width of the band (e.g. sd across runs).
+    pub spread: Vec<f64>,
+}
+
+/// One panel of curves.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BandChart {
+    /// Panel title.
+    pub title: String,
+    /// x-axis label.
+    pub x_label: String,
+    /// y-axis label.
+    pub y_label: String,
+    /// The curves.
+    pub series: Vec<BandSeries>,
+}
+
+/// Side-by-side panels of median ± sd curves with one shared legend.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BandFigure {
+    /// Figure title.
+    pub title: String,
+    /// Panels, left to right.
+    pub panels: Vec<BandChart>,
+    /// Legend title (e.g. "setting").
+    pub legend_title: String,
+}
+
+impl BandChart {
+    fn draw_on<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> R {
+        let pts = || {
+            self.series.iter().flat_map(|s| {
+                s.x.iter()
+                    .zip(&s.center)
+                    .zip(&s.spread)
+                    .filter(|((x, c), _)| x.is_finite() && c.is_finite())
+            })
+        };
+        let (x0, x1) = pts().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), ((x, _), _)| {
+            (a.min(*x), b.max(*x))
+        });
+        let (y0, y1) = pts().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), ((_, c), s)| {
+            let s = if s.is_finite() { *s } else { 0.0 };
+            (a.min(c - s), b.max(c + s))
+        });
+        let (x0, x1) = if x0.is_finite() {
+            (x0, x1.max(x0 + 1e-9))
+        } else {
+            (0.0, 1.0)
+        };
+        let (y0, y1) = nice_range(y0, y1, 0.05);
+        let mut chart = ChartBuilder::on(area)
+            .caption(&self.title, text_style(22))
+            .margin(12)
+            .x_label_area_size(55)
+            .y_label_area_size(80)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .x_desc(&self.x_label)
+            .y_desc(&self.y_label)
+            .label_style(text_style(15))
+            .axis_desc_style(text_style(18))
+            .max_light_lines(2)
+            .light_line_style(RGBColor(242, 242, 242))
+            .bold_line_style(RGBColor(215, 215, 215))
+            .x_label_formatter(&|v| format_tick(*v))
+            .y_label_formatter(&|v| format_tick(*v))
+            .draw()
+            .map_err(err)?;
+        for s in &self.series {
+            let color = setting_color(s.color);
+            let ok: Vec<(f64, f64, f64)> =
+                s.x.iter()
+                    .zip(&s.center)
+                    .zip(&s.spread)
+                    .filter(|((x, c), _)| x.is_finite() && c.is_finite())
+                    .map(|((x, c), sd)| (*x, *c, if sd.is_finite() { *sd } else { 0.0 }))
+                    .collect();
+            if ok.is_empty() {
+                continue;
+            }
+            let mut band: Vec<(f64, f64)> = ok.iter().map(|&(x, c, s)| (x, c + s)).collect();
+            band.extend(ok.iter().rev().map(|&(x, c, s)| (x, c - s)));
+            chart
+                .draw_series(std::iter::once(Polygon::new(band, color.mix(0.18))))
+                .map_err(err)?;
+            chart
+                .draw_series(LineSeries::new(
+                    ok.iter().map(|&(x, c, _)| (x, c)),
+                    color.stroke_width(3),
+                ))
+                .map_err(err)?;
+        }
+        Ok(())
+    }
+}
+
+impl Figure for BandFigure {
+    fn size(&self) -> (u32, u32) {
+        let per_panel = if self.panels.len() >= 3 { 560 } else { 700 };
+        (per_panel * self.panels.len().max(1) as u32 + 240, 620)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> R {
+        root.fill(&WHITE).map_err(err)?;
+        let root = root.titled(&self.title, text_style(26)).map_err(err)?;
+        let mut entries: Vec<(String, RGBColor)> = Vec::new();
+        for p in &self.panels {
+            for s in &p.series {
+                if !entries.iter().any(|(l, _)| l == &s.label) {
+                    entries.push((s.label.clone(), setting_color(s.color)));
+                }
+            }
+        }
+        let lw = legend_width(&entries, &self.legend_title);
+        let (plots, legend) = root.split_horizontally(root.dim_in_pixel().0.saturating_sub(lw));
+        let n = self.panels.len().max(1);
+        let w = plots.dim_in_pixel().0 as usize / n;
+        let breaks: Vec<i32> = (1..n).map(|i| (i * w) as i32).collect();
+        for (panel, area) in self
+            .panels
+            .iter()
+            .zip(plots.split_by_breakpoints(breaks, Vec::<i32>::new()))
+        {
+            panel.draw_on(&area)?;
+        }
+        draw_legend(&legend, &self.legend_title, &entries, 40)?;
+        let y = 40 + 30 + 28 * entries.len() as i32 + 10;
+        for (k, line) in ["line: median", "band: ± sd", "(across runs)"].iter().enumerate() {
+            legend
+                .draw(&Text::new(
+                    line.to_string(),
+                    (10, y + 18 * k as i32),
+                    anchored(13, HPos::Left, VPos::Top),
+                ))
+                .map_err(err)?;
+        }
+        Ok(())
+    }
+}

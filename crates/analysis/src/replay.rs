@@ -1,0 +1,82 @@
+//! Replaying evolved robots: the one place where analysis runs episodes ([`replay`]), and the
+//! setup an experiment's individuals are replayed with ([`ReplaySetup`]).
+//!
+//! The experiment configuration belongs to the experiment crate, which comes after this one, so
+//! the caller reads it: a [`SetupReader`] turns an experiment folder into a [`ReplaySetup`].
+
+use crate::results::SnapshotRow;
+use crate::run_folder::RunFolder;
+use vsrlab_tasks::{episode, EpisodeError, EvaluationError, Representation, Robot, TaskSpec, Trace, TraceLevel};
+use vsrlab_tasks::{RobotSpec, Task};
+
+/// An error of the caller's own type (setup readers, video writers).
+pub type BoxError = Box<dyn std::error::Error + Send + Sync>;
+
+/// Why a robot could not be replayed.
+#[derive(Debug, thiserror::Error)]
+pub enum ReplayError {
+    /// The genotype does not make a robot of this representation.
+    #[error("{0}")]
+    Genotype(#[from] EvaluationError),
+    /// The episode could not be run.
+    #[error("{0}")]
+    Episode(#[from] EpisodeError),
+    /// The episode ran but recorded no trace.
+    #[error("the episode recorded no trace")]
+    NoTrace,
+}
+
+/// Runs one episode of `robot` on `task` with episode seed `seed` and returns its trace,
+/// recorded at `level`. Every replay in analysis goes through here.
+pub fn replay(robot: &dyn Robot, task: &dyn Task, seed: u64, level: TraceLevel) -> Result<Trace, ReplayError> {
+    let outcome = episode::run(robot, task, seed, level)?;
+    outcome.trace.ok_or(ReplayError::NoTrace)
+}
+
+/// How the individuals of one experiment are replayed: what its configuration says.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReplaySetup {
+    /// Genotype → robot mapping.
+    pub representation: Representation,
+    /// The task.
+    pub task: TaskSpec,
+    /// The episode seed of every evaluation when `random_terrain` is off.
+    pub episode_seed: u64,
+    /// Whether every evaluation had its own seed (a new random terrain each time).
+    pub random_terrain: bool,
+}
+
+impl ReplaySetup {
+    /// The robot of a snapshot row and its full trace, replayed with the row's episode seed
+    /// (the episode evolution saw).
+    pub fn replay_row(&self, row: &SnapshotRow) -> Result<(RobotSpec, Trace), ReplayError> {
+        let robot = self.representation.robot(&row.genotype)?;
+        let trace = replay(&robot, self.task.task(), row.seed, TraceLevel::Full)?;
+        Ok((robot, trace))
+    }
+
+    /// The seed a run's best robot is replayed with: the experiment's episode seed, or 0 when
+    /// every evaluation had its own.
+    pub fn best_robot_seed(&self) -> u64 {
+        if self.random_terrain {
+            0
+        } else {
+            self.episode_seed
+        }
+    }
+}
+
+/// Reads the replay setup of an experiment folder (its `experiment.toml`).
+pub trait SetupReader: Sync {
+    /// The setup of the experiment in `folder`.
+    fn read_setup(&self, folder: &RunFolder) -> Result<ReplaySetup, BoxError>;
+}
+
+impl<F> SetupReader for F
+where
+    F: Fn(&RunFolder) -> Result<ReplaySetup, BoxError> + Sync,
+{
+    fn read_setup(&self, folder: &RunFolder) -> Result<ReplaySetup, BoxError> {
+        self(folder)
+    }
+}

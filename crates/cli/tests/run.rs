@@ -33,24 +33,7 @@ snapshot_every = 200
 "#;
 
 fn deterministic_files(out: &Path) -> Vec<(String, Vec<u8>)> {
-    let mut files = Vec::new();
-    let mut stack = vec![out.to_path_buf()];
-    while let Some(dir) = stack.pop() {
-        for entry in std::fs::read_dir(&dir).unwrap() {
-            let path = entry.unwrap().path();
-            if path.is_dir() {
-                stack.push(path);
-            } else if !matches!(
-                path.file_name().unwrap().to_str().unwrap(),
-                "timings.csv" | "summary.json"
-            ) {
-                let rel = path.strip_prefix(out).unwrap().display().to_string();
-                files.push((rel, std::fs::read(&path).unwrap()));
-            }
-        }
-    }
-    files.sort();
-    files
+    vsrlab_experiment::runner::deterministic_files(out).unwrap()
 }
 
 fn vsrlab(args: &[&str]) -> std::process::Output {

@@ -31,7 +31,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use vsrlab_analysis::run_folder::{RunFiles, RunFolder};
+use vsrlab_analysis::run_folder::{RunFiles, RunFolder, SUMMARY_FILE, TIMINGS_FILE};
 use vsrlab_evolution::{Evaluation, Sense, Told};
 use vsrlab_tasks::files::write_atomic;
 
@@ -266,6 +266,29 @@ fn best_of(values: &[f64], sense: Sense) -> f64 {
         .filter(|v| !v.is_nan())
         .reduce(|a, b| if sense.compare(b, a).is_gt() { b } else { a })
         .unwrap_or(f64::NAN)
+}
+
+/// The files of an output folder whose content is a pure function of the experiment and its
+/// seed (every file but `timings.csv` and the `summary.json` files, which hold wall-clock
+/// figures), as (path relative to `out`, bytes), sorted: what two runs of one experiment must
+/// share, whatever their thread counts and interruptions.
+pub fn deterministic_files(out: &Path) -> std::io::Result<Vec<(String, Vec<u8>)>> {
+    let mut files = Vec::new();
+    let mut stack = vec![out.to_path_buf()];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir)? {
+            let path = entry?.path();
+            let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+            if path.is_dir() {
+                stack.push(path);
+            } else if !matches!(name.as_deref(), Some(TIMINGS_FILE | SUMMARY_FILE)) {
+                let rel = path.strip_prefix(out).unwrap_or(&path).display().to_string();
+                files.push((rel, std::fs::read(&path)?));
+            }
+        }
+    }
+    files.sort();
+    Ok(files)
 }
 
 /// The folder of run `run` out of `runs` (the layout is [`RunFolder`]'s, shared with the

@@ -3,10 +3,6 @@
 //! small graph of "phase neurons" placed in the cells of a biped; the mapper turns it into the
 //! biped's per-cell phases. Everything specific to the graph lives in this file.
 
-mod common;
-
-use common::deterministic_files;
-
 use serde::{Deserialize, Serialize};
 use vsrlab_body::sensors::SensorConfig;
 use vsrlab_body::{Morphology, Preset};
@@ -195,7 +191,7 @@ fn a_graph_genotype_runs_checkpoints_and_resumes_like_an_uninterrupted_run() {
     assert!(run_dir(&resumed, 1, 2).join("checkpoint.json").exists());
     let summaries = run_search(&plan, &new_optimizer, &evaluator, &resumed, &options(true), &mut Silent).unwrap();
     assert_eq!(summaries.len(), 2);
-    assert_eq!(deterministic_files(&straight), deterministic_files(&resumed));
+    assert_eq!(files_of(&straight), files_of(&resumed));
 
     // snapshots carry the graphs; the best is a robot file that replays
     let snapshot =
@@ -205,4 +201,9 @@ fn a_graph_genotype_runs_checkpoints_and_resumes_like_an_uninterrupted_run() {
     assert!(!graph.nodes.is_empty());
     assert_eq!(line["body"], "####/####/#..#");
     vsrlab_tasks::files::load_robot(&run_dir(&straight, 0, 2).join("best.robot.json")).unwrap();
+}
+
+/// The deterministic files of an output folder.
+fn files_of(out: &std::path::Path) -> Vec<(String, Vec<u8>)> {
+    vsrlab_experiment::runner::deterministic_files(out).unwrap()
 }

@@ -2,10 +2,6 @@
 //! populations): thread count does not change results; an interrupted then resumed run ends
 //! with the same files as an uninterrupted one; failed evaluations are counted, not fatal.
 
-mod common;
-
-use common::deterministic_files;
-
 use std::path::Path;
 use vsrlab_evolution::Sense;
 use vsrlab_experiment::config::{self, Experiment};
@@ -63,7 +59,7 @@ fn thread_count_does_not_change_results() {
     let (one, two) = (dir.path().join("one"), dir.path().join("two"));
     run(&experiment, &one, 1);
     run(&experiment, &two, 2);
-    let (a, b) = (deterministic_files(&one), deterministic_files(&two));
+    let (a, b) = (files_of(&one), files_of(&two));
     let names: Vec<&str> = a.iter().map(|(n, _)| n.as_str()).collect();
     for expected in [
         "experiment.toml",
@@ -83,9 +79,8 @@ fn thread_count_does_not_change_results() {
     let csv = |run: &str| {
         a.iter()
             .find(|(n, _)| n == &format!("{run}/generations.csv"))
+            .map(|(_, bytes)| String::from_utf8(bytes.clone()).unwrap())
             .unwrap()
-            .1
-            .clone()
     };
     assert_ne!(csv("run-00"), csv("run-01"));
     // Header + one row per generation; timings and summaries exist.
@@ -156,8 +151,8 @@ fn resumed_runs_end_like_uninterrupted_ones() {
         let summaries = run_experiment(&experiment, &evaluator, &resumed, &options, &mut Silent).unwrap();
         assert_eq!(summaries.len(), 2);
         assert_eq!(
-            deterministic_files(&straight),
-            deterministic_files(&resumed),
+            files_of(&straight),
+            files_of(&resumed),
             "resumed run differs ({optimizer})"
         );
     }
@@ -304,4 +299,9 @@ fn two_objectives(mut experiment: Experiment) -> Experiment {
         )])
         .unwrap();
     experiment
+}
+
+/// The deterministic files of an output folder.
+fn files_of(out: &std::path::Path) -> Vec<(String, Vec<u8>)> {
+    vsrlab_experiment::runner::deterministic_files(out).unwrap()
 }

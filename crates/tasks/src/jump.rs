@@ -7,7 +7,7 @@
 use crate::episode::EpisodeError;
 use crate::fitness::Fitness;
 use crate::locomotion::place_on_ground;
-use crate::task::{check_duration, check_objectives, Flow, Metrics, Objective, Scene, StepView, Task, TaskEpisode};
+use crate::task::{check_episode, Flow, Metrics, Objective, Scene, StepView, Task, TaskEpisode};
 use crate::terrain::{add_ground, Terrain};
 use serde::{Deserialize, Serialize};
 use vsrlab_physics::{Vec2, WorldBuilder, WorldSettings};
@@ -43,11 +43,7 @@ impl Task for Jump {
     }
 
     fn validate(&self) -> Result<(), EpisodeError> {
-        check_duration(self.duration)?;
-        check_objectives(&self.fitness.0, METRICS)?;
-        self.physics
-            .validate()
-            .map_err(|m| EpisodeError::Invalid(format!("task.physics.{m}")))
+        check_episode(self.duration, &self.fitness.0, METRICS, &self.physics)
     }
 
     fn duration(&self) -> f64 {

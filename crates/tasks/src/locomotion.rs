@@ -7,7 +7,7 @@
 
 use crate::episode::EpisodeError;
 use crate::fitness::Fitness;
-use crate::task::{check_duration, check_objectives, Flow, Metrics, Objective, Scene, StepView, Task, TaskEpisode};
+use crate::task::{check_episode, Flow, Metrics, Objective, Scene, StepView, Task, TaskEpisode};
 use crate::terrain::{add_ground, height_at, Terrain};
 use serde::{Deserialize, Serialize};
 use vsrlab_physics::{Vec2, WorldBuilder, WorldSettings};
@@ -56,7 +56,7 @@ impl Task for Locomotion {
 
     fn validate(&self) -> Result<(), EpisodeError> {
         let bad = |m: String| Err(EpisodeError::Invalid(m));
-        check_duration(self.duration)?;
+        check_episode(self.duration, &self.fitness.0, METRICS, &self.physics)?;
         if !(self.transient.is_finite() && self.transient >= 0.0 && self.transient < self.duration) {
             return bad(format!(
                 "task.transient must be ≥ 0 and shorter than the duration ({}), got {}",
@@ -66,10 +66,7 @@ impl Task for Locomotion {
         if !(self.initial_x.is_finite() && self.initial_gap.is_finite() && self.initial_gap >= 0.0) {
             return bad("task.initial_x and task.initial_gap must be finite (gap ≥ 0)".into());
         }
-        check_objectives(&self.fitness.0, METRICS)?;
-        self.physics
-            .validate()
-            .map_err(|m| EpisodeError::Invalid(format!("task.physics.{m}")))
+        Ok(())
     }
 
     fn duration(&self) -> f64 {

@@ -133,13 +133,21 @@ pub fn check_objectives(objectives: &[Objective], names: &[&str]) -> Result<(), 
     Ok(())
 }
 
-/// Checks an episode length: in (0, 100000] simulated seconds; the error names `task.duration`.
-pub fn check_duration(duration: f64) -> Result<(), EpisodeError> {
-    if duration.is_finite() && duration > 0.0 && duration <= 1e5 {
-        Ok(())
-    } else {
-        Err(EpisodeError::Invalid(format!(
+/// Checks what every task has: an episode length in (0, 100000] simulated seconds, objectives
+/// among the task's metrics, and physics settings; the error names the field.
+pub fn check_episode(
+    duration: f64,
+    objectives: &[Objective],
+    metrics: &[&str],
+    physics: &WorldSettings,
+) -> Result<(), EpisodeError> {
+    if !(duration.is_finite() && duration > 0.0 && duration <= 1e5) {
+        return Err(EpisodeError::Invalid(format!(
             "task.duration must be in (0, 100000] seconds, got {duration}"
-        )))
+        )));
     }
+    check_objectives(objectives, metrics)?;
+    physics
+        .validate()
+        .map_err(|m| EpisodeError::Invalid(format!("task.physics.{m}")))
 }

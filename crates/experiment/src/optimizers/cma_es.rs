@@ -1,7 +1,7 @@
 //! CMA-ES (thesis ch. 6).
 
 use super::check::range;
-use super::{single, AnyOptimizer, OptimizerKind};
+use super::{decode, single, AnyOptimizer, OptimizerConfig, OptimizerEntry, OptimizerKind};
 use serde::{Deserialize, Serialize};
 use vsrlab_evolution::{CmaEs, CmaEsConfig, EvolutionError, Sense};
 
@@ -61,3 +61,9 @@ impl OptimizerKind for CmaParams {
         )?))
     }
 }
+
+/// The registry entry of `kind = "cma-es"`.
+pub(crate) const ENTRY: OptimizerEntry = OptimizerEntry {
+    name: "cma-es",
+    decode: |v| decode::<CmaParams>(v).map(OptimizerConfig::CmaEs),
+};

@@ -1,7 +1,7 @@
 //! The canonical evolution strategy of the thesis (§3.3.5.2).
 
 use super::check::{positive, range};
-use super::{single, AnyOptimizer, OptimizerKind};
+use super::{decode, single, AnyOptimizer, OptimizerConfig, OptimizerEntry, OptimizerKind};
 use serde::{Deserialize, Serialize};
 use vsrlab_evolution::{CanonicalEs, CanonicalEsConfig, EvolutionError, Sense};
 
@@ -72,3 +72,9 @@ impl OptimizerKind for EsParams {
         )?))
     }
 }
+
+/// The registry entry of `kind = "es"`.
+pub(crate) const ENTRY: OptimizerEntry = OptimizerEntry {
+    name: "es",
+    decode: |v| decode::<EsParams>(v).map(OptimizerConfig::Es),
+};

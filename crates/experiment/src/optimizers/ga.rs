@@ -1,13 +1,13 @@
 //! The μ + λ genetic algorithm of the thesis (§3.3.5.2).
 
 use super::check::{positive, probability};
-use super::{check_operators, real_vector, single, AnyOptimizer, OptimizerKind};
+use super::{decode_flat, single, AnyOptimizer, Operators, OptimizerConfig, OptimizerEntry, OptimizerKind};
 use serde::{Deserialize, Serialize};
 use vsrlab_evolution::{EvolutionError, GaConfig, GeneticAlgorithm, Sense};
 
 /// Parameters of the GA.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+#[serde(default)]
 pub struct GaParams {
     /// μ (thesis 100).
     pub population_size: usize,
@@ -19,14 +19,10 @@ pub struct GaParams {
     pub mutation_probability: f64,
     /// Re-evaluate survivors every generation (noisy tasks).
     pub reevaluate_survivors: bool,
-    /// Initial genes uniform in [min, max) (thesis [−1, 1]).
-    pub init_range: [f64; 2],
-    /// σ of the Gaussian mutation (thesis 0.35).
-    pub mutation_sigma: f64,
-    /// Per-gene α range of the extended geometric crossover (thesis [−1, 2]).
-    pub crossover_range: [f64; 2],
-    /// σ′ of the Gaussian perturbation after crossover (thesis 0.1).
-    pub crossover_sigma: f64,
+    /// The operators' parameters (`init_range`, `mutation_sigma`, `crossover_range`,
+    /// `crossover_sigma`), written flat in the table.
+    #[serde(flatten)]
+    pub operators: Operators,
 }
 
 impl Default for GaParams {
@@ -37,10 +33,7 @@ impl Default for GaParams {
             tournament_size: 5,
             mutation_probability: 0.2,
             reevaluate_survivors: false,
-            init_range: [-1.0, 1.0],
-            mutation_sigma: 0.35,
-            crossover_range: [-1.0, 2.0],
-            crossover_sigma: 0.1,
+            operators: Operators::default(),
         }
     }
 }
@@ -55,12 +48,7 @@ impl OptimizerKind for GaParams {
         positive("offspring_size", self.offspring_size)?;
         positive("tournament_size", self.tournament_size)?;
         probability("mutation_probability", self.mutation_probability)?;
-        check_operators(
-            self.init_range,
-            self.mutation_sigma,
-            self.crossover_range,
-            self.crossover_sigma,
-        )
+        self.operators.validate()
     }
 
     fn build(&self, dimension: usize, senses: &[Sense], seed: u64) -> Result<AnyOptimizer, EvolutionError> {
@@ -73,14 +61,14 @@ impl OptimizerKind for GaParams {
                 reevaluate_survivors: self.reevaluate_survivors,
                 sense: single(senses),
             },
-            real_vector(
-                dimension,
-                self.init_range,
-                self.mutation_sigma,
-                self.crossover_range,
-                self.crossover_sigma,
-            ),
+            self.operators.real_vector(dimension),
             seed,
         )?))
     }
 }
+
+/// The registry entry of `kind = "ga"`.
+pub(crate) const ENTRY: OptimizerEntry = OptimizerEntry {
+    name: "ga",
+    decode: |v| decode_flat::<GaParams>(v).map(OptimizerConfig::Ga),
+};

@@ -1,7 +1,7 @@
 //! MAP-Elites over the thesis' morphology descriptors (ME, §3.3.5.2).
 
 use super::check::{positive, range, sigma};
-use super::{real_vector, single, AnyOptimizer, OptimizerKind};
+use super::{decode, real_vector, single, AnyOptimizer, OptimizerConfig, OptimizerEntry, OptimizerKind};
 use serde::{Deserialize, Serialize};
 use vsrlab_evolution::{EvolutionError, GridAxis, MapElites, MapElitesConfig, Sense};
 
@@ -129,3 +129,9 @@ impl OptimizerKind for MapElitesParams {
         )?))
     }
 }
+
+/// The registry entry of `kind = "map-elites"`.
+pub(crate) const ENTRY: OptimizerEntry = OptimizerEntry {
+    name: "map-elites",
+    decode: |v| decode::<MapElitesParams>(v).map(OptimizerConfig::MapElites),
+};

@@ -120,32 +120,14 @@ pub struct OptimizerEntry {
     pub decode: fn(toml::Value) -> Result<OptimizerConfig, FieldError>,
 }
 
-/// Every optimizer kind.
+/// Every optimizer kind (each module contributes its entry).
 pub const OPTIMIZERS: &[OptimizerEntry] = &[
-    OptimizerEntry {
-        name: "ga",
-        decode: |v| decode::<GaParams>(v).map(OptimizerConfig::Ga),
-    },
-    OptimizerEntry {
-        name: "es",
-        decode: |v| decode::<EsParams>(v).map(OptimizerConfig::Es),
-    },
-    OptimizerEntry {
-        name: "cma-es",
-        decode: |v| decode::<CmaParams>(v).map(OptimizerConfig::CmaEs),
-    },
-    OptimizerEntry {
-        name: "se",
-        decode: |v| decode::<SeParams>(v).map(OptimizerConfig::Se),
-    },
-    OptimizerEntry {
-        name: "map-elites",
-        decode: |v| decode::<MapElitesParams>(v).map(OptimizerConfig::MapElites),
-    },
-    OptimizerEntry {
-        name: "nsga2",
-        decode: |v| decode::<Nsga2Params>(v).map(OptimizerConfig::Nsga2),
-    },
+    ga::ENTRY,
+    es::ENTRY,
+    cma_es::ENTRY,
+    se::ENTRY,
+    map_elites::ENTRY,
+    nsga2::ENTRY,
 ];
 
 /// Builds an optimizer config from its `[optimizer]` table, naming the field on error.
@@ -167,7 +149,7 @@ pub fn decode_table(mut table: toml::Table) -> Result<OptimizerConfig, FieldErro
 
 /// Deserializes a parameter struct, keeping the path of a failing field (the tasks' decoder,
 /// over the table as JSON).
-fn decode<T: DeserializeOwned>(value: toml::Value) -> Result<T, FieldError> {
+pub(crate) fn decode<T: DeserializeOwned>(value: toml::Value) -> Result<T, FieldError> {
     let json = serde_json::to_value(&value).map_err(|e| (String::new(), e.to_string()))?;
     vsrlab_tasks::registry::decode(json).map_err(|e| (e.path, e.message))
 }
@@ -191,17 +173,76 @@ pub(crate) fn real_vector(
     }
 }
 
-/// Checks the parameters of the thesis' real-vector operators (GA, SE, NSGA-II).
-pub(crate) fn check_operators(
-    init: [f64; 2],
-    sigma: f64,
-    crossover: [f64; 2],
-    crossover_sigma: f64,
-) -> Result<(), (String, String)> {
-    check::range("init_range", init)?;
-    check::range("crossover_range", crossover)?;
-    check::sigma("mutation_sigma", sigma)?;
-    check::sigma("crossover_sigma", crossover_sigma)
+/// The parameters of the thesis' real-vector operators, shared by GA, SE and NSGA-II and written
+/// flat in their tables: initial genes uniform in `init_range`, Gaussian mutation of σ
+/// `mutation_sigma`, extended geometric crossover with per-gene α in `crossover_range` followed
+/// by a Gaussian perturbation of σ′ `crossover_sigma` (thesis: [−1, 1], 0.35, [−1, 2], 0.1).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct Operators {
+    /// Initial genes uniform in [min, max).
+    pub init_range: [f64; 2],
+    /// σ of the Gaussian mutation.
+    pub mutation_sigma: f64,
+    /// Per-gene α range of the extended geometric crossover.
+    pub crossover_range: [f64; 2],
+    /// σ′ of the Gaussian perturbation after crossover.
+    pub crossover_sigma: f64,
+}
+
+impl Default for Operators {
+    fn default() -> Self {
+        Self {
+            init_range: [-1.0, 1.0],
+            mutation_sigma: 0.35,
+            crossover_range: [-1.0, 2.0],
+            crossover_sigma: 0.1,
+        }
+    }
+}
+
+impl Operators {
+    /// Checks the values; the field and the message on error.
+    pub fn validate(&self) -> Result<(), FieldError> {
+        check::range("init_range", self.init_range)?;
+        check::range("crossover_range", self.crossover_range)?;
+        check::sigma("mutation_sigma", self.mutation_sigma)?;
+        check::sigma("crossover_sigma", self.crossover_sigma)
+    }
+
+    /// The operators for genotypes of `dimension` genes.
+    pub fn real_vector(&self, dimension: usize) -> RealVector {
+        real_vector(
+            dimension,
+            self.init_range,
+            self.mutation_sigma,
+            self.crossover_range,
+            self.crossover_sigma,
+        )
+    }
+}
+
+/// [`decode`] for parameter structs with flattened [`Operators`], which serde cannot check for
+/// unknown fields: a field of the table that the decoded struct does not write back is unknown.
+pub(crate) fn decode_flat<T: DeserializeOwned + Serialize>(value: toml::Value) -> Result<T, FieldError> {
+    let given: Vec<String> = value
+        .as_table()
+        .map(|t| t.keys().cloned().collect())
+        .unwrap_or_default();
+    let decoded: T = decode(value)?;
+    let known = serde_json::to_value(&decoded).map_err(|e| (String::new(), e.to_string()))?;
+    let known = known
+        .as_object()
+        .map(|o| o.keys().cloned().collect::<Vec<_>>())
+        .unwrap_or_default();
+    match given.into_iter().find(|k| !known.contains(k)) {
+        None => Ok(decoded),
+        Some(unknown) => {
+            let expected: Vec<String> = known.iter().map(|k| format!("`{k}`")).collect();
+            let message = format!("unknown field `{unknown}`, expected one of {}", expected.join(", "));
+            Err((unknown, message))
+        }
+    }
 }
 
 /// The one objective of a single-objective optimizer.

@@ -6,13 +6,13 @@
 //! `offspring_size = 50`.
 
 use super::check::{positive, probability};
-use super::{check_operators, real_vector, AnyOptimizer, OptimizerKind};
+use super::{decode_flat, AnyOptimizer, Operators, OptimizerConfig, OptimizerEntry, OptimizerKind};
 use serde::{Deserialize, Serialize};
 use vsrlab_evolution::{EvolutionError, Nsga2, Nsga2Config, Sense};
 
 /// Parameters of NSGA-II.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+#[serde(default)]
 pub struct Nsga2Params {
     /// N, the population size (Deb et al. and thesis 100).
     pub population_size: usize,
@@ -20,14 +20,10 @@ pub struct Nsga2Params {
     pub offspring_size: usize,
     /// Probability of a child by mutation alone instead of crossover.
     pub mutation_probability: f64,
-    /// Initial genes uniform in [min, max).
-    pub init_range: [f64; 2],
-    /// σ of the Gaussian mutation.
-    pub mutation_sigma: f64,
-    /// Per-gene α range of the extended geometric crossover.
-    pub crossover_range: [f64; 2],
-    /// σ′ of the Gaussian perturbation after crossover.
-    pub crossover_sigma: f64,
+    /// The operators' parameters (`init_range`, `mutation_sigma`, `crossover_range`,
+    /// `crossover_sigma`), written flat in the table.
+    #[serde(flatten)]
+    pub operators: Operators,
 }
 
 impl Default for Nsga2Params {
@@ -36,10 +32,7 @@ impl Default for Nsga2Params {
             population_size: 100,
             offspring_size: 100,
             mutation_probability: 0.2,
-            init_range: [-1.0, 1.0],
-            mutation_sigma: 0.35,
-            crossover_range: [-1.0, 2.0],
-            crossover_sigma: 0.1,
+            operators: Operators::default(),
         }
     }
 }
@@ -53,12 +46,7 @@ impl OptimizerKind for Nsga2Params {
         positive("population_size", self.population_size)?;
         positive("offspring_size", self.offspring_size)?;
         probability("mutation_probability", self.mutation_probability)?;
-        check_operators(
-            self.init_range,
-            self.mutation_sigma,
-            self.crossover_range,
-            self.crossover_sigma,
-        )
+        self.operators.validate()
     }
 
     fn multi_objective(&self) -> bool {
@@ -73,14 +61,14 @@ impl OptimizerKind for Nsga2Params {
                 mutation_probability: self.mutation_probability,
                 senses: senses.to_vec(),
             },
-            real_vector(
-                dimension,
-                self.init_range,
-                self.mutation_sigma,
-                self.crossover_range,
-                self.crossover_sigma,
-            ),
+            self.operators.real_vector(dimension),
             seed,
         )?))
     }
 }
+
+/// The registry entry of `kind = "nsga2"`.
+pub(crate) const ENTRY: OptimizerEntry = OptimizerEntry {
+    name: "nsga2",
+    decode: |v| decode_flat::<Nsga2Params>(v).map(OptimizerConfig::Nsga2),
+};

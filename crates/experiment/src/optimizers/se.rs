@@ -1,7 +1,10 @@
 //! The speciated evolver of the thesis (SE-g / SE-s / SE-b, §3.3.5.2).
 
 use super::check::{positive, probability};
-use super::{check_operators, real_vector, single, AnyOptimizer, Extract, OptimizerKind, SpeciationFeatures};
+use super::{
+    decode_flat, single, AnyOptimizer, Extract, Operators, OptimizerConfig, OptimizerEntry, OptimizerKind,
+    SpeciationFeatures,
+};
 use serde::{Deserialize, Serialize};
 use vsrlab_evolution::{EvolutionError, SeConfig, Sense, SpeciatedEvolver};
 
@@ -20,7 +23,7 @@ pub enum SeFeatures {
 
 /// Parameters of the speciated evolver.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+#[serde(default)]
 pub struct SeParams {
     /// Speciation features: `genotype` (SE-g), `shape` (SE-s), `behaviour` (SE-b).
     pub features: SeFeatures,
@@ -36,14 +39,10 @@ pub struct SeParams {
     pub mutation_probability: f64,
     /// Maximum Lloyd iterations of k-means.
     pub kmeans_iterations: usize,
-    /// Initial genes uniform in [min, max).
-    pub init_range: [f64; 2],
-    /// σ of the Gaussian mutation.
-    pub mutation_sigma: f64,
-    /// Per-gene α range of the extended geometric crossover.
-    pub crossover_range: [f64; 2],
-    /// σ′ of the Gaussian perturbation after crossover.
-    pub crossover_sigma: f64,
+    /// The operators' parameters (`init_range`, `mutation_sigma`, `crossover_range`,
+    /// `crossover_sigma`), written flat in the table.
+    #[serde(flatten)]
+    pub operators: Operators,
 }
 
 impl Default for SeParams {
@@ -56,10 +55,7 @@ impl Default for SeParams {
             elite_min_species_size: 5,
             mutation_probability: 0.2,
             kmeans_iterations: 200,
-            init_range: [-1.0, 1.0],
-            mutation_sigma: 0.35,
-            crossover_range: [-1.0, 2.0],
-            crossover_sigma: 0.1,
+            operators: Operators::default(),
         }
     }
 }
@@ -76,12 +72,7 @@ impl OptimizerKind for SeParams {
             return Err(("alpha".into(), format!("must be in (0, 1], got {}", self.alpha)));
         }
         probability("mutation_probability", self.mutation_probability)?;
-        check_operators(
-            self.init_range,
-            self.mutation_sigma,
-            self.crossover_range,
-            self.crossover_sigma,
-        )
+        self.operators.validate()
     }
 
     fn extract(&self) -> Extract {
@@ -103,13 +94,7 @@ impl OptimizerKind for SeParams {
                 kmeans_iterations: self.kmeans_iterations,
                 sense: single(senses),
             },
-            real_vector(
-                dimension,
-                self.init_range,
-                self.mutation_sigma,
-                self.crossover_range,
-                self.crossover_sigma,
-            ),
+            self.operators.real_vector(dimension),
             match self.features {
                 SeFeatures::Genotype => SpeciationFeatures::Genotype,
                 SeFeatures::Shape | SeFeatures::Behaviour => SpeciationFeatures::Outcome,
@@ -118,3 +103,9 @@ impl OptimizerKind for SeParams {
         )?))
     }
 }
+
+/// The registry entry of `kind = "se"`.
+pub(crate) const ENTRY: OptimizerEntry = OptimizerEntry {
+    name: "se",
+    decode: |v| decode_flat::<SeParams>(v).map(OptimizerConfig::Se),
+};

@@ -160,10 +160,8 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
             "body      {} ({} voxels, preset {})",
             body_name, outcome.units, robot.preset
         );
-        println!(
-            "task      {} for {} s (seed {}, transient {} s)",
-            a.task, a.duration, a.seed, transient
-        );
+        let transient_note = a.transient.map(|t| format!(", transient {t} s")).unwrap_or_default();
+        println!("task      {} for {} s (seed {}{transient_note})", a.task, a.duration, a.seed);
         println!(
             "brain     {} ({} parameters)",
             robot.brain.kind(),

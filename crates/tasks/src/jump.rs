@@ -12,6 +12,10 @@ use crate::terrain::{add_ground, Terrain};
 use serde::{Deserialize, Serialize};
 use vsrlab_physics::{Vec2, WorldBuilder, WorldSettings};
 
+/// x of the robot's left edge at the start: mid-terrain, far from the border walls (a robot
+/// next to a wall could climb it and "jump" by walking).
+pub const START_X: f64 = 1000.0;
+
 /// The metrics of a jump episode.
 pub const METRICS: &[&str] = &["height", "final_height"];
 
@@ -61,7 +65,7 @@ impl Task for Jump {
     }
 
     fn place(&self, scene: &Scene, footprint: &[Vec2]) -> Vec2 {
-        place_on_ground(&scene.terrain, footprint, 11.0, 0.0)
+        place_on_ground(&scene.terrain, footprint, START_X, 0.0)
     }
 
     fn start(&self) -> Box<dyn TaskEpisode> {

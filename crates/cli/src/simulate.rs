@@ -161,7 +161,10 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
             body_name, outcome.units, robot.preset
         );
         let transient_note = a.transient.map(|t| format!(", transient {t} s")).unwrap_or_default();
-        println!("task      {} for {} s (seed {}{transient_note})", a.task, a.duration, a.seed);
+        println!(
+            "task      {} for {} s (seed {}{transient_note})",
+            a.task, a.duration, a.seed
+        );
         println!(
             "brain     {} ({} parameters)",
             robot.brain.kind(),

@@ -101,8 +101,8 @@ impl BubbleFigure {
             label_areas: (60, 100),
             text: (14, 16),
             grid: (WHITE, RGBColor(230, 230, 230)),
-            max_light_lines: 10,
-            x_grid: true,
+            max_light_lines: 10, // plotters' default
+            ..FrameStyle::default()
         };
         let x = Axis::classes(-0.5..(nx as f64 - 0.5), &self.x_classes, Some(&self.x_label));
         let y = Axis::classes(-0.5..(ny as f64 - 0.5), &self.y_classes, Some(&self.y_label));

@@ -302,6 +302,7 @@ pub fn gait_of(trace: &Trace, params: &FootprintParams) -> (Vec<Footprint>, Gait
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testutil::square;
 
     const A: Footprint = 0b0000_0011;
     const B: Footprint = 0b1100_0000;
@@ -365,15 +366,6 @@ mod tests {
         let q = quantise(&times, &fp, 0.5);
         // Window 0: A ×3, B ×2 → bits of A on (3 > 2.5), B's off. Window 1: B ×2, A ×2 → neither.
         assert_eq!(q, vec![A, 0]);
-    }
-
-    fn square(x: f64, y: f64, s: f64) -> [Vec2; 4] {
-        [
-            Vec2::new(x, y + s),
-            Vec2::new(x + s, y + s),
-            Vec2::new(x + s, y),
-            Vec2::new(x, y),
-        ]
     }
 
     #[test]

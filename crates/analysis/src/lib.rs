@@ -26,6 +26,8 @@ pub mod run_folder;
 pub mod sampling;
 pub mod spectrum;
 pub mod stats;
+#[cfg(test)]
+mod testutil;
 
 pub use diversity::{inverse_simpson, species_index, Classifier};
 pub use error::AnalysisError;

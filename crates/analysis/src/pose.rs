@@ -135,15 +135,7 @@ pub fn dynamic_pose(trace: &Trace) -> Pose {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn square(x: f64, y: f64, s: f64) -> [Vec2; 4] {
-        [
-            Vec2::new(x, y + s),
-            Vec2::new(x + s, y + s),
-            Vec2::new(x + s, y),
-            Vec2::new(x, y),
-        ]
-    }
+    use crate::testutil::square;
 
     #[test]
     fn a_single_voxel_fills_the_grid() {

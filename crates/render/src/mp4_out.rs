@@ -22,6 +22,17 @@ pub fn ffmpeg_available() -> bool {
     find_ffmpeg().is_some()
 }
 
+/// The error when `ffmpeg`, asked to write `path`, cannot be started.
+fn cannot_run<'a>(ffmpeg: &'a Path, path: &'a Path) -> impl FnOnce(std::io::Error) -> RenderError + 'a {
+    move |e| {
+        RenderError::EncoderUnavailable(format!(
+            "cannot write {}: cannot run {}: {e}",
+            path.display(),
+            ffmpeg.display()
+        ))
+    }
+}
+
 /// Codec arguments: H.264 when this ffmpeg has libx264, else MPEG-4 part 2.
 fn codec_args(ffmpeg: &Path, path: &Path) -> Result<&'static [&'static str], RenderError> {
     let out = Command::new(ffmpeg)
@@ -29,13 +40,7 @@ fn codec_args(ffmpeg: &Path, path: &Path) -> Result<&'static [&'static str], Ren
         .stdin(Stdio::null())
         .stderr(Stdio::null())
         .output()
-        .map_err(|e| {
-            RenderError::EncoderUnavailable(format!(
-                "cannot write {}: cannot run {}: {e}",
-                path.display(),
-                ffmpeg.display()
-            ))
-        })?;
+        .map_err(cannot_run(ffmpeg, path))?;
     let list = String::from_utf8_lossy(&out.stdout);
     let has = |name: &str| list.lines().any(|l| l.split_whitespace().nth(1) == Some(name));
     if has("libx264") {
@@ -103,13 +108,7 @@ pub(crate) fn save_mp4(trace: &Trace, steps: &[usize], opts: &RenderOptions, pat
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
-        .map_err(|e| {
-            RenderError::EncoderUnavailable(format!(
-                "cannot write {}: cannot run {}: {e}",
-                path.display(),
-                ffmpeg.display()
-            ))
-        })?;
+        .map_err(cannot_run(&ffmpeg, path))?;
     let mut stderr = child.stderr.take().expect("stderr is piped");
     let reader = std::thread::spawn(move || {
         let mut s = String::new();

@@ -5,12 +5,66 @@ use crate::testutil::*;
 use crate::*;
 use std::path::Path;
 
-/// A fresh empty directory for one test.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("vsrlab-render-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh empty directory for one test, removed with its files when dropped.
+struct Scratch(PathBuf);
+
+impl Scratch {
+    /// The directory `vsrlab-render-<process>-<name>` in the system's temporary folder, emptied.
+    fn new(name: &str) -> Scratch {
+        let dir = std::env::temp_dir().join(format!("vsrlab-render-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        Scratch(dir)
+    }
+}
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// A video of the moving square that a test saved in its scratch directory.
+struct Saved {
+    /// The scratch directory.
+    dir: Scratch,
+    /// The trace drawn: the voxel moving right at 3 units per second.
+    trace: Trace,
+    /// The options it was drawn with.
+    opts: RenderOptions,
+    /// The file written.
+    path: PathBuf,
+    /// What [`save_video`] returned.
+    result: Result<VideoInfo, RenderError>,
+}
+
+/// Saves `steps` steps of the moving square, `width` × `height` pixels (default options
+/// otherwise), as `file` in a fresh scratch directory.
+fn save_moving_square(file: &str, steps: usize, (width, height): (u32, u32)) -> Saved {
+    let dir = Scratch::new(file);
+    let trace = moving_square(steps, 3.0);
+    let opts = RenderOptions {
+        width,
+        height,
+        ..RenderOptions::default()
+    };
+    let path = dir.join(file);
+    let result = save_video(&trace, &opts, &path);
+    Saved {
+        dir,
+        trace,
+        opts,
+        path,
+        result,
+    }
 }
 
 /// Names of the files in `dir`.
@@ -60,26 +114,19 @@ fn frame_steps_subsample_by_time() {
 
 #[test]
 fn gif_has_header_frames_and_final_picture() {
-    let dir = scratch("gif");
-    let t = moving_square(121, 3.0);
-    let opts = RenderOptions {
-        width: 160,
-        height: 90,
-        ..RenderOptions::default()
-    };
-    let path = dir.join("walk.gif");
-    let info = save_video(&t, &opts, &path).unwrap();
+    let v = save_moving_square("walk.gif", 121, (160, 90));
+    let info = v.result.unwrap();
     assert_eq!(info.format, VideoFormat::Gif);
     assert_eq!(info.frames, 61);
     assert_eq!((info.width, info.height), (160, 90));
-    let bytes = std::fs::read(&path).unwrap();
+    let bytes = std::fs::read(&v.path).unwrap();
     assert_eq!(&bytes[..6], b"GIF89a");
     assert_eq!(info.bytes, bytes.len() as u64);
-    let (frames, screen, delays) = decode_gif(&path);
+    let (frames, screen, delays) = decode_gif(&v.path);
     assert_eq!(frames, 61);
     assert_eq!(delays.iter().map(|&d| u32::from(d)).sum::<u32>(), 203, "{delays:?}");
     // what the player shows at the end is the last frame (drawn without anti-aliasing), quantized
-    let scene = crate::draw::Scene::new(&t, &opts, false);
+    let scene = crate::draw::Scene::new(&v.trace, &v.opts, false);
     let mut last = scene.new_pixmap();
     scene.draw(120, &mut last);
     let mut want = Vec::new();
@@ -88,23 +135,15 @@ fn gif_has_header_frames_and_final_picture() {
     assert!(colors.len() >= 5, "too few colours: {colors:?}");
     assert!(!screen.contains(&Palette::get().transparent));
     assert!(screen == want, "composited GIF differs from the last frame");
-    assert_eq!(listing(&dir), vec!["walk.gif"], "temporary files left behind");
-    std::fs::remove_dir_all(&dir).unwrap();
+    assert_eq!(listing(&v.dir), vec!["walk.gif"], "temporary files left behind");
 }
 
 #[test]
 fn png_is_the_last_frame() {
-    let dir = scratch("png");
-    let t = moving_square(30, 3.0);
-    let opts = RenderOptions {
-        width: 200,
-        height: 120,
-        ..RenderOptions::default()
-    };
-    let path = dir.join("last.PNG");
-    let info = save_video(&t, &opts, &path).unwrap();
+    let v = save_moving_square("last.PNG", 30, (200, 120));
+    let info = v.result.unwrap();
     assert_eq!((info.format, info.frames), (VideoFormat::Png, 1));
-    let dec = png::Decoder::new(std::fs::File::open(&path).unwrap());
+    let dec = png::Decoder::new(std::fs::File::open(&v.path).unwrap());
     let mut reader = dec.read_info().unwrap();
     let mut buf = vec![0; reader.output_buffer_size()];
     let frame = reader.next_frame(&mut buf).unwrap();
@@ -113,23 +152,22 @@ fn png_is_the_last_frame() {
         (200, 120, png::ColorType::Rgb)
     );
     let mut want = Vec::new();
-    file::to_rgb(&render_frame(&t, 29, &opts), &mut want);
+    file::to_rgb(&render_frame(&v.trace, 29, &v.opts), &mut want);
     assert!(buf[..frame.buffer_size()] == want[..]);
     let mut first = Vec::new();
-    file::to_rgb(&render_frame(&t, 0, &opts), &mut first);
+    file::to_rgb(&render_frame(&v.trace, 0, &v.opts), &mut first);
     assert!(
         first != want,
         "first and last frames should differ (the time bar grows)"
     );
     // save_png of an explicit step, replacing the file
-    save_png(&t, 0, &opts, &path).unwrap();
-    assert_eq!(listing(&dir), vec!["last.PNG"]);
-    std::fs::remove_dir_all(&dir).unwrap();
+    save_png(&v.trace, 0, &v.opts, &v.path).unwrap();
+    assert_eq!(listing(&v.dir), vec!["last.PNG"]);
 }
 
 #[test]
 fn bad_requests_fail_and_leave_nothing() {
-    let dir = scratch("bad");
+    let dir = Scratch::new("bad");
     let t = moving_square(10, 1.0);
     let opts = RenderOptions::default();
 
@@ -165,32 +203,21 @@ fn bad_requests_fail_and_leave_nothing() {
         "{err}"
     );
 
-    let err = save_video(
-        &t,
-        &RenderOptions {
-            fps: 0.0,
-            ..opts.clone()
-        },
-        dir.join("f.gif"),
-    )
-    .unwrap_err();
-    assert!(
-        matches!(&err, RenderError::InvalidOptions(m) if m.contains("fps")),
-        "{err:?}"
-    );
-    let err = save_video(
-        &t,
-        &RenderOptions {
-            width: 0,
-            ..opts.clone()
-        },
-        dir.join("w.gif"),
-    )
-    .unwrap_err();
-    assert!(
-        matches!(&err, RenderError::InvalidOptions(m) if m.contains("width")),
-        "{err:?}"
-    );
+    let zero_fps = RenderOptions {
+        fps: 0.0,
+        ..opts.clone()
+    };
+    let zero_width = RenderOptions {
+        width: 0,
+        ..opts.clone()
+    };
+    for (bad, field) in [(zero_fps, "fps"), (zero_width, "width")] {
+        let err = save_video(&t, &bad, dir.join(format!("{field}.gif"))).unwrap_err();
+        assert!(
+            matches!(&err, RenderError::InvalidOptions(m) if m.contains(field)),
+            "{err:?}"
+        );
+    }
 
     let missing = dir.join("no-such-dir").join("v.gif");
     let err = save_video(&t, &opts, &missing).unwrap_err();
@@ -200,20 +227,11 @@ fn bad_requests_fail_and_leave_nothing() {
     );
 
     assert!(listing(&dir).is_empty(), "left behind: {:?}", listing(&dir));
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
 fn mp4_needs_ffmpeg() {
-    let dir = scratch("mp4");
-    let t = moving_square(60, 3.0);
-    let opts = RenderOptions {
-        width: 161,
-        height: 91,
-        ..RenderOptions::default()
-    };
-    let path = dir.join("v.mp4");
-    let result = save_video(&t, &opts, &path);
+    let Saved { dir, path, result, .. } = save_moving_square("v.mp4", 60, (161, 91));
     if ffmpeg_available() {
         let info = result.unwrap();
         assert_eq!((info.format, info.frames), (VideoFormat::Mp4, 30));
@@ -233,7 +251,6 @@ fn mp4_needs_ffmpeg() {
         }
         assert!(listing(&dir).is_empty());
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]

@@ -23,29 +23,18 @@ const MAX_BRACKETS: usize = 6;
 /// Best-so-far and population-median fitness vs evaluations, median ± sd across runs.
 pub(crate) fn fitness_figure(settings: &[Setting], experiments: &[ExperimentData], fitness: &str) -> BandFigure {
     let panel = |title: &str, pick: &dyn Fn(&GenerationRow) -> f64| {
-        let series = settings
-            .iter()
-            .map(|s| {
-                let curves: Vec<Vec<(f64, f64)>> = s
-                    .runs(experiments)
-                    .map(|(_, r)| {
-                        r.generations
-                            .iter()
-                            .map(|g| (g.evaluations as f64, pick(g)))
-                            .filter(|p| p.1.is_finite())
-                            .collect()
-                    })
-                    .filter(|c: &Vec<(f64, f64)>| !c.is_empty())
-                    .collect();
-                median_band(s, &curves)
-            })
-            .collect();
-        BandChart {
-            title: title.into(),
-            x_label: "fitness evaluations".into(),
-            y_label: fitness.into(),
-            series,
-        }
+        evaluations_panel(title, fitness, settings, |s| {
+            s.runs(experiments)
+                .map(|(_, r)| {
+                    r.generations
+                        .iter()
+                        .map(|g| (g.evaluations as f64, pick(g)))
+                        .filter(|p| p.1.is_finite())
+                        .collect()
+                })
+                .filter(|c: &Vec<(f64, f64)>| !c.is_empty())
+                .collect()
+        })
     };
     BandFigure {
         title: format!("Fitness ({fitness}) during evolution"),
@@ -60,23 +49,12 @@ pub(crate) fn fitness_figure(settings: &[Setting], experiments: &[ExperimentData
 /// ISI of species, morphology and behaviour classes vs evaluations, median ± sd across runs.
 pub(crate) fn isi_figure(settings: &[Setting], runs: &[RunSpecies]) -> BandFigure {
     let panel = |title: &str, pick: &dyn Fn(&SnapshotIsi) -> f64| {
-        let series = settings
-            .iter()
-            .map(|s| {
-                let curves: Vec<Vec<(f64, f64)>> = runs
-                    .iter()
-                    .filter(|r| r.setting == s.color)
-                    .map(|r| r.snapshots.iter().map(|x| (x.evaluations as f64, pick(x))).collect())
-                    .collect();
-                median_band(s, &curves)
-            })
-            .collect();
-        BandChart {
-            title: title.into(),
-            x_label: "fitness evaluations".into(),
-            y_label: "Inverse Simpson Index".into(),
-            series,
-        }
+        evaluations_panel(title, "Inverse Simpson Index", settings, |s| {
+            runs.iter()
+                .filter(|r| r.setting == s.color)
+                .map(|r| r.snapshots.iter().map(|x| (x.evaluations as f64, pick(x))).collect())
+                .collect()
+        })
     };
     BandFigure {
         title: "Diversity of the population (Inverse Simpson Index)".into(),
@@ -86,6 +64,22 @@ pub(crate) fn isi_figure(settings: &[Setting], runs: &[RunSpecies]) -> BandFigur
             panel("morphology", &|x| x.shape),
             panel("behaviour", &|x| x.behaviour),
         ],
+    }
+}
+
+/// A panel of `y_label` vs fitness evaluations: per setting, the median ± sd band of the curves
+/// (one per run) that `curves_of` gives for it.
+fn evaluations_panel(
+    title: &str,
+    y_label: &str,
+    settings: &[Setting],
+    curves_of: impl Fn(&Setting) -> Vec<Vec<(f64, f64)>>,
+) -> BandChart {
+    BandChart {
+        title: title.into(),
+        x_label: "fitness evaluations".into(),
+        y_label: y_label.into(),
+        series: settings.iter().map(|s| median_band(s, &curves_of(s))).collect(),
     }
 }
 

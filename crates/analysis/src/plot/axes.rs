@@ -1,4 +1,21 @@
-//! Axes: value ranges with a margin, and tick labels (numbers, class names).
+//! Axes: value ranges (of the data, with a margin) and tick labels (numbers, class names).
+
+/// The smallest and largest of `values` (∞ and −∞ without any; NaN is passed over).
+pub(super) fn extent(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
+    values
+        .into_iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)))
+}
+
+/// The range of `values`, at least 1e-9 wide, or `0..1` without any finite one.
+pub(super) fn data_range(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) = extent(values);
+    if lo.is_finite() {
+        (lo, hi.max(lo + 1e-9))
+    } else {
+        (0.0, 1.0)
+    }
+}
 
 /// `lo..hi` widened by `pad` of its length on each side; a point becomes a small interval and
 /// a non-finite range `0..1`.

@@ -1,13 +1,13 @@
 //! Curves: median ± sd bands across runs, side-by-side panels with one shared legend.
 
-use super::axes::{format_tick, nice_range};
+use super::axes::{data_range, nice_range};
 use super::colors::setting_color;
-use super::legend::{draw_legend, legend_width};
-use super::text::{anchored, text_style};
+use super::frame::{chart, Axis, FrameStyle};
+use super::legend::{draw_legend, draw_text_line, legend_bottom, split_legend};
+use super::text::text_style;
 use super::{err, Figure, R};
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, VPos};
 
 /// One setting's curve: centre line and ± spread band over x.
 #[derive(Debug, Clone, PartialEq)]
@@ -48,58 +48,39 @@ pub struct BandFigure {
     pub legend_title: String,
 }
 
+impl BandSeries {
+    /// The drawn points: (x, centre, spread) where x and the centre are finite, a non-finite
+    /// spread read as 0.
+    fn points(&self) -> impl Iterator<Item = (f64, f64, f64)> + '_ {
+        self.x
+            .iter()
+            .zip(&self.center)
+            .zip(&self.spread)
+            .filter(|((x, c), _)| x.is_finite() && c.is_finite())
+            .map(|((x, c), sd)| (*x, *c, if sd.is_finite() { *sd } else { 0.0 }))
+    }
+}
+
 impl BandChart {
     fn draw_on<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> R {
-        let pts = || {
-            self.series.iter().flat_map(|s| {
-                s.x.iter()
-                    .zip(&s.center)
-                    .zip(&s.spread)
-                    .filter(|((x, c), _)| x.is_finite() && c.is_finite())
-            })
-        };
-        let (x0, x1) = pts().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), ((x, _), _)| {
-            (a.min(*x), b.max(*x))
-        });
-        let (y0, y1) = pts().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), ((_, c), s)| {
-            let s = if s.is_finite() { *s } else { 0.0 };
+        let pts = || self.series.iter().flat_map(BandSeries::points);
+        let (x0, x1) = data_range(pts().map(|(x, _, _)| x));
+        let (y0, y1) = pts().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (_, c, s)| {
             (a.min(c - s), b.max(c + s))
         });
-        let (x0, x1) = if x0.is_finite() {
-            (x0, x1.max(x0 + 1e-9))
-        } else {
-            (0.0, 1.0)
-        };
         let (y0, y1) = nice_range(y0, y1, 0.05);
-        let mut chart = ChartBuilder::on(area)
-            .caption(&self.title, text_style(22))
-            .margin(12)
-            .x_label_area_size(55)
-            .y_label_area_size(80)
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .x_desc(&self.x_label)
-            .y_desc(&self.y_label)
-            .label_style(text_style(15))
-            .axis_desc_style(text_style(18))
-            .max_light_lines(2)
-            .light_line_style(RGBColor(242, 242, 242))
-            .bold_line_style(RGBColor(215, 215, 215))
-            .x_label_formatter(&|v| format_tick(*v))
-            .y_label_formatter(&|v| format_tick(*v))
-            .draw()
-            .map_err(err)?;
+        let style = FrameStyle {
+            caption: 22,
+            margin: 12,
+            label_areas: (55, 80),
+            grid: (RGBColor(242, 242, 242), RGBColor(215, 215, 215)),
+            ..FrameStyle::default()
+        };
+        let x = Axis::numbers(x0..x1, &self.x_label);
+        let mut chart = chart(area, &self.title, &style, x, Axis::numbers(y0..y1, &self.y_label))?;
         for s in &self.series {
             let color = setting_color(s.color);
-            let ok: Vec<(f64, f64, f64)> =
-                s.x.iter()
-                    .zip(&s.center)
-                    .zip(&s.spread)
-                    .filter(|((x, c), _)| x.is_finite() && c.is_finite())
-                    .map(|((x, c), sd)| (*x, *c, if sd.is_finite() { *sd } else { 0.0 }))
-                    .collect();
+            let ok: Vec<(f64, f64, f64)> = s.points().collect();
             if ok.is_empty() {
                 continue;
             }
@@ -136,8 +117,7 @@ impl Figure for BandFigure {
                 }
             }
         }
-        let lw = legend_width(&entries, &self.legend_title);
-        let (plots, legend) = root.split_horizontally(root.dim_in_pixel().0.saturating_sub(lw));
+        let (plots, legend) = split_legend(&root, &entries, &self.legend_title);
         let n = self.panels.len().max(1);
         let w = plots.dim_in_pixel().0 as usize / n;
         let breaks: Vec<i32> = (1..n).map(|i| (i * w) as i32).collect();
@@ -148,16 +128,10 @@ impl Figure for BandFigure {
         {
             panel.draw_on(&area)?;
         }
-        draw_legend(&legend, &self.legend_title, &entries, 40)?;
-        let y = 40 + 30 + 28 * entries.len() as i32 + 10;
+        draw_legend(&legend, &self.legend_title, &entries)?;
+        let y = legend_bottom(&entries) + 10;
         for (k, line) in ["line: median", "band: ± sd", "(across runs)"].iter().enumerate() {
-            legend
-                .draw(&Text::new(
-                    line.to_string(),
-                    (10, y + 18 * k as i32),
-                    anchored(13, HPos::Left, VPos::Top),
-                ))
-                .map_err(err)?;
+            draw_text_line(&legend, line, 13, y + 18 * k as i32)?;
         }
         Ok(())
     }

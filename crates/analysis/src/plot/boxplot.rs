@@ -1,11 +1,10 @@
 //! Boxplots: one box per setting, every run as a dot, pairwise p-values as brackets.
 
-use super::axes::{format_tick, nice_range};
+use super::axes::{extent, nice_range};
 use super::colors::setting_color;
-use super::text::{anchored, text_style};
+use super::frame::{chart, Axis, Chart, FrameStyle};
+use super::text::anchored;
 use super::{err, DrawError, Figure, R};
-use plotters::coord::cartesian::Cartesian2d;
-use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, VPos};
@@ -70,9 +69,6 @@ impl Figure for BoxFigure {
     }
 }
 
-/// The chart of a boxplot: setting index along x, values along y.
-type BoxChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
-
 impl BoxFigure {
     /// The range of the finite values, with a margin.
     fn value_range(&self) -> (f64, f64) {
@@ -80,7 +76,7 @@ impl BoxFigure {
             .groups
             .iter()
             .flat_map(|g| g.values.iter().copied().filter(|v| v.is_finite()));
-        let (lo, hi) = vals.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+        let (lo, hi) = extent(vals);
         nice_range(lo, hi, 0.06)
     }
 
@@ -99,41 +95,16 @@ impl BoxFigure {
         &self,
         root: &'a DrawingArea<DB, Shift>,
         y: std::ops::Range<f64>,
-    ) -> Result<BoxChart<'a, DB>, DrawError> {
-        let n = self.groups.len();
+    ) -> Result<Chart<'a, DB>, DrawError> {
         let labels: Vec<String> = self.groups.iter().map(|g| g.label.clone()).collect();
         let long = labels.iter().map(|l| l.chars().count()).max().unwrap_or(0);
-        let bottom_area = if long * 9 > 160 { 120 } else { 75 };
-        let mut chart = ChartBuilder::on(root)
-            .caption(&self.title, text_style(24))
-            .margin(15)
-            .x_label_area_size(bottom_area)
-            .y_label_area_size(85)
-            .build_cartesian_2d(-0.6..(n as f64 - 0.4), y)
-            .map_err(err)?;
-        let fmt_x = |v: &f64| {
-            let i = v.round();
-            if (v - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < n {
-                labels[i as usize].clone()
-            } else {
-                String::new()
-            }
+        let style = FrameStyle {
+            label_areas: (if long * 9 > 160 { 120 } else { 75 }, 85),
+            x_grid: false,
+            ..FrameStyle::default()
         };
-        chart
-            .configure_mesh()
-            .disable_x_mesh()
-            .x_labels(n * 2 + 1)
-            .x_label_formatter(&fmt_x)
-            .y_label_formatter(&|v| format_tick(*v))
-            .y_desc(&self.y_label)
-            .label_style(text_style(15))
-            .axis_desc_style(text_style(18))
-            .max_light_lines(2)
-            .light_line_style(RGBColor(244, 244, 244))
-            .bold_line_style(RGBColor(220, 220, 220))
-            .draw()
-            .map_err(err)?;
-        Ok(chart)
+        let x = Axis::classes(-0.6..(labels.len() as f64 - 0.4), &labels, None);
+        chart(root, &self.title, &style, x, Axis::numbers(y, &self.y_label))
     }
 
     /// The note under the chart: what the brackets are, or where the p-values went.
@@ -162,7 +133,7 @@ impl BoxFigure {
 }
 
 /// The box of group `g` at x: quartiles, median, whiskers, and every run as a dot.
-fn draw_box<DB: DrawingBackend>(chart: &mut BoxChart<'_, DB>, x: f64, g: &BoxGroup) -> R {
+fn draw_box<DB: DrawingBackend>(chart: &mut Chart<'_, DB>, x: f64, g: &BoxGroup) -> R {
     let color = setting_color(g.color);
     let Some(b) = crate::stats::BoxStats::of(&g.values) else {
         return Ok(());
@@ -202,12 +173,7 @@ fn draw_box<DB: DrawingBackend>(chart: &mut BoxChart<'_, DB>, x: f64, g: &BoxGro
 }
 
 /// A bracket between boxes i and j at height y (ticks `tick` long), labelled with p.
-fn draw_bracket<DB: DrawingBackend>(
-    chart: &mut BoxChart<'_, DB>,
-    (i, j, p): (usize, usize, f64),
-    y: f64,
-    tick: f64,
-) -> R {
+fn draw_bracket<DB: DrawingBackend>(chart: &mut Chart<'_, DB>, (i, j, p): (usize, usize, f64), y: f64, tick: f64) -> R {
     let (a, b) = (i.min(j) as f64, i.max(j) as f64);
     chart
         .draw_series(std::iter::once(PathElement::new(

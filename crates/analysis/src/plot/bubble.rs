@@ -1,7 +1,8 @@
 //! Bubble plots: the species of populations, bubble area ∝ share, colour = value.
 
-use super::axes::{class_tick, format_tick};
+use super::axes::{data_range, format_tick};
 use super::colors::viridis;
+use super::frame::{chart, Axis, FrameStyle};
 use super::text::{anchored, text_style};
 use super::{err, Figure, R};
 use plotters::coord::Shift;
@@ -83,12 +84,7 @@ impl BubbleFigure {
             .iter()
             .flat_map(|p| p.bubbles.iter().map(|b| b.value))
             .filter(|v| v.is_finite());
-        let (vmin, vmax) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
-        if vmin.is_finite() {
-            (vmin, vmax.max(vmin + 1e-9))
-        } else {
-            (0.0, 1.0)
-        }
+        data_range(values)
     }
 
     /// One panel: the class grid and its bubbles, each labelled with its share.
@@ -99,31 +95,18 @@ impl BubbleFigure {
         (vmin, vmax): (f64, f64),
     ) -> R {
         let (nx, ny) = (self.x_classes.len(), self.y_classes.len());
-        let xs = self.x_classes.clone();
-        let ys = self.y_classes.clone();
-        let mut chart = ChartBuilder::on(area)
-            .caption(&panel.title, text_style(19))
-            .margin(10)
-            .x_label_area_size(60)
-            .y_label_area_size(100)
-            .build_cartesian_2d(-0.5..(nx as f64 - 0.5), -0.5..(ny as f64 - 0.5))
-            .map_err(err)?;
-        let fx = move |v: &f64| class_tick(*v, &xs);
-        let fy = move |v: &f64| class_tick(*v, &ys);
-        chart
-            .configure_mesh()
-            .x_labels(nx * 2 + 1)
-            .y_labels(ny * 2 + 1)
-            .x_label_formatter(&fx)
-            .y_label_formatter(&fy)
-            .x_desc(&self.x_label)
-            .y_desc(&self.y_label)
-            .label_style(text_style(14))
-            .axis_desc_style(text_style(16))
-            .light_line_style(WHITE)
-            .bold_line_style(RGBColor(230, 230, 230))
-            .draw()
-            .map_err(err)?;
+        let style = FrameStyle {
+            caption: 19,
+            margin: 10,
+            label_areas: (60, 100),
+            text: (14, 16),
+            grid: (WHITE, RGBColor(230, 230, 230)),
+            max_light_lines: 10, // plotters' default
+            ..FrameStyle::default()
+        };
+        let x = Axis::classes(-0.5..(nx as f64 - 0.5), &self.x_classes, Some(&self.x_label));
+        let y = Axis::classes(-0.5..(ny as f64 - 0.5), &self.y_classes, Some(&self.y_label));
+        let mut chart = chart(area, &panel.title, &style, x, y)?;
         let (pw, ph) = area.dim_in_pixel();
         let cell =
             ((pw.saturating_sub(110)) as f64 / nx.max(1) as f64).min((ph.saturating_sub(90)) as f64 / ny.max(1) as f64);

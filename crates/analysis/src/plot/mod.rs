@@ -2,8 +2,9 @@
 //! bands, boxplots with pairwise p-values, species bubble plots and scatters.
 //!
 //! One file per concept: [`colors`] (setting colours, viridis), `text` (the bundled font and
-//! text styles), [`axes`] (ranges and tick labels), `legend`, and one file per figure kind:
-//! [`band`], [`boxplot`], [`bubble`], [`scatter`]. Every figure implements [`Figure`] and is
+//! text styles), [`axes`] (ranges and tick labels), `frame` (the titled chart with its axes and
+//! grid, shared by every figure kind), `legend`, and one file per figure kind: [`band`],
+//! [`boxplot`], [`bubble`], [`scatter`]. Every figure implements [`Figure`] and is
 //! written by [`save`]. Text is drawn with DejaVu Sans, bundled in the crate, so no system font
 //! is looked up. Settings get the colours of [`setting_color`] by their index, the same in every
 //! figure.
@@ -13,6 +14,7 @@ pub mod band;
 pub mod boxplot;
 pub mod bubble;
 pub mod colors;
+mod frame;
 mod legend;
 pub mod scatter;
 mod text;

@@ -1,13 +1,12 @@
 //! Scatter plots: points coloured by setting, marker size as a third variable.
 
-use super::axes::{format_tick, nice_range};
+use super::axes::{extent, nice_range};
 use super::colors::setting_color;
-use super::legend::{draw_legend, legend_width};
-use super::text::{anchored, text_style};
+use super::frame::{chart, Axis, FrameStyle};
+use super::legend::{draw_legend, draw_size_legend, legend_bottom, split_legend};
 use super::{err, Figure, R};
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, VPos};
 
 /// One point of a scatter.
 #[derive(Debug, Clone, PartialEq)]
@@ -58,39 +57,16 @@ impl Figure for ScatterFigure {
             .enumerate()
             .map(|(i, g)| (g.clone(), setting_color(i)))
             .collect();
-        let lw = legend_width(&entries, &self.legend_title);
-        let (plot, legend) = root.split_horizontally(root.dim_in_pixel().0.saturating_sub(lw));
+        let (plot, legend) = split_legend(root, &entries, &self.legend_title);
         let fit = |f: &dyn Fn(&ScatterPoint) -> f64| {
-            let (a, b) = self
-                .points
-                .iter()
-                .map(f)
-                .filter(|v| v.is_finite())
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+            let (a, b) = extent(self.points.iter().map(f).filter(|v| v.is_finite()));
             nice_range(a, b, 0.08)
         };
         let (x0, x1) = self.x_range.unwrap_or_else(|| fit(&|p| p.x));
         let (y0, y1) = self.y_range.unwrap_or_else(|| fit(&|p| p.y));
-        let mut chart = ChartBuilder::on(&plot)
-            .caption(&self.title, text_style(24))
-            .margin(15)
-            .x_label_area_size(60)
-            .y_label_area_size(85)
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .x_desc(&self.x_label)
-            .y_desc(&self.y_label)
-            .label_style(text_style(15))
-            .axis_desc_style(text_style(18))
-            .max_light_lines(2)
-            .light_line_style(RGBColor(244, 244, 244))
-            .bold_line_style(RGBColor(220, 220, 220))
-            .x_label_formatter(&|v| format_tick(*v))
-            .y_label_formatter(&|v| format_tick(*v))
-            .draw()
-            .map_err(err)?;
+        let x = Axis::numbers(x0..x1, &self.x_label);
+        let y = Axis::numbers(y0..y1, &self.y_label);
+        let mut chart = chart(&plot, &self.title, &FrameStyle::default(), x, y)?;
         // Larger markers first so small ones stay visible.
         let mut order: Vec<&ScatterPoint> = self
             .points
@@ -108,47 +84,10 @@ impl Figure for ScatterFigure {
                 ])
                 .map_err(err)?;
         }
-        draw_legend(&legend, &self.legend_title, &entries, 40)?;
+        draw_legend(&legend, &self.legend_title, &entries)?;
         match &self.size_legend {
-            Some((title, sizes)) => draw_size_legend(&legend, title, sizes, 40 + 30 + 28 * entries.len() as i32 + 30),
+            Some((title, sizes)) => draw_size_legend(&legend, title, sizes, legend_bottom(&entries) + 30),
             None => Ok(()),
         }
     }
-}
-
-/// The marker-size legend: a title and one circle per (label, radius) entry, from `top` down.
-fn draw_size_legend<DB: DrawingBackend>(
-    legend: &DrawingArea<DB, Shift>,
-    title: &str,
-    sizes: &[(String, f64)],
-    top: i32,
-) -> R {
-    let mut y = top;
-    legend
-        .draw(&Text::new(
-            title.to_string(),
-            (10, y),
-            anchored(16, HPos::Left, VPos::Top),
-        ))
-        .map_err(err)?;
-    y += 30;
-    for (label, r) in sizes {
-        let r = r.max(2.0) as i32;
-        legend
-            .draw(&Circle::new(
-                (10 + 20, y + r),
-                r,
-                RGBColor(120, 120, 120).stroke_width(2),
-            ))
-            .map_err(err)?;
-        legend
-            .draw(&Text::new(
-                label.clone(),
-                (60, y + r),
-                anchored(14, HPos::Left, VPos::Center),
-            ))
-            .map_err(err)?;
-        y += 2 * r + 12;
-    }
-    Ok(())
 }

@@ -5,7 +5,6 @@
 
 mod analyze;
 mod bench;
-mod cpu_time;
 mod label;
 mod replay_setup;
 mod run;

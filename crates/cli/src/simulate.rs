@@ -4,14 +4,9 @@ use clap::Args;
 use serde_json::json;
 use std::path::PathBuf;
 use std::time::Instant;
-use vsrlab_body::sensors::SensorConfig;
-use vsrlab_body::{Morphology, Preset};
-use vsrlab_brain::BrainSpec;
 use vsrlab_tasks::files::{load_robot, save_robot};
-use vsrlab_tasks::{episode, RobotSpec, TaskSpec, TraceLevel};
-
-/// Default sensors: area ratio, velocity and touch on every voxel (thesis ch. 3), no noise.
-pub const DEFAULT_SENSORS: &str = "uniform-a+vxy+t-0";
+use vsrlab_tasks::short_forms::DEFAULT_SENSORS;
+use vsrlab_tasks::{episode, RobotArgsError, RobotSpec, TaskSpec, TraceLevel};
 
 /// Arguments of `vsrlab simulate`.
 #[derive(Args, Debug)]
@@ -89,27 +84,13 @@ pub fn task_from_args(
 }
 
 /// Builds the robot description from command-line strings; errors name the option.
-pub fn robot_from_args(body: &str, preset: &str, sensors: &str, brain: &str) -> Result<RobotSpec, String> {
-    let mut robot = RobotSpec {
-        body: Morphology::parse(body).map_err(|e| format!("--body: {e}"))?,
-        preset: preset.parse::<Preset>().map_err(|e| format!("--preset: {e}"))?,
-        voxel: None,
-        sensors: SensorConfig::parse(sensors).map_err(|e| format!("--sensors: {e}"))?,
-        brain: BrainSpec::parse(brain).map_err(|e| format!("--brain: {e}"))?,
-    };
-    // a parameterised brain named on the command line gets seeded random parameters in [-1, 1]
-    let per_voxel = robot.readings_per_voxel().map_err(|e| format!("--sensors: {e}"))?;
-    let count = robot
-        .brain
-        .parameter_count(&robot.body, &per_voxel)
-        .map_err(|e| format!("--brain: {e}"))?;
-    if count > 0 && robot.brain.parameters().is_empty() {
-        robot.brain = robot
-            .brain
-            .with_random_parameters(0, &robot.body, &per_voxel)
-            .map_err(|e| format!("--brain: {e}"))?;
-    }
-    Ok(robot)
+fn robot_from_args(body: &str, preset: &str, sensors: &str, brain: &str) -> Result<RobotSpec, String> {
+    RobotSpec::from_short_forms(body, preset, sensors, brain).map_err(|e| robot_option_error(&e))
+}
+
+/// A robot short form's error, prefixed by its option (`--body: …`, `--brain: …`).
+pub fn robot_option_error(e: &RobotArgsError) -> String {
+    format!("--{}: {}", e.part(), e.message())
 }
 
 /// Runs `vsrlab simulate`.

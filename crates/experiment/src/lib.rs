@@ -12,6 +12,8 @@
 //! - [`features`]: simple morphology descriptors, dynamic pose and behaviour spectrum.
 //! - [`runner`]: the ask → parallel evaluate → tell loop, with CSV logs, snapshots, the best
 //!   robot, checkpoints and resume.
+//! - [`bench`](mod@bench): the simulation speed benchmark on the standard robots (`vsrlab bench`),
+//!   timed in CPU seconds ([`cpu_time`]).
 //!
 //! ## Guarantees
 //! - **Thread count never changes results**: batches are evaluated with rayon and collected in
@@ -32,13 +34,16 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod bench;
 pub mod config;
+pub mod cpu_time;
 pub mod evaluator;
 pub mod features;
 pub mod genotype;
 pub mod optimizers;
 pub mod runner;
 
+pub use bench::{run_bench, BenchError, BenchOptions, BenchReport};
 pub use config::{ConfigError, Experiment};
 pub use evaluator::{Evaluated, Evaluator, Record, RobotEvaluator};
 pub use genotype::Genotype;

@@ -3,7 +3,8 @@
 //! - [`Task`] (`task.rs`): what a robot is asked to do; [`TaskSpec`] and [`registry::TASKS`]
 //!   list the kinds ([`Locomotion`], [`Jump`]) for configs and the command line.
 //! - [`Robot`] / [`Agent`] (`agent.rs`): a robot before and after it is put in a world;
-//!   [`RobotSpec`] (the voxel robot of robot files) is one.
+//!   [`RobotSpec`] (the voxel robot of robot files) is one; [`RobotSpec::from_short_forms`]
+//!   (`short_forms.rs`) builds one from the command line's body, preset, sensors and brain.
 //! - [`episode::run`]: the one loop, physics → sense → control → actuate (vsr-model.md §2.2),
 //!   pure in (robot, task, seed).
 //! - [`evaluate`] (`representation.rs`): genotype → robot → episode → outcome, through a
@@ -21,6 +22,7 @@ pub mod outcome;
 pub mod registry;
 pub mod representation;
 pub mod robot;
+pub mod short_forms;
 pub mod task;
 pub mod terrain;
 pub mod voxel_robot;
@@ -34,5 +36,6 @@ pub use outcome::{Outcome, Polygons, Trace, TraceLevel};
 pub use registry::{FieldError, TaskParseError, TaskSpec};
 pub use representation::{evaluate, evaluate_traced, BodyPart, EvaluationError, Mapper, Representation};
 pub use robot::{RobotError, RobotSpec};
+pub use short_forms::{RobotArgsError, RobotPart};
 pub use task::{Metrics, Objective, Sense, Task};
 pub use terrain::Terrain;

@@ -1,0 +1,377 @@
+//! The simulation speed benchmark (`vsrlab bench`): the standard robots, single-threaded and on
+//! every core, compared with the original simulator (2D-VSR-Sim).
+//!
+//! Each row runs locomotion episodes until a minimum CPU time is spent. The cross-simulator unit
+//! is voxel·seconds simulated per CPU-second (voxels × simulated seconds / CPU seconds), the
+//! figure the developers' guide compares across simulators.
+
+use crate::cpu_time::{process_cpu_seconds, thread_cpu_seconds};
+use rayon::prelude::*;
+use serde::Serialize;
+use std::time::Instant;
+use vsrlab_tasks::short_forms::DEFAULT_SENSORS;
+use vsrlab_tasks::{EpisodeError, Locomotion, RobotArgsError, RobotSpec, TraceLevel};
+
+/// The standard robots of the benchmark, each with the terrain it walks on.
+pub const STANDARD_CASES: [(&str, &str); 4] = [
+    ("biped-4x3", "flat"),
+    ("worm-10x4", "flat"),
+    ("box-5x5", "hilly-1-10"),
+    ("box-10x10", "flat"),
+];
+
+/// What to measure. Robots are given by short forms, as on the command line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BenchOptions {
+    /// Simulated seconds per episode.
+    pub duration: f64,
+    /// Minimum CPU seconds to spend on each single-threaded row (more episodes are run until it
+    /// is reached; the parallel row runs as many episodes per thread).
+    pub min_cpu_seconds: f64,
+    /// Threads of the parallel rows; `None`: every core.
+    pub threads: Option<usize>,
+    /// Physical preset (`2021` or `2022`).
+    pub preset: String,
+    /// Only these of [`STANDARD_CASES`], by robot name, in the standard order; `None`: all.
+    pub robots: Option<Vec<String>>,
+    /// Physics sub-steps per step; `None`: the engine's default.
+    pub substeps: Option<u32>,
+    /// Brain of every robot (parameterised brains get seeded random parameters).
+    pub brain: String,
+    /// Sensors of every voxel; `empty` measures the body and the physics alone.
+    pub sensors: String,
+    /// Whether to measure the parallel rows too.
+    pub parallel: bool,
+}
+
+impl Default for BenchOptions {
+    fn default() -> Self {
+        BenchOptions {
+            duration: 30.0,
+            min_cpu_seconds: 2.0,
+            threads: None,
+            preset: "2021".into(),
+            robots: None,
+            substeps: None,
+            brain: "phase".into(),
+            sensors: DEFAULT_SENSORS.into(),
+            parallel: true,
+        }
+    }
+}
+
+/// How a row was measured.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Mode {
+    /// One episode after another on one thread; rates per CPU-second.
+    Single,
+    /// Episodes spread over the thread pool; rates per wall-clock second.
+    Parallel,
+}
+
+impl Mode {
+    /// `single` or `parallel`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::Single => "single",
+            Mode::Parallel => "parallel",
+        }
+    }
+}
+
+/// The original simulator's speed on one robot.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OriginalSpeed {
+    /// Steps per second, one thread, phase controller, after JIT warm-up.
+    pub steps_per_s: f64,
+    /// Which version of the original was measured.
+    pub version: &'static str,
+}
+
+/// The original simulator's speed on the same robot and terrain, from the version each preset
+/// reproduces (vsr-model.md §7): HEAD for preset 2022, v1.10.0 for preset 2021. `None` where the
+/// original was not measured.
+pub fn original_speed(preset: &str, robot: &str) -> Option<OriginalSpeed> {
+    let (steps_per_s, version) = match (preset, robot) {
+        ("2022", "biped-4x3") => (2300.0, "HEAD"),
+        ("2022", "worm-10x4") => (910.0, "HEAD"),
+        ("2022", "box-5x5") => (900.0, "HEAD"),
+        ("2021", "biped-4x3") => (1900.0, "v1.10.0"),
+        ("2021", "worm-10x4") => (1150.0, "v1.10.0"),
+        _ => return None,
+    };
+    Some(OriginalSpeed { steps_per_s, version })
+}
+
+/// One measured row.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Row {
+    /// The robot's name (one of [`STANDARD_CASES`]).
+    pub robot: String,
+    /// The terrain it walked on.
+    pub terrain: String,
+    /// Its voxel count.
+    pub voxels: usize,
+    /// Single-threaded or parallel.
+    pub mode: Mode,
+    /// Threads used.
+    pub threads: usize,
+    /// Episodes run.
+    pub episodes: usize,
+    /// Simulation steps run, all episodes together.
+    pub steps: u64,
+    /// CPU seconds spent (the thread's for single rows, the process's for parallel ones).
+    pub cpu_seconds: f64,
+    /// Wall-clock seconds spent.
+    pub wall_seconds: f64,
+    /// Steps per CPU-second (single rows) or per wall-clock second (parallel rows).
+    pub steps_per_s: f64,
+    /// [`Row::steps_per_s`] × voxels.
+    pub voxel_steps_per_s: f64,
+    /// Voxel·seconds simulated per CPU-second, the cross-simulator unit.
+    pub voxel_seconds_per_cpu_s: f64,
+    /// The original simulator's single-thread steps/s on this robot (vsr-model.md §7), if measured.
+    pub original_steps_per_s: Option<f64>,
+    /// Which version of the original that figure is for.
+    pub original_version: Option<&'static str>,
+    /// steps/s ÷ the original's (single-threaded rows only).
+    pub ratio_to_original: Option<f64>,
+}
+
+/// The benchmark's result: its settings and one or two rows per robot.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BenchReport {
+    /// Simulated seconds per step.
+    pub dt: f64,
+    /// Simulated seconds per episode.
+    pub duration: f64,
+    /// Physical preset.
+    pub preset: String,
+    /// The rows, robot by robot (single, then parallel).
+    pub rows: Vec<Row>,
+}
+
+impl BenchReport {
+    /// Steps/s of `row` ÷ those of the single-threaded row of the same robot (1 if there is none).
+    pub fn speedup(&self, row: &Row) -> f64 {
+        self.rows
+            .iter()
+            .find(|single| single.robot == row.robot && single.mode == Mode::Single)
+            .map(|single| row.steps_per_s / single.steps_per_s)
+            .unwrap_or(1.0)
+    }
+}
+
+/// Why the benchmark could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum BenchError {
+    /// The thread pool could not be built.
+    #[error("{0}")]
+    ThreadPool(#[from] rayon::ThreadPoolBuildError),
+    /// A robot short form (preset, sensors, brain) is wrong.
+    #[error("{0}")]
+    Robot(#[from] RobotArgsError),
+    /// A terrain of the standard cases is not understood.
+    #[error("{0}")]
+    Terrain(String),
+    /// An episode failed.
+    #[error("{0}")]
+    Episode(#[from] EpisodeError),
+}
+
+/// Runs the benchmark: for each selected standard robot, a single-threaded row and, if
+/// [`BenchOptions::parallel`], a parallel row.
+pub fn run_bench(options: &BenchOptions) -> Result<BenchReport, BenchError> {
+    let threads = options
+        .threads
+        .unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1));
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
+    let mut rows = Vec::new();
+    for (robot, terrain) in STANDARD_CASES {
+        if !is_selected(options, robot) {
+            continue;
+        }
+        let case = Case::new(robot, terrain, options)?;
+        let single = case.measure_single(options.min_cpu_seconds)?;
+        let single_episodes = single.episodes;
+        rows.push(case.row(Mode::Single, 1, single));
+        if options.parallel {
+            let episodes = (single_episodes * threads).max(threads);
+            let parallel = case.measure_parallel(&pool, episodes)?;
+            rows.push(case.row(Mode::Parallel, threads, parallel));
+        }
+    }
+    Ok(BenchReport {
+        dt: Locomotion::default().physics.dt,
+        duration: options.duration,
+        preset: options.preset.clone(),
+        rows,
+    })
+}
+
+/// Whether `robot` is among the robots the options ask for.
+fn is_selected(options: &BenchOptions, robot: &str) -> bool {
+    match &options.robots {
+        Some(wanted) => wanted.iter().any(|w| w == robot),
+        None => true,
+    }
+}
+
+/// One standard robot, ready to be measured.
+struct Case<'a> {
+    name: &'static str,
+    terrain: &'static str,
+    robot: RobotSpec,
+    task: Locomotion,
+    preset: &'a str,
+}
+
+/// Episodes, steps and time of one measurement.
+struct Measurement {
+    episodes: usize,
+    steps: u64,
+    cpu_seconds: f64,
+    wall_seconds: f64,
+}
+
+impl<'a> Case<'a> {
+    /// The robot `name` with the options' preset, sensors and brain, on `terrain`.
+    fn new(name: &'static str, terrain: &'static str, options: &'a BenchOptions) -> Result<Self, BenchError> {
+        let robot = RobotSpec::from_short_forms(name, &options.preset, &options.sensors, &options.brain)?;
+        let mut task = Locomotion {
+            terrain: terrain.parse().map_err(BenchError::Terrain)?,
+            duration: options.duration,
+            ..Default::default()
+        };
+        if let Some(n) = options.substeps {
+            task.physics.substeps = n;
+        }
+        Ok(Case {
+            name,
+            terrain,
+            robot,
+            task,
+            preset: &options.preset,
+        })
+    }
+
+    /// Steps of one episode with episode seed `seed`.
+    fn episode(&self, seed: u64) -> Result<u64, EpisodeError> {
+        vsrlab_tasks::episode::run(&self.robot, &self.task, seed, TraceLevel::None).map(|o| o.steps)
+    }
+
+    /// A warm-up episode, then episodes on this thread until `min_cpu_seconds` of its CPU time.
+    fn measure_single(&self, min_cpu_seconds: f64) -> Result<Measurement, BenchError> {
+        self.episode(0)?;
+        let (c0, w0) = (thread_cpu_seconds(), Instant::now());
+        let (mut episodes, mut steps) = (0usize, 0u64);
+        while episodes == 0 || thread_cpu_seconds() - c0 < min_cpu_seconds {
+            steps += self.episode(episodes as u64)?;
+            episodes += 1;
+        }
+        Ok(Measurement {
+            episodes,
+            steps,
+            cpu_seconds: thread_cpu_seconds() - c0,
+            wall_seconds: w0.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// `episodes` episodes spread over `pool`, timed with the whole process's CPU time.
+    fn measure_parallel(&self, pool: &rayon::ThreadPool, episodes: usize) -> Result<Measurement, BenchError> {
+        let (c0, w0) = (process_cpu_seconds(), Instant::now());
+        let results: Result<Vec<u64>, EpisodeError> =
+            pool.install(|| (0..episodes).into_par_iter().map(|i| self.episode(i as u64)).collect());
+        let steps: u64 = results?.iter().sum();
+        Ok(Measurement {
+            episodes,
+            steps,
+            cpu_seconds: process_cpu_seconds() - c0,
+            wall_seconds: w0.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// The row of a measurement. Single-threaded rates use CPU time (robust to other load on the
+    /// machine); parallel rates use wall time (throughput of the whole machine); the
+    /// cross-simulator unit always uses CPU time.
+    fn row(&self, mode: Mode, threads: usize, m: Measurement) -> Row {
+        let voxels = self.robot.body.voxel_count();
+        let steps_per_s = match mode {
+            Mode::Single => m.steps as f64 / m.cpu_seconds,
+            Mode::Parallel => m.steps as f64 / m.wall_seconds,
+        };
+        let original = original_speed(self.preset, self.name);
+        Row {
+            robot: self.name.into(),
+            terrain: self.terrain.into(),
+            voxels,
+            mode,
+            threads,
+            episodes: m.episodes,
+            steps: m.steps,
+            cpu_seconds: m.cpu_seconds,
+            wall_seconds: m.wall_seconds,
+            steps_per_s,
+            voxel_steps_per_s: steps_per_s * voxels as f64,
+            voxel_seconds_per_cpu_s: voxels as f64 * m.steps as f64 * self.task.physics.dt / m.cpu_seconds,
+            original_steps_per_s: original.map(|o| o.steps_per_s),
+            original_version: original.map(|o| o.version),
+            ratio_to_original: original
+                .filter(|_| mode == Mode::Single)
+                .map(|o| steps_per_s / o.steps_per_s),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tiny(robots: &[&str]) -> BenchOptions {
+        BenchOptions {
+            duration: 1.0,
+            min_cpu_seconds: 0.0,
+            threads: Some(2),
+            robots: Some(robots.iter().map(|r| r.to_string()).collect()),
+            ..BenchOptions::default()
+        }
+    }
+
+    #[test]
+    fn original_speeds_are_those_of_the_version_each_preset_reproduces() {
+        assert_eq!(original_speed("2022", "worm-10x4").map(|o| o.version), Some("HEAD"));
+        assert_eq!(original_speed("2021", "biped-4x3").map(|o| o.steps_per_s), Some(1900.0));
+        assert_eq!(original_speed("2021", "box-10x10"), None);
+    }
+
+    #[test]
+    fn a_single_and_a_parallel_row_per_selected_robot() {
+        let report = run_bench(&tiny(&["worm-10x4", "biped-4x3"])).unwrap();
+        let rows: Vec<(&str, Mode)> = report.rows.iter().map(|r| (r.robot.as_str(), r.mode)).collect();
+        assert_eq!(
+            rows,
+            [
+                ("biped-4x3", Mode::Single),
+                ("biped-4x3", Mode::Parallel),
+                ("worm-10x4", Mode::Single),
+                ("worm-10x4", Mode::Parallel)
+            ]
+        );
+        for row in &report.rows {
+            assert_eq!(row.steps, 60 * row.episodes as u64);
+            assert_eq!(row.ratio_to_original.is_some(), row.mode == Mode::Single);
+        }
+        assert_eq!(report.speedup(&report.rows[0]), 1.0);
+    }
+
+    #[test]
+    fn a_wrong_short_form_is_a_robot_error() {
+        let options = BenchOptions {
+            brain: "nope".into(),
+            ..tiny(&["biped-4x3"])
+        };
+        let error = run_bench(&options).unwrap_err();
+        assert!(matches!(error, BenchError::Robot(ref e) if e.part() == vsrlab_tasks::RobotPart::Brain));
+    }
+}

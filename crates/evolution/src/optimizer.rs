@@ -10,6 +10,7 @@
 //! [`Sense::Maximize`] because robots maximise velocity. NaN is always the worst value.
 
 use crate::error::EvolutionError;
+use crate::search_state::SearchState;
 use serde::{Deserialize, Serialize};
 use std::cmp::Ordering;
 
@@ -159,8 +160,14 @@ pub trait Optimizer {
     /// The batch to evaluate now. Calling it again before [`Tell::tell`] returns the same batch.
     fn ask(&mut self) -> Vec<Candidate<Self::Genotype>>;
 
+    /// The run seed, counters, pending batch and best individual: the bookkeeping shared by all
+    /// optimizers, behind [`Optimizer::counters`] and [`Optimizer::best`].
+    fn search_state(&self) -> &SearchState<Self::Genotype>;
+
     /// Generations, evaluations and births so far.
-    fn counters(&self) -> &Counters;
+    fn counters(&self) -> &Counters {
+        self.search_state().counters()
+    }
 
     /// Completed generations (number of successful `tell`s).
     fn generation(&self) -> u64 {
@@ -182,7 +189,9 @@ pub trait Optimizer {
 
     /// The best individual told so far (lexicographic over objectives for multi-objective
     /// optimizers). With noisy fitness this is an optimistic estimate.
-    fn best(&self) -> Option<&Individual<Self::Genotype>>;
+    fn best(&self) -> Option<&Individual<Self::Genotype>> {
+        self.search_state().best()
+    }
 
     /// The current population: survivors (GA, SE, NSGA-II), the last evaluated batch (ES,
     /// CMA-ES) or the archive's elites (MAP-Elites).
@@ -248,21 +257,6 @@ pub(crate) fn collect_results<O>(
     Ok(slots.into_iter().map(|s| s.expect("all ids present")).collect())
 }
 
-/// A batch of candidates and their evaluations, in the same order.
-pub(crate) type Evaluated<G, O> = (Vec<Candidate<G>>, Vec<Evaluation<O>>);
-
-/// Checks `results` against the pending batch and, when they match, takes the batch: a failed
-/// check leaves the batch pending so that the caller may tell again.
-pub(crate) fn take_evaluated<G, O>(
-    pending: &mut Option<Vec<Candidate<G>>>,
-    results: Vec<Told<O>>,
-    n_objectives: usize,
-) -> Result<Evaluated<G, O>, EvolutionError> {
-    let batch = pending.as_ref().ok_or(EvolutionError::NoPendingBatch)?;
-    let evaluations = collect_results(results, batch.len(), n_objectives)?;
-    Ok((pending.take().expect("checked above"), evaluations))
-}
-
 /// Lexicographic comparison of two objective vectors, `Greater` meaning `a` is better.
 pub(crate) fn compare_lexicographic(a: &[f64], b: &[f64], senses: &[Sense]) -> Ordering {
     for ((&x, &y), sense) in a.iter().zip(b).zip(senses) {
@@ -272,37 +266,6 @@ pub(crate) fn compare_lexicographic(a: &[f64], b: &[f64], senses: &[Sense]) -> O
         }
     }
     Ordering::Equal
-}
-
-/// Replaces `best` by `candidate` when the candidate is strictly better (lexicographically).
-pub(crate) fn keep_best<G: Clone>(best: &mut Option<Individual<G>>, candidate: &Individual<G>, senses: &[Sense]) {
-    let better = match best {
-        None => true,
-        Some(b) => compare_lexicographic(&candidate.objectives, &b.objectives, senses) == Ordering::Greater,
-    };
-    if better {
-        *best = Some(candidate.clone());
-    }
-}
-
-/// Builds a batch of candidates for `generation` from genotypes (ids in order); genotypes at
-/// positions `first_reevaluation..` are flagged as re-evaluations.
-pub(crate) fn make_batch<G>(
-    seed: u64,
-    generation: u64,
-    genotypes: Vec<G>,
-    first_reevaluation: usize,
-) -> Vec<Candidate<G>> {
-    genotypes
-        .into_iter()
-        .enumerate()
-        .map(|(id, genotype)| Candidate {
-            id,
-            genotype,
-            seed: crate::rng::evaluation_seed(seed, generation, id as u64),
-            reevaluation: id >= first_reevaluation,
-        })
-        .collect()
 }
 
 /// Validates a configuration value, producing an [`EvolutionError::InvalidConfig`].

@@ -91,6 +91,11 @@ impl SeededRng {
         low + (high - low) * self.uniform()
     }
 
+    /// A vector of `n` independent variates uniform in `[low, high)`.
+    pub fn uniform_vec(&mut self, n: usize, low: f64, high: f64) -> Vec<f64> {
+        (0..n).map(|_| self.uniform_in(low, high)).collect()
+    }
+
     /// Uniform integer in `0..n` (Lemire's multiply-and-reject, unbiased). Panics if `n == 0`.
     pub fn below(&mut self, n: usize) -> usize {
         assert!(n > 0, "SeededRng::below(0)");

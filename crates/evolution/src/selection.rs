@@ -18,3 +18,11 @@ pub(crate) fn tournament(population_len: usize, size: usize, rng: &mut SeededRng
         .min()
         .expect("tournament size >= 1")
 }
+
+/// Indices of `individuals` ordered best-first by their first objective (stable: among equal
+/// fitnesses the smaller index comes first). The ranking of ES and CMA-ES samples.
+pub(crate) fn rank_best_first<G>(individuals: &[Individual<G>], sense: Sense) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..individuals.len()).collect();
+    order.sort_by(|&a, &b| sense.compare(individuals[b].fitness(), individuals[a].fitness()));
+    order
+}

@@ -15,7 +15,8 @@ pub use real_vector::RealVector;
 pub use sbx_polynomial::SbxPolynomial;
 
 use crate::error::EvolutionError;
-use crate::rng::SeededRng;
+use crate::rng::{SeededRng, Stream};
+use crate::search_state::SearchState;
 
 /// Sampling and variation of one kind of genotype. All randomness comes from the `rng` passed
 /// in, which the optimizer derives per candidate.
@@ -37,4 +38,37 @@ pub trait Representation {
     /// The crossover operator (including any mutation the representation applies after it):
     /// one child from two parents.
     fn crossover(&self, first: &Self::Genotype, second: &Self::Genotype, rng: &mut SeededRng) -> Self::Genotype;
+}
+
+/// The genotypes of a first batch: `count` random ones, genotype `i` drawn from the
+/// initialisation stream of index `i` in the current generation.
+pub(crate) fn random_genotypes<R: Representation>(
+    representation: &R,
+    state: &SearchState<R::Genotype>,
+    count: usize,
+) -> Vec<R::Genotype> {
+    (0..count)
+        .map(|i| representation.random(&mut state.rng(i, Stream::Initialisation)))
+        .collect()
+}
+
+/// One child: with probability `mutation_probability` the mutation of one parent, otherwise
+/// the crossover of two. `select` picks each parent, after the choice is drawn from `rng`.
+pub(crate) fn mutate_or_crossover<'a, R: Representation>(
+    representation: &R,
+    mutation_probability: f64,
+    rng: &mut SeededRng,
+    mut select: impl FnMut(&mut SeededRng) -> &'a R::Genotype,
+) -> R::Genotype
+where
+    R::Genotype: 'a,
+{
+    if rng.uniform() < mutation_probability {
+        let parent = select(rng);
+        representation.mutate(parent, rng)
+    } else {
+        let first = select(rng);
+        let second = select(rng);
+        representation.crossover(first, second, rng)
+    }
 }

@@ -85,9 +85,7 @@ impl Representation for RealVector {
     }
 
     fn random(&self, rng: &mut SeededRng) -> Vec<f64> {
-        (0..self.dimension)
-            .map(|_| rng.uniform_in(self.init_min, self.init_max))
-            .collect()
+        rng.uniform_vec(self.dimension, self.init_min, self.init_max)
     }
 
     fn mutate(&self, parent: &Vec<f64>, rng: &mut SeededRng) -> Vec<f64> {

@@ -111,9 +111,7 @@ impl Representation for SbxPolynomial {
     }
 
     fn random(&self, rng: &mut SeededRng) -> Vec<f64> {
-        (0..self.dimension)
-            .map(|_| rng.uniform_in(self.lower, self.upper))
-            .collect()
+        rng.uniform_vec(self.dimension, self.lower, self.upper)
     }
 
     fn mutate(&self, parent: &Vec<f64>, rng: &mut SeededRng) -> Vec<f64> {

@@ -15,10 +15,10 @@
 //! - The initial mean is uniform in `[init_min, init_max)` per gene (thesis: [−1, 1]).
 
 use crate::error::EvolutionError;
-use crate::optimizer::{
-    ensure, keep_best, make_batch, take_evaluated, Candidate, Counters, Individual, Optimizer, Sense, Tell, Told,
-};
+use crate::optimizer::{ensure, Candidate, Individual, Optimizer, Sense, Tell, Told};
 use crate::rng::{SeededRng, Stream};
+use crate::search_state::SearchState;
+use crate::selection::rank_best_first;
 use serde::{Deserialize, Serialize};
 
 /// Parameters of [`CanonicalEs`]. `CanonicalEsConfig::thesis(λ)` gives the thesis settings.
@@ -56,13 +56,11 @@ impl Default for CanonicalEsConfig {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct CanonicalEs {
     config: CanonicalEsConfig,
-    seed: u64,
-    counters: Counters,
+    #[serde(flatten)]
+    state: SearchState<Vec<f64>>,
     mean: Vec<f64>,
     /// The last evaluated batch.
     last: Vec<Individual<Vec<f64>>>,
-    pending: Option<Vec<Candidate<Vec<f64>>>>,
-    best: Option<Individual<Vec<f64>>>,
 }
 
 /// The log-rank weights of Chrabaszcz et al. for `mu` parents (they sum to 1).
@@ -85,9 +83,7 @@ impl CanonicalEs {
         ensure(config.sigma > 0.0, || "ES: sigma must be > 0".into())?;
         ensure(config.init_min <= config.init_max, || "ES: init range is empty".into())?;
         let mut rng = SeededRng::derive(seed, 0, 0, Stream::Initialisation);
-        let mean = (0..dimension)
-            .map(|_| rng.uniform_in(config.init_min, config.init_max))
-            .collect();
+        let mean = rng.uniform_vec(dimension, config.init_min, config.init_max);
         Ok(Self::with_mean(config, mean, seed))
     }
 
@@ -95,12 +91,9 @@ impl CanonicalEs {
     pub fn with_mean(config: CanonicalEsConfig, mean: Vec<f64>, seed: u64) -> Self {
         Self {
             config,
-            seed,
-            counters: Counters::default(),
+            state: SearchState::new(seed),
             mean,
             last: Vec::new(),
-            pending: None,
-            best: None,
         }
     }
 
@@ -111,8 +104,7 @@ impl CanonicalEs {
 
     /// The noise vector ε_i of sample `index` of the current generation.
     fn noise(&self, index: usize) -> Vec<f64> {
-        let mut rng = SeededRng::derive(self.seed, self.counters.generation, index as u64, Stream::Sampling);
-        rng.normal_vec(self.mean.len())
+        self.state.rng(index, Stream::Sampling).normal_vec(self.mean.len())
     }
 }
 
@@ -120,8 +112,8 @@ impl Optimizer for CanonicalEs {
     type Genotype = Vec<f64>;
 
     fn ask(&mut self) -> Vec<Candidate<Vec<f64>>> {
-        if let Some(pending) = &self.pending {
-            return pending.clone();
+        if let Some(pending) = self.state.pending_batch() {
+            return pending;
         }
         let sigma = self.config.sigma;
         let genotypes: Vec<Vec<f64>> = (0..self.config.population_size)
@@ -131,21 +123,15 @@ impl Optimizer for CanonicalEs {
             })
             .collect();
         let n = genotypes.len();
-        let batch = make_batch(self.seed, self.counters.generation, genotypes, n);
-        self.pending = Some(batch.clone());
-        batch
+        self.state.hand_out(genotypes, n)
     }
 
-    fn counters(&self) -> &Counters {
-        &self.counters
+    fn search_state(&self) -> &SearchState<Vec<f64>> {
+        &self.state
     }
 
     fn senses(&self) -> &[Sense] {
         std::slice::from_ref(&self.config.sense)
-    }
-
-    fn best(&self) -> Option<&Individual<Vec<f64>>> {
-        self.best.as_ref()
     }
 
     fn population(&self) -> Vec<&Individual<Vec<f64>>> {
@@ -155,24 +141,11 @@ impl Optimizer for CanonicalEs {
 
 impl<O> Tell<O> for CanonicalEs {
     fn tell(&mut self, results: Vec<Told<O>>) -> Result<(), EvolutionError> {
-        let (batch, evaluations) = take_evaluated(&mut self.pending, results, 1)?;
-        let generation = self.counters.generation;
-        self.last = batch
-            .iter()
-            .zip(evaluations)
-            .map(|(c, e)| Individual {
-                genotype: c.genotype.clone(),
-                objectives: e.objectives,
-                descriptor: e.descriptor,
-                birth_generation: generation,
-            })
-            .collect();
-        for individual in &self.last {
-            keep_best(&mut self.best, individual, std::slice::from_ref(&self.config.sense));
-        }
-        let sense = self.config.sense;
-        let mut order: Vec<usize> = (0..self.last.len()).collect();
-        order.sort_by(|&a, &b| sense.compare(self.last[b].fitness(), self.last[a].fitness()));
+        let (batch, evaluations) = self.state.take_told(results, 1)?;
+        self.last = self
+            .state
+            .born_all(&batch, evaluations, std::slice::from_ref(&self.config.sense));
+        let order = rank_best_first(&self.last, self.config.sense);
         let weights = log_rank_weights(self.config.parents);
         let mut step = vec![0.0; self.mean.len()];
         for (&index, w) in order.iter().zip(&weights) {
@@ -183,7 +156,7 @@ impl<O> Tell<O> for CanonicalEs {
         for (m, s) in self.mean.iter_mut().zip(step) {
             *m += self.config.sigma * s;
         }
-        self.counters.advance(&batch);
+        self.state.advance(&batch);
         Ok(())
     }
 }

@@ -27,10 +27,10 @@
 
 use crate::error::EvolutionError;
 use crate::linalg::symmetric_eigen_from;
-use crate::optimizer::{
-    ensure, keep_best, make_batch, take_evaluated, Candidate, Counters, Individual, Optimizer, Sense, Tell, Told,
-};
+use crate::optimizer::{ensure, Candidate, Individual, Optimizer, Sense, Tell, Told};
 use crate::rng::{SeededRng, Stream};
+use crate::search_state::SearchState;
+use crate::selection::rank_best_first;
 use serde::{Deserialize, Serialize};
 
 /// Parameters of [`CmaEs`]. Everything not listed uses the tutorial's defaults.
@@ -141,8 +141,8 @@ impl CmaParameters {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct CmaEs {
     config: CmaEsConfig,
-    seed: u64,
-    counters: Counters,
+    #[serde(flatten)]
+    state: SearchState<Vec<f64>>,
     lambda: usize,
     mean: Vec<f64>,
     sigma: f64,
@@ -157,8 +157,6 @@ pub struct CmaEs {
     /// Generation count at the last eigendecomposition.
     eigen_generation: u64,
     last: Vec<Individual<Vec<f64>>>,
-    pending: Option<Vec<Candidate<Vec<f64>>>>,
-    best: Option<Individual<Vec<f64>>>,
 }
 
 impl CmaEs {
@@ -170,9 +168,7 @@ impl CmaEs {
             "CMA-ES: init range is empty".into()
         })?;
         let mut rng = SeededRng::derive(seed, 0, 0, Stream::Initialisation);
-        let mean = (0..dimension)
-            .map(|_| rng.uniform_in(config.init_min, config.init_max))
-            .collect();
+        let mean = rng.uniform_vec(dimension, config.init_min, config.init_max);
         Self::with_mean(config, mean, seed)
     }
 
@@ -194,8 +190,7 @@ impl CmaEs {
         Ok(Self {
             sigma: config.sigma0,
             config,
-            seed,
-            counters: Counters::default(),
+            state: SearchState::new(seed),
             lambda,
             mean,
             covariance: identity.clone(),
@@ -205,8 +200,6 @@ impl CmaEs {
             path_c: vec![0.0; n],
             eigen_generation: 0,
             last: Vec::new(),
-            pending: None,
-            best: None,
         })
     }
 
@@ -232,8 +225,7 @@ impl CmaEs {
 
     /// The standard normal vector z_k of sample `index` of the current generation.
     fn z(&self, index: usize) -> Vec<f64> {
-        let mut rng = SeededRng::derive(self.seed, self.counters.generation, index as u64, Stream::Sampling);
-        rng.normal_vec(self.mean.len())
+        self.state.rng(index, Stream::Sampling).normal_vec(self.mean.len())
     }
 
     /// `B · (scales ∘ z)` (pass all-ones scales for `B z`).
@@ -256,7 +248,7 @@ impl CmaEs {
         let floor = (max * 1e-20).max(f64::MIN_POSITIVE);
         self.scales = values.iter().map(|v| v.max(floor).sqrt()).collect();
         self.basis = vectors;
-        self.eigen_generation = self.counters.generation;
+        self.eigen_generation = self.state.generation();
     }
 }
 
@@ -264,8 +256,8 @@ impl Optimizer for CmaEs {
     type Genotype = Vec<f64>;
 
     fn ask(&mut self) -> Vec<Candidate<Vec<f64>>> {
-        if let Some(pending) = &self.pending {
-            return pending.clone();
+        if let Some(pending) = self.state.pending_batch() {
+            return pending;
         }
         let genotypes: Vec<Vec<f64>> = (0..self.lambda)
             .map(|k| {
@@ -273,21 +265,15 @@ impl Optimizer for CmaEs {
                 self.mean.iter().zip(y).map(|(m, y)| m + self.sigma * y).collect()
             })
             .collect();
-        let batch = make_batch(self.seed, self.counters.generation, genotypes, self.lambda);
-        self.pending = Some(batch.clone());
-        batch
+        self.state.hand_out(genotypes, self.lambda)
     }
 
-    fn counters(&self) -> &Counters {
-        &self.counters
+    fn search_state(&self) -> &SearchState<Vec<f64>> {
+        &self.state
     }
 
     fn senses(&self) -> &[Sense] {
         std::slice::from_ref(&self.config.sense)
-    }
-
-    fn best(&self) -> Option<&Individual<Vec<f64>>> {
-        self.best.as_ref()
     }
 
     fn population(&self) -> Vec<&Individual<Vec<f64>>> {
@@ -297,28 +283,15 @@ impl Optimizer for CmaEs {
 
 impl<O> Tell<O> for CmaEs {
     fn tell(&mut self, results: Vec<Told<O>>) -> Result<(), EvolutionError> {
-        let (batch, evaluations) = take_evaluated(&mut self.pending, results, 1)?;
-        let generation = self.counters.generation;
+        let (batch, evaluations) = self.state.take_told(results, 1)?;
+        let generation = self.state.generation();
         let sense = self.config.sense;
-        self.last = batch
-            .iter()
-            .zip(evaluations)
-            .map(|(c, e)| Individual {
-                genotype: c.genotype.clone(),
-                objectives: e.objectives,
-                descriptor: e.descriptor,
-                birth_generation: generation,
-            })
-            .collect();
-        for individual in &self.last {
-            keep_best(&mut self.best, individual, std::slice::from_ref(&sense));
-        }
+        self.last = self.state.born_all(&batch, evaluations, std::slice::from_ref(&sense));
 
         let p = self.parameters();
         let n = self.mean.len();
         let nf = n as f64;
-        let mut order: Vec<usize> = (0..self.lambda).collect();
-        order.sort_by(|&a, &b| sense.compare(self.last[b].fitness(), self.last[a].fitness()));
+        let order = rank_best_first(&self.last, sense);
         // Ranked z and y = B D z of every sample.
         let zs: Vec<Vec<f64>> = order.iter().map(|&k| self.z(k)).collect();
         let ys: Vec<Vec<f64>> = zs.iter().map(|z| self.transform(z, true)).collect();
@@ -395,9 +368,9 @@ impl<O> Tell<O> for CmaEs {
             self.sigma *= (0.2 + p.c_sigma / p.d_sigma).exp();
         }
 
-        self.counters.advance(&batch);
+        self.state.advance(&batch);
         let gap = 1.0 / (10.0 * nf * (p.c_1 + p.c_mu));
-        if (self.counters.generation - self.eigen_generation) as f64 >= gap {
+        if (self.state.generation() - self.eigen_generation) as f64 >= gap {
             self.decompose();
         }
         Ok(())

@@ -16,11 +16,10 @@
 //!   not births, and the new value replaces the old one.
 
 use crate::error::EvolutionError;
-use crate::operators::Representation;
-use crate::optimizer::{
-    ensure, keep_best, make_batch, take_evaluated, Candidate, Counters, Individual, Optimizer, Sense, Tell, Told,
-};
-use crate::rng::{SeededRng, Stream};
+use crate::operators::{mutate_or_crossover, random_genotypes, Representation};
+use crate::optimizer::{ensure, Candidate, Individual, Optimizer, Sense, Tell, Told};
+use crate::rng::Stream;
+use crate::search_state::SearchState;
 use crate::selection::{sort_best_first, tournament};
 use serde::{Deserialize, Serialize};
 
@@ -63,12 +62,10 @@ impl Default for GaConfig {
 pub struct GeneticAlgorithm<R: Representation> {
     config: GaConfig,
     representation: R,
-    seed: u64,
-    counters: Counters,
+    #[serde(flatten)]
+    state: SearchState<R::Genotype>,
     /// Survivors, best first.
     population: Vec<Individual<R::Genotype>>,
-    pending: Option<Vec<Candidate<R::Genotype>>>,
-    best: Option<Individual<R::Genotype>>,
 }
 
 impl<R: Representation> GeneticAlgorithm<R> {
@@ -84,11 +81,8 @@ impl<R: Representation> GeneticAlgorithm<R> {
         Ok(Self {
             config,
             representation,
-            seed,
-            counters: Counters::default(),
+            state: SearchState::new(seed),
             population: Vec::new(),
-            pending: None,
-            best: None,
         })
     }
 
@@ -98,17 +92,15 @@ impl<R: Representation> GeneticAlgorithm<R> {
     }
 
     fn child(&self, index: usize) -> R::Genotype {
-        let mut rng = SeededRng::derive(self.seed, self.counters.generation, index as u64, Stream::Variation);
+        let mut rng = self.state.rng(index, Stream::Variation);
         let n = self.population.len();
         let k = self.config.tournament_size;
-        if rng.uniform() < self.config.mutation_probability {
-            let parent = &self.population[tournament(n, k, &mut rng)].genotype;
-            self.representation.mutate(parent, &mut rng)
-        } else {
-            let first = &self.population[tournament(n, k, &mut rng)].genotype;
-            let second = &self.population[tournament(n, k, &mut rng)].genotype;
-            self.representation.crossover(first, second, &mut rng)
-        }
+        mutate_or_crossover(
+            &self.representation,
+            self.config.mutation_probability,
+            &mut rng,
+            |rng| &self.population[tournament(n, k, rng)].genotype,
+        )
     }
 }
 
@@ -116,17 +108,11 @@ impl<R: Representation> Optimizer for GeneticAlgorithm<R> {
     type Genotype = R::Genotype;
 
     fn ask(&mut self) -> Vec<Candidate<R::Genotype>> {
-        if let Some(pending) = &self.pending {
-            return pending.clone();
+        if let Some(pending) = self.state.pending_batch() {
+            return pending;
         }
-        let generation = self.counters.generation;
         let (genotypes, first_reevaluation) = if self.population.is_empty() {
-            let genotypes: Vec<_> = (0..self.config.population_size)
-                .map(|i| {
-                    let mut rng = SeededRng::derive(self.seed, generation, i as u64, Stream::Initialisation);
-                    self.representation.random(&mut rng)
-                })
-                .collect();
+            let genotypes = random_genotypes(&self.representation, &self.state, self.config.population_size);
             let n = genotypes.len();
             (genotypes, n)
         } else {
@@ -137,21 +123,15 @@ impl<R: Representation> Optimizer for GeneticAlgorithm<R> {
             }
             (genotypes, n)
         };
-        let batch = make_batch(self.seed, generation, genotypes, first_reevaluation);
-        self.pending = Some(batch.clone());
-        batch
+        self.state.hand_out(genotypes, first_reevaluation)
     }
 
-    fn counters(&self) -> &Counters {
-        &self.counters
+    fn search_state(&self) -> &SearchState<R::Genotype> {
+        &self.state
     }
 
     fn senses(&self) -> &[Sense] {
         std::slice::from_ref(&self.config.sense)
-    }
-
-    fn best(&self) -> Option<&Individual<R::Genotype>> {
-        self.best.as_ref()
     }
 
     fn population(&self) -> Vec<&Individual<R::Genotype>> {
@@ -161,8 +141,8 @@ impl<R: Representation> Optimizer for GeneticAlgorithm<R> {
 
 impl<R: Representation, O> Tell<O> for GeneticAlgorithm<R> {
     fn tell(&mut self, results: Vec<Told<O>>) -> Result<(), EvolutionError> {
-        let (batch, evaluations) = take_evaluated(&mut self.pending, results, 1)?;
-        let generation = self.counters.generation;
+        let (batch, evaluations) = self.state.take_told(results, 1)?;
+        let generation = self.state.generation();
         let mut merged = Vec::with_capacity(batch.len() + self.population.len());
         let mut survivors = std::mem::take(&mut self.population);
         for (candidate, evaluation) in batch.iter().zip(evaluations) {
@@ -171,25 +151,20 @@ impl<R: Representation, O> Tell<O> for GeneticAlgorithm<R> {
                 survivor.objectives = evaluation.objectives;
                 continue;
             }
-            merged.push(Individual {
-                genotype: candidate.genotype.clone(),
-                objectives: evaluation.objectives,
-                descriptor: evaluation.descriptor,
-                birth_generation: generation,
-            });
+            merged.push(self.state.born(candidate, evaluation));
         }
         // Children first, so that on equal fitness the stable sort keeps them ahead of parents.
         merged.extend(survivors);
         let senses = std::slice::from_ref(&self.config.sense);
         for individual in &merged {
             if individual.birth_generation == generation || self.config.reevaluate_survivors {
-                keep_best(&mut self.best, individual, senses);
+                self.state.offer(individual, senses);
             }
         }
         sort_best_first(&mut merged, self.config.sense);
         merged.truncate(self.config.population_size);
         self.population = merged;
-        self.counters.advance(&batch);
+        self.state.advance(&batch);
         Ok(())
     }
 }
@@ -246,14 +221,8 @@ mod tests {
             ..GaConfig::default()
         };
         let mut ga = GeneticAlgorithm::new(config, RealVector::thesis(3), 1).unwrap();
-        for _ in 0..4 {
-            let batch = ga.ask();
-            let told = batch
-                .iter()
-                .map(|c| c.told(crate::Evaluation::single(sphere(&c.genotype))))
-                .collect();
-            ga.tell(told).unwrap();
-        }
+        let sphere = |c: &Candidate<Vec<f64>>| crate::Evaluation::single(sphere(&c.genotype));
+        run_to_budget(&mut ga, sphere, &Stop::generations(4)).unwrap();
         assert_eq!(ga.births(), 10 + 3 * 7);
         assert_eq!(ga.evaluations(), 10 + 3 * 7);
         let pop = ga.population();

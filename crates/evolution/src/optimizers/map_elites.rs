@@ -14,11 +14,10 @@
 //! goes to bin 0.
 
 use crate::error::EvolutionError;
-use crate::operators::Representation;
-use crate::optimizer::{
-    collect_results, ensure, keep_best, make_batch, Candidate, Counters, Individual, Optimizer, Sense, Tell, Told,
-};
-use crate::rng::{SeededRng, Stream};
+use crate::operators::{random_genotypes, Representation};
+use crate::optimizer::{ensure, Candidate, Individual, Optimizer, Sense, Tell, Told};
+use crate::rng::Stream;
+use crate::search_state::SearchState;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -79,12 +78,10 @@ impl MapElitesConfig {
 pub struct MapElites<R: Representation> {
     config: MapElitesConfig,
     representation: R,
-    seed: u64,
-    counters: Counters,
+    #[serde(flatten)]
+    state: SearchState<R::Genotype>,
     /// Elites by flat (row-major) cell index.
     archive: BTreeMap<u64, Individual<R::Genotype>>,
-    pending: Option<Vec<Candidate<R::Genotype>>>,
-    best: Option<Individual<R::Genotype>>,
 }
 
 impl<R: Representation> MapElites<R> {
@@ -108,11 +105,8 @@ impl<R: Representation> MapElites<R> {
         Ok(Self {
             config,
             representation,
-            seed,
-            counters: Counters::default(),
+            state: SearchState::new(seed),
             archive: BTreeMap::new(),
-            pending: None,
-            best: None,
         })
     }
 
@@ -162,43 +156,31 @@ impl<R: Representation> Optimizer for MapElites<R> {
     type Genotype = R::Genotype;
 
     fn ask(&mut self) -> Vec<Candidate<R::Genotype>> {
-        if let Some(pending) = &self.pending {
-            return pending.clone();
+        if let Some(pending) = self.state.pending_batch() {
+            return pending;
         }
-        let generation = self.counters.generation;
         let genotypes: Vec<R::Genotype> = if self.archive.is_empty() {
-            (0..self.config.initial_population)
-                .map(|i| {
-                    let mut rng = SeededRng::derive(self.seed, generation, i as u64, Stream::Initialisation);
-                    self.representation.random(&mut rng)
-                })
-                .collect()
+            random_genotypes(&self.representation, &self.state, self.config.initial_population)
         } else {
             let elites: Vec<&Individual<R::Genotype>> = self.archive.values().collect();
             (0..self.config.batch_size)
                 .map(|i| {
-                    let mut rng = SeededRng::derive(self.seed, generation, i as u64, Stream::Variation);
+                    let mut rng = self.state.rng(i, Stream::Variation);
                     let parent = elites[rng.below(elites.len())];
                     self.representation.mutate(&parent.genotype, &mut rng)
                 })
                 .collect()
         };
         let n = genotypes.len();
-        let batch = make_batch(self.seed, generation, genotypes, n);
-        self.pending = Some(batch.clone());
-        batch
+        self.state.hand_out(genotypes, n)
     }
 
-    fn counters(&self) -> &Counters {
-        &self.counters
+    fn search_state(&self) -> &SearchState<R::Genotype> {
+        &self.state
     }
 
     fn senses(&self) -> &[Sense] {
         std::slice::from_ref(&self.config.sense)
-    }
-
-    fn best(&self) -> Option<&Individual<R::Genotype>> {
-        self.best.as_ref()
     }
 
     fn population(&self) -> Vec<&Individual<R::Genotype>> {
@@ -208,27 +190,19 @@ impl<R: Representation> Optimizer for MapElites<R> {
 
 impl<R: Representation, O> Tell<O> for MapElites<R> {
     fn tell(&mut self, results: Vec<Told<O>>) -> Result<(), EvolutionError> {
-        let batch = self.pending.as_ref().ok_or(EvolutionError::NoPendingBatch)?;
-        let evaluations = collect_results(results, batch.len(), 1)?;
         let dims = self.config.axes.len();
-        if let Some((id, e)) = evaluations.iter().enumerate().find(|(_, e)| e.descriptor.len() != dims) {
-            return Err(EvolutionError::DescriptorLength {
-                id,
-                expected: dims,
-                got: e.descriptor.len(),
-            });
-        }
-        let batch = self.pending.take().expect("checked above");
-        let generation = self.counters.generation;
+        let (batch, evaluations) = self.state.take_told_checked(results, 1, |evaluations| {
+            match evaluations.iter().enumerate().find(|(_, e)| e.descriptor.len() != dims) {
+                Some((id, e)) => Err(EvolutionError::DescriptorLength {
+                    id,
+                    expected: dims,
+                    got: e.descriptor.len(),
+                }),
+                None => Ok(()),
+            }
+        })?;
         let sense = self.config.sense;
-        for (candidate, evaluation) in batch.iter().zip(evaluations) {
-            let individual = Individual {
-                genotype: candidate.genotype.clone(),
-                objectives: evaluation.objectives,
-                descriptor: evaluation.descriptor,
-                birth_generation: generation,
-            };
-            keep_best(&mut self.best, &individual, std::slice::from_ref(&sense));
+        for individual in self.state.born_all(&batch, evaluations, std::slice::from_ref(&sense)) {
             let key = self.flat_index(&self.cell_of(&individual.descriptor));
             let replace = match self.archive.get(&key) {
                 None => true,
@@ -240,7 +214,7 @@ impl<R: Representation, O> Tell<O> for MapElites<R> {
                 self.archive.insert(key, individual);
             }
         }
-        self.counters.advance(&batch);
+        self.state.advance(&batch);
         Ok(())
     }
 }

@@ -22,12 +22,11 @@
 //! identical points do not dominate each other. Unlike pymoo, duplicates are not eliminated.
 
 use crate::error::EvolutionError;
-use crate::operators::Representation;
-use crate::optimizer::{
-    ensure, keep_best, make_batch, take_evaluated, Candidate, Counters, Individual, Optimizer, Sense, Tell, Told,
-};
+use crate::operators::{mutate_or_crossover, random_genotypes, Representation};
+use crate::optimizer::{ensure, Candidate, Individual, Optimizer, Sense, Tell, Told};
 use crate::pareto::{crowding_distances, non_dominated_sort};
 use crate::rng::{SeededRng, Stream};
+use crate::search_state::SearchState;
 use serde::{Deserialize, Serialize};
 
 /// Parameters of [`Nsga2`].
@@ -64,14 +63,12 @@ impl Nsga2Config {
 pub struct Nsga2<R: Representation> {
     config: Nsga2Config,
     representation: R,
-    seed: u64,
-    counters: Counters,
+    #[serde(flatten)]
+    state: SearchState<R::Genotype>,
     /// Population in crowded order.
     population: Vec<Individual<R::Genotype>>,
     /// Non-domination rank of each population member (0 = first front).
     ranks: Vec<usize>,
-    pending: Option<Vec<Candidate<R::Genotype>>>,
-    best: Option<Individual<R::Genotype>>,
 }
 
 impl<R: Representation> Nsga2<R> {
@@ -88,12 +85,9 @@ impl<R: Representation> Nsga2<R> {
         Ok(Self {
             config,
             representation,
-            seed,
-            counters: Counters::default(),
+            state: SearchState::new(seed),
             population: Vec::new(),
             ranks: Vec::new(),
-            pending: None,
-            best: None,
         })
     }
 
@@ -161,48 +155,34 @@ impl<R: Representation> Optimizer for Nsga2<R> {
     type Genotype = R::Genotype;
 
     fn ask(&mut self) -> Vec<Candidate<R::Genotype>> {
-        if let Some(pending) = &self.pending {
-            return pending.clone();
+        if let Some(pending) = self.state.pending_batch() {
+            return pending;
         }
-        let generation = self.counters.generation;
         let genotypes: Vec<R::Genotype> = if self.population.is_empty() {
-            (0..self.config.population_size)
-                .map(|i| {
-                    let mut rng = SeededRng::derive(self.seed, generation, i as u64, Stream::Initialisation);
-                    self.representation.random(&mut rng)
-                })
-                .collect()
+            random_genotypes(&self.representation, &self.state, self.config.population_size)
         } else {
             (0..self.config.offspring_size)
                 .map(|i| {
-                    let mut rng = SeededRng::derive(self.seed, generation, i as u64, Stream::Variation);
-                    if rng.uniform() < self.config.mutation_probability {
-                        let parent = &self.population[self.tournament(&mut rng)].genotype;
-                        self.representation.mutate(parent, &mut rng)
-                    } else {
-                        let first = &self.population[self.tournament(&mut rng)].genotype;
-                        let second = &self.population[self.tournament(&mut rng)].genotype;
-                        self.representation.crossover(first, second, &mut rng)
-                    }
+                    let mut rng = self.state.rng(i, Stream::Variation);
+                    mutate_or_crossover(
+                        &self.representation,
+                        self.config.mutation_probability,
+                        &mut rng,
+                        |rng| &self.population[self.tournament(rng)].genotype,
+                    )
                 })
                 .collect()
         };
         let n = genotypes.len();
-        let batch = make_batch(self.seed, generation, genotypes, n);
-        self.pending = Some(batch.clone());
-        batch
+        self.state.hand_out(genotypes, n)
     }
 
-    fn counters(&self) -> &Counters {
-        &self.counters
+    fn search_state(&self) -> &SearchState<R::Genotype> {
+        &self.state
     }
 
     fn senses(&self) -> &[Sense] {
         &self.config.senses
-    }
-
-    fn best(&self) -> Option<&Individual<R::Genotype>> {
-        self.best.as_ref()
     }
 
     fn population(&self) -> Vec<&Individual<R::Genotype>> {
@@ -212,21 +192,11 @@ impl<R: Representation> Optimizer for Nsga2<R> {
 
 impl<R: Representation, O> Tell<O> for Nsga2<R> {
     fn tell(&mut self, results: Vec<Told<O>>) -> Result<(), EvolutionError> {
-        let (batch, evaluations) = take_evaluated(&mut self.pending, results, self.config.senses.len())?;
-        let generation = self.counters.generation;
+        let (batch, evaluations) = self.state.take_told(results, self.config.senses.len())?;
         let mut merged = std::mem::take(&mut self.population);
-        for (candidate, evaluation) in batch.iter().zip(evaluations) {
-            let individual = Individual {
-                genotype: candidate.genotype.clone(),
-                objectives: evaluation.objectives,
-                descriptor: evaluation.descriptor,
-                birth_generation: generation,
-            };
-            keep_best(&mut self.best, &individual, &self.config.senses);
-            merged.push(individual);
-        }
+        merged.extend(self.state.born_all(&batch, evaluations, &self.config.senses));
         self.survive(merged);
-        self.counters.advance(&batch);
+        self.state.advance(&batch);
         Ok(())
     }
 }

@@ -31,11 +31,10 @@
 
 use crate::error::EvolutionError;
 use crate::kmeans::{kmeans, normalise, squared_distance};
-use crate::operators::Representation;
-use crate::optimizer::{
-    ensure, keep_best, make_batch, take_evaluated, Candidate, Counters, Individual, Optimizer, Sense, Tell, Told,
-};
+use crate::operators::{mutate_or_crossover, random_genotypes, Representation};
+use crate::optimizer::{ensure, Candidate, Individual, Optimizer, Sense, Tell, Told};
 use crate::rng::{SeededRng, Stream};
+use crate::search_state::SearchState;
 use serde::{Deserialize, Serialize};
 
 /// Maps an evaluated individual to the feature vector used for speciation.
@@ -120,14 +119,12 @@ pub struct SpeciatedEvolver<R: Representation, P> {
     config: SeConfig,
     representation: R,
     provider: P,
-    seed: u64,
-    counters: Counters,
+    #[serde(flatten)]
+    state: SearchState<R::Genotype>,
     population: Vec<Member<R::Genotype>>,
     species: Vec<Species>,
     /// Population indices of the elites carried into the pending generation.
     pending_elites: Vec<usize>,
-    pending: Option<Vec<Candidate<R::Genotype>>>,
-    best: Option<Individual<R::Genotype>>,
 }
 
 impl<R: Representation, P> SpeciatedEvolver<R, P> {
@@ -146,13 +143,10 @@ impl<R: Representation, P> SpeciatedEvolver<R, P> {
             config,
             representation,
             provider,
-            seed,
-            counters: Counters::default(),
+            state: SearchState::new(seed),
             population: Vec::new(),
             species: Vec::new(),
             pending_elites: Vec::new(),
-            pending: None,
-            best: None,
         })
     }
 
@@ -179,7 +173,7 @@ impl<R: Representation, P> SpeciatedEvolver<R, P> {
     fn speciate(&mut self) {
         let sense = self.config.sense;
         let points = normalise(&self.population.iter().map(|m| m.features.clone()).collect::<Vec<_>>());
-        let mut rng = SeededRng::derive(self.seed, self.counters.generation, 0, Stream::Speciation);
+        let mut rng = self.state.rng(0, Stream::Speciation);
         let k = self.config.species.min(points.len());
         let (assignment, centroids) = kmeans(&points, k, self.config.kmeans_iterations, &mut rng);
         self.species = centroids
@@ -254,35 +248,32 @@ impl<R: Representation, P> Optimizer for SpeciatedEvolver<R, P> {
     type Genotype = R::Genotype;
 
     fn ask(&mut self) -> Vec<Candidate<R::Genotype>> {
-        if let Some(pending) = &self.pending {
-            return pending.clone();
+        if let Some(pending) = self.state.pending_batch() {
+            return pending;
         }
-        let generation = self.counters.generation;
         let genotypes: Vec<R::Genotype> = if self.population.is_empty() {
             self.pending_elites.clear();
-            (0..self.config.population_size)
-                .map(|i| {
-                    let mut rng = SeededRng::derive(self.seed, generation, i as u64, Stream::Initialisation);
-                    self.representation.random(&mut rng)
-                })
-                .collect()
+            random_genotypes(&self.representation, &self.state, self.config.population_size)
         } else {
             let (elites, slots) = self.plan();
             let mut children = Vec::new();
             for (species, &quota) in self.species.iter().zip(&slots) {
                 let members = &species.members;
-                let parent = |c: usize| &self.population[members[c % members.len()]].individual.genotype;
+                // Parents in round-robin order through the species, best first.
                 let mut cursor = 0;
+                let mut next_parent = |_: &mut SeededRng| {
+                    let parent = &self.population[members[cursor % members.len()]].individual.genotype;
+                    cursor += 1;
+                    parent
+                };
                 for _ in 0..quota {
-                    let mut rng = SeededRng::derive(self.seed, generation, children.len() as u64, Stream::Variation);
-                    let child = if rng.uniform() < self.config.mutation_probability {
-                        cursor += 1;
-                        self.representation.mutate(parent(cursor - 1), &mut rng)
-                    } else {
-                        cursor += 2;
-                        self.representation
-                            .crossover(parent(cursor - 2), parent(cursor - 1), &mut rng)
-                    };
+                    let mut rng = self.state.rng(children.len(), Stream::Variation);
+                    let child = mutate_or_crossover(
+                        &self.representation,
+                        self.config.mutation_probability,
+                        &mut rng,
+                        &mut next_parent,
+                    );
                     children.push(child);
                 }
             }
@@ -290,21 +281,15 @@ impl<R: Representation, P> Optimizer for SpeciatedEvolver<R, P> {
             children
         };
         let n = genotypes.len();
-        let batch = make_batch(self.seed, generation, genotypes, n);
-        self.pending = Some(batch.clone());
-        batch
+        self.state.hand_out(genotypes, n)
     }
 
-    fn counters(&self) -> &Counters {
-        &self.counters
+    fn search_state(&self) -> &SearchState<R::Genotype> {
+        &self.state
     }
 
     fn senses(&self) -> &[Sense] {
         std::slice::from_ref(&self.config.sense)
-    }
-
-    fn best(&self) -> Option<&Individual<R::Genotype>> {
-        self.best.as_ref()
     }
 
     fn population(&self) -> Vec<&Individual<R::Genotype>> {
@@ -318,8 +303,7 @@ where
     P: FeatureProvider<R::Genotype, O>,
 {
     fn tell(&mut self, results: Vec<Told<O>>) -> Result<(), EvolutionError> {
-        let (batch, evaluations) = take_evaluated(&mut self.pending, results, 1)?;
-        let generation = self.counters.generation;
+        let (batch, evaluations) = self.state.take_told(results, 1)?;
         let mut next: Vec<Member<R::Genotype>> = self
             .pending_elites
             .iter()
@@ -327,18 +311,13 @@ where
             .collect();
         for (candidate, evaluation) in batch.iter().zip(evaluations) {
             let features = self.provider.features(&candidate.genotype, &evaluation.outcome);
-            let individual = Individual {
-                genotype: candidate.genotype.clone(),
-                objectives: evaluation.objectives,
-                descriptor: evaluation.descriptor,
-                birth_generation: generation,
-            };
-            keep_best(&mut self.best, &individual, std::slice::from_ref(&self.config.sense));
+            let individual = self.state.born(candidate, evaluation);
+            self.state.offer(&individual, std::slice::from_ref(&self.config.sense));
             next.push(Member { individual, features });
         }
         self.population = next;
         self.pending_elites.clear();
-        self.counters.advance(&batch);
+        self.state.advance(&batch);
         self.speciate();
         Ok(())
     }

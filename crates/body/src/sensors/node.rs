@@ -121,23 +121,21 @@ impl Node {
 #[cfg(test)]
 pub(crate) mod testing {
     use super::*;
-    use vsrlab_physics::{Vec2, WorldBuilder, WorldSettings};
+    use vsrlab_physics::{WorldBuilder, WorldSettings};
 
     /// A world with nothing in it.
     pub(crate) fn empty_world() -> World {
         WorldBuilder::new(WorldSettings::default()).build().unwrap()
     }
 
-    /// A voxel at rest at the origin, upright, not touching anything.
+    /// A voxel at rest at the origin, upright, not touching anything ([`VoxelState::default`]).
     pub(crate) fn still_state() -> VoxelState {
-        VoxelState {
-            polygon: [Vec2::ZERO; 4],
-            area_ratio: 1.0,
-            center: Vec2::ZERO,
-            velocity: Vec2::ZERO,
-            angle: 0.0,
-            touching: false,
-        }
+        VoxelState::default()
+    }
+
+    /// What a sensor sees of `state` in `world` at time `t`.
+    pub(crate) fn frame<'a>(world: &'a World, state: &'a VoxelState, t: f64) -> Frame<'a> {
+        Frame { world, state, t }
     }
 
     /// A site at the grid's centre, sampled at 60 Hz, with noise from episode seed 0.
@@ -147,6 +145,14 @@ pub(crate) mod testing {
             dt: 1.0 / 60.0,
             noise: NoiseKey::new(0, 0, 0),
         }
+    }
+
+    /// Builds `spec` at [`site`] and reads it once, seeing `state` at time `t` in an empty world
+    /// (readings it does not write stay NaN).
+    pub(crate) fn read_once(spec: &SensorSpec, state: &VoxelState, t: f64) -> Vec<f64> {
+        let mut out = vec![f64::NAN; spec.dimension()];
+        Node::build(spec, site()).sense(&frame(&empty_world(), state, t), &mut out);
+        out
     }
 
     /// Builds `spec` and reads it once per state, at times dt, 2dt, …; returns every reading.
@@ -159,14 +165,7 @@ pub(crate) mod testing {
             .map(|state| {
                 t += dt;
                 let mut out = vec![0.0; spec.dimension()];
-                node.sense(
-                    &Frame {
-                        world: &world,
-                        state,
-                        t,
-                    },
-                    &mut out,
-                );
+                node.sense(&frame(&world, state, t), &mut out);
                 out
             })
             .collect()

@@ -180,7 +180,7 @@ impl SensorKind for NoisySpec {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sensors::node::testing::{empty_world, site, still_state};
+    use crate::sensors::node::testing::{empty_world, frame, site, still_state};
     use crate::sensors::spec::SensorSpec;
 
     fn draws(key: NoiseKey, n: usize) -> Vec<f64> {
@@ -221,14 +221,7 @@ mod tests {
         let state = still_state();
         let read = |node: &mut Node| {
             let mut out = [0.0];
-            node.sense(
-                &Frame {
-                    world: &world,
-                    state: &state,
-                    t: 0.0,
-                },
-                &mut out,
-            );
+            node.sense(&frame(&world, &state, 0.0), &mut out);
             out[0]
         };
         let first: Vec<f64> = (0..2000).map(|_| read(&mut node)).collect();

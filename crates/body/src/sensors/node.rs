@@ -17,6 +17,7 @@ use super::spec::SensorSpec;
 use super::touch::Touch;
 use super::trend::Trend;
 use super::velocity::Velocity;
+use super::wrapper::Wrapped;
 use crate::robot::VoxelState;
 use vsrlab_physics::World;
 
@@ -52,11 +53,11 @@ pub(crate) enum Node {
     Cpg(Cpg),
     ConstantPosition(ConstantPosition),
     Malfunction(Malfunction),
-    Average(Average),
-    Trend(Trend),
-    Normalization(Normalization),
-    SoftNormalization(SoftNormalization),
-    Noisy(Noisy),
+    Average(Wrapped<Average>),
+    Trend(Wrapped<Trend>),
+    Normalization(Wrapped<Normalization>),
+    SoftNormalization(Wrapped<SoftNormalization>),
+    Noisy(Wrapped<Noisy>),
 }
 
 impl Node {
@@ -90,8 +91,8 @@ impl Node {
             Node::Lidar(s) => s.reset(),
             Node::Average(s) => s.reset(),
             Node::Trend(s) => s.reset(),
-            Node::Normalization(s) => s.inner_mut().reset(),
-            Node::SoftNormalization(s) => s.inner_mut().reset(),
+            Node::Normalization(s) => s.reset(),
+            Node::SoftNormalization(s) => s.reset(),
             Node::Noisy(s) => s.reset(),
             Node::AreaRatio(_)
             | Node::Touch(_)

@@ -3,10 +3,10 @@
 //! inclusive window. With a single sample (the first step) it reads 0. Its domain is
 //! ±extent/window per reading, where extent is the width of the inner sensor's domain.
 
-use super::kind::SensorKind;
-use super::node::{Frame, Node, Site};
+use super::node::{Node, Site};
 use super::spec::SensorSpec;
 use super::window::{check_window, TimeWindow};
+use super::wrapper::{Transform, Wrapped, WrapperKind};
 use serde::{Deserialize, Serialize};
 
 /// Declared domain for an inner domain `(lo, hi)` over `window` seconds.
@@ -18,26 +18,22 @@ pub(crate) fn domain((lo, hi): (f64, f64), window: f64) -> (f64, f64) {
 /// Slope between the oldest and the newest sample of a time window.
 #[derive(Debug, Clone)]
 pub(crate) struct Trend {
-    inner: Box<Node>,
     samples: TimeWindow,
-    /// The inner sensor's current readings.
-    scratch: Vec<f64>,
 }
 
 impl Trend {
-    /// The trend of the `dim` readings of `inner` over `window` seconds, sampled every `dt` seconds.
-    pub(crate) fn new(inner: Box<Node>, dim: usize, window: f64, dt: f64) -> Trend {
+    /// The trend of `dim` readings over `window` seconds, sampled every `dt` seconds.
+    pub(crate) fn new(dim: usize, window: f64, dt: f64) -> Trend {
         Trend {
-            inner,
             samples: TimeWindow::new(window, dim, dt),
-            scratch: vec![0.0; dim],
         }
     }
+}
 
-    /// Reads the inner sensor, records the sample and writes the slope.
-    pub(crate) fn sense(&mut self, frame: &Frame, out: &mut [f64]) {
-        self.inner.sense(frame, &mut self.scratch);
-        self.samples.push(frame.t, &self.scratch);
+impl Transform for Trend {
+    /// Records the sample and writes the slope.
+    fn apply(&mut self, t: f64, out: &mut [f64]) {
+        self.samples.push(t, out);
         let last = self.samples.len() - 1;
         let elapsed = self.samples.time(last) - self.samples.time(0);
         if elapsed > 0.0 {
@@ -51,14 +47,8 @@ impl Trend {
     }
 
     /// Empties the window.
-    pub(crate) fn reset(&mut self) {
+    fn reset(&mut self) {
         self.samples.clear();
-        self.inner.reset();
-    }
-
-    /// The sensor whose trend this is.
-    pub(crate) fn inner(&self) -> &Node {
-        &self.inner
     }
 }
 
@@ -72,27 +62,23 @@ pub struct TrendSpec {
     pub inner: Box<SensorSpec>,
 }
 
-impl SensorKind for TrendSpec {
-    fn dimension(&self) -> usize {
-        self.inner.dimension()
+impl WrapperKind for TrendSpec {
+    fn inner(&self) -> &SensorSpec {
+        &self.inner
     }
 
-    fn domains(&self) -> Vec<(f64, f64)> {
-        self.inner
-            .domains()
-            .into_iter()
-            .map(|d| domain(d, self.window))
-            .collect()
+    /// ±extent/window.
+    fn domain(&self, inner: (f64, f64)) -> (f64, f64) {
+        domain(inner, self.window)
     }
 
-    fn validate(&self, noisy_depth: usize) -> Result<(), String> {
-        check_window(self.window)?;
-        self.inner.validate_at(noisy_depth)
+    fn check(&self) -> Result<(), String> {
+        check_window(self.window)
     }
 
-    fn build(&self, site: Site) -> Node {
-        let inner = Box::new(Node::build(&self.inner, site));
-        Node::Trend(Trend::new(inner, self.inner.dimension(), self.window, site.dt))
+    fn wrap(&self, inner: Box<Node>, site: Site) -> Node {
+        let trend = Trend::new(self.inner.dimension(), self.window, site.dt);
+        Node::Trend(Wrapped::new(inner, trend))
     }
 }
 

@@ -574,20 +574,9 @@ mod tests {
         let block: Vec<f64> = (0..n_w).map(|i| ((i * 37 % 23) as f64 / 11.5) - 1.0).collect();
         let all: Vec<f64> = (0..15).flat_map(|_| block.iter().copied()).collect();
         let rpv = vec![r; m.voxel_count()];
-        let mut ho = DistributedMlpController::new(
-            &m,
-            &rpv,
-            &config(s, &hidden, Activation::Tanh, true, Layout::Homogeneous),
-            &block,
-        )
-        .unwrap();
-        let mut he = DistributedMlpController::new(
-            &m,
-            &rpv,
-            &config(s, &hidden, Activation::Tanh, true, Layout::Heterogeneous),
-            &all,
-        )
-        .unwrap();
+        let [mut ho, mut he] = [(Layout::Homogeneous, &block), (Layout::Heterogeneous, &all)].map(|(layout, w)| {
+            DistributedMlpController::new(&m, &rpv, &config(s, &hidden, Activation::Tanh, true, layout), w).unwrap()
+        });
         let n = m.voxel_count();
         let (mut a1, mut a2) = (vec![0.0; n], vec![0.0; n]);
         for k in 1..=50 {

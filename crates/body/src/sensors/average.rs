@@ -95,20 +95,14 @@ impl WrapperKind for AverageSpec {
 
 #[cfg(test)]
 mod tests {
-    use crate::sensors::node::testing::{run, still_state};
+    use crate::sensors::node::testing::{run, states_from};
     use crate::sensors::spec::SensorSpec;
 
     #[test]
     fn averages_touch_over_an_inclusive_quarter_second() {
         let spec = SensorSpec::Touch.averaged(0.25);
         // 60 steps, touching during the last 8 only
-        let states: Vec<_> = (0..60)
-            .map(|k| {
-                let mut s = still_state();
-                s.touching = k >= 52;
-                s
-            })
-            .collect();
+        let states = states_from(0..60, |s, k| s.touching = k >= 52);
         let readings = run(&spec, &states, 1.0 / 60.0);
         // the window holds 16 samples at 60 Hz, 8 of which touch
         assert!((readings[59][0] - 0.5).abs() < 1e-12, "{:?}", readings[59]);
@@ -127,13 +121,7 @@ mod tests {
         })
         .averaged(0.5);
         let dt = 1.0 / 60.0;
-        let states: Vec<_> = (1..=120)
-            .map(|k| {
-                let mut s = still_state();
-                s.velocity = vsrlab_physics::Vec2::new(k as f64, -2.0);
-                s
-            })
-            .collect();
+        let states = states_from(1..=120, |s, k| s.velocity = vsrlab_physics::Vec2::new(k as f64, -2.0));
         let last = run(&spec, &states, dt).pop().unwrap();
         // samples k = 90 … 120 (31 of them): mean 105
         assert!(

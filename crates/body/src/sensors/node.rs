@@ -134,6 +134,21 @@ pub(crate) mod testing {
         VoxelState::default()
     }
 
+    /// One state per item of `items`: a [`still_state`] changed by `set` according to the item.
+    pub(crate) fn states_from<T>(
+        items: impl IntoIterator<Item = T>,
+        set: impl Fn(&mut VoxelState, T),
+    ) -> Vec<VoxelState> {
+        items
+            .into_iter()
+            .map(|item| {
+                let mut state = still_state();
+                set(&mut state, item);
+                state
+            })
+            .collect()
+    }
+
     /// What a sensor sees of `state` in `world` at time `t`.
     pub(crate) fn frame<'a>(world: &'a World, state: &'a VoxelState, t: f64) -> Frame<'a> {
         Frame { world, state, t }

@@ -66,7 +66,7 @@ impl WrapperKind for NormalizationSpec {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sensors::node::testing::{run, still_state};
+    use crate::sensors::node::testing::{run, states_from};
     use crate::sensors::spec::SensorSpec;
 
     #[test]
@@ -80,14 +80,7 @@ mod tests {
     #[test]
     fn normalises_the_area_ratio() {
         let spec = SensorSpec::AreaRatio.normalized();
-        let states: Vec<_> = [0.4, 0.75, 1.5, 2.0]
-            .iter()
-            .map(|&a| {
-                let mut s = still_state();
-                s.area_ratio = a;
-                s
-            })
-            .collect();
+        let states = states_from([0.4, 0.75, 1.5, 2.0], |s, a| s.area_ratio = a);
         let r: Vec<f64> = run(&spec, &states, 1.0 / 60.0).into_iter().map(|v| v[0]).collect();
         assert_eq!(r, vec![0.0, 0.25, 1.0, 1.0]);
     }

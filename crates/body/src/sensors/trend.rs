@@ -85,7 +85,7 @@ impl WrapperKind for TrendSpec {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sensors::node::testing::{run, still_state};
+    use crate::sensors::node::testing::{run, states_from};
     use crate::sensors::spec::SensorSpec;
     use crate::sensors::{Axes, VelocitySpec};
     use vsrlab_physics::Vec2;
@@ -99,14 +99,10 @@ mod tests {
         })
         .trend(0.5);
         let dt = 1.0 / 60.0;
-        let states: Vec<_> = (1..=90)
-            .map(|k| {
-                let t = k as f64 * dt;
-                let mut s = still_state();
-                s.velocity = Vec2::new(3.0 * t + 1.0, -0.5 * t);
-                s
-            })
-            .collect();
+        let states = states_from(1..=90, |s, k| {
+            let t = k as f64 * dt;
+            s.velocity = Vec2::new(3.0 * t + 1.0, -0.5 * t);
+        });
         let readings = run(&spec, &states, dt);
         assert_eq!(readings[0], vec![0.0, 0.0], "one sample: no trend yet");
         for r in &readings[1..] {
@@ -119,13 +115,7 @@ mod tests {
         // a step at step 10: the slope is nonzero while the step is inside the 0.5 s window, then 0
         let spec = SensorSpec::AreaRatio.trend(0.5);
         let dt = 1.0 / 60.0;
-        let states: Vec<_> = (0..80)
-            .map(|k| {
-                let mut s = still_state();
-                s.area_ratio = if k < 10 { 1.0 } else { 1.2 };
-                s
-            })
-            .collect();
+        let states = states_from(0..80, |s, k| s.area_ratio = if k < 10 { 1.0 } else { 1.2 });
         let readings = run(&spec, &states, dt);
         assert!(readings[20][0] > 0.0);
         assert_eq!(readings[79][0], 0.0);

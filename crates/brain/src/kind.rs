@@ -1,6 +1,6 @@
 //! [`BrainKind`]: the behaviour every kind of brain description provides.
 
-use crate::{BrainError, Controller};
+use crate::{BrainError, BrainSpec, Controller};
 use std::fmt::Debug;
 use vsrlab_body::Morphology;
 
@@ -9,27 +9,45 @@ use vsrlab_body::Morphology;
 ///
 /// Each controller module has a description struct implementing this trait (for example
 /// [`crate::MlpSpec`] next to [`crate::CentralizedMlpController`]); [`crate::BrainSpec`] wraps them
-/// all and delegates to this trait. The default methods are those of a parameterless brain.
+/// all and delegates to this trait. The default methods are those of a parameterless brain, or of a
+/// wrapper (`step`, `smoothed`) when [`BrainKind::inner`] names the brain it wraps: a wrapper has no
+/// parameters of its own, its parameters are the inner brain's.
 pub trait BrainKind: Debug + Send + Sync {
     /// The `kind` tag, as in configs (the kebab-case name of the [`crate::BrainSpec`] variant).
     fn name(&self) -> &'static str;
 
-    /// Number of parameters this brain needs for a body whose voxels (voxel order) have these
-    /// readings counts. Errors when the shape does not fit the body. Default: 0.
-    fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
-        let _ = (morphology, readings_per_voxel);
-        Ok(0)
+    /// The brain this one wraps, for a wrapper. Default: none.
+    fn inner(&self) -> Option<&BrainSpec> {
+        None
     }
 
-    /// The parameter vector (empty for an unfilled template). Default: empty.
+    /// [`BrainKind::inner`], mutable. Default: none.
+    fn inner_mut(&mut self) -> Option<&mut BrainSpec> {
+        None
+    }
+
+    /// Number of parameters this brain needs for a body whose voxels (voxel order) have these
+    /// readings counts. Errors when the shape does not fit the body. Default: the inner brain's, or
+    /// 0.
+    fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
+        match self.inner() {
+            Some(inner) => inner.parameter_count(morphology, readings_per_voxel),
+            None => Ok(0),
+        }
+    }
+
+    /// The parameter vector (empty for an unfilled template). Default: the inner brain's, or empty.
     fn parameters(&self) -> &[f64] {
-        &[]
+        self.inner().map_or(&[], BrainSpec::parameters)
     }
 
     /// Replaces the parameter vector; errors when a value is not finite (the count for a body is
-    /// checked by [`BrainKind::build`]). Default: only an empty vector is accepted, an error on
-    /// field `parameters` otherwise.
+    /// checked by [`BrainKind::build`]). Default: passed to the inner brain; without one, only an
+    /// empty vector is accepted, an error on field `parameters` otherwise.
     fn set_parameters(&mut self, params: &[f64]) -> Result<(), BrainError> {
+        if let Some(inner) = self.inner_mut() {
+            return inner.as_kind_mut().set_parameters(params);
+        }
         if params.is_empty() {
             Ok(())
         } else {

@@ -27,7 +27,8 @@
 //!    [`Controller`]; a description struct `MyBrainSpec` deriving `Debug, Clone, PartialEq,
 //!    Serialize, Deserialize` with `#[serde(deny_unknown_fields)]`; `impl BrainKind for
 //!    MyBrainSpec` (`name` is the kebab-case variant name; the other methods default to a
-//!    parameterless brain); and `pub const SHORT_FORM: ShortForm` with its parse function.
+//!    parameterless brain, or to a wrapper of the brain its `inner` names); and
+//!    `pub const SHORT_FORM: ShortForm` with its parse function.
 //! 2. Register it in `spec.rs`: a variant `MyBrain(MyBrainSpec)` of [`BrainSpec`] (its JSON/TOML
 //!    tag is `"my-brain"`) and one arm in each of [`BrainSpec::as_kind`] and
 //!    [`BrainSpec::as_kind_mut`].
@@ -45,6 +46,8 @@ mod kind;
 pub mod mlp;
 mod short_form;
 mod spec;
+#[cfg(test)]
+mod testing;
 mod validation;
 
 pub use controller::Controller;

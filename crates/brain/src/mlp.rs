@@ -212,6 +212,7 @@ impl Mlp {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testing::assert_invalid;
     use proptest::prelude::*;
 
     #[test]
@@ -293,7 +294,7 @@ mod tests {
         assert!(err.contains("weights") && err.contains("value 7 is NaN"), "{err}");
         for sizes in [vec![4], vec![4, 0, 3], vec![4, 0]] {
             let err = Mlp::new(sizes, Activation::Tanh, true, vec![]).unwrap_err();
-            assert!(matches!(err, BrainError::Invalid { field: "hidden", .. }), "{err}");
+            assert_invalid(&err, "hidden");
         }
     }
 

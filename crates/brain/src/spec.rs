@@ -189,11 +189,8 @@ impl BrainSpec {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testing::{assert_invalid, biped};
     use crate::{Activation, Layout, PhaseLayout};
-
-    fn biped() -> (Morphology, Vec<usize>) {
-        (Morphology::named("biped-4x3").unwrap(), vec![4; 10])
-    }
 
     fn homogeneous() -> BrainSpec {
         BrainSpec::parse("distributed-mlp").unwrap()
@@ -461,21 +458,12 @@ mod tests {
         );
         assert_eq!(BrainSpec::default().with_parameters(&[]), Ok(BrainSpec::default()));
         let err = homogeneous().with_parameters(&[0.0, f64::NAN]).unwrap_err();
-        assert!(matches!(err, BrainError::Invalid { field: "weights", .. }), "{err}");
+        assert_invalid(&err, "weights");
         let err = BrainSpec::parse("phase-grid")
             .unwrap()
             .with_parameters(&[f64::INFINITY])
             .unwrap_err();
-        assert!(
-            matches!(
-                err,
-                BrainError::Invalid {
-                    field: "parameters",
-                    ..
-                }
-            ),
-            "{err}"
-        );
+        assert_invalid(&err, "parameters");
     }
 
     #[test]

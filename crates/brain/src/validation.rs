@@ -38,6 +38,14 @@ pub(crate) fn check_finite(field: &'static str, values: &[f64]) -> Result<(), Br
     }
 }
 
+/// Replaces the parameter vector `target` with `params`, unless a value is not finite
+/// ([`check_finite`]).
+pub(crate) fn set_finite(field: &'static str, target: &mut Vec<f64>, params: &[f64]) -> Result<(), BrainError> {
+    check_finite(field, params)?;
+    *target = params.to_vec();
+    Ok(())
+}
+
 /// Errors unless a parameter vector has the count this body and sensors need.
 pub(crate) fn check_count(field: &'static str, expected: usize, got: usize) -> Result<(), BrainError> {
     if expected == got {

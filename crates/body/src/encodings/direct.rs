@@ -65,6 +65,7 @@ impl DirectBody {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::encodings::tests::check_decoding;
     use proptest::prelude::*;
 
     /// Genes from rows of '#' (gene 1) and '.' (gene −1), top row first, as a person draws them.
@@ -73,6 +74,11 @@ mod tests {
             .rev()
             .flat_map(|r| r.chars().map(|c| if c == '#' { 1.0 } else { -1.0 }))
             .collect()
+    }
+
+    /// The rows of the body `body` decodes from genes drawn as `rows` ([`genes_from_rows`]).
+    fn decoded_rows(body: &DirectBody, rows: &[&str]) -> Vec<String> {
+        body.decode(&genes_from_rows(rows)).unwrap().to_rows()
     }
 
     #[test]
@@ -97,21 +103,20 @@ mod tests {
     #[test]
     fn known_grids_decode_to_known_bodies() {
         let body = DirectBody::new(5, 4);
-        let m = body
-            .decode(&genes_from_rows(&["#####", "#.#.#", "#...#", "#...."]))
-            .unwrap();
-        assert_eq!(m.to_rows(), ["#####", "#.#.#", "#...#", "#...."]);
+        let connected = ["#####", "#.#.#", "#...#", "#...."];
+        assert_eq!(decoded_rows(&body, &connected), connected);
         // The detached bottom-right cell and the top-left pair are dropped.
-        let m = body
-            .decode(&genes_from_rows(&["##...", "...##", ".###.", "#...#"]))
-            .unwrap();
-        assert_eq!(m.to_rows(), [".....", "...##", ".###.", "....."]);
+        assert_eq!(
+            decoded_rows(&body, &["##...", "...##", ".###.", "#...#"]),
+            [".....", "...##", ".###.", "....."]
+        );
         // Diagonal neighbours are not connected: a checkerboard keeps a single voxel, the one
         // first in the column-major scan, (0, 0).
-        let m = DirectBody::new(3, 3)
-            .decode(&genes_from_rows(&["#.#", ".#.", "#.#"]))
-            .unwrap();
-        assert_eq!(m.to_rows(), ["...", "...", "#.."]);
+        let checkerboard = ["#.#", ".#.", "#.#"];
+        assert_eq!(
+            decoded_rows(&DirectBody::new(3, 3), &checkerboard),
+            ["...", "...", "#.."]
+        );
     }
 
     #[test]
@@ -126,29 +131,25 @@ mod tests {
     fn tie_rule_keeps_the_component_first_in_column_major_order() {
         // Two 3-voxel pieces. Row-major from the bottom would meet the right piece first
         // (it holds (3,0)); the original's column-major scan meets the left piece first ((0,1)).
-        let m = DirectBody::new(4, 3)
-            .decode(&genes_from_rows(&["##..", "#..#", "..##"]))
-            .unwrap();
-        assert_eq!(m.to_rows(), ["##..", "#...", "...."]);
+        let two_pieces = ["##..", "#..#", "..##"];
+        assert_eq!(
+            decoded_rows(&DirectBody::new(4, 3), &two_pieces),
+            ["##..", "#...", "...."]
+        );
     }
 
     #[test]
     fn empty_grid_is_an_error_or_the_original_single_voxel() {
-        let genes = vec![-1.0; 12];
-        assert_eq!(DirectBody::new(4, 3).decode(&genes), Err(EncodingError::Empty));
-        let m = DirectBody::new(4, 3)
-            .with_on_empty(OnEmpty::SingleVoxel)
-            .decode(&genes)
-            .unwrap();
-        assert_eq!(m.to_rows(), ["....", "....", "#..."]);
+        let empty = ["....", "....", "...."];
+        assert_eq!(
+            DirectBody::new(4, 3).decode(&genes_from_rows(&empty)),
+            Err(EncodingError::Empty)
+        );
+        let fallback = DirectBody::new(4, 3).with_on_empty(OnEmpty::SingleVoxel);
+        assert_eq!(decoded_rows(&fallback, &empty), ["....", "....", "#..."]);
         // The fallback only applies to an empty grid.
-        let mut genes = genes;
-        genes[11] = 1.0;
-        let m = DirectBody::new(4, 3)
-            .with_on_empty(OnEmpty::SingleVoxel)
-            .decode(&genes)
-            .unwrap();
-        assert_eq!(m.to_rows(), ["...#", "....", "...."]);
+        let corner = ["...#", "....", "...."];
+        assert_eq!(decoded_rows(&fallback, &corner), corner);
     }
 
     #[test]
@@ -198,23 +199,7 @@ mod tests {
         #[test]
         fn decoded_body_is_connected_in_grid_and_deterministic((w, h, genes) in grid_and_genes()) {
             let body = DirectBody::new(w, h);
-            match body.decode(&genes) {
-                Ok(m) => {
-                    prop_assert_eq!((m.width(), m.height()), (w, h));
-                    // Connected and non-empty: from_cells re-validates.
-                    let cells: Vec<bool> = (0..w * h).map(|i| m.has(i % w, i / w)).collect();
-                    prop_assert!(Morphology::from_cells(w, h, cells).is_ok());
-                    // Only cells with a positive gene are voxels.
-                    for (x, y) in m.voxels() {
-                        prop_assert!(genes[y * w + x] > 0.0);
-                    }
-                    prop_assert_eq!(body.decode(&genes).unwrap(), m);
-                }
-                Err(e) => {
-                    prop_assert_eq!(e, EncodingError::Empty);
-                    prop_assert!(genes.iter().all(|&g| g <= 0.0));
-                }
-            }
+            check_decoding(&body.into(), &genes, &body.cells(&genes).unwrap())?;
         }
 
         #[test]

@@ -247,6 +247,7 @@ impl GmmBody {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::encodings::tests::check_decoding;
     use proptest::prelude::*;
 
     const CENTRED_BLOB: [&str; 10] = [
@@ -528,25 +529,7 @@ mod tests {
     proptest! {
         #[test]
         fn decoded_body_is_connected_in_grid_and_deterministic((body, genes) in config_and_genes()) {
-            let (w, h) = (body.width, body.height);
-            let cells = body.cells(&genes).unwrap();
-            match body.decode(&genes) {
-                Ok(m) => {
-                    prop_assert_eq!((m.width(), m.height()), (w, h));
-                    let kept: Vec<bool> = (0..w * h).map(|i| m.has(i % w, i / w)).collect();
-                    prop_assert!(Morphology::from_cells(w, h, kept).is_ok());
-                    for (x, y) in m.voxels() {
-                        prop_assert!(cells[y * w + x]);
-                    }
-                    prop_assert_eq!(body.decode(&genes).unwrap(), m);
-                }
-                Err(e) => {
-                    prop_assert_eq!(e, EncodingError::Empty);
-                    prop_assert!(cells.iter().all(|&c| !c));
-                    let m = body.with_on_empty(OnEmpty::SingleVoxel).decode(&genes).unwrap();
-                    prop_assert_eq!(m.voxels().collect::<Vec<_>>(), vec![(0, 0)]);
-                }
-            }
+            check_decoding(&body.into(), &genes, &body.cells(&genes).unwrap())?;
         }
 
         #[test]

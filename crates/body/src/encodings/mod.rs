@@ -288,6 +288,36 @@ fn finish(width: usize, height: usize, mut cells: Vec<bool>, on_empty: OnEmpty) 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    /// Checks what every encoding guarantees when it decodes `genes`, whose set grid cells
+    /// (row-major from the bottom) are `cells`: a body in the W×H grid, connected (it validates as a
+    /// morphology), made of set cells only and the same at every decoding; or, when no cell is set,
+    /// [`EncodingError::Empty`], and with [`OnEmpty::SingleVoxel`] the one voxel at (0, 0).
+    pub(super) fn check_decoding(encoding: &BodyEncoding, genes: &[f64], cells: &[bool]) -> Result<(), TestCaseError> {
+        let (w, h) = (encoding.width(), encoding.height());
+        match encoding.decode(genes) {
+            Ok(m) => {
+                prop_assert_eq!((m.width(), m.height()), (w, h));
+                let kept: Vec<bool> = (0..w * h).map(|i| m.has(i % w, i / w)).collect();
+                prop_assert!(Morphology::from_cells(w, h, kept).is_ok());
+                for (x, y) in m.voxels() {
+                    prop_assert!(cells[y * w + x]);
+                }
+                prop_assert_eq!(encoding.decode(genes).unwrap(), m);
+            }
+            Err(e) => {
+                prop_assert_eq!(e, EncodingError::Empty);
+                prop_assert!(cells.iter().all(|&c| !c));
+                let mut fallback = encoding.clone();
+                let (BodyEncoding::Direct { on_empty, .. } | BodyEncoding::Gmm { on_empty, .. }) = &mut fallback;
+                *on_empty = OnEmpty::SingleVoxel;
+                let m = fallback.decode(genes).unwrap();
+                prop_assert_eq!(m.voxels().collect::<Vec<_>>(), vec![(0, 0)]);
+            }
+        }
+        Ok(())
+    }
 
     #[test]
     fn configs_round_trip_and_fill_defaults() {

@@ -1,7 +1,7 @@
 //! Angle (vsr-model.md §3.1, §1.9): the voxel's orientation in radians.
 
-use super::kind::SensorKind;
-use super::node::{Frame, Node, Site};
+use super::kind::Parameterless;
+use super::node::{Frame, Node};
 use std::f64::consts::PI;
 
 /// Declared domain.
@@ -19,37 +19,20 @@ impl Angle {
 }
 
 /// The angle sensor's description (it has no parameters): `SensorSpec::Angle`.
-pub(crate) struct AngleSpec;
-
-impl SensorKind for AngleSpec {
-    fn domains(&self) -> Vec<(f64, f64)> {
-        vec![DOMAIN]
-    }
-
-    fn build(&self, _site: Site) -> Node {
-        Node::Angle(Angle)
-    }
-}
+pub(crate) static SPEC: Parameterless = Parameterless {
+    domain: DOMAIN,
+    node: Node::Angle(Angle),
+};
 
 #[cfg(test)]
 mod tests {
-    use super::*;
-    use crate::sensors::node::testing::{empty_world, still_state};
+    use crate::sensors::node::testing::{read_once, still_state};
+    use crate::sensors::SensorSpec;
 
     #[test]
     fn reads_the_angle() {
-        let world = empty_world();
         let mut state = still_state();
         state.angle = -0.3;
-        let mut out = [0.0];
-        Angle.sense(
-            &Frame {
-                world: &world,
-                state: &state,
-                t: 0.0,
-            },
-            &mut out,
-        );
-        assert_eq!(out, [-0.3]);
+        assert_eq!(read_once(&SensorSpec::Angle, &state, 0.0), [-0.3]);
     }
 }

@@ -1,7 +1,7 @@
 //! Area ratio (vsr-model.md §3.1): the voxel's current area over its rest area L².
 
-use super::kind::SensorKind;
-use super::node::{Frame, Node, Site};
+use super::kind::Parameterless;
+use super::node::{Frame, Node};
 
 /// Declared domain: half to one and a half times the rest area.
 pub(crate) const DOMAIN: (f64, f64) = (0.5, 1.5);
@@ -18,37 +18,20 @@ impl AreaRatio {
 }
 
 /// The area ratio sensor's description (it has no parameters): `SensorSpec::AreaRatio`.
-pub(crate) struct AreaRatioSpec;
-
-impl SensorKind for AreaRatioSpec {
-    fn domains(&self) -> Vec<(f64, f64)> {
-        vec![DOMAIN]
-    }
-
-    fn build(&self, _site: Site) -> Node {
-        Node::AreaRatio(AreaRatio)
-    }
-}
+pub(crate) static SPEC: Parameterless = Parameterless {
+    domain: DOMAIN,
+    node: Node::AreaRatio(AreaRatio),
+};
 
 #[cfg(test)]
 mod tests {
-    use super::*;
-    use crate::sensors::node::testing::{empty_world, still_state};
+    use crate::sensors::node::testing::{read_once, still_state};
+    use crate::sensors::SensorSpec;
 
     #[test]
     fn reads_the_area_ratio() {
-        let world = empty_world();
         let mut state = still_state();
         state.area_ratio = 0.83;
-        let mut out = [0.0];
-        AreaRatio.sense(
-            &Frame {
-                world: &world,
-                state: &state,
-                t: 0.0,
-            },
-            &mut out,
-        );
-        assert_eq!(out, [0.83]);
+        assert_eq!(read_once(&SensorSpec::AreaRatio, &state, 0.0), [0.83]);
     }
 }

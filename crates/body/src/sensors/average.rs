@@ -3,35 +3,31 @@
 //! sample taken at or after t − window (16 samples for 0.25 s at 60 Hz, 31 for 0.5 s). The domain
 //! is the inner sensor's.
 
-use super::kind::SensorKind;
-use super::node::{Frame, Node, Site};
+use super::node::{Node, Site};
 use super::spec::SensorSpec;
 use super::window::{check_window, TimeWindow};
+use super::wrapper::{Transform, Wrapped, WrapperKind};
 use serde::{Deserialize, Serialize};
 
 /// Running mean over a time window.
 #[derive(Debug, Clone)]
 pub(crate) struct Average {
-    inner: Box<Node>,
     samples: TimeWindow,
-    /// The inner sensor's current readings.
-    scratch: Vec<f64>,
 }
 
 impl Average {
-    /// Averages the `dim` readings of `inner` over `window` seconds, sampled every `dt` seconds.
-    pub(crate) fn new(inner: Box<Node>, dim: usize, window: f64, dt: f64) -> Average {
+    /// Averages `dim` readings over `window` seconds, sampled every `dt` seconds.
+    pub(crate) fn new(dim: usize, window: f64, dt: f64) -> Average {
         Average {
-            inner,
             samples: TimeWindow::new(window, dim, dt),
-            scratch: vec![0.0; dim],
         }
     }
+}
 
-    /// Reads the inner sensor, records the sample and writes the window's mean.
-    pub(crate) fn sense(&mut self, frame: &Frame, out: &mut [f64]) {
-        self.inner.sense(frame, &mut self.scratch);
-        self.samples.push(frame.t, &self.scratch);
+impl Transform for Average {
+    /// Records the sample and writes the window's mean.
+    fn apply(&mut self, t: f64, out: &mut [f64]) {
+        self.samples.push(t, out);
         out.fill(0.0);
         // oldest sample first, as a plain loop over `values(k)` would add them (same bits)
         // one and two readings (touch, velocity) keep their sums in registers: a sum kept in `out`
@@ -62,14 +58,8 @@ impl Average {
     }
 
     /// Empties the window.
-    pub(crate) fn reset(&mut self) {
+    fn reset(&mut self) {
         self.samples.clear();
-        self.inner.reset();
-    }
-
-    /// The averaged sensor.
-    pub(crate) fn inner(&self) -> &Node {
-        &self.inner
     }
 }
 
@@ -83,42 +73,36 @@ pub struct AverageSpec {
     pub inner: Box<SensorSpec>,
 }
 
-impl SensorKind for AverageSpec {
-    fn dimension(&self) -> usize {
-        self.inner.dimension()
+impl WrapperKind for AverageSpec {
+    fn inner(&self) -> &SensorSpec {
+        &self.inner
     }
 
-    fn domains(&self) -> Vec<(f64, f64)> {
-        self.inner.domains()
+    /// The inner domain.
+    fn domain(&self, inner: (f64, f64)) -> (f64, f64) {
+        inner
     }
 
-    fn validate(&self, noisy_depth: usize) -> Result<(), String> {
-        check_window(self.window)?;
-        self.inner.validate_at(noisy_depth)
+    fn check(&self) -> Result<(), String> {
+        check_window(self.window)
     }
 
-    fn build(&self, site: Site) -> Node {
-        let inner = Box::new(Node::build(&self.inner, site));
-        Node::Average(Average::new(inner, self.inner.dimension(), self.window, site.dt))
+    fn wrap(&self, inner: Box<Node>, site: Site) -> Node {
+        let average = Average::new(self.inner.dimension(), self.window, site.dt);
+        Node::Average(Wrapped::new(inner, average))
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use crate::sensors::node::testing::{run, still_state};
+    use crate::sensors::node::testing::{run, states_from};
     use crate::sensors::spec::SensorSpec;
 
     #[test]
     fn averages_touch_over_an_inclusive_quarter_second() {
         let spec = SensorSpec::Touch.averaged(0.25);
         // 60 steps, touching during the last 8 only
-        let states: Vec<_> = (0..60)
-            .map(|k| {
-                let mut s = still_state();
-                s.touching = k >= 52;
-                s
-            })
-            .collect();
+        let states = states_from(0..60, |s, k| s.touching = k >= 52);
         let readings = run(&spec, &states, 1.0 / 60.0);
         // the window holds 16 samples at 60 Hz, 8 of which touch
         assert!((readings[59][0] - 0.5).abs() < 1e-12, "{:?}", readings[59]);
@@ -137,13 +121,7 @@ mod tests {
         })
         .averaged(0.5);
         let dt = 1.0 / 60.0;
-        let states: Vec<_> = (1..=120)
-            .map(|k| {
-                let mut s = still_state();
-                s.velocity = vsrlab_physics::Vec2::new(k as f64, -2.0);
-                s
-            })
-            .collect();
+        let states = states_from(1..=120, |s, k| s.velocity = vsrlab_physics::Vec2::new(k as f64, -2.0));
         let last = run(&spec, &states, dt).pop().unwrap();
         // samples k = 90 … 120 (31 of them): mean 105
         assert!(

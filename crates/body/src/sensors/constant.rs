@@ -73,7 +73,7 @@ impl SensorKind for ConstantPositionSpec {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sensors::node::testing::{empty_world, still_state};
+    use crate::sensors::node::testing::{empty_world, frame, still_state};
 
     #[test]
     fn relative_positions_span_zero_to_one() {
@@ -89,14 +89,7 @@ mod tests {
         let state = still_state();
         let s = ConstantPosition::new(0.25);
         let mut out = [0.0];
-        s.sense(
-            &Frame {
-                world: &world,
-                state: &state,
-                t: 3.0,
-            },
-            &mut out,
-        );
+        s.sense(&frame(&world, &state, 3.0), &mut out);
         assert_eq!(out, [0.25]);
     }
 }

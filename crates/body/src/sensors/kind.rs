@@ -2,9 +2,9 @@
 //! lists the kinds and delegates.
 //!
 //! Each sensor file (`velocity.rs`, `average.rs`, …) holds its running sensor, its description
-//! (`VelocitySpec`, … or a field-less marker for sensors without parameters) and this trait's
-//! implementation. The trait is crate-internal because it builds [`Node`]s, the statically
-//! dispatched running sensors of the simulation's hot loop.
+//! (`VelocitySpec`, …) and this trait's implementation. Sensors without parameters (angle, touch, …)
+//! describe themselves with a [`Parameterless`] value instead. The trait is crate-internal because
+//! it builds [`Node`]s, the statically dispatched running sensors of the simulation's hot loop.
 
 use super::node::{Node, Site};
 
@@ -27,6 +27,25 @@ pub(crate) trait SensorKind {
 
     /// The running form of this (validated) sensor placed at `site`.
     fn build(&self, site: Site) -> Node;
+}
+
+/// The description of a sensor without parameters (angle, area ratio, touch, CPG, malfunction): one
+/// reading in a fixed domain, nothing to check, always the same running sensor.
+pub(crate) struct Parameterless {
+    /// Declared domain of the one reading.
+    pub domain: (f64, f64),
+    /// The running sensor (stateless: every placement gets a copy).
+    pub node: Node,
+}
+
+impl SensorKind for Parameterless {
+    fn domains(&self) -> Vec<(f64, f64)> {
+        vec![self.domain]
+    }
+
+    fn build(&self, _site: Site) -> Node {
+        self.node.clone()
+    }
 }
 
 /// Errors unless `v` is finite and > 0, naming the parameter.

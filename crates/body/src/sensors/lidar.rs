@@ -161,7 +161,7 @@ impl SensorKind for LidarSpec {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sensors::node::testing::still_state;
+    use crate::sensors::node::testing::{frame, still_state};
     use std::f64::consts::{FRAC_PI_2, SQRT_2};
     use vsrlab_physics::{Polygon, WorldBuilder, WorldSettings};
 
@@ -213,14 +213,7 @@ mod tests {
         let mut state = still_state();
         state.center = Vec2::new(0.0, 4.0);
         let mut out = [0.0; 3];
-        lidar.sense(
-            &Frame {
-                world: &world,
-                state: &state,
-                t: 0.0,
-            },
-            &mut out,
-        );
+        lidar.sense(&frame(&world, &state, 0.0), &mut out);
         assert!(
             close(out[1], 4.0) && close(out[0], 4.0 * SQRT_2) && close(out[2], 4.0 * SQRT_2),
             "{out:?}"
@@ -228,14 +221,7 @@ mod tests {
         assert_eq!(lidar.last_distances(), &out);
         // tilted by 45°: the first ray now points straight down
         state.angle = FRAC_PI_4;
-        lidar.sense(
-            &Frame {
-                world: &world,
-                state: &state,
-                t: 0.0,
-            },
-            &mut out,
-        );
+        lidar.sense(&frame(&world, &state, 0.0), &mut out);
         assert!(
             close(out[0], 4.0) && close(out[1], 4.0 * SQRT_2) && close(out[2], 10.0),
             "{out:?}"
@@ -243,14 +229,7 @@ mod tests {
         // out of range: every ray reads the range
         state.angle = 0.0;
         state.center = Vec2::new(0.0, 40.0);
-        lidar.sense(
-            &Frame {
-                world: &world,
-                state: &state,
-                t: 0.0,
-            },
-            &mut out,
-        );
+        lidar.sense(&frame(&world, &state, 0.0), &mut out);
         assert_eq!(out, [10.0; 3]);
         lidar.reset();
         assert_eq!(lidar.last_distances(), &[10.0; 3]);

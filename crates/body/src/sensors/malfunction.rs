@@ -3,8 +3,8 @@
 //! vsrlab has no breakable voxels yet, so this sensor always reads 0. It exists so that placements
 //! which request it (`spinedTouch-…-t-…`, `uniform-…+m-…`) keep the published input sizes.
 
-use super::kind::SensorKind;
-use super::node::{Frame, Node, Site};
+use super::kind::Parameterless;
+use super::node::{Frame, Node};
 
 /// Declared domain.
 pub(crate) const DOMAIN: (f64, f64) = (0.0, 1.0);
@@ -21,36 +21,18 @@ impl Malfunction {
 }
 
 /// The malfunction sensor's description (it has no parameters): `SensorSpec::Malfunction`.
-pub(crate) struct MalfunctionSpec;
-
-impl SensorKind for MalfunctionSpec {
-    fn domains(&self) -> Vec<(f64, f64)> {
-        vec![DOMAIN]
-    }
-
-    fn build(&self, _site: Site) -> Node {
-        Node::Malfunction(Malfunction)
-    }
-}
+pub(crate) static SPEC: Parameterless = Parameterless {
+    domain: DOMAIN,
+    node: Node::Malfunction(Malfunction),
+};
 
 #[cfg(test)]
 mod tests {
-    use super::*;
-    use crate::sensors::node::testing::{empty_world, still_state};
+    use crate::sensors::node::testing::{read_once, still_state};
+    use crate::sensors::SensorSpec;
 
     #[test]
     fn always_reads_zero() {
-        let world = empty_world();
-        let state = still_state();
-        let mut out = [0.7];
-        Malfunction.sense(
-            &Frame {
-                world: &world,
-                state: &state,
-                t: 12.0,
-            },
-            &mut out,
-        );
-        assert_eq!(out, [0.0]);
+        assert_eq!(read_once(&SensorSpec::Malfunction, &still_state(), 12.0), [0.0]);
     }
 }

@@ -15,9 +15,11 @@
 //!
 //! Each sensor kind lives in its own file (`velocity.rs`, `average.rs`, …): the running sensor, its
 //! description (e.g. [`VelocitySpec`]) and how that description gives its readings count, domains,
-//! checks and running form (the crate-internal `SensorKind` trait). To add a sensor: write its file;
-//! add a variant to [`SensorSpec`] and its arm in `SensorSpec::as_kind` (`spec.rs`); add a variant
-//! to the running `Node` enum and its arm in `Node::sense`, `Node::reset` and, for wrappers,
+//! checks and running form (the crate-internal `SensorKind` trait; a sensor without parameters is a
+//! `Parameterless` value, a wrapper a `Transform` of its inner readings described by a
+//! `WrapperKind`, see `wrapper.rs`). To add a sensor: write its file; add a variant to
+//! [`SensorSpec`] and its arm in `SensorSpec::as_kind` (`spec.rs`); add a variant to the running
+//! `Node` enum and its arm in `Node::sense`, `Node::reset` and, for wrappers,
 //! `Node::for_each_lidar` (`node.rs`, kept an enum so that sensing is statically dispatched); give
 //! it a name in [`NAMED_SENSORS`] (`named.rs`) if placements should offer it.
 //!
@@ -44,6 +46,7 @@ mod touch;
 mod trend;
 mod velocity;
 mod window;
+mod wrapper;
 
 pub use average::AverageSpec;
 pub use constant::{Axis, ConstantPositionSpec};

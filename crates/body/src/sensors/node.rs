@@ -17,6 +17,7 @@ use super::spec::SensorSpec;
 use super::touch::Touch;
 use super::trend::Trend;
 use super::velocity::Velocity;
+use super::wrapper::Wrapped;
 use crate::robot::VoxelState;
 use vsrlab_physics::World;
 
@@ -52,11 +53,11 @@ pub(crate) enum Node {
     Cpg(Cpg),
     ConstantPosition(ConstantPosition),
     Malfunction(Malfunction),
-    Average(Average),
-    Trend(Trend),
-    Normalization(Normalization),
-    SoftNormalization(SoftNormalization),
-    Noisy(Noisy),
+    Average(Wrapped<Average>),
+    Trend(Wrapped<Trend>),
+    Normalization(Wrapped<Normalization>),
+    SoftNormalization(Wrapped<SoftNormalization>),
+    Noisy(Wrapped<Noisy>),
 }
 
 impl Node {
@@ -90,8 +91,8 @@ impl Node {
             Node::Lidar(s) => s.reset(),
             Node::Average(s) => s.reset(),
             Node::Trend(s) => s.reset(),
-            Node::Normalization(s) => s.inner_mut().reset(),
-            Node::SoftNormalization(s) => s.inner_mut().reset(),
+            Node::Normalization(s) => s.reset(),
+            Node::SoftNormalization(s) => s.reset(),
             Node::Noisy(s) => s.reset(),
             Node::AreaRatio(_)
             | Node::Touch(_)
@@ -121,23 +122,36 @@ impl Node {
 #[cfg(test)]
 pub(crate) mod testing {
     use super::*;
-    use vsrlab_physics::{Vec2, WorldBuilder, WorldSettings};
+    use vsrlab_physics::{WorldBuilder, WorldSettings};
 
     /// A world with nothing in it.
     pub(crate) fn empty_world() -> World {
         WorldBuilder::new(WorldSettings::default()).build().unwrap()
     }
 
-    /// A voxel at rest at the origin, upright, not touching anything.
+    /// A voxel at rest at the origin, upright, not touching anything ([`VoxelState::default`]).
     pub(crate) fn still_state() -> VoxelState {
-        VoxelState {
-            polygon: [Vec2::ZERO; 4],
-            area_ratio: 1.0,
-            center: Vec2::ZERO,
-            velocity: Vec2::ZERO,
-            angle: 0.0,
-            touching: false,
-        }
+        VoxelState::default()
+    }
+
+    /// One state per item of `items`: a [`still_state`] changed by `set` according to the item.
+    pub(crate) fn states_from<T>(
+        items: impl IntoIterator<Item = T>,
+        set: impl Fn(&mut VoxelState, T),
+    ) -> Vec<VoxelState> {
+        items
+            .into_iter()
+            .map(|item| {
+                let mut state = still_state();
+                set(&mut state, item);
+                state
+            })
+            .collect()
+    }
+
+    /// What a sensor sees of `state` in `world` at time `t`.
+    pub(crate) fn frame<'a>(world: &'a World, state: &'a VoxelState, t: f64) -> Frame<'a> {
+        Frame { world, state, t }
     }
 
     /// A site at the grid's centre, sampled at 60 Hz, with noise from episode seed 0.
@@ -147,6 +161,14 @@ pub(crate) mod testing {
             dt: 1.0 / 60.0,
             noise: NoiseKey::new(0, 0, 0),
         }
+    }
+
+    /// Builds `spec` at [`site`] and reads it once, seeing `state` at time `t` in an empty world
+    /// (readings it does not write stay NaN).
+    pub(crate) fn read_once(spec: &SensorSpec, state: &VoxelState, t: f64) -> Vec<f64> {
+        let mut out = vec![f64::NAN; spec.dimension()];
+        Node::build(spec, site()).sense(&frame(&empty_world(), state, t), &mut out);
+        out
     }
 
     /// Builds `spec` and reads it once per state, at times dt, 2dt, …; returns every reading.
@@ -159,14 +181,7 @@ pub(crate) mod testing {
             .map(|state| {
                 t += dt;
                 let mut out = vec![0.0; spec.dimension()];
-                node.sense(
-                    &Frame {
-                        world: &world,
-                        state,
-                        t,
-                    },
-                    &mut out,
-                );
+                node.sense(&frame(&world, state, t), &mut out);
                 out
             })
             .collect()

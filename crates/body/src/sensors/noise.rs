@@ -9,11 +9,12 @@
 //! ChaCha8 stream: the key is the episode seed and the stream number packs (voxel index, index of
 //! the sensor in the voxel's list, nesting depth of this `Noisy` among the `Noisy` wrappers of that
 //! sensor). Distinct instances therefore draw independent noise, the same seed reproduces the same
-//! noise, and [`Noisy::reset`] restarts the stream from its beginning.
+//! noise, and resetting the sensor restarts the stream from its beginning.
 
 use super::kind::SensorKind;
-use super::node::{Frame, Node, Site};
+use super::node::{Node, Site};
 use super::spec::SensorSpec;
+use super::wrapper::{Transform, Wrapped};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
@@ -89,10 +90,9 @@ fn standard_normal(rng: &mut ChaCha8Rng) -> f64 {
     }
 }
 
-/// Inner readings plus independent Gaussian noise.
+/// Independent Gaussian noise added to every inner reading.
 #[derive(Debug, Clone)]
 pub(crate) struct Noisy {
-    inner: Box<Node>,
     /// Standard deviation per reading: σ times the extent of the inner domain.
     sigmas: Vec<f64>,
     key: NoiseKey,
@@ -101,33 +101,27 @@ pub(crate) struct Noisy {
 }
 
 impl Noisy {
-    /// Adds noise of relative size `sigma` to `inner`, whose domains are `domains`.
-    pub(crate) fn new(inner: Box<Node>, domains: &[(f64, f64)], sigma: f64, key: NoiseKey) -> Noisy {
+    /// Noise of relative size `sigma` for readings whose domains are `domains`.
+    pub(crate) fn new(domains: &[(f64, f64)], sigma: f64, key: NoiseKey) -> Noisy {
         Noisy {
-            inner,
             sigmas: domains.iter().map(|(lo, hi)| sigma * (hi - lo)).collect(),
             key,
             rng: Box::new(key.generator()),
         }
     }
+}
 
-    /// Reads the inner sensor and adds one draw per reading.
-    pub(crate) fn sense(&mut self, frame: &Frame, out: &mut [f64]) {
-        self.inner.sense(frame, out);
+impl Transform for Noisy {
+    /// Adds one draw per reading.
+    fn apply(&mut self, _t: f64, out: &mut [f64]) {
         for (o, sigma) in out.iter_mut().zip(&self.sigmas) {
             *o += sigma * standard_normal(&mut self.rng);
         }
     }
 
     /// Restarts the noise stream from its beginning.
-    pub(crate) fn reset(&mut self) {
+    fn reset(&mut self) {
         *self.rng = self.key.generator();
-        self.inner.reset();
-    }
-
-    /// The sensor the noise is added to.
-    pub(crate) fn inner(&self) -> &Node {
-        &self.inner
     }
 }
 
@@ -168,19 +162,15 @@ impl SensorKind for NoisySpec {
             noise: site.noise.nested(),
             ..site
         };
-        Node::Noisy(Noisy::new(
-            Box::new(Node::build(&self.inner, below)),
-            &self.inner.domains(),
-            self.sigma,
-            site.noise,
-        ))
+        let noisy = Noisy::new(&self.inner.domains(), self.sigma, site.noise);
+        Node::Noisy(Wrapped::new(Box::new(Node::build(&self.inner, below)), noisy))
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sensors::node::testing::{empty_world, site, still_state};
+    use crate::sensors::node::testing::{empty_world, frame, site, still_state};
     use crate::sensors::spec::SensorSpec;
 
     fn draws(key: NoiseKey, n: usize) -> Vec<f64> {
@@ -221,14 +211,7 @@ mod tests {
         let state = still_state();
         let read = |node: &mut Node| {
             let mut out = [0.0];
-            node.sense(
-                &Frame {
-                    world: &world,
-                    state: &state,
-                    t: 0.0,
-                },
-                &mut out,
-            );
+            node.sense(&frame(&world, &state, 0.0), &mut out);
             out[0]
         };
         let first: Vec<f64> = (0..2000).map(|_| read(&mut node)).collect();

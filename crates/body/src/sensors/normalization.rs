@@ -1,9 +1,9 @@
 //! Normalization (vsr-model.md §3.2): each inner reading is clipped to its domain [lo, hi], then
 //! mapped linearly to [0, 1]. The result's domain is [0, 1].
 
-use super::kind::SensorKind;
-use super::node::{Frame, Node, Site};
+use super::node::{Node, Site};
 use super::spec::SensorSpec;
+use super::wrapper::{Transform, Wrapped, WrapperKind};
 use serde::{Deserialize, Serialize};
 
 /// (v − lo)/(hi − lo), not clipped.
@@ -19,33 +19,23 @@ pub(crate) fn normalize(v: f64, domain: (f64, f64)) -> f64 {
 /// Clip-and-scale of every inner reading.
 #[derive(Debug, Clone)]
 pub(crate) struct Normalization {
-    inner: Box<Node>,
     /// The inner sensor's domain, one per reading.
     domains: Vec<(f64, f64)>,
 }
 
 impl Normalization {
-    /// Normalises the readings of `inner`, whose domains are `domains`.
-    pub(crate) fn new(inner: Box<Node>, domains: Vec<(f64, f64)>) -> Normalization {
-        Normalization { inner, domains }
+    /// Normalises readings whose domains are `domains`.
+    pub(crate) fn new(domains: Vec<(f64, f64)>) -> Normalization {
+        Normalization { domains }
     }
+}
 
-    /// Reads the inner sensor and normalises in place.
-    pub(crate) fn sense(&mut self, frame: &Frame, out: &mut [f64]) {
-        self.inner.sense(frame, out);
+impl Transform for Normalization {
+    /// Normalises in place.
+    fn apply(&mut self, _t: f64, out: &mut [f64]) {
         for (o, d) in out.iter_mut().zip(&self.domains) {
             *o = normalize(*o, *d);
         }
-    }
-
-    /// The normalised sensor.
-    pub(crate) fn inner(&self) -> &Node {
-        &self.inner
-    }
-
-    /// The normalised sensor, mutably.
-    pub(crate) fn inner_mut(&mut self) -> &mut Node {
-        &mut self.inner
     }
 }
 
@@ -58,29 +48,25 @@ pub struct NormalizationSpec {
     pub inner: Box<SensorSpec>,
 }
 
-impl SensorKind for NormalizationSpec {
-    fn dimension(&self) -> usize {
-        self.inner.dimension()
+impl WrapperKind for NormalizationSpec {
+    fn inner(&self) -> &SensorSpec {
+        &self.inner
     }
 
-    fn domains(&self) -> Vec<(f64, f64)> {
-        vec![(0.0, 1.0); self.inner.dimension()]
+    /// [0, 1].
+    fn domain(&self, _inner: (f64, f64)) -> (f64, f64) {
+        (0.0, 1.0)
     }
 
-    fn validate(&self, noisy_depth: usize) -> Result<(), String> {
-        self.inner.validate_at(noisy_depth)
-    }
-
-    fn build(&self, site: Site) -> Node {
-        let inner = Box::new(Node::build(&self.inner, site));
-        Node::Normalization(Normalization::new(inner, self.inner.domains()))
+    fn wrap(&self, inner: Box<Node>, _site: Site) -> Node {
+        Node::Normalization(Wrapped::new(inner, Normalization::new(self.inner.domains())))
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sensors::node::testing::{run, still_state};
+    use crate::sensors::node::testing::{run, states_from};
     use crate::sensors::spec::SensorSpec;
 
     #[test]
@@ -94,14 +80,7 @@ mod tests {
     #[test]
     fn normalises_the_area_ratio() {
         let spec = SensorSpec::AreaRatio.normalized();
-        let states: Vec<_> = [0.4, 0.75, 1.5, 2.0]
-            .iter()
-            .map(|&a| {
-                let mut s = still_state();
-                s.area_ratio = a;
-                s
-            })
-            .collect();
+        let states = states_from([0.4, 0.75, 1.5, 2.0], |s, a| s.area_ratio = a);
         let r: Vec<f64> = run(&spec, &states, 1.0 / 60.0).into_iter().map(|v| v[0]).collect();
         assert_eq!(r, vec![0.0, 0.25, 1.0, 1.0]);
     }

@@ -6,10 +6,10 @@
 //! (2021-12-28) v is first clipped to [0, 1], so the output stays in [0.018, 0.982]. `clip = false`
 //! (the default) is the thesis era. Area ratio examples: 0.8 → 0.168, 1.0 → 0.5, 1.2 → 0.832.
 
-use super::kind::SensorKind;
-use super::node::{Frame, Node, Site};
+use super::node::{Node, Site};
 use super::normalization::linear;
 use super::spec::SensorSpec;
+use super::wrapper::{Transform, Wrapped, WrapperKind};
 use serde::{Deserialize, Serialize};
 
 /// tanh(2(2v − 1))/2 + 1/2 of `x` mapped linearly from `domain` to v, clipping v to [0, 1] first
@@ -25,34 +25,24 @@ pub(crate) fn soft_normalize(x: f64, domain: (f64, f64), clip: bool) -> f64 {
 /// S-curve normalisation of every inner reading.
 #[derive(Debug, Clone)]
 pub(crate) struct SoftNormalization {
-    inner: Box<Node>,
     /// The inner sensor's domain, one per reading.
     domains: Vec<(f64, f64)>,
     clip: bool,
 }
 
 impl SoftNormalization {
-    /// Soft-normalises the readings of `inner`, whose domains are `domains`.
-    pub(crate) fn new(inner: Box<Node>, domains: Vec<(f64, f64)>, clip: bool) -> SoftNormalization {
-        SoftNormalization { inner, domains, clip }
+    /// Soft-normalises readings whose domains are `domains`.
+    pub(crate) fn new(domains: Vec<(f64, f64)>, clip: bool) -> SoftNormalization {
+        SoftNormalization { domains, clip }
     }
+}
 
-    /// Reads the inner sensor and soft-normalises in place.
-    pub(crate) fn sense(&mut self, frame: &Frame, out: &mut [f64]) {
-        self.inner.sense(frame, out);
+impl Transform for SoftNormalization {
+    /// Soft-normalises in place.
+    fn apply(&mut self, _t: f64, out: &mut [f64]) {
         for (o, d) in out.iter_mut().zip(&self.domains) {
             *o = soft_normalize(*o, *d, self.clip);
         }
-    }
-
-    /// The normalised sensor.
-    pub(crate) fn inner(&self) -> &Node {
-        &self.inner
-    }
-
-    /// The normalised sensor, mutably.
-    pub(crate) fn inner_mut(&mut self) -> &mut Node {
-        &mut self.inner
     }
 }
 
@@ -69,22 +59,19 @@ pub struct SoftNormalizationSpec {
     pub inner: Box<SensorSpec>,
 }
 
-impl SensorKind for SoftNormalizationSpec {
-    fn dimension(&self) -> usize {
-        self.inner.dimension()
+impl WrapperKind for SoftNormalizationSpec {
+    fn inner(&self) -> &SensorSpec {
+        &self.inner
     }
 
-    fn domains(&self) -> Vec<(f64, f64)> {
-        vec![(0.0, 1.0); self.inner.dimension()]
+    /// [0, 1].
+    fn domain(&self, _inner: (f64, f64)) -> (f64, f64) {
+        (0.0, 1.0)
     }
 
-    fn validate(&self, noisy_depth: usize) -> Result<(), String> {
-        self.inner.validate_at(noisy_depth)
-    }
-
-    fn build(&self, site: Site) -> Node {
-        let inner = Box::new(Node::build(&self.inner, site));
-        Node::SoftNormalization(SoftNormalization::new(inner, self.inner.domains(), self.clip))
+    fn wrap(&self, inner: Box<Node>, _site: Site) -> Node {
+        let soft = SoftNormalization::new(self.inner.domains(), self.clip);
+        Node::SoftNormalization(Wrapped::new(inner, soft))
     }
 }
 

@@ -3,18 +3,18 @@
 //! readings, domains, checks and running form live in that sensor's file and are reached through
 //! [`SensorSpec::as_kind`], the only `match` over the kinds.
 
-use super::angle::AngleSpec;
-use super::area_ratio::AreaRatioSpec;
+use super::angle;
+use super::area_ratio;
 use super::average::AverageSpec;
 use super::constant::ConstantPositionSpec;
-use super::cpg::CpgSpec;
+use super::cpg;
 use super::kind::SensorKind;
 use super::lidar::LidarSpec;
-use super::malfunction::MalfunctionSpec;
+use super::malfunction;
 use super::noise::NoisySpec;
 use super::normalization::NormalizationSpec;
 use super::soft_normalization::SoftNormalizationSpec;
-use super::touch::TouchSpec;
+use super::touch;
 use super::trend::TrendSpec;
 use super::velocity::VelocitySpec;
 use serde::{Deserialize, Serialize};
@@ -62,14 +62,14 @@ impl SensorSpec {
     /// The registered kind's description, through which every other method goes.
     pub(crate) fn as_kind(&self) -> &dyn SensorKind {
         match self {
-            SensorSpec::AreaRatio => &AreaRatioSpec,
-            SensorSpec::Touch => &TouchSpec,
+            SensorSpec::AreaRatio => &area_ratio::SPEC,
+            SensorSpec::Touch => &touch::SPEC,
             SensorSpec::Velocity(kind) => kind,
-            SensorSpec::Angle => &AngleSpec,
+            SensorSpec::Angle => &angle::SPEC,
             SensorSpec::Lidar(kind) => kind,
-            SensorSpec::Cpg => &CpgSpec,
+            SensorSpec::Cpg => &cpg::SPEC,
             SensorSpec::ConstantPosition(kind) => kind,
-            SensorSpec::Malfunction => &MalfunctionSpec,
+            SensorSpec::Malfunction => &malfunction::SPEC,
             SensorSpec::Average(kind) => kind,
             SensorSpec::Trend(kind) => kind,
             SensorSpec::Normalization(kind) => kind,

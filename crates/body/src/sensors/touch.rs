@@ -1,8 +1,8 @@
 //! Touch (vsr-model.md §3.1): 1 while any corner of the voxel touches something that is not part of
 //! the same robot (ground, obstacles, other robots), else 0.
 
-use super::kind::SensorKind;
-use super::node::{Frame, Node, Site};
+use super::kind::Parameterless;
+use super::node::{Frame, Node};
 
 /// Declared domain.
 pub(crate) const DOMAIN: (f64, f64) = (0.0, 1.0);
@@ -19,46 +19,21 @@ impl Touch {
 }
 
 /// The touch sensor's description (it has no parameters): `SensorSpec::Touch`.
-pub(crate) struct TouchSpec;
-
-impl SensorKind for TouchSpec {
-    fn domains(&self) -> Vec<(f64, f64)> {
-        vec![DOMAIN]
-    }
-
-    fn build(&self, _site: Site) -> Node {
-        Node::Touch(Touch)
-    }
-}
+pub(crate) static SPEC: Parameterless = Parameterless {
+    domain: DOMAIN,
+    node: Node::Touch(Touch),
+};
 
 #[cfg(test)]
 mod tests {
-    use super::*;
-    use crate::sensors::node::testing::{empty_world, still_state};
+    use crate::sensors::node::testing::{read_once, still_state};
+    use crate::sensors::SensorSpec;
 
     #[test]
     fn touching_reads_one() {
-        let world = empty_world();
         let mut state = still_state();
-        let mut out = [0.5];
-        Touch.sense(
-            &Frame {
-                world: &world,
-                state: &state,
-                t: 0.0,
-            },
-            &mut out,
-        );
-        assert_eq!(out, [0.0]);
+        assert_eq!(read_once(&SensorSpec::Touch, &state, 0.0), [0.0]);
         state.touching = true;
-        Touch.sense(
-            &Frame {
-                world: &world,
-                state: &state,
-                t: 0.0,
-            },
-            &mut out,
-        );
-        assert_eq!(out, [1.0]);
+        assert_eq!(read_once(&SensorSpec::Touch, &state, 0.0), [1.0]);
     }
 }

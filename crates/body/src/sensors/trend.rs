@@ -3,10 +3,10 @@
 //! inclusive window. With a single sample (the first step) it reads 0. Its domain is
 //! ±extent/window per reading, where extent is the width of the inner sensor's domain.
 
-use super::kind::SensorKind;
-use super::node::{Frame, Node, Site};
+use super::node::{Node, Site};
 use super::spec::SensorSpec;
 use super::window::{check_window, TimeWindow};
+use super::wrapper::{Transform, Wrapped, WrapperKind};
 use serde::{Deserialize, Serialize};
 
 /// Declared domain for an inner domain `(lo, hi)` over `window` seconds.
@@ -18,26 +18,22 @@ pub(crate) fn domain((lo, hi): (f64, f64), window: f64) -> (f64, f64) {
 /// Slope between the oldest and the newest sample of a time window.
 #[derive(Debug, Clone)]
 pub(crate) struct Trend {
-    inner: Box<Node>,
     samples: TimeWindow,
-    /// The inner sensor's current readings.
-    scratch: Vec<f64>,
 }
 
 impl Trend {
-    /// The trend of the `dim` readings of `inner` over `window` seconds, sampled every `dt` seconds.
-    pub(crate) fn new(inner: Box<Node>, dim: usize, window: f64, dt: f64) -> Trend {
+    /// The trend of `dim` readings over `window` seconds, sampled every `dt` seconds.
+    pub(crate) fn new(dim: usize, window: f64, dt: f64) -> Trend {
         Trend {
-            inner,
             samples: TimeWindow::new(window, dim, dt),
-            scratch: vec![0.0; dim],
         }
     }
+}
 
-    /// Reads the inner sensor, records the sample and writes the slope.
-    pub(crate) fn sense(&mut self, frame: &Frame, out: &mut [f64]) {
-        self.inner.sense(frame, &mut self.scratch);
-        self.samples.push(frame.t, &self.scratch);
+impl Transform for Trend {
+    /// Records the sample and writes the slope.
+    fn apply(&mut self, t: f64, out: &mut [f64]) {
+        self.samples.push(t, out);
         let last = self.samples.len() - 1;
         let elapsed = self.samples.time(last) - self.samples.time(0);
         if elapsed > 0.0 {
@@ -51,14 +47,8 @@ impl Trend {
     }
 
     /// Empties the window.
-    pub(crate) fn reset(&mut self) {
+    fn reset(&mut self) {
         self.samples.clear();
-        self.inner.reset();
-    }
-
-    /// The sensor whose trend this is.
-    pub(crate) fn inner(&self) -> &Node {
-        &self.inner
     }
 }
 
@@ -72,34 +62,30 @@ pub struct TrendSpec {
     pub inner: Box<SensorSpec>,
 }
 
-impl SensorKind for TrendSpec {
-    fn dimension(&self) -> usize {
-        self.inner.dimension()
+impl WrapperKind for TrendSpec {
+    fn inner(&self) -> &SensorSpec {
+        &self.inner
     }
 
-    fn domains(&self) -> Vec<(f64, f64)> {
-        self.inner
-            .domains()
-            .into_iter()
-            .map(|d| domain(d, self.window))
-            .collect()
+    /// ±extent/window.
+    fn domain(&self, inner: (f64, f64)) -> (f64, f64) {
+        domain(inner, self.window)
     }
 
-    fn validate(&self, noisy_depth: usize) -> Result<(), String> {
-        check_window(self.window)?;
-        self.inner.validate_at(noisy_depth)
+    fn check(&self) -> Result<(), String> {
+        check_window(self.window)
     }
 
-    fn build(&self, site: Site) -> Node {
-        let inner = Box::new(Node::build(&self.inner, site));
-        Node::Trend(Trend::new(inner, self.inner.dimension(), self.window, site.dt))
+    fn wrap(&self, inner: Box<Node>, site: Site) -> Node {
+        let trend = Trend::new(self.inner.dimension(), self.window, site.dt);
+        Node::Trend(Wrapped::new(inner, trend))
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sensors::node::testing::{run, still_state};
+    use crate::sensors::node::testing::{run, states_from};
     use crate::sensors::spec::SensorSpec;
     use crate::sensors::{Axes, VelocitySpec};
     use vsrlab_physics::Vec2;
@@ -113,14 +99,10 @@ mod tests {
         })
         .trend(0.5);
         let dt = 1.0 / 60.0;
-        let states: Vec<_> = (1..=90)
-            .map(|k| {
-                let t = k as f64 * dt;
-                let mut s = still_state();
-                s.velocity = Vec2::new(3.0 * t + 1.0, -0.5 * t);
-                s
-            })
-            .collect();
+        let states = states_from(1..=90, |s, k| {
+            let t = k as f64 * dt;
+            s.velocity = Vec2::new(3.0 * t + 1.0, -0.5 * t);
+        });
         let readings = run(&spec, &states, dt);
         assert_eq!(readings[0], vec![0.0, 0.0], "one sample: no trend yet");
         for r in &readings[1..] {
@@ -133,13 +115,7 @@ mod tests {
         // a step at step 10: the slope is nonzero while the step is inside the 0.5 s window, then 0
         let spec = SensorSpec::AreaRatio.trend(0.5);
         let dt = 1.0 / 60.0;
-        let states: Vec<_> = (0..80)
-            .map(|k| {
-                let mut s = still_state();
-                s.area_ratio = if k < 10 { 1.0 } else { 1.2 };
-                s
-            })
-            .collect();
+        let states = states_from(0..80, |s, k| s.area_ratio = if k < 10 { 1.0 } else { 1.2 });
         let readings = run(&spec, &states, dt);
         assert!(readings[20][0] > 0.0);
         assert_eq!(readings[79][0], 0.0);

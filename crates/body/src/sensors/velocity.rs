@@ -97,24 +97,20 @@ impl SensorKind for VelocitySpec {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sensors::node::testing::{empty_world, still_state};
+    use crate::sensors::node::testing::{read_once, still_state};
+    use crate::sensors::SensorSpec;
     use std::f64::consts::{FRAC_PI_2, FRAC_PI_6};
 
     fn read(rotated: bool, axes: Axes, velocity: Vec2, angle: f64) -> Vec<f64> {
-        let world = empty_world();
         let mut state = still_state();
         state.velocity = velocity;
         state.angle = angle;
-        let mut out = vec![0.0; if axes == Axes::Xy { 2 } else { 1 }];
-        Velocity::new(rotated, axes).sense(
-            &Frame {
-                world: &world,
-                state: &state,
-                t: 0.0,
-            },
-            &mut out,
-        );
-        out
+        let spec = SensorSpec::Velocity(VelocitySpec {
+            rotated,
+            vmax: 8.0,
+            axes,
+        });
+        read_once(&spec, &state, 0.0)
     }
 
     #[test]

@@ -14,7 +14,7 @@
 
 use crate::mlp::{Activation, Mlp};
 use crate::short_form::{self, ShortForm};
-use crate::validation::{check_count, check_finite, check_voxels};
+use crate::validation::{check_count, check_voxels, set_finite};
 use crate::{BrainError, BrainKind, BrainSpec, Controller};
 use serde::{Deserialize, Serialize};
 use vsrlab_body::Morphology;
@@ -118,9 +118,7 @@ impl BrainKind for MlpSpec {
     }
 
     fn set_parameters(&mut self, params: &[f64]) -> Result<(), BrainError> {
-        check_finite("weights", params)?;
-        self.weights = params.to_vec();
-        Ok(())
+        set_finite("weights", &mut self.weights, params)
     }
 
     fn build(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
@@ -154,6 +152,7 @@ fn parse_short_form(argument: Option<&str>) -> Option<BrainSpec> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testing::{assert_invalid, biped, build_error};
 
     #[test]
     fn default_hidden_layer_follows_the_0_65_rule() {
@@ -175,10 +174,6 @@ mod tests {
         assert_eq!(a, [0.1 + 0.3, -0.2 - 0.4, 1.0]);
     }
 
-    fn biped() -> (Morphology, Vec<usize>) {
-        (Morphology::named("biped-4x3").unwrap(), vec![4; 10])
-    }
-
     #[test]
     fn the_spec_counts_the_check_values() {
         let (m, rpv) = biped();
@@ -192,7 +187,7 @@ mod tests {
     #[test]
     fn build_rejects_missing_weights_wrong_readings_and_empty_layers() {
         let (m, rpv) = biped();
-        let err = BrainSpec::parse("mlp").unwrap().build(&m, &rpv).err().unwrap();
+        let err = build_error(&BrainSpec::parse("mlp").unwrap(), &rpv);
         assert_eq!(
             err,
             BrainError::Invalid {
@@ -200,21 +195,12 @@ mod tests {
                 msg: "expected 1336 for this body and sensors, got 0".into()
             }
         );
-        let err = BrainSpec::parse("mlp").unwrap().build(&m, &[4; 9]).err().unwrap();
-        assert!(
-            matches!(
-                err,
-                BrainError::Invalid {
-                    field: "readings_per_voxel",
-                    ..
-                }
-            ),
-            "{err}"
-        );
+        let err = build_error(&BrainSpec::parse("mlp").unwrap(), &[4; 9]);
+        assert_invalid(&err, "readings_per_voxel");
         let err = BrainSpec::parse("mlp:4,0")
             .unwrap()
             .parameter_count(&m, &rpv)
             .unwrap_err();
-        assert!(matches!(err, BrainError::Invalid { field: "hidden", .. }), "{err}");
+        assert_invalid(&err, "hidden");
     }
 }

@@ -31,7 +31,7 @@
 
 use crate::mlp::{Activation, Mlp};
 use crate::short_form::{self, ShortForm};
-use crate::validation::{check_finite, check_voxels};
+use crate::validation::{check_count, check_voxels, set_finite};
 use crate::{BrainError, BrainKind, BrainSpec, Controller};
 use serde::{Deserialize, Serialize};
 use vsrlab_body::Morphology;
@@ -159,26 +159,12 @@ impl DistributedMlpController {
             input_activation,
             layout,
         } = *config;
-        if readings_per_voxel.len() != morphology.voxel_count() {
-            return Err(BrainError::Invalid {
-                field: "readings_per_voxel",
-                msg: format!(
-                    "{} entries for a body of {} voxels",
-                    readings_per_voxel.len(),
-                    morphology.voxel_count()
-                ),
-            });
-        }
+        check_voxels(morphology, readings_per_voxel)?;
         let readings = common_readings(morphology, readings_per_voxel)?;
         let sizes = network_sizes(readings, signals, hidden);
         Mlp::check_sizes(&sizes)?;
         let expected = parameter_count(morphology, readings, signals, hidden, layout);
-        if weights.len() != expected {
-            return Err(BrainError::Invalid {
-                field: "weights",
-                msg: format!("expected {expected} for this body and sensors, got {}", weights.len()),
-            });
-        }
+        check_count("weights", expected, weights.len())?;
         let n_w = Mlp::parameter_count(&sizes);
         let (w, h) = (morphology.width(), morphology.height());
         let cells: Vec<(usize, usize)> = morphology.voxels().collect();
@@ -347,9 +333,7 @@ impl BrainKind for DistributedMlpSpec {
     }
 
     fn set_parameters(&mut self, params: &[f64]) -> Result<(), BrainError> {
-        check_finite("weights", params)?;
-        self.weights = params.to_vec();
-        Ok(())
+        set_finite("weights", &mut self.weights, params)
     }
 
     fn build(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
@@ -407,6 +391,7 @@ fn parse_short_form(argument: Option<&str>, layout: Layout) -> Option<BrainSpec>
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testing::{assert_invalid, biped, build_error};
 
     fn config(
         signals: usize,
@@ -589,20 +574,9 @@ mod tests {
         let block: Vec<f64> = (0..n_w).map(|i| ((i * 37 % 23) as f64 / 11.5) - 1.0).collect();
         let all: Vec<f64> = (0..15).flat_map(|_| block.iter().copied()).collect();
         let rpv = vec![r; m.voxel_count()];
-        let mut ho = DistributedMlpController::new(
-            &m,
-            &rpv,
-            &config(s, &hidden, Activation::Tanh, true, Layout::Homogeneous),
-            &block,
-        )
-        .unwrap();
-        let mut he = DistributedMlpController::new(
-            &m,
-            &rpv,
-            &config(s, &hidden, Activation::Tanh, true, Layout::Heterogeneous),
-            &all,
-        )
-        .unwrap();
+        let [mut ho, mut he] = [(Layout::Homogeneous, &block), (Layout::Heterogeneous, &all)].map(|(layout, w)| {
+            DistributedMlpController::new(&m, &rpv, &config(s, &hidden, Activation::Tanh, true, layout), w).unwrap()
+        });
         let n = m.voxel_count();
         let (mut a1, mut a2) = (vec![0.0; n], vec![0.0; n]);
         for k in 1..=50 {
@@ -647,16 +621,7 @@ mod tests {
             &[],
         )
         .unwrap_err();
-        assert!(
-            matches!(
-                err,
-                BrainError::Invalid {
-                    field: "readings_per_voxel",
-                    ..
-                }
-            ),
-            "{err}"
-        );
+        assert_invalid(&err, "readings_per_voxel");
         assert!(
             err.to_string()
                 .contains("voxel 0 at (0, 0) has 4 and voxel 2 at (2, 0) has 5"),
@@ -678,10 +643,6 @@ mod tests {
         );
     }
 
-    fn biped() -> (Morphology, Vec<usize>) {
-        (Morphology::named("biped-4x3").unwrap(), vec![4; 10])
-    }
-
     fn homogeneous() -> BrainSpec {
         BrainSpec::parse("distributed-mlp").unwrap()
     }
@@ -700,13 +661,8 @@ mod tests {
 
     #[test]
     fn the_spec_rejects_wrong_and_non_finite_weights_and_unequal_readings() {
-        let (m, rpv) = biped();
-        let err = homogeneous()
-            .with_parameters(&[0.1; 44])
-            .unwrap()
-            .build(&m, &rpv)
-            .err()
-            .unwrap();
+        let (_, rpv) = biped();
+        let err = build_error(&homogeneous().with_parameters(&[0.1; 44]).unwrap(), &rpv);
         assert_eq!(
             err.to_string(),
             "brain.weights: expected 45 for this body and sensors, got 44"
@@ -718,21 +674,12 @@ mod tests {
             weights: w,
             ..DistributedMlpSpec::default()
         });
-        let err = with_inf.build(&m, &rpv).err().unwrap();
-        assert!(matches!(err, BrainError::Invalid { field: "weights", .. }), "{err}");
+        let err = build_error(&with_inf, &rpv);
+        assert_invalid(&err, "weights");
         assert!(err.to_string().contains("value 3 is inf"), "{err}");
 
-        let err = homogeneous().build(&m, &[4, 4, 4, 4, 4, 4, 4, 4, 4, 3]).err().unwrap();
-        assert!(
-            matches!(
-                err,
-                BrainError::Invalid {
-                    field: "readings_per_voxel",
-                    ..
-                }
-            ),
-            "{err}"
-        );
+        let err = build_error(&homogeneous(), &[4, 4, 4, 4, 4, 4, 4, 4, 4, 3]);
+        assert_invalid(&err, "readings_per_voxel");
     }
 
     #[test]

@@ -8,3 +8,4 @@ pub mod phase_grid;
 pub mod random;
 pub mod smoothed;
 pub mod step;
+mod wrapper;

@@ -13,7 +13,7 @@
 //! Short forms: `phase-grid` (phases only) and `phase-grid:freq` (phases and frequencies).
 
 use crate::short_form::ShortForm;
-use crate::validation::{check_count, check_finite, finite};
+use crate::validation::{check_count, check_finite, finite, set_finite};
 use crate::{BrainError, BrainKind, BrainSpec, Controller};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -149,9 +149,7 @@ impl BrainKind for PhaseGridSpec {
     }
 
     fn set_parameters(&mut self, params: &[f64]) -> Result<(), BrainError> {
-        check_finite("parameters", params)?;
-        self.parameters = params.to_vec();
-        Ok(())
+        set_finite("parameters", &mut self.parameters, params)
     }
 
     fn build(&self, morphology: &Morphology, _readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
@@ -193,6 +191,7 @@ fn parse_short_form(argument: Option<&str>) -> Option<BrainSpec> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testing::{biped, build_error};
 
     #[test]
     fn counts_by_layout() {
@@ -237,13 +236,12 @@ mod tests {
 
     #[test]
     fn the_spec_counts_and_checks_its_parameters() {
-        let m = Morphology::named("biped-4x3").unwrap();
-        let rpv = vec![4; 10];
+        let (m, rpv) = biped();
         assert_eq!(
             BrainSpec::parse("phase-grid:freq").unwrap().parameter_count(&m, &rpv),
             Ok(24)
         );
-        let err = BrainSpec::parse("phase-grid").unwrap().build(&m, &rpv).err().unwrap();
+        let err = build_error(&BrainSpec::parse("phase-grid").unwrap(), &rpv);
         assert_eq!(
             err.to_string(),
             "brain.parameters: expected 12 for this body and sensors, got 0"

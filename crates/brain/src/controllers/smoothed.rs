@@ -5,6 +5,7 @@
 //!
 //! Short form: `smoothed:<speed>:<brain>`.
 
+use super::wrapper::Inner;
 use crate::short_form::{self, ShortForm};
 use crate::validation::non_negative;
 use crate::{BrainError, BrainKind, BrainSpec, Controller};
@@ -13,10 +14,9 @@ use vsrlab_body::Morphology;
 
 /// Rate-limits the inner controller's output to `speed` per second.
 pub struct SmoothedController {
-    inner: Box<dyn Controller>,
+    inner: Inner,
     speed: f64,
     last_t: f64,
-    target: Vec<f64>,
     current: Vec<f64>,
 }
 
@@ -24,10 +24,9 @@ impl SmoothedController {
     /// Wraps `inner` for a body of `voxels` voxels.
     pub fn new(inner: Box<dyn Controller>, speed: f64, voxels: usize) -> Self {
         SmoothedController {
-            inner,
+            inner: Inner::new(inner, voxels),
             speed,
             last_t: 0.0,
-            target: vec![0.0; voxels],
             current: vec![0.0; voxels],
         }
     }
@@ -41,10 +40,10 @@ impl Controller for SmoothedController {
     }
 
     fn control(&mut self, t: f64, readings: &[f64], actuations: &mut [f64]) {
-        self.inner.control(t, readings, &mut self.target);
+        let target = self.inner.control(t, readings);
         let max_change = self.speed * (t - self.last_t).max(0.0);
         self.last_t = t;
-        for ((a, c), target) in actuations.iter_mut().zip(&mut self.current).zip(&self.target) {
+        for ((a, c), target) in actuations.iter_mut().zip(&mut self.current).zip(target) {
             *c += (target - *c).clamp(-max_change, max_change);
             *a = *c;
         }
@@ -67,19 +66,12 @@ impl BrainKind for SmoothedSpec {
         "smoothed"
     }
 
-    /// The inner brain's.
-    fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
-        self.inner.parameter_count(morphology, readings_per_voxel)
+    fn inner(&self) -> Option<&BrainSpec> {
+        Some(&self.inner)
     }
 
-    /// The inner brain's.
-    fn parameters(&self) -> &[f64] {
-        self.inner.parameters()
-    }
-
-    /// Passed to the inner brain.
-    fn set_parameters(&mut self, params: &[f64]) -> Result<(), BrainError> {
-        self.inner.as_kind_mut().set_parameters(params)
+    fn inner_mut(&mut self) -> Option<&mut BrainSpec> {
+        Some(&mut self.inner)
     }
 
     fn build(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
@@ -108,6 +100,7 @@ fn parse_short_form(argument: Option<&str>) -> Option<BrainSpec> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testing::{assert_invalid, biped, build_error};
     use crate::ConstantController;
 
     /// A square wave jumping between −1 and +1 every 10 calls.
@@ -158,19 +151,14 @@ mod tests {
 
     #[test]
     fn the_spec_delegates_to_its_inner_brain_and_checks_its_speed() {
-        let m = vsrlab_body::Morphology::named("biped-4x3").unwrap();
-        let rpv = vec![4; 10];
+        let (m, rpv) = biped();
         assert_eq!(
             BrainSpec::parse("smoothed:2:distributed-mlp-hetero")
                 .unwrap()
                 .parameter_count(&m, &rpv),
             Ok(12 * 45)
         );
-        let err = BrainSpec::parse("smoothed:nan:phase")
-            .unwrap()
-            .build(&m, &rpv)
-            .err()
-            .unwrap();
-        assert!(matches!(err, BrainError::Invalid { field: "speed", .. }), "{err}");
+        let err = build_error(&BrainSpec::parse("smoothed:nan:phase").unwrap(), &rpv);
+        assert_invalid(&err, "speed");
     }
 }

@@ -7,6 +7,7 @@
 //!
 //! Short form: `step:<period s>:<brain>`.
 
+use super::wrapper::Inner;
 use crate::short_form::{self, ShortForm};
 use crate::validation::non_negative;
 use crate::{BrainError, BrainKind, BrainSpec, Controller};
@@ -15,10 +16,9 @@ use vsrlab_body::Morphology;
 
 /// Holds the inner controller's output for `period` seconds.
 pub struct StepController {
-    inner: Box<dyn Controller>,
+    inner: Inner,
     period: f64,
     last_refresh: Option<f64>,
-    target: Vec<f64>,
     held: Vec<f64>,
 }
 
@@ -26,10 +26,9 @@ impl StepController {
     /// Wraps `inner` for a body of `voxels` voxels.
     pub fn new(inner: Box<dyn Controller>, period: f64, voxels: usize) -> Self {
         StepController {
-            inner,
+            inner: Inner::new(inner, voxels),
             period,
             last_refresh: None,
-            target: vec![0.0; voxels],
             held: vec![0.0; voxels],
         }
     }
@@ -43,9 +42,9 @@ impl Controller for StepController {
     }
 
     fn control(&mut self, t: f64, readings: &[f64], actuations: &mut [f64]) {
-        self.inner.control(t, readings, &mut self.target);
+        let target = self.inner.control(t, readings);
         if self.last_refresh.is_none_or(|last| t - last >= self.period) {
-            self.held.copy_from_slice(&self.target);
+            self.held.copy_from_slice(target);
             self.last_refresh = Some(t);
         }
         actuations.copy_from_slice(&self.held);
@@ -68,19 +67,12 @@ impl BrainKind for StepSpec {
         "step"
     }
 
-    /// The inner brain's.
-    fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
-        self.inner.parameter_count(morphology, readings_per_voxel)
+    fn inner(&self) -> Option<&BrainSpec> {
+        Some(&self.inner)
     }
 
-    /// The inner brain's.
-    fn parameters(&self) -> &[f64] {
-        self.inner.parameters()
-    }
-
-    /// Passed to the inner brain.
-    fn set_parameters(&mut self, params: &[f64]) -> Result<(), BrainError> {
-        self.inner.as_kind_mut().set_parameters(params)
+    fn inner_mut(&mut self) -> Option<&mut BrainSpec> {
+        Some(&mut self.inner)
     }
 
     fn build(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
@@ -109,6 +101,7 @@ fn parse_short_form(argument: Option<&str>) -> Option<BrainSpec> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testing::{assert_invalid, biped, build_error};
 
     /// Outputs the number of calls so far (so every call gives a new value) and counts resets.
     struct Counter(f64);
@@ -158,26 +151,17 @@ mod tests {
 
     #[test]
     fn the_spec_delegates_to_its_inner_brain_and_checks_its_period() {
-        let m = vsrlab_body::Morphology::named("biped-4x3").unwrap();
-        let rpv = vec![4; 10];
+        let (m, rpv) = biped();
         assert_eq!(
             BrainSpec::parse("step:0.33:mlp").unwrap().parameter_count(&m, &rpv),
             Ok(1336)
         );
-        let err = BrainSpec::parse("step:0.3:distributed-mlp-hetero")
-            .unwrap()
-            .build(&m, &rpv)
-            .err()
-            .unwrap();
+        let err = build_error(&BrainSpec::parse("step:0.3:distributed-mlp-hetero").unwrap(), &rpv);
         assert_eq!(
             err.to_string(),
             "brain.weights: expected 540 for this body and sensors, got 0"
         );
-        let err = BrainSpec::parse("step:-1:phase")
-            .unwrap()
-            .build(&m, &rpv)
-            .err()
-            .unwrap();
-        assert!(matches!(err, BrainError::Invalid { field: "period", .. }), "{err}");
+        let err = build_error(&BrainSpec::parse("step:-1:phase").unwrap(), &rpv);
+        assert_invalid(&err, "period");
     }
 }

@@ -61,18 +61,9 @@ if ! venv_ok; then
 fi
 
 # Reinstall only when requirements.txt changed since the last successful install.
-stamp="$VENV/.requirements.sha256"
-want="$(sha256sum "$REQ" | cut -d' ' -f1)"
-if [[ ! -f "$stamp" || "$(cat "$stamp")" != "$want" ]]; then
-    log "installing pinned requirements into $VENV"
-    if ! "$VENV/bin/python" -m pip install --disable-pip-version-check -q -r "$REQ" >&2; then
-        log "ERROR: 'pip install -r $REQ' failed (see pip output above)."
-        exit 2
-    fi
-    echo "$want" > "$stamp"
-else
-    log "reusing venv $VENV (requirements unchanged)"
-fi
+# shellcheck source=../venv.sh
+source "$(dirname "$0")/../venv.sh"
+install_requirements
 
 # evogym's compiled module (simulator_cpp) links against the system libGL.so.1
 # (and through it libX11) even though we never render. Debian: package libgl1.

@@ -26,18 +26,9 @@ if [[ ! -x "$VENV/bin/python" ]]; then
 fi
 
 # Reinstall only when requirements.txt changed since the last successful install.
-stamp="$VENV/.requirements.sha256"
-want="$(sha256sum "$REQ" | cut -d' ' -f1)"
-if [[ ! -f "$stamp" || "$(cat "$stamp")" != "$want" ]]; then
-    log "installing pinned requirements into $VENV"
-    if ! "$VENV/bin/python" -m pip install --disable-pip-version-check -q -r "$REQ" >&2; then
-        log "ERROR: 'pip install -r $REQ' failed (see pip output above)."
-        exit 2
-    fi
-    echo "$want" > "$stamp"
-else
-    log "reusing venv $VENV (requirements unchanged)"
-fi
+# shellcheck source=../venv.sh
+source "$(dirname "$0")/../venv.sh"
+install_requirements
 
 # One thread for numpy, so timings compare single-threaded work.
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1

@@ -237,7 +237,7 @@ impl Experiment {
             BodyPart::Encoded(e) => e.width() * e.height(),
             BodyPart::Fixed(m) => m.width() * m.height(),
         };
-        self.optimizer.kind_mut().resolve(cells);
+        self.optimizer.resolve(cells);
         self
     }
 

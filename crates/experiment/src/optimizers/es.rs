@@ -51,10 +51,13 @@ impl OptimizerKind for EsParams {
         range("init_range", self.init_range)
     }
 
-    fn resolve(&mut self, _cells: usize) {
-        if self.parents.is_none() {
-            self.parents = Some((self.population_size / 4).max(1));
-        }
+    /// μ defaults to ⌊λ/4⌋.
+    fn resolved(&self, _cells: usize) -> Option<OptimizerConfig> {
+        let parents = Some(self.parents.unwrap_or((self.population_size / 4).max(1)));
+        Some(OptimizerConfig::Es(EsParams {
+            parents,
+            ..self.clone()
+        }))
     }
 
     fn build(&self, dimension: usize, senses: &[Sense], seed: u64) -> Result<AnyOptimizer, EvolutionError> {

@@ -26,13 +26,15 @@ pub struct GaParams {
 }
 
 impl Default for GaParams {
+    /// The thesis settings, as the optimizer's own defaults ([`GaConfig::default`]).
     fn default() -> Self {
+        let ga = GaConfig::default();
         Self {
-            population_size: 100,
-            offspring_size: 100,
-            tournament_size: 5,
-            mutation_probability: 0.2,
-            reevaluate_survivors: false,
+            population_size: ga.population_size,
+            offspring_size: ga.offspring_size,
+            tournament_size: ga.tournament_size,
+            mutation_probability: ga.mutation_probability,
+            reevaluate_survivors: ga.reevaluate_survivors,
             operators: Operators::default(),
         }
     }

@@ -88,20 +88,22 @@ impl OptimizerKind for MapElitesParams {
     }
 
     /// The thesis' grid: d_num over [0, W·H], d_elong and d_compact over [0, 1], 10 bins each.
-    fn resolve(&mut self, cells: usize) {
-        if self.axes.is_empty() {
-            let axis = |descriptor, max| Axis {
-                descriptor,
-                min: 0.0,
-                max,
-                bins: 10,
-            };
-            self.axes = vec![
-                axis(Descriptor::Voxels, cells as f64),
-                axis(Descriptor::Elongation, 1.0),
-                axis(Descriptor::Compactness, 1.0),
-            ];
+    fn resolved(&self, cells: usize) -> Option<OptimizerConfig> {
+        if !self.axes.is_empty() {
+            return None;
         }
+        let axis = |descriptor, max| Axis {
+            descriptor,
+            min: 0.0,
+            max,
+            bins: 10,
+        };
+        let axes = vec![
+            axis(Descriptor::Voxels, cells as f64),
+            axis(Descriptor::Elongation, 1.0),
+            axis(Descriptor::Compactness, 1.0),
+        ];
+        Some(OptimizerConfig::MapElites(MapElitesParams { axes, ..self.clone() }))
     }
 
     fn descriptors(&self) -> Vec<Descriptor> {

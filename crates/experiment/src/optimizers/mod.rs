@@ -3,7 +3,7 @@
 //! Each kind is one file here: its `[optimizer]` parameters (thesis defaults) and an
 //! [`OptimizerKind`] implementation that validates them, fills defaults that depend on the
 //! representation, and builds the optimizer. [`OptimizerConfig`] is the registration list, matched
-//! only in [`OptimizerConfig::kind`], [`OptimizerConfig::kind_mut`] and [`OPTIMIZERS`].
+//! only in [`OptimizerConfig::kind`] and [`OPTIMIZERS`].
 //!
 //! Adding an optimizer for flat vectors: a file with its parameters and `OptimizerKind` impl, a
 //! variant in [`OptimizerConfig`] and [`AnyOptimizer`], and an entry in [`OPTIMIZERS`].
@@ -46,8 +46,11 @@ pub trait OptimizerKind {
     fn name(&self) -> &'static str;
     /// Checks the parameters: the field (inside `optimizer`) and the message on error.
     fn validate(&self) -> Result<(), (String, String)>;
-    /// Fills defaults that depend on the representation (`cells`: W·H of the body grid).
-    fn resolve(&mut self, _cells: usize) {}
+    /// The same config with the defaults that depend on the representation filled in (`cells`:
+    /// W·H of the body grid), or `None` when there are none to fill.
+    fn resolved(&self, _cells: usize) -> Option<OptimizerConfig> {
+        None
+    }
     /// Whether it optimizes several objectives at once.
     fn multi_objective(&self) -> bool {
         false
@@ -96,15 +99,10 @@ impl OptimizerConfig {
         }
     }
 
-    /// The kind behind the value, mutably.
-    pub fn kind_mut(&mut self) -> &mut dyn OptimizerKind {
-        match self {
-            OptimizerConfig::Ga(p) => p,
-            OptimizerConfig::Es(p) => p,
-            OptimizerConfig::CmaEs(p) => p,
-            OptimizerConfig::Se(p) => p,
-            OptimizerConfig::MapElites(p) => p,
-            OptimizerConfig::Nsga2(p) => p,
+    /// Fills the defaults that depend on the representation (`cells`: W·H of the body grid).
+    pub fn resolve(&mut self, cells: usize) {
+        if let Some(resolved) = self.kind().resolved(cells) {
+            *self = resolved;
         }
     }
 }

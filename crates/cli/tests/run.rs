@@ -121,3 +121,23 @@ fn bad_experiment_files_name_the_field_and_the_line() {
         "{err}"
     );
 }
+
+#[test]
+fn an_experiment_name_cannot_write_outside_the_output_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let work = dir.path().join("a/b");
+    std::fs::create_dir_all(&work).unwrap();
+    let file = work.join("exp.toml");
+    std::fs::write(&file, format!("name = \"../../escaped\"\n{EXPERIMENT}")).unwrap();
+    let out = Command::new(VSRLAB)
+        .args(["run", "exp.toml"])
+        .current_dir(&work)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(stderr.contains("'name'") && stderr.contains("line 1"), "{stderr}");
+    // nothing was written: no output folder below, no escaped folder above
+    assert!(!work.join("out").exists());
+    assert!(!dir.path().join("escaped").exists() && !dir.path().join("a/escaped").exists());
+}

@@ -180,3 +180,21 @@ fn shipped_experiments_parse_with_the_thesis_sizes() {
         }
     }
 }
+
+#[test]
+fn names_that_could_leave_the_output_folder_are_refused() {
+    for bad in ["../../escaped", "a/b", "a\\\\b", ".hidden", "..", "", "two words"] {
+        let e = error_of("name = \"demo\"", &format!("name = \"{bad}\""));
+        assert!(e.contains("line 1") && e.contains("'name'"), "{bad}: {e}");
+    }
+    for good in ["demo", "ho-direct-ga-flat", "run_2.b+c", "véhicule"] {
+        let text = BASE.replacen("name = \"demo\"", &format!("name = \"{good}\""), 1);
+        assert!(config::parse(&text, "demo.toml").is_ok(), "{good}");
+    }
+    // without a name, the file's name is used, and checked too
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("my experiment.toml");
+    std::fs::write(&file, BASE.replacen("name = \"demo\"\n", "", 1)).unwrap();
+    let e = config::load(&file).unwrap_err().to_string();
+    assert!(e.contains("'name'") && e.contains("set `name"), "{e}");
+}

@@ -224,9 +224,41 @@ pub fn load(path: &std::path::Path) -> Result<Experiment, ConfigError> {
     })?;
     let mut experiment = parse(&text, &origin)?;
     if experiment.name.is_none() {
-        experiment.name = path.file_stem().map(|s| s.to_string_lossy().into_owned());
+        let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned());
+        if let Some(Err(message)) = stem.as_deref().map(check_name) {
+            return Err(ConfigError {
+                origin,
+                line: None,
+                column: None,
+                field: "name".into(),
+                message: format!("the file name gives no usable name ({message}): set `name = \"…\"` in the file"),
+            });
+        }
+        experiment.name = stem;
     }
     Ok(experiment)
+}
+
+/// Longest experiment name.
+pub const MAX_NAME_LENGTH: usize = 100;
+
+/// Checks an experiment name, which becomes a folder (`out/<name>`): one path component of
+/// letters, digits, `-`, `_`, `.` and `+`, not starting with `.`, at most [`MAX_NAME_LENGTH`]
+/// characters. So a name can never point outside the output folder (`..`, `/`, `\\`).
+pub fn check_name(name: &str) -> Result<(), String> {
+    let allowed = |c: char| c.is_alphanumeric() || matches!(c, '-' | '_' | '.' | '+');
+    if name.is_empty() || name.chars().count() > MAX_NAME_LENGTH {
+        return Err(format!("must have 1 to {MAX_NAME_LENGTH} characters"));
+    }
+    if name.starts_with('.') {
+        return Err(format!("'{name}' must not start with '.' (it becomes a folder name)"));
+    }
+    match name.chars().find(|&c| !allowed(c)) {
+        Some(c) => Err(format!(
+            "'{name}' holds {c:?}: use letters, digits, '-', '_', '.' and '+' only (it becomes a folder name)"
+        )),
+        None => Ok(()),
+    }
 }
 
 impl Experiment {
@@ -246,6 +278,9 @@ impl Experiment {
         let err = |field: &str, msg: String| Err((field.to_string(), msg));
         if self.runs == 0 {
             return err("runs", "must be at least 1".into());
+        }
+        if let Some(Err(message)) = self.name.as_deref().map(check_name) {
+            return err("name", message);
         }
         if let Err(e) = self.representation.validate() {
             // Messages read "representation.<field>: …".

@@ -21,6 +21,25 @@ use crate::validation::check_finite;
 use crate::BrainError;
 use serde::{Deserialize, Serialize};
 
+/// Largest layer of any network (neurons); larger ones are refused, naming `hidden`.
+pub const MAX_LAYER_SIZE: usize = 100_000;
+
+/// Most parameters of one brain (50 million weights, 400 MB); more are refused before anything
+/// is allocated.
+pub const MAX_PARAMETERS: usize = 50_000_000;
+
+/// Refuses a parameter total above [`MAX_PARAMETERS`], naming `hidden`.
+pub(crate) fn check_parameter_total(total: usize) -> Result<(), BrainError> {
+    if total <= MAX_PARAMETERS {
+        Ok(())
+    } else {
+        Err(BrainError::Invalid {
+            field: "hidden",
+            msg: format!("the brain would have {total} parameters, more than the limit of {MAX_PARAMETERS}"),
+        })
+    }
+}
+
 /// The nonlinearity applied by every neuron.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -79,7 +98,10 @@ impl Mlp {
     /// Number of weights (biases included) of a network with these layer sizes:
     /// Σ_l n_{l+1}·(n_l + 1). Fewer than two sizes means no layer: 0.
     pub fn parameter_count(sizes: &[usize]) -> usize {
-        sizes.windows(2).map(|p| p[1] * (p[0] + 1)).sum()
+        sizes
+            .windows(2)
+            .map(|p| p[1].saturating_mul(p[0].saturating_add(1)))
+            .fold(0, usize::saturating_add)
     }
 
     /// A network with layer sizes `[n_in, hidden…, n_out]`.
@@ -112,6 +134,14 @@ impl Mlp {
 
     /// Checks layer sizes: at least input and output, and no empty hidden or output layer.
     pub(crate) fn check_sizes(sizes: &[usize]) -> Result<(), BrainError> {
+        if let Some(&big) = sizes.iter().find(|&&n| n > MAX_LAYER_SIZE) {
+            return Err(BrainError::Invalid {
+                field: "hidden",
+                msg: format!(
+                    "a layer of {big} neurons is more than the limit of {MAX_LAYER_SIZE}, got sizes {sizes:?}"
+                ),
+            });
+        }
         if sizes.len() < 2 {
             return Err(BrainError::Invalid {
                 field: "hidden",
@@ -124,7 +154,7 @@ impl Mlp {
                 msg: format!("hidden and output layers need at least one neuron, got sizes {sizes:?}"),
             });
         }
-        Ok(())
+        check_parameter_total(Mlp::parameter_count(sizes))
     }
 
     /// Layer sizes `[n_in, hidden…, n_out]`.

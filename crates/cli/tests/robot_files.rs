@@ -121,3 +121,19 @@ fn the_shipped_example_robot_replays() {
         "the example robot should walk: {out}"
     );
 }
+
+#[test]
+fn huge_brains_on_the_command_line_are_refused_naming_the_field() {
+    for (brain, field) in [("mlp:100000000", "hidden"), ("distributed-mlp:1000000000", "signals")] {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_vsrlab"))
+            .args(["simulate", "--brain", brain, "--duration", "1"])
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{brain}: {stderr}");
+        assert!(
+            stderr.contains("--brain") && stderr.contains(field),
+            "{brain}: {stderr}"
+        );
+    }
+}

@@ -79,6 +79,9 @@ fn write_file(path: &Path, bytes: &[u8]) -> Result<(), RunError> {
     write_atomic(path, bytes).map_err(io_error(path))
 }
 
+/// Most worker threads a run may ask for.
+pub const MAX_THREADS: usize = 1024;
+
 /// How to run.
 #[derive(Debug, Clone, Default)]
 pub struct RunOptions {
@@ -337,6 +340,12 @@ pub fn run_search<G: Genotype, O: SearchOptimizer<G>>(
     options: &RunOptions,
     observer: &mut dyn Observer,
 ) -> Result<Vec<RunSummary>, RunError> {
+    if options.threads > MAX_THREADS {
+        return Err(RunError::Mismatch(format!(
+            "threads: at most {MAX_THREADS} worker threads, got {}",
+            options.threads
+        )));
+    }
     std::fs::create_dir_all(out).map_err(io_error(out))?;
     let resolved = &plan.resolved;
     let folder = RunFolder::new(out);

@@ -198,3 +198,34 @@ fn names_that_could_leave_the_output_folder_are_refused() {
     let e = config::load(&file).unwrap_err().to_string();
     assert!(e.contains("'name'") && e.contains("set `name"), "{e}");
 }
+
+#[test]
+fn sizes_are_bounded_and_named() {
+    let cases = [
+        (
+            "population_size = 10",
+            "population_size = 1000000000000",
+            "'optimizer.population_size'",
+        ),
+        ("runs = 2", "runs = 1000000000000", "'runs'"),
+        (
+            "kind = \"ga\"\npopulation_size = 10",
+            "kind = \"se\"\npopulation_size = 10\nspecies = 500",
+            "'optimizer.species'",
+        ),
+        (
+            "brain = { kind = \"distributed-mlp\", layout = \"homogeneous\", signals = 1, hidden = [] }",
+            "brain = { kind = \"distributed-mlp\", layout = \"homogeneous\", signals = 1000000000, hidden = [] }",
+            "'representation.brain",
+        ),
+        (
+            "brain = { kind = \"distributed-mlp\", layout = \"homogeneous\", signals = 1, hidden = [] }",
+            "brain = { kind = \"distributed-mlp\", layout = \"homogeneous\", signals = 1, hidden = [1000000000] }",
+            "'representation.brain",
+        ),
+    ];
+    for (from, to, field) in cases {
+        let e = error_of(from, to);
+        assert!(e.contains(field), "expected {field} in: {e}");
+    }
+}

@@ -305,3 +305,21 @@ fn two_objectives(mut experiment: Experiment) -> Experiment {
 fn files_of(out: &std::path::Path) -> Vec<(String, Vec<u8>)> {
     vsrlab_experiment::runner::deterministic_files(out).unwrap()
 }
+
+#[test]
+fn too_many_threads_are_refused_before_anything_is_written() {
+    let experiment = tiny(
+        "kind = \"ga\"\npopulation_size = 4\noffspring_size = 4",
+        "generations = 1",
+    );
+    let evaluator = RobotEvaluator::new(&experiment).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let options = RunOptions {
+        threads: 100_000,
+        resume: false,
+    };
+    let err = run_experiment(&experiment, &evaluator, &out, &options, &mut Silent).unwrap_err();
+    assert!(err.to_string().contains("at most 1024"), "{err}");
+    assert!(!out.exists());
+}

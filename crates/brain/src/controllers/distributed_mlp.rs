@@ -29,7 +29,7 @@
 //! Short forms: `distributed-mlp[:<signals>]` (homogeneous) and
 //! `distributed-mlp-hetero[:<signals>]` (heterogeneous), both without hidden layer, default 1 signal.
 
-use crate::mlp::{Activation, Mlp};
+use crate::mlp::{check_parameter_total, Activation, Mlp};
 use crate::short_form::{self, ShortForm};
 use crate::validation::{check_count, check_voxels, set_finite};
 use crate::{BrainError, BrainKind, BrainSpec, Controller};
@@ -58,10 +58,41 @@ pub enum Layout {
 /// Sizes of one voxel's network: `[r + 4s, hidden…, 1 + 4s]`.
 pub fn network_sizes(readings: usize, signals: usize, hidden: &[usize]) -> Vec<usize> {
     let mut sizes = Vec::with_capacity(hidden.len() + 2);
-    sizes.push(readings + 4 * signals);
+    let four = signals.saturating_mul(4);
+    sizes.push(readings.saturating_add(four));
     sizes.extend_from_slice(hidden);
-    sizes.push(1 + 4 * signals);
+    sizes.push(four.saturating_add(1));
     sizes
+}
+
+/// Most signals per direction.
+pub const MAX_SIGNALS: usize = 1_000;
+
+/// Refuses more than [`MAX_SIGNALS`] signals, naming `signals`.
+fn check_signals(signals: usize) -> Result<(), BrainError> {
+    if signals <= MAX_SIGNALS {
+        Ok(())
+    } else {
+        Err(BrainError::Invalid {
+            field: "signals",
+            msg: format!("at most {MAX_SIGNALS} signals per direction, got {signals}"),
+        })
+    }
+}
+
+/// [`parameter_count`], checked: shape errors and totals above [`crate::mlp::MAX_PARAMETERS`].
+fn checked_parameter_count(
+    morphology: &Morphology,
+    readings: usize,
+    signals: usize,
+    hidden: &[usize],
+    layout: Layout,
+) -> Result<usize, BrainError> {
+    check_signals(signals)?;
+    Mlp::check_sizes(&network_sizes(readings, signals, hidden))?;
+    let total = parameter_count(morphology, readings, signals, hidden, layout);
+    check_parameter_total(total)?;
+    Ok(total)
 }
 
 /// The readings count shared by all voxels, or an error naming `readings_per_voxel`.
@@ -104,7 +135,10 @@ pub fn parameter_count(
     let per_network = Mlp::parameter_count(&network_sizes(readings, signals, hidden));
     match layout {
         Layout::Homogeneous => per_network,
-        Layout::Heterogeneous => morphology.width() * morphology.height() * per_network,
+        Layout::Heterogeneous => morphology
+            .width()
+            .saturating_mul(morphology.height())
+            .saturating_mul(per_network),
     }
 }
 
@@ -161,9 +195,8 @@ impl DistributedMlpController {
         } = *config;
         check_voxels(morphology, readings_per_voxel)?;
         let readings = common_readings(morphology, readings_per_voxel)?;
+        let expected = checked_parameter_count(morphology, readings, signals, hidden, layout)?;
         let sizes = network_sizes(readings, signals, hidden);
-        Mlp::check_sizes(&sizes)?;
-        let expected = parameter_count(morphology, readings, signals, hidden, layout);
         check_count("weights", expected, weights.len())?;
         let n_w = Mlp::parameter_count(&sizes);
         let (w, h) = (morphology.width(), morphology.height());
@@ -318,14 +351,7 @@ impl BrainKind for DistributedMlpSpec {
     fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
         check_voxels(morphology, readings_per_voxel)?;
         let readings = common_readings(morphology, readings_per_voxel)?;
-        Mlp::check_sizes(&network_sizes(readings, self.signals, &self.hidden))?;
-        Ok(parameter_count(
-            morphology,
-            readings,
-            self.signals,
-            &self.hidden,
-            self.layout,
-        ))
+        checked_parameter_count(morphology, readings, self.signals, &self.hidden, self.layout)
     }
 
     fn parameters(&self) -> &[f64] {

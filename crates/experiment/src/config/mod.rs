@@ -239,6 +239,9 @@ pub fn load(path: &std::path::Path) -> Result<Experiment, ConfigError> {
     Ok(experiment)
 }
 
+/// Most runs of one experiment.
+pub const MAX_RUNS: usize = 100_000;
+
 /// Longest experiment name.
 pub const MAX_NAME_LENGTH: usize = 100;
 
@@ -276,8 +279,8 @@ impl Experiment {
     /// Checks values that the types cannot: returns the dotted field path and the message.
     pub fn validate(&self) -> Result<(), (String, String)> {
         let err = |field: &str, msg: String| Err((field.to_string(), msg));
-        if self.runs == 0 {
-            return err("runs", "must be at least 1".into());
+        if self.runs == 0 || self.runs > MAX_RUNS {
+            return err("runs", format!("must be in 1..={MAX_RUNS}, got {}", self.runs));
         }
         if let Some(Err(message)) = self.name.as_deref().map(check_name) {
             return err("name", message);

@@ -250,12 +250,17 @@ pub(crate) fn single(senses: &[Sense]) -> Sense {
 
 /// Shared checks of parameter values; each returns the field and message on error.
 pub(crate) mod check {
-    /// `v ≥ 1`.
+    /// Largest population, batch, tournament or species count.
+    pub const MAX_SIZE: usize = 1_000_000;
+
+    /// `1 ≤ v ≤` [`MAX_SIZE`].
     pub fn positive(field: &str, v: usize) -> Result<(), (String, String)> {
-        if v > 0 {
-            Ok(())
-        } else {
+        if v == 0 {
             Err((field.into(), "must be at least 1".into()))
+        } else if v > MAX_SIZE {
+            Err((field.into(), format!("must be at most {MAX_SIZE}, got {v}")))
+        } else {
+            Ok(())
         }
     }
     /// `p ∈ [0, 1]`.

@@ -68,6 +68,15 @@ impl OptimizerKind for SeParams {
     fn validate(&self) -> Result<(), (String, String)> {
         positive("population_size", self.population_size)?;
         positive("species", self.species)?;
+        if self.species > self.population_size {
+            return Err((
+                "species".into(),
+                format!(
+                    "{} species cannot be made of a population of {}: at most population_size",
+                    self.species, self.population_size
+                ),
+            ));
+        }
         if !(self.alpha > 0.0 && self.alpha <= 1.0) {
             return Err(("alpha".into(), format!("must be in (0, 1], got {}", self.alpha)));
         }

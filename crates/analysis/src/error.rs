@@ -11,6 +11,14 @@ use vsrlab_tasks::files::FileError;
 /// Why an analysis pipeline stopped.
 #[derive(Debug, thiserror::Error)]
 pub enum AnalysisError {
+    /// An option is out of range; the message names it.
+    #[error("{option}: {message}")]
+    Option {
+        /// The option, as on the command line (`bins`, `count`).
+        option: &'static str,
+        /// What is wrong.
+        message: String,
+    },
     /// The results of `vsrlab run` could not be read.
     #[error(transparent)]
     Results(#[from] ResultsError),

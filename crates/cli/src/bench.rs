@@ -64,6 +64,7 @@ impl BenchArgs {
 pub fn run(a: BenchArgs) -> Result<(), String> {
     let report = run_bench(&a.options()).map_err(|e| match e {
         BenchError::Robot(e) => robot_option_error(&e),
+        BenchError::Option(message) => format!("--{message}"),
         other => other.to_string(),
     })?;
     if a.json {

@@ -178,11 +178,37 @@ pub enum BenchError {
     /// An episode failed.
     #[error("{0}")]
     Episode(#[from] EpisodeError),
+    /// An option is out of range or names nothing; the message names the option.
+    #[error("{0}")]
+    Option(String),
+}
+
+/// Checks the options that no episode would reject: known robots, a finite positive time budget
+/// and duration, a sane thread count.
+fn check_options(options: &BenchOptions) -> Result<(), BenchError> {
+    let known: Vec<&str> = STANDARD_CASES.iter().map(|(robot, _)| *robot).collect();
+    if let Some(unknown) = options.robots.iter().flatten().find(|r| !known.contains(&r.as_str())) {
+        return Err(BenchError::Option(format!(
+            "robots: unknown robot '{unknown}': expected some of {}",
+            known.join(", ")
+        )));
+    }
+    if !(options.min_cpu_seconds.is_finite() && (0.0..=3600.0).contains(&options.min_cpu_seconds)) {
+        return Err(BenchError::Option(format!(
+            "min-seconds: must be in [0, 3600], got {}",
+            options.min_cpu_seconds
+        )));
+    }
+    if options.threads.is_some_and(|t| t == 0 || t > 1024) {
+        return Err(BenchError::Option("threads: must be in 1..=1024".into()));
+    }
+    Ok(())
 }
 
 /// Runs the benchmark: for each selected standard robot, a single-threaded row and, if
 /// [`BenchOptions::parallel`], a parallel row.
 pub fn run_bench(options: &BenchOptions) -> Result<BenchReport, BenchError> {
+    check_options(options)?;
     let threads = options
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1));
@@ -336,6 +362,28 @@ mod tests {
             robots: Some(robots.iter().map(|r| r.to_string()).collect()),
             ..BenchOptions::default()
         }
+    }
+
+    #[test]
+    fn unknown_robots_and_bad_budgets_are_refused_naming_the_option() {
+        let err = run_bench(&tiny(&["nosuch"])).unwrap_err().to_string();
+        assert!(
+            err.starts_with("robots: unknown robot 'nosuch'") && err.contains("biped-4x3"),
+            "{err}"
+        );
+        for min_cpu_seconds in [f64::NAN, -1.0, 1e9] {
+            let options = BenchOptions {
+                min_cpu_seconds,
+                ..tiny(&["biped-4x3"])
+            };
+            let err = run_bench(&options).unwrap_err().to_string();
+            assert!(err.starts_with("min-seconds:"), "{err}");
+        }
+        let options = BenchOptions {
+            threads: Some(100_000),
+            ..tiny(&["biped-4x3"])
+        };
+        assert!(run_bench(&options).unwrap_err().to_string().starts_with("threads:"));
     }
 
     #[test]

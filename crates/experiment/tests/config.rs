@@ -208,6 +208,8 @@ fn sizes_are_bounded_and_named() {
             "'optimizer.population_size'",
         ),
         ("runs = 2", "runs = 1000000000000", "'runs'"),
+        ("evaluations = 100", "evaluations = 0", "'stop.evaluations'"),
+        ("evaluations = 100", "generations = 0", "'stop.generations'"),
         (
             "kind = \"ga\"\npopulation_size = 10",
             "kind = \"se\"\npopulation_size = 10\nspecies = 500",

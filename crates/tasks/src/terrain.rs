@@ -10,6 +10,10 @@ pub const TERRAIN_LENGTH: f64 = 2000.0;
 pub const BORDER_WIDTH: f64 = 10.0;
 /// Height of the border walls.
 pub const BORDER_HEIGHT: f64 = 100.0;
+/// Largest standard deviation of a hilly or steppy terrain's height changes.
+pub const MAX_STEP_HEIGHT: f64 = 100.0;
+/// Largest mean segment width of a hilly or steppy terrain (half the terrain's length).
+pub const MAX_STEP_WIDTH: f64 = TERRAIN_LENGTH / 2.0;
 /// Friction coefficient of the ground (dyn4j's default fixture friction).
 pub const GROUND_FRICTION: f64 = 0.2;
 
@@ -103,8 +107,11 @@ impl std::str::FromStr for Terrain {
             "flat" if parts.len() == 1 => Ok(Terrain::Flat),
             "hilly" | "steppy" if (3..=4).contains(&parts.len()) => {
                 let (height, width, seed) = (num(1)?, num(2)?, seed(3)?);
-                if width <= 0.0 {
-                    return Err(format!("terrain '{s}': width must be > 0"));
+                if width <= 0.0 || width > MAX_STEP_WIDTH {
+                    return Err(format!("terrain '{s}': width must be in (0, {MAX_STEP_WIDTH}]"));
+                }
+                if height > MAX_STEP_HEIGHT {
+                    return Err(format!("terrain '{s}': height must be at most {MAX_STEP_HEIGHT}"));
                 }
                 Ok(if parts[0] == "hilly" {
                     Terrain::Hilly { height, width, seed }
@@ -225,6 +232,8 @@ mod tests {
         }
         assert!("hilly-1".parse::<Terrain>().is_err());
         assert!("bumpy".parse::<Terrain>().is_err());
+        assert!("hilly-1e9-10".parse::<Terrain>().unwrap_err().contains("height"));
+        assert!("steppy-1-1e9".parse::<Terrain>().unwrap_err().contains("width"));
         assert!("uphill-95".parse::<Terrain>().is_err());
     }
 

@@ -134,6 +134,12 @@ pub fn label(
 ) -> Result<LabelReport, AnalysisError> {
     check_classes(&options.shape_classes, &options.shape_classes.join(","))?;
     check_classes(&options.behaviour_classes, &options.behaviour_classes.join(","))?;
+    if !(1..=100).contains(&options.bins) {
+        return Err(AnalysisError::Option {
+            option: "bins",
+            message: format!("must be in 1..=100 (bins³ strata), got {}", options.bins),
+        });
+    }
     let experiments = results::discover(&options.results)?;
     let (pool, picked) = draw_sample(options, &experiments, progress)?;
     let setups: Vec<Result<ReplaySetup, BoxError>> =

@@ -302,6 +302,18 @@ impl Experiment {
                 "set at least one of evaluations, births, generations, wall_seconds".into(),
             );
         }
+        for (field, value) in [
+            ("stop.evaluations", s.evaluations),
+            ("stop.births", s.births),
+            ("stop.generations", s.generations),
+        ] {
+            if value == Some(0) {
+                return err(
+                    field,
+                    "must be at least 1 (0 would stop before anything is evaluated)".into(),
+                );
+            }
+        }
         if let Some(w) = s.wall_seconds {
             if !(w.is_finite() && w > 0.0) {
                 return err("stop.wall_seconds", format!("must be a positive number, got {w}"));

@@ -30,12 +30,17 @@ pub const MAX_PARAMETERS: usize = 50_000_000;
 
 /// Refuses a parameter total above [`MAX_PARAMETERS`], naming `hidden`.
 pub(crate) fn check_parameter_total(total: usize) -> Result<(), BrainError> {
-    if total <= MAX_PARAMETERS {
+    check_at_most("hidden", "parameters of the brain", total, MAX_PARAMETERS)
+}
+
+/// Refuses `value` above `limit`, naming `field`: the one check behind every size limit.
+pub(crate) fn check_at_most(field: &'static str, what: &str, value: usize, limit: usize) -> Result<(), BrainError> {
+    if value <= limit {
         Ok(())
     } else {
         Err(BrainError::Invalid {
-            field: "hidden",
-            msg: format!("the brain would have {total} parameters, more than the limit of {MAX_PARAMETERS}"),
+            field,
+            msg: format!("{value} {what}, more than the limit of {limit}"),
         })
     }
 }

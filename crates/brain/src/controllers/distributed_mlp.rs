@@ -29,7 +29,7 @@
 //! Short forms: `distributed-mlp[:<signals>]` (homogeneous) and
 //! `distributed-mlp-hetero[:<signals>]` (heterogeneous), both without hidden layer, default 1 signal.
 
-use crate::mlp::{check_parameter_total, Activation, Mlp};
+use crate::mlp::{check_at_most, check_parameter_total, Activation, Mlp};
 use crate::short_form::{self, ShortForm};
 use crate::validation::{check_count, check_voxels, set_finite};
 use crate::{BrainError, BrainKind, BrainSpec, Controller};
@@ -70,14 +70,7 @@ pub const MAX_SIGNALS: usize = 1_000;
 
 /// Refuses more than [`MAX_SIGNALS`] signals, naming `signals`.
 fn check_signals(signals: usize) -> Result<(), BrainError> {
-    if signals <= MAX_SIGNALS {
-        Ok(())
-    } else {
-        Err(BrainError::Invalid {
-            field: "signals",
-            msg: format!("at most {MAX_SIGNALS} signals per direction, got {signals}"),
-        })
-    }
+    check_at_most("signals", "signals per direction", signals, MAX_SIGNALS)
 }
 
 /// [`parameter_count`], checked: shape errors and totals above [`crate::mlp::MAX_PARAMETERS`].

@@ -128,7 +128,10 @@ struct LocomotionEpisode {
 
 impl TaskEpisode for LocomotionEpisode {
     fn observe(&mut self, step: &StepView) -> Flow {
-        self.voxels = step.body.actuator_count();
+        if self.voxels == 0 {
+            // the body's size does not change: read it once, not at every step
+            self.voxels = step.body.actuator_count();
+        }
         if step.t >= self.transient {
             if !self.started {
                 self.started = true;

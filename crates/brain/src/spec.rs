@@ -39,7 +39,7 @@ use vsrlab_body::Morphology;
 /// {"kind": "step", "period": 0.33, "inner": {"kind": "distributed-mlp", ...}}
 /// {"kind": "smoothed", "speed": 5.0, "inner": {"kind": "mlp", ...}}
 /// ```
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "kebab-case")]
 pub enum BrainSpec {
     /// Open-loop sinusoid with a phase gradient across the body ([`PhaseSpec`]).
@@ -58,6 +58,64 @@ pub enum BrainSpec {
     Step(StepSpec),
     /// Rate-limits the inner brain's output ([`SmoothedSpec`]).
     Smoothed(SmoothedSpec),
+}
+
+/// Every `kind` tag, in the order of [`BrainSpec`]'s variants.
+const KINDS: &[&str] = &[
+    "phase",
+    "constant",
+    "random",
+    "phase-grid",
+    "mlp",
+    "distributed-mlp",
+    "step",
+    "smoothed",
+];
+
+impl<'de> Deserialize<'de> for BrainSpec {
+    /// Reads the `kind` tag, then that kind's fields, so that an error names the field inside the
+    /// brain (`signals: invalid type…`), which serde's derive for tagged enums cannot do.
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        use serde::de::Error;
+        let mut fields = match serde_json::Value::deserialize(deserializer)? {
+            serde_json::Value::Object(fields) => fields,
+            other => return Err(D::Error::custom(format!("expected a table with a `kind`, got {other}"))),
+        };
+        let kind = match fields.remove("kind") {
+            Some(serde_json::Value::String(kind)) => kind,
+            Some(other) => return Err(D::Error::custom(format!("kind: expected a string, got {other}"))),
+            None => return Err(D::Error::missing_field("kind")),
+        };
+        let fields = serde_json::Value::Object(fields);
+        Ok(match kind.as_str() {
+            "phase" => BrainSpec::Phase(payload(fields)?),
+            "constant" => BrainSpec::Constant(payload(fields)?),
+            "random" => BrainSpec::Random(payload(fields)?),
+            "phase-grid" => BrainSpec::PhaseGrid(payload(fields)?),
+            "mlp" => BrainSpec::Mlp(payload(fields)?),
+            "distributed-mlp" => BrainSpec::DistributedMlp(payload(fields)?),
+            "step" => BrainSpec::Step(payload(fields)?),
+            "smoothed" => BrainSpec::Smoothed(payload(fields)?),
+            other => {
+                return Err(D::Error::custom(format!(
+                    "kind: unknown brain kind `{other}`, expected one of {}",
+                    KINDS.join(", ")
+                )))
+            }
+        })
+    }
+}
+
+/// Decodes one kind's fields, prefixing an error with the path of the field inside them.
+fn payload<T: serde::de::DeserializeOwned, E: serde::de::Error>(fields: serde_json::Value) -> Result<T, E> {
+    serde_path_to_error::deserialize(fields).map_err(|e| {
+        let path = e.path().to_string();
+        if path == "." {
+            E::custom(e.into_inner())
+        } else {
+            E::custom(format!("{path}: {}", e.into_inner()))
+        }
+    })
 }
 
 impl Default for BrainSpec {

@@ -4,7 +4,8 @@ use clap::Args;
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::PathBuf;
 use std::time::Instant;
-use vsrlab_experiment::runner::{run_experiment, Flow, Observer, Progress, RunOptions, RunSummary};
+use vsrlab_experiment::memory::{gib, MemoryEstimate};
+use vsrlab_experiment::runner::{run_experiment, Flow, Observer, Progress, RunOptions, RunSummary, MAX_THREADS};
 use vsrlab_experiment::{config, RobotEvaluator};
 
 /// Arguments of `vsrlab run`.
@@ -21,6 +22,9 @@ pub struct RunArgs {
     /// Continue an interrupted experiment from its checkpoints (finished runs are kept).
     #[arg(long)]
     pub resume: bool,
+    /// Refuse a run whose estimated memory exceeds this many GiB (docs/experiments.md).
+    #[arg(long, default_value_t = 8.0, value_name = "GIB")]
+    pub max_memory_gib: f64,
 }
 
 /// Positions per run on the progress bars.
@@ -100,6 +104,14 @@ impl Observer for Bars {
         Flow::Continue
     }
 
+    fn notice(&mut self, message: &str) {
+        if self.interactive {
+            let _ = self.multi.println(format!("note: {message}"));
+        } else {
+            eprintln!("note: {message}");
+        }
+    }
+
     fn run_finished(&mut self, s: &RunSummary) {
         self.finished += 1;
         if let Some(bar) = self.current.take() {
@@ -133,14 +145,27 @@ pub fn run(a: RunArgs) -> Result<(), String> {
     let name = experiment.name.clone().unwrap_or_else(|| "experiment".to_string());
     let out = a.out.clone().unwrap_or_else(|| PathBuf::from("out").join(&name));
     let evaluator = RobotEvaluator::new(&experiment).map_err(|e| e.to_string())?;
+    if !(a.max_memory_gib.is_finite() && a.max_memory_gib > 0.0) {
+        return Err(format!(
+            "--max-memory-gib must be a positive number, got {}",
+            a.max_memory_gib
+        ));
+    }
     let options = RunOptions {
         threads: a.threads.unwrap_or(0),
         resume: a.resume,
+        memory_limit: Some((a.max_memory_gib * (1u64 << 30) as f64).min(u64::MAX as f64) as u64),
     };
+    let threads = match options.threads {
+        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
+        n => n.min(MAX_THREADS),
+    };
+    let estimate = MemoryEstimate::of(&experiment, evaluator.genotype_length(), threads);
     eprintln!(
-        "{name}: {} run(s), {} genes per genotype, output in {}",
+        "{name}: {} run(s), {} genes per genotype, about {} per run, output in {}",
         experiment.runs,
         evaluator.genotype_length(),
+        gib(estimate.bytes),
         out.display()
     );
     let start = Instant::now();

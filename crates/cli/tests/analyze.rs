@@ -101,4 +101,30 @@ fn label_then_analyze_two_settings() {
     assert!(std::fs::read_to_string(full.join("pvalues.csv"))
         .unwrap()
         .contains("isi,tiny-es,tiny-ga"));
+
+    // Missing inputs are named, not skipped silently.
+    let text = vsrlab(&["analyze", results, "--out", d.join("again").to_str().unwrap()]);
+    assert!(text.contains("setting tiny-ga: only 2 run(s)"), "{text}");
+    std::fs::remove_file(out_ga.join("run-01/generations.csv")).unwrap();
+    std::fs::remove_file(out_ga.join("run-01/best.robot.json")).unwrap();
+    let text = vsrlab(&["analyze", results, "--out", d.join("missing").to_str().unwrap()]);
+    assert!(
+        text.contains("run-01: no generations.csv; the run is left out of the fitness figure"),
+        "{text}"
+    );
+    assert!(text.contains("run-01: no best.robot.json"), "{text}");
+}
+
+#[test]
+fn label_refuses_zero_bins_naming_the_option() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = Command::new(VSRLAB)
+        .args(["label", tmp.path().to_str().unwrap(), "--bins", "0"])
+        .args(["--out", tmp.path().join("lab").to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("bins") && err.contains("got 0"), "{err}");
+    assert!(!tmp.path().join("lab").exists());
 }

@@ -68,6 +68,11 @@ fn killed_run_resumes_to_the_same_files() {
         assert!(start.elapsed() < Duration::from_secs(60), "no checkpoint appeared");
         std::thread::sleep(Duration::from_millis(2));
     }
+    // A second process on the same folder is refused while the first one runs.
+    let second = vsrlab(&["run", file, "--out", killed.to_str().unwrap(), "--resume"]);
+    assert!(!second.status.success());
+    let err = String::from_utf8_lossy(&second.stderr);
+    assert!(err.contains("in use by another vsrlab process"), "{err}");
     child.kill().unwrap(); // SIGKILL
     child.wait().unwrap();
     assert!(
@@ -78,6 +83,15 @@ fn killed_run_resumes_to_the_same_files() {
     let refused = vsrlab(&["run", file, "--out", killed.to_str().unwrap()]);
     assert!(!refused.status.success());
     assert!(String::from_utf8_lossy(&refused.stderr).contains("--resume"));
+    // A damaged checkpoint is refused, naming the file; the intact one resumes.
+    let checkpoint = killed.join("run-00/checkpoint.json");
+    let intact = std::fs::read(&checkpoint).unwrap();
+    std::fs::write(&checkpoint, &intact[..intact.len() - 20]).unwrap();
+    let damaged = vsrlab(&["run", file, "--out", killed.to_str().unwrap(), "--resume"]);
+    assert!(!damaged.status.success());
+    let err = String::from_utf8_lossy(&damaged.stderr);
+    assert!(err.contains("checkpoint.json"), "{err}");
+    std::fs::write(&checkpoint, &intact).unwrap();
     let resumed = vsrlab(&[
         "run",
         file,

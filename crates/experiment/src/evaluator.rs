@@ -97,6 +97,11 @@ pub trait Evaluator<G>: Sync {
     fn save_robot(&self, _genotype: &G, _path: &Path, _note: &str) -> Result<(), String> {
         Ok(())
     }
+    /// Checks that a genotype read from a file (a checkpoint) fits the representation, without
+    /// evaluating it; accepts everything by default.
+    fn check(&self, _genotype: &G) -> Result<(), String> {
+        Ok(())
+    }
 }
 
 /// Evaluates genotypes as robots on the experiment's task.
@@ -236,6 +241,11 @@ impl<G, M: Mapper<G>> Evaluator<G> for RobotEvaluator<M> {
 
     fn failure(&self, seed: u64, error: String) -> Evaluated {
         self.failed_with(seed, None, error, Instant::now())
+    }
+
+    /// The genotype must become a robot (right length, finite genes, a body).
+    fn check(&self, genotype: &G) -> Result<(), String> {
+        self.mapper.robot(genotype).map(drop).map_err(|e| e.to_string())
     }
 
     fn save_robot(&self, genotype: &G, path: &Path, note: &str) -> Result<(), String> {

@@ -11,7 +11,9 @@
 //! - [`evaluator`]: genotype → fitness values, descriptor, speciation features, snapshot record.
 //! - [`features`]: simple morphology descriptors, dynamic pose and behaviour spectrum.
 //! - [`runner`]: the ask → parallel evaluate → tell loop, with CSV logs, snapshots, the best
-//!   robot, checkpoints and resume.
+//!   robot, checkpoints and resume; [`checkpoint`]: checkpoint files and the content hashes
+//!   that resume verifies; [`output_lock`]: one process per output folder; [`memory`]: the
+//!   per-run memory estimate checked before a run starts.
 //! - [`bench`](mod@bench): the simulation speed benchmark on the standard robots (`vsrlab bench`),
 //!   timed in CPU seconds ([`cpu_time`]).
 //!
@@ -28,19 +30,22 @@
 //! use vsrlab_experiment::{config, evaluator::RobotEvaluator, runner};
 //! let experiment = config::load("experiments/quickstart.toml".as_ref()).unwrap();
 //! let evaluator = RobotEvaluator::new(&experiment).unwrap();
-//! let options = runner::RunOptions { threads: 0, resume: false };
+//! let options = runner::RunOptions::default();
 //! runner::run_experiment(&experiment, &evaluator, "out/quickstart".as_ref(), &options, &mut runner::Silent)
 //!     .unwrap();
 //! ```
 #![warn(missing_docs)]
 
 pub mod bench;
+pub mod checkpoint;
 pub mod config;
 pub mod cpu_time;
 pub mod evaluator;
 pub mod features;
 pub mod genotype;
+pub mod memory;
 pub mod optimizers;
+pub mod output_lock;
 pub mod runner;
 
 pub use bench::{run_bench, BenchError, BenchOptions, BenchReport};

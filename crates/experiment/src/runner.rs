@@ -12,7 +12,13 @@
 //! OUT/run-00/best.robot.json     the best robot (a robot file)
 //! OUT/run-00/summary.json        the run's result, timings and overhead (written at its end)
 //! OUT/run-00/checkpoint.json     optimizer + run state (while the run is unfinished)
+//! OUT/.vsrlab.lock               held by the process writing the folder
 //! ```
+//!
+//! Integrity: checkpoints carry a content hash and the hashes of the files written before them;
+//! a finished run's `summary.json` carries the hashes of its deterministic files. `--resume`
+//! verifies them, and every genotype and fitness of a checkpoint against the representation,
+//! and refuses damaged files with what to do (see [`crate::checkpoint`]).
 //!
 //! Determinism: evaluations run on a rayon pool but their results are collected in candidate
 //! order, and every random number comes from the run seed, so `generations.csv`, the snapshots
@@ -20,23 +26,27 @@
 //! interrupted and resumed. Only `timings.csv` and the `summary.json` files hold wall-clock
 //! figures. (A `stop.wall_seconds` criterion makes the stopping point machine-dependent.)
 
+use crate::checkpoint::{self, content_hash, Checkpoint, RunState, SnapshotEntry};
 use crate::config::{Experiment, OutputConfig, StopConfig};
 use crate::evaluator::{Evaluated, Evaluator, Record};
 use crate::genotype::Genotype;
+use crate::memory::{MemoryEstimate, DEFAULT_MEMORY_LIMIT};
 use crate::optimizers::{AnyOptimizer, SearchOptimizer};
+use crate::output_lock::{OutputLock, LOCK_FILE};
 use rayon::prelude::*;
-use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use vsrlab_analysis::run_folder::{RunFiles, RunFolder, SUMMARY_FILE, TIMINGS_FILE};
+use vsrlab_analysis::run_folder::{
+    snapshot_file_name, RunFiles, RunFolder, BEST_ROBOT_FILE, GENERATIONS_FILE, SNAPSHOTS_DIR, SUMMARY_FILE,
+    TIMINGS_FILE,
+};
 use vsrlab_evolution::{Evaluation, Sense, Told};
 use vsrlab_tasks::files::write_atomic;
 
-/// Format tag of checkpoint files.
-pub const CHECKPOINT_FORMAT: &str = "vsrlab-checkpoint/1";
+pub use crate::checkpoint::CHECKPOINT_FORMAT;
 
 /// Header of `generations.csv`.
 pub const GENERATIONS_HEADER: &str = "generation,evaluations,births,failures,best_fitness,batch_best,batch_median,\
@@ -90,6 +100,9 @@ pub struct RunOptions {
     /// Continue runs from their checkpoints (and skip finished runs) instead of refusing a
     /// non-empty output folder.
     pub resume: bool,
+    /// Most bytes one run may be estimated to need (`None`: [`DEFAULT_MEMORY_LIMIT`]); see
+    /// [`crate::memory`].
+    pub memory_limit: Option<u64>,
 }
 
 /// Whether the runner should go on after a generation.
@@ -130,6 +143,10 @@ pub trait Observer {
     }
     /// A run ended, or was found finished when resuming.
     fn run_finished(&mut self, _summary: &RunSummary) {}
+    /// Something the user should know that does not stop the experiment (a run restarted for
+    /// lack of a checkpoint, an unverifiable old checkpoint, an output folder that cannot be
+    /// locked).
+    fn notice(&mut self, _message: &str) {}
 }
 
 /// An observer that does nothing.
@@ -172,36 +189,10 @@ pub struct RunSummary {
     pub episode_cpu_seconds: f64,
     /// Threads used by the last session.
     pub threads: usize,
-}
-
-/// Run state that is not the optimizer's: saved in checkpoints.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-struct RunState {
-    /// Records of the current population's genotypes, by genotype hash.
-    records: BTreeMap<u64, Record>,
-    /// Evaluation count at which the next snapshot is due.
-    next_snapshot: u64,
-    /// Evaluation count of the last snapshot written.
-    last_snapshot: Option<u64>,
-    failures: u64,
-    /// Genotype hash and record of the best individual so far.
-    best: Option<(u64, Record)>,
-    wall_seconds: f64,
-    evaluation_seconds: f64,
-    episode_cpu_seconds: f64,
-    /// Bytes of `generations.csv` and `timings.csv` covered by this checkpoint.
-    csv_bytes: u64,
-    timings_bytes: u64,
-}
-
-#[derive(Serialize, Deserialize)]
-#[serde(bound(deserialize = "O: DeserializeOwned"))]
-struct Checkpoint<O> {
-    format: String,
-    run: usize,
-    seed: u64,
-    state: RunState,
-    optimizer: O,
+    /// Content hashes of the run's deterministic files (path inside the run folder → hash),
+    /// verified when an experiment is resumed.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub files: BTreeMap<String, String>,
 }
 
 /// A snapshot line: one population member.
@@ -284,7 +275,7 @@ pub fn deterministic_files(out: &Path) -> std::io::Result<Vec<(String, Vec<u8>)>
             let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
             if path.is_dir() {
                 stack.push(path);
-            } else if !matches!(name.as_deref(), Some(TIMINGS_FILE | SUMMARY_FILE)) {
+            } else if !matches!(name.as_deref(), Some(TIMINGS_FILE | SUMMARY_FILE | LOCK_FILE)) {
                 let rel = path.strip_prefix(out).unwrap_or(&path).display().to_string();
                 files.push((rel, std::fs::read(&path)?));
             }
@@ -324,6 +315,14 @@ pub fn run_experiment(
             vsrlab_tasks::Sense::Minimize => Sense::Minimize,
         })
         .collect();
+    check_threads(options)?;
+    let threads = match options.threads {
+        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
+        n => n,
+    };
+    MemoryEstimate::of(experiment, dimension, threads)
+        .check(options.memory_limit.unwrap_or(DEFAULT_MEMORY_LIMIT))
+        .map_err(RunError::Mismatch)?;
     let new_optimizer = |seed: u64| -> Result<AnyOptimizer, RunError> {
         Ok(experiment.optimizer.kind().build(dimension, &senses, seed)?)
     };
@@ -340,13 +339,15 @@ pub fn run_search<G: Genotype, O: SearchOptimizer<G>>(
     options: &RunOptions,
     observer: &mut dyn Observer,
 ) -> Result<Vec<RunSummary>, RunError> {
-    if options.threads > MAX_THREADS {
-        return Err(RunError::Mismatch(format!(
-            "threads: at most {MAX_THREADS} worker threads, got {}",
-            options.threads
-        )));
-    }
+    check_threads(options)?;
     std::fs::create_dir_all(out).map_err(io_error(out))?;
+    let lock = OutputLock::acquire(out).map_err(|e| RunError::Mismatch(e.to_string()))?;
+    if lock.unsupported() {
+        observer.notice(&format!(
+            "{}: this file system cannot lock files, so nothing stops a second process from writing here",
+            out.display()
+        ));
+    }
     let resolved = &plan.resolved;
     let folder = RunFolder::new(out);
     let config_path = folder.experiment_toml();
@@ -366,7 +367,16 @@ pub fn run_search<G: Genotype, O: SearchOptimizer<G>>(
                 config_path.display()
             )));
         }
-        _ => write_file(&config_path, resolved.as_bytes())?,
+        Ok(_) => {}
+        Err(_) => {
+            if options.resume {
+                observer.notice(&format!(
+                    "{} holds no experiment yet: nothing to resume, starting it",
+                    out.display()
+                ));
+            }
+            write_file(&config_path, resolved.as_bytes())?;
+        }
     }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(options.threads)
@@ -390,6 +400,17 @@ pub fn run_search<G: Genotype, O: SearchOptimizer<G>>(
     let text = serde_json::to_string_pretty(&summaries).expect("summaries serialise");
     write_file(&folder.summary_json(), text.as_bytes())?;
     Ok(summaries)
+}
+
+/// Refuses more than [`MAX_THREADS`] worker threads.
+fn check_threads(options: &RunOptions) -> Result<(), RunError> {
+    if options.threads > MAX_THREADS {
+        return Err(RunError::Mismatch(format!(
+            "threads: at most {MAX_THREADS} worker threads, got {}",
+            options.threads
+        )));
+    }
+    Ok(())
 }
 
 /// Which stop criterion holds, if any.
@@ -483,31 +504,39 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
         if let Ok(text) = std::fs::read_to_string(&summary_path) {
             let summary: RunSummary = serde_json::from_str(&text)
                 .map_err(|e| RunError::Mismatch(format!("{}: {e}", summary_path.display())))?;
+            verify_finished(files, &summary, observer)?;
             observer.run_finished(&summary);
             return Ok(Some(summary));
         }
     }
+    let started_before = csv_path.exists();
     std::fs::create_dir_all(&snapshots).map_err(io_error(&snapshots))?;
     if options.resume {
         remove_stale_temporaries(dir);
         remove_stale_temporaries(&snapshots);
     }
     let every = plan.output.snapshot_every;
-    let (mut optimizer, mut state, mut csv, mut timings) = match std::fs::read(&checkpoint_path) {
-        Ok(bytes) if options.resume => {
-            let checkpoint: Checkpoint<O> = serde_json::from_slice(&bytes)
-                .map_err(|e| RunError::Mismatch(format!("{}: {e}", checkpoint_path.display())))?;
-            if checkpoint.format != CHECKPOINT_FORMAT || checkpoint.run != run || checkpoint.seed != seed {
-                return Err(RunError::Mismatch(format!(
-                    "{} belongs to another run or format",
-                    checkpoint_path.display()
-                )));
+    let checkpoint = if options.resume {
+        match std::fs::read(&checkpoint_path) {
+            Ok(bytes) => Some(load_checkpoint::<G, O>(&bytes, files, run, seed, evaluator, observer)?),
+            Err(_) => {
+                if started_before {
+                    observer.notice(&format!(
+                        "run {}/{}: no checkpoint was written before it stopped; starting it from the beginning \
+                         (it gives the same results)",
+                        run + 1,
+                        plan.run_seeds.len()
+                    ));
+                }
+                None
             }
-            let csv = read_truncated(&csv_path, checkpoint.state.csv_bytes)?;
-            let timings = read_truncated(&timings_path, checkpoint.state.timings_bytes)?;
-            (checkpoint.optimizer, checkpoint.state, csv, timings)
         }
-        _ => {
+    } else {
+        None
+    };
+    let (mut optimizer, mut state, mut csv, mut timings) = match checkpoint {
+        Some(resumed) => resumed,
+        None => {
             let optimizer = new_optimizer(seed)?;
             let state = RunState {
                 next_snapshot: every,
@@ -617,8 +646,7 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
 
         // Snapshots.
         if every > 0 && optimizer.evaluations() >= state.next_snapshot {
-            write_snapshot(files, &optimizer, &state)?;
-            state.last_snapshot = Some(optimizer.evaluations());
+            write_snapshot(files, &optimizer, &mut state)?;
             while state.next_snapshot <= optimizer.evaluations() {
                 state.next_snapshot += every;
             }
@@ -644,6 +672,7 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
         state.wall_seconds = wall(&session_start);
         if last_checkpoint.elapsed().as_secs_f64() >= plan.output.checkpoint_interval {
             state.csv_bytes = csv.len() as u64;
+            state.csv_hash = content_hash(csv.as_bytes());
             state.timings_bytes = timings.len() as u64;
             write_checkpoint(&checkpoint_path, run, seed, &state, &optimizer)?;
             last_checkpoint = Instant::now();
@@ -655,9 +684,15 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
 
     // The run is over: final population, best robot, summary; the checkpoint is no longer needed.
     if state.last_snapshot != Some(optimizer.evaluations()) {
-        write_snapshot(files, &optimizer, &state)?;
+        write_snapshot(files, &optimizer, &mut state)?;
     }
     let best = optimizer.best();
+    let mut manifest = BTreeMap::new();
+    manifest.insert(GENERATIONS_FILE.to_string(), content_hash(csv.as_bytes()));
+    for snapshot in &state.snapshots {
+        let name = format!("{SNAPSHOTS_DIR}/{}", snapshot_file_name(snapshot.evaluations));
+        manifest.insert(name, snapshot.hash.clone());
+    }
     if plan.output.save_best {
         if let Some(best) = best {
             let note = format!(
@@ -670,6 +705,9 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
             evaluator
                 .save_robot(&best.genotype, &files.best_robot(), &note)
                 .map_err(|e| RunError::Other(format!("best robot of run {run}: {e}")))?;
+            if let Ok(bytes) = std::fs::read(files.best_robot()) {
+                manifest.insert(BEST_ROBOT_FILE.to_string(), content_hash(&bytes));
+            }
         }
     }
     let wall_seconds = wall(&session_start);
@@ -696,6 +734,7 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
         },
         episode_cpu_seconds: state.episode_cpu_seconds,
         threads: pool.current_num_threads(),
+        files: manifest,
     };
     let text = serde_json::to_string_pretty(&summary).expect("summaries serialise");
     write_file(&summary_path, text.as_bytes())?;
@@ -742,29 +781,152 @@ fn write_checkpoint<O: Serialize>(
     state: &RunState,
     optimizer: &O,
 ) -> Result<(), RunError> {
-    #[derive(Serialize)]
-    struct CheckpointRef<'a, O> {
-        format: &'a str,
-        run: usize,
-        seed: u64,
-        state: &'a RunState,
-        optimizer: &'a O,
+    let bytes =
+        checkpoint::encode(run, seed, state, optimizer).map_err(|e| RunError::Other(format!("checkpoint: {e}")))?;
+    write_file(path, &bytes)
+}
+
+/// A resumed run: optimizer, run state, and the covered parts of the two CSV files.
+type Resumed<O> = (O, RunState, String, String);
+
+/// Reads a run's checkpoint and verifies it and the files it covers: content hash, run and seed,
+/// every genotype and fitness against the representation, the covered part of
+/// `generations.csv`, every snapshot written so far. Errors name the file and say what to do.
+fn load_checkpoint<G: Genotype, O: SearchOptimizer<G>>(
+    bytes: &[u8],
+    files: &RunFiles,
+    run: usize,
+    seed: u64,
+    evaluator: &dyn Evaluator<G>,
+    observer: &mut dyn Observer,
+) -> Result<Resumed<O>, RunError> {
+    let path = files.checkpoint_json();
+    let refuse = |problem: String| {
+        RunError::Mismatch(format!(
+            "{}: {problem}; restore the file, or delete it to restart this run from its beginning \
+             (a restarted run gives the same results)",
+            path.display()
+        ))
+    };
+    let loaded = checkpoint::decode::<O>(bytes).map_err(&refuse)?;
+    if !loaded.verified {
+        observer.notice(&format!(
+            "{}: written by an older vsrlab without a content hash; resuming without verifying it",
+            path.display()
+        ));
     }
-    let bytes = serde_json::to_vec(&CheckpointRef {
-        format: CHECKPOINT_FORMAT,
-        run,
-        seed,
+    let Checkpoint {
+        run: saved_run,
+        seed: saved_seed,
         state,
         optimizer,
-    })
-    .map_err(|e| RunError::Other(format!("checkpoint: {e}")))?;
-    write_file(path, &bytes)
+    } = loaded.checkpoint;
+    if saved_run != run || saved_seed != seed {
+        return Err(refuse(format!(
+            "belongs to run {saved_run} with seed {saved_seed}, not run {run} with seed {seed}"
+        )));
+    }
+    check_individuals(&optimizer, evaluator).map_err(&refuse)?;
+    let csv = read_truncated(&files.generations_csv(), state.csv_bytes)?;
+    if !state.csv_hash.is_empty() && content_hash(csv.as_bytes()) != state.csv_hash {
+        return Err(damaged_run(
+            files,
+            &[format!(
+                "{} (its first {} bytes differ from what the checkpoint recorded)",
+                files.generations_csv().display(),
+                state.csv_bytes
+            )],
+        ));
+    }
+    let timings = read_truncated(&files.timings_csv(), state.timings_bytes)?;
+    let damaged: Vec<String> = state
+        .snapshots
+        .iter()
+        .filter_map(|s| checkpoint::damage(&files.snapshot(s.evaluations), &s.hash))
+        .collect();
+    if !damaged.is_empty() {
+        return Err(damaged_run(files, &damaged));
+    }
+    Ok((optimizer, state, csv, timings))
+}
+
+/// Checks every individual an optimizer holds (population and best) against the evaluator: the
+/// genotype fits the representation, and there is one fitness value per objective, each finite
+/// or NaN (a failed evaluation).
+fn check_individuals<G, O: SearchOptimizer<G>>(optimizer: &O, evaluator: &dyn Evaluator<G>) -> Result<(), String> {
+    let objectives = evaluator.objectives();
+    let members = optimizer
+        .population()
+        .into_iter()
+        .enumerate()
+        .map(|(i, m)| (format!("population member {i}"), m));
+    for (who, individual) in members.chain(optimizer.best().map(|b| ("best individual".to_string(), b))) {
+        evaluator
+            .check(&individual.genotype)
+            .map_err(|e| format!("{who}: genotype does not fit the representation: {e}"))?;
+        if individual.objectives.len() != objectives {
+            return Err(format!(
+                "{who}: {} fitness values, the task has {objectives} objective(s)",
+                individual.objectives.len()
+            ));
+        }
+        if let Some(bad) = individual.objectives.iter().find(|f| f.is_infinite()) {
+            return Err(format!("{who}: fitness {bad} is not finite"));
+        }
+    }
+    Ok(())
+}
+
+/// The error for files of a run that are missing or damaged and cannot be rebuilt from the
+/// checkpoint.
+fn damaged_run(files: &RunFiles, damaged: &[String]) -> RunError {
+    RunError::Mismatch(format!(
+        "run folder {} is damaged: {}. Restore these files, or delete the folder and resume again to \
+         recompute the run from its seed (it gives the same files)",
+        files.dir().display(),
+        damaged.join(", ")
+    ))
+}
+
+/// Verifies the files of a finished run against the hashes in its `summary.json`.
+fn verify_finished(files: &RunFiles, summary: &RunSummary, observer: &mut dyn Observer) -> Result<(), RunError> {
+    if summary.files.is_empty() {
+        observer.notice(&format!(
+            "{}: written by an older vsrlab without file hashes; its files are not verified",
+            files.summary_json().display()
+        ));
+        return Ok(());
+    }
+    let damaged: Vec<String> = summary
+        .files
+        .iter()
+        .filter_map(|(name, hash)| match safe_relative(name) {
+            Some(rel) => checkpoint::damage(&files.dir().join(rel), hash),
+            None => Some(format!(
+                "{} (a file name outside the run folder: {name:?})",
+                files.summary_json().display()
+            )),
+        })
+        .collect();
+    if damaged.is_empty() {
+        Ok(())
+    } else {
+        Err(damaged_run(files, &damaged))
+    }
+}
+
+/// A path from a summary's manifest, if it stays inside the run folder (plain names only).
+fn safe_relative(name: &str) -> Option<&Path> {
+    let path = Path::new(name);
+    path.components()
+        .all(|c| matches!(c, std::path::Component::Normal(_)))
+        .then_some(path)
 }
 
 fn write_snapshot<G: Genotype, O: SearchOptimizer<G>>(
     files: &RunFiles,
     optimizer: &O,
-    state: &RunState,
+    state: &mut RunState,
 ) -> Result<(), RunError> {
     let mut text = String::new();
     for (index, individual) in optimizer.population().into_iter().enumerate() {
@@ -780,5 +942,11 @@ fn write_snapshot<G: Genotype, O: SearchOptimizer<G>>(
         text.push_str(&serde_json::to_string(&line).map_err(|e| RunError::Other(format!("snapshot: {e}")))?);
         text.push('\n');
     }
-    write_file(&files.snapshot(optimizer.evaluations()), text.as_bytes())
+    write_file(&files.snapshot(optimizer.evaluations()), text.as_bytes())?;
+    state.last_snapshot = Some(optimizer.evaluations());
+    state.snapshots.push(SnapshotEntry {
+        evaluations: optimizer.evaluations(),
+        hash: content_hash(text.as_bytes()),
+    });
+    Ok(())
 }

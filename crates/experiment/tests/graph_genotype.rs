@@ -164,7 +164,11 @@ fn a_graph_genotype_runs_checkpoints_and_resumes_like_an_uninterrupted_run() {
     let plan = Plan::of(&experiment);
     let dir = tempfile::tempdir().unwrap();
     let (straight, resumed) = (dir.path().join("straight"), dir.path().join("resumed"));
-    let options = |resume| RunOptions { threads: 2, resume };
+    let options = |resume| RunOptions {
+        threads: 2,
+        resume,
+        ..RunOptions::default()
+    };
 
     let summaries = run_search(
         &plan,

@@ -45,7 +45,11 @@ snapshot_every = 20
 
 fn run(experiment: &Experiment, out: &Path, threads: usize) {
     let evaluator = RobotEvaluator::new(experiment).unwrap();
-    let options = RunOptions { threads, resume: false };
+    let options = RunOptions {
+        threads,
+        resume: false,
+        ..RunOptions::default()
+    };
     run_experiment(experiment, &evaluator, out, &options, &mut Silent).unwrap();
 }
 
@@ -123,6 +127,7 @@ fn resumed_runs_end_like_uninterrupted_ones() {
         let options = RunOptions {
             threads: 2,
             resume: false,
+            ..RunOptions::default()
         };
         let done = run_experiment(
             &experiment,
@@ -147,6 +152,7 @@ fn resumed_runs_end_like_uninterrupted_ones() {
         let options = RunOptions {
             threads: 1,
             resume: true,
+            ..RunOptions::default()
         };
         let summaries = run_experiment(&experiment, &evaluator, &resumed, &options, &mut Silent).unwrap();
         assert_eq!(summaries.len(), 2);
@@ -174,6 +180,7 @@ fn resuming_with_another_configuration_is_refused() {
     let options = RunOptions {
         threads: 1,
         resume: true,
+        ..RunOptions::default()
     };
     let err = run_experiment(&other, &evaluator, dir.path(), &options, &mut Silent).unwrap_err();
     assert!(err.to_string().contains("different experiment"), "{err}");
@@ -221,6 +228,7 @@ fn failed_and_panicking_evaluations_get_the_worst_fitness_and_are_counted() {
     let options = RunOptions {
         threads: 2,
         resume: false,
+        ..RunOptions::default()
     };
     // three genes, whatever the representation says: the optimizer comes from the plan's kind
     let new_optimizer = |seed: u64| -> Result<AnyOptimizer, RunError> {
@@ -318,8 +326,232 @@ fn too_many_threads_are_refused_before_anything_is_written() {
     let options = RunOptions {
         threads: 100_000,
         resume: false,
+        ..RunOptions::default()
     };
     let err = run_experiment(&experiment, &evaluator, &out, &options, &mut Silent).unwrap_err();
     assert!(err.to_string().contains("at most 1024"), "{err}");
     assert!(!out.exists());
+}
+
+/// An observer that keeps the notices.
+#[derive(Default)]
+struct Notes(Vec<String>);
+
+impl Observer for Notes {
+    fn notice(&mut self, message: &str) {
+        self.0.push(message.to_string());
+    }
+}
+
+/// A two-run GA experiment interrupted in run 1 after 4 generations (one snapshot written) (run 0 finished, run 1 with a
+/// checkpoint), and an uninterrupted copy to compare with.
+fn interrupted(dir: &Path) -> (Experiment, std::path::PathBuf, std::path::PathBuf) {
+    let experiment = tiny(
+        "kind = \"ga\"\npopulation_size = 6\noffspring_size = 6",
+        "evaluations = 30",
+    );
+    let evaluator = RobotEvaluator::new(&experiment).unwrap();
+    let (straight, resumed) = (dir.join("straight"), dir.join("resumed"));
+    run(&experiment, &straight, 2);
+    let options = RunOptions {
+        threads: 2,
+        ..RunOptions::default()
+    };
+    run_experiment(
+        &experiment,
+        &evaluator,
+        &resumed,
+        &options,
+        &mut Killer { run: 1, after: 4 },
+    )
+    .unwrap();
+    (experiment, straight, resumed)
+}
+
+fn resume(experiment: &Experiment, out: &Path, observer: &mut dyn Observer) -> Result<(), RunError> {
+    let evaluator = RobotEvaluator::new(experiment).unwrap();
+    let options = RunOptions {
+        threads: 2,
+        resume: true,
+        ..RunOptions::default()
+    };
+    run_experiment(experiment, &evaluator, out, &options, observer).map(drop)
+}
+
+/// Rewrites a checkpoint's content with `edit` and a freshly computed content hash, as someone
+/// who knows the format could.
+fn rewrite_checkpoint(path: &Path, edit: impl FnOnce(&mut serde_json::Value)) {
+    let file: serde_json::Value = serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap();
+    let mut content = file["content"].clone();
+    edit(&mut content);
+    let content = content.to_string();
+    let hash = vsrlab_experiment::checkpoint::content_hash(content.as_bytes());
+    let text = format!(
+        r#"{{"format":"{}","content_hash":"{hash}","content":{content}}}"#,
+        file["format"].as_str().unwrap()
+    );
+    std::fs::write(path, text).unwrap();
+}
+
+#[test]
+fn a_tampered_checkpoint_is_refused_naming_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let (experiment, straight, resumed) = interrupted(dir.path());
+    let checkpoint = run_dir(&resumed, 1, 2).join("checkpoint.json");
+    let original = std::fs::read_to_string(&checkpoint).unwrap();
+
+    // A fitness edited by hand: the content hash no longer matches.
+    let value: serde_json::Value = serde_json::from_str(&original).unwrap();
+    let fitness = value["content"]["optimizer"]["Ga"]["population"][0]["objectives"][0].to_string();
+    let edited = original.replacen(&fitness, "1e300", 1);
+    assert_ne!(edited, original, "the test must change the checkpoint");
+    std::fs::write(&checkpoint, &edited).unwrap();
+    let err = resume(&experiment, &resumed, &mut Silent).unwrap_err().to_string();
+    assert!(
+        err.contains("checkpoint.json") && err.contains("content hash mismatch"),
+        "{err}"
+    );
+
+    // A genotype cut to 10 genes, with the hash recomputed: the representation check catches it.
+    std::fs::write(&checkpoint, &original).unwrap();
+    rewrite_checkpoint(&checkpoint, |c| {
+        let genotype = c["optimizer"]["Ga"]["population"][0]["genotype"]
+            .as_array_mut()
+            .unwrap();
+        genotype.truncate(10);
+    });
+    let err = resume(&experiment, &resumed, &mut Silent).unwrap_err().to_string();
+    assert!(
+        err.contains("checkpoint.json") && err.contains("population member 0"),
+        "{err}"
+    );
+    assert!(err.contains("got 10"), "{err}");
+
+    // An infinite fitness with the hash recomputed.
+    std::fs::write(&checkpoint, &original).unwrap();
+    rewrite_checkpoint(&checkpoint, |c| {
+        c["optimizer"]["Ga"]["population"][1]["objectives"][0] = serde_json::json!("inf");
+    });
+    let err = resume(&experiment, &resumed, &mut Silent).unwrap_err().to_string();
+    assert!(err.contains("checkpoint.json"), "{err}");
+
+    // The untouched checkpoint resumes to the uninterrupted result.
+    std::fs::write(&checkpoint, &original).unwrap();
+    resume(&experiment, &resumed, &mut Silent).unwrap();
+    assert_eq!(files_of(&straight), files_of(&resumed));
+}
+
+#[test]
+fn missing_or_damaged_files_are_reported_on_resume() {
+    let dir = tempfile::tempdir().unwrap();
+    let (experiment, straight, resumed) = interrupted(dir.path());
+    // A snapshot of the unfinished run, written before its checkpoint, deleted.
+    let run1 = run_dir(&resumed, 1, 2);
+    let snapshot = std::fs::read_dir(run1.join("snapshots"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .min()
+        .unwrap();
+    let saved = std::fs::read(&snapshot).unwrap();
+    std::fs::remove_file(&snapshot).unwrap();
+    let err = resume(&experiment, &resumed, &mut Silent).unwrap_err().to_string();
+    assert!(
+        err.contains(&snapshot.display().to_string()) && err.contains("missing"),
+        "{err}"
+    );
+    std::fs::write(&snapshot, &saved).unwrap();
+
+    // The finished run's best robot, truncated.
+    let best = run_dir(&resumed, 0, 2).join("best.robot.json");
+    let text = std::fs::read(&best).unwrap();
+    std::fs::write(&best, &text[..text.len() / 2]).unwrap();
+    let err = resume(&experiment, &resumed, &mut Silent).unwrap_err().to_string();
+    assert!(err.contains("best.robot.json") && err.contains("differs"), "{err}");
+    assert!(err.contains("delete the folder and resume again"), "{err}");
+
+    // Doing what the message says gives the uninterrupted result back.
+    std::fs::remove_dir_all(run_dir(&resumed, 0, 2)).unwrap();
+    resume(&experiment, &resumed, &mut Silent).unwrap();
+    assert_eq!(files_of(&straight), files_of(&resumed));
+    // A finished experiment resumes again without complaint.
+    resume(&experiment, &resumed, &mut Silent).unwrap();
+}
+
+#[test]
+fn a_second_process_on_one_output_folder_is_refused() {
+    let experiment = tiny(
+        "kind = \"ga\"\npopulation_size = 4\noffspring_size = 4",
+        "generations = 1",
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    let held = vsrlab_experiment::output_lock::OutputLock::acquire(&out).unwrap();
+    let evaluator = RobotEvaluator::new(&experiment).unwrap();
+    let err = run_experiment(&experiment, &evaluator, &out, &RunOptions::default(), &mut Silent)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("in use by another vsrlab process"), "{err}");
+    assert!(!out.join("experiment.toml").exists());
+    drop(held);
+    run_experiment(&experiment, &evaluator, &out, &RunOptions::default(), &mut Silent).unwrap();
+}
+
+#[test]
+fn resuming_a_run_without_checkpoint_says_it_restarts() {
+    let experiment = tiny(
+        "kind = \"ga\"\npopulation_size = 6\noffspring_size = 6",
+        "evaluations = 30",
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let evaluator = RobotEvaluator::new(&experiment).unwrap();
+    let out = dir.path().join("out");
+    run_experiment(
+        &experiment,
+        &evaluator,
+        &out,
+        &RunOptions::default(),
+        &mut Killer { run: 0, after: 1 },
+    )
+    .unwrap();
+    std::fs::remove_file(run_dir(&out, 0, 2).join("checkpoint.json")).unwrap();
+    let mut notes = Notes::default();
+    resume(&experiment, &out, &mut notes).unwrap();
+    assert_eq!(notes.0.len(), 1, "{:?}", notes.0);
+    assert!(
+        notes.0[0].contains("run 1/2") && notes.0[0].contains("from the beginning"),
+        "{:?}",
+        notes.0
+    );
+    // Resuming a folder that holds nothing says so too.
+    let mut notes = Notes::default();
+    resume(&experiment, &dir.path().join("empty"), &mut notes).unwrap();
+    assert!(notes.0[0].contains("nothing to resume"), "{:?}", notes.0);
+}
+
+#[test]
+fn a_run_estimated_above_the_memory_limit_is_refused_before_anything_is_written() {
+    let experiment = tiny(
+        "kind = \"ga\"\npopulation_size = 1000\noffspring_size = 1000",
+        "generations = 1",
+    );
+    let evaluator = RobotEvaluator::new(&experiment).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let options = RunOptions {
+        threads: 1,
+        memory_limit: Some(1 << 20),
+        ..RunOptions::default()
+    };
+    let err = run_experiment(&experiment, &evaluator, &out, &options, &mut Silent)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("memory limit of 0.0 GiB") && err.contains("--max-memory-gib"),
+        "{err}"
+    );
+    assert!(!out.exists());
+    // The default limit lets such a run through.
+    let estimate = vsrlab_experiment::memory::MemoryEstimate::of(&experiment, evaluator.genotype_length(), 1);
+    estimate.check(vsrlab_experiment::memory::DEFAULT_MEMORY_LIMIT).unwrap();
 }

@@ -129,7 +129,9 @@ impl Representation {
 
     /// Total genotype length: body genes then brain genes.
     pub fn genotype_length(&self) -> Result<usize, EvaluationError> {
-        Ok(self.body_genes() + self.brain_genes()?)
+        self.body_genes()
+            .checked_add(self.brain_genes()?)
+            .ok_or_else(|| EvaluationError::Representation("too many genes to count".to_string()))
     }
 
     /// Checks that the representation is usable (body encoding, sensors and brain fit together).

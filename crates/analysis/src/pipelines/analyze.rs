@@ -17,6 +17,7 @@ use crate::progress::Progress;
 use crate::replay::{ReplaySetup, SetupReader};
 use crate::report::{SettingSummary, Summary};
 use crate::results::{self, ExperimentData, RunData};
+use crate::run_folder::{BEST_ROBOT_FILE, GENERATIONS_FILE, SUMMARY_FILE};
 use std::path::{Path, PathBuf};
 
 /// What to analyse and how (the options of `vsrlab analyze`).
@@ -97,6 +98,7 @@ pub fn analyze(
         settings.len(),
         experiments.len()
     ));
+    warn_missing_inputs(&experiments, &settings, progress);
     let mut a = Analysis {
         options,
         experiments: &experiments,
@@ -147,6 +149,45 @@ pub fn analyze(
         summary,
         figures: a.figures,
     })
+}
+
+/// Fewest runs per setting for which boxplots and rank tests are drawn without a warning.
+const FEW_RUNS: usize = 5;
+
+/// Warns about every input that an analysis leaves out or that makes a figure weak: a run without
+/// `generations.csv` (no fitness curve), without `best.robot.json` (not in `best.csv` nor the
+/// descriptor figures), without `summary.json` (unfinished), and settings with few runs.
+fn warn_missing_inputs(experiments: &[ExperimentData], settings: &[Setting], progress: &dyn Progress) {
+    for experiment in experiments {
+        for run in &experiment.runs {
+            let files = run.files();
+            let label = experiment.run_label(run);
+            if !files.generations_csv().exists() {
+                progress.note(&format!(
+                    "warning: {label}: no {GENERATIONS_FILE}; the run is left out of the fitness figure"
+                ));
+            }
+            if run.best_robot.is_none() {
+                progress.note(&format!(
+                    "warning: {label}: no {BEST_ROBOT_FILE}; the run is left out of best.csv and the descriptor figures"
+                ));
+            }
+            if run.summary.is_none() {
+                progress.note(&format!(
+                    "warning: {label}: no {SUMMARY_FILE} (unfinished run); it is analysed where it stopped"
+                ));
+            }
+        }
+    }
+    for setting in settings {
+        let runs = setting.runs(experiments).count();
+        if runs < FEW_RUNS {
+            progress.note(&format!(
+                "warning: setting {}: only {runs} run(s); its boxplot and p-values say little below {FEW_RUNS} runs",
+                setting.name
+            ));
+        }
+    }
 }
 
 /// The summary table's rows: per setting, the runs' best fitness and final ISI.

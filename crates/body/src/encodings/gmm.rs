@@ -42,6 +42,9 @@ pub const GENES_PER_GAUSSIAN: usize = 5;
 /// The threshold of the original code: a cell is a voxel iff the mixture value exceeds it.
 pub const GMM_THRESHOLD: f64 = 0.5;
 
+/// Most Gaussians a GMM body may have (the thesis uses 5).
+pub const MAX_GAUSSIANS: usize = 100_000;
+
 /// How the σ genes are turned into standard deviations.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -184,9 +187,9 @@ impl GmmBody {
     /// Checks the grid size, that n ≥ 1 and 5·n fits, and that the threshold is finite.
     pub fn validate(&self) -> Result<(), EncodingError> {
         check_grid(self.width, self.height)?;
-        if self.components == 0 || self.components.checked_mul(GENES_PER_GAUSSIAN).is_none() {
+        if self.components == 0 || self.components > MAX_GAUSSIANS {
             return Err(EncodingError::InvalidConfig(format!(
-                "a GMM body needs a positive, reasonable number of Gaussians, got {}",
+                "a GMM body needs 1 to {MAX_GAUSSIANS} Gaussians (components), got {}",
                 self.components
             )));
         }

@@ -60,6 +60,18 @@ impl OptimizerKind for CmaParams {
             seed,
         )?))
     }
+
+    fn held_genotypes(&self, dimension: usize, _budget: Option<u64>) -> u128 {
+        let lambda = self
+            .population_size
+            .unwrap_or(4 + (3.0 * (dimension.max(1) as f64).ln()).floor() as usize);
+        3 * lambda as u128 + 4
+    }
+
+    /// The covariance matrix, its eigenvectors and a work copy: 3·n².
+    fn held_matrix_floats(&self, dimension: usize) -> u128 {
+        3 * (dimension as u128) * (dimension as u128)
+    }
 }
 
 /// The registry entry of `kind = "cma-es"`.

@@ -74,6 +74,10 @@ impl OptimizerKind for EsParams {
             seed,
         )?))
     }
+
+    fn held_genotypes(&self, _dimension: usize, _budget: Option<u64>) -> u128 {
+        3 * self.population_size as u128 + 1
+    }
 }
 
 /// The registry entry of `kind = "es"`.

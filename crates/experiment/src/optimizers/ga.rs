@@ -67,6 +67,10 @@ impl OptimizerKind for GaParams {
             seed,
         )?))
     }
+
+    fn held_genotypes(&self, _dimension: usize, _budget: Option<u64>) -> u128 {
+        self.population_size as u128 + 2 * self.offspring_size as u128
+    }
 }
 
 /// The registry entry of `kind = "ga"`.

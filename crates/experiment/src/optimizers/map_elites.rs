@@ -80,9 +80,14 @@ impl OptimizerKind for MapElitesParams {
             if !(axis.min.is_finite() && axis.max.is_finite() && axis.min < axis.max) {
                 return Err((format!("axes[{i}]"), "needs finite min < max".into()));
             }
-            if axis.bins == 0 {
-                return Err((format!("axes[{i}].bins"), "must be at least 1".into()));
-            }
+            positive(&format!("axes[{i}].bins"), axis.bins)?;
+        }
+        let cells = self.axes.iter().try_fold(1u64, |acc, a| acc.checked_mul(a.bins as u64));
+        if cells.is_none() {
+            return Err((
+                "axes".into(),
+                "the product of the bins is too large to index the archive".into(),
+            ));
         }
         Ok(())
     }
@@ -129,6 +134,17 @@ impl OptimizerKind for MapElitesParams {
             real_vector(dimension, self.init_range, self.mutation_sigma, [0.0, 1.0], 0.0),
             seed,
         )?))
+    }
+
+    /// The archive (at most one elite per cell, and never more than the evaluation budget) plus
+    /// two batches.
+    fn held_genotypes(&self, _dimension: usize, budget: Option<u64>) -> u128 {
+        let cells = self
+            .axes
+            .iter()
+            .fold(1u128, |acc, a| acc.saturating_mul(a.bins as u128));
+        let archive = budget.map_or(cells, |b| cells.min(b as u128));
+        archive + 2 * self.initial_population.max(self.batch_size) as u128
     }
 }
 

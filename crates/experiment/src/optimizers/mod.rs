@@ -66,6 +66,14 @@ pub trait OptimizerKind {
     fn descriptors(&self) -> Vec<Descriptor> {
         Vec::new()
     }
+    /// At most how many genotypes of `dimension` genes it holds at once (population, batch being
+    /// evaluated, offspring), for the memory estimate; `budget` is the run's evaluation limit
+    /// when it has one (archives grow with it).
+    fn held_genotypes(&self, dimension: usize, budget: Option<u64>) -> u128;
+    /// Floats it holds besides genotypes (CMA-ES: its matrices).
+    fn held_matrix_floats(&self, _dimension: usize) -> u128 {
+        0
+    }
 }
 
 /// The optimizer of an experiment, by `kind`, with its parameters.

@@ -65,6 +65,10 @@ impl OptimizerKind for Nsga2Params {
             seed,
         )?))
     }
+
+    fn held_genotypes(&self, _dimension: usize, _budget: Option<u64>) -> u128 {
+        self.population_size as u128 + 2 * self.offspring_size as u128
+    }
 }
 
 /// The registry entry of `kind = "nsga2"`.

@@ -111,6 +111,10 @@ impl OptimizerKind for SeParams {
             seed,
         )?))
     }
+
+    fn held_genotypes(&self, _dimension: usize, _budget: Option<u64>) -> u128 {
+        3 * self.population_size as u128
+    }
 }
 
 /// The registry entry of `kind = "se"`.

@@ -1,0 +1,519 @@
+//! Malformed inputs thrown at the binary: generated experiment files, robot files and command-line
+//! values (seeded, so every run of the suite throws the same ones). For each: no panic, no abort,
+//! no timeout; a failure exits non-zero and names the field (or the line) it is about; nothing is
+//! written outside the case's own folder.
+
+use rand::seq::IndexedRandom;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+const VSRLAB: &str = env!("CARGO_BIN_EXE_vsrlab");
+
+/// A small valid experiment (a few evaluations of 0.2 s episodes), one setting per line.
+const EXPERIMENT: &str = r####"name = "fuzz"
+runs = 1
+seed = 3
+
+[representation]
+body = "###/#.#"
+sensors = "uniform-vxy+a+t-0"
+brain = { kind = "distributed-mlp", layout = "homogeneous", signals = 1, hidden = [] }
+preset = "2021"
+
+[task]
+kind = "locomotion"
+terrain = "flat"
+duration = 0.2
+fitness = "velocity"
+
+[optimizer]
+kind = "ga"
+population_size = 2
+offspring_size = 2
+tournament_size = 2
+
+[stop]
+evaluations = 4
+wall_seconds = 5
+
+[output]
+snapshot_every = 2
+checkpoint_interval = 0
+save_best = true
+"####;
+
+/// Values that are wrong for most fields (and right for a few: the case then must succeed).
+const BAD_VALUES: &[&str] = &[
+    "-1",
+    "0",
+    "-0.0",
+    "1e12",
+    "1000000000000",
+    "18446744073709551616",
+    "nan",
+    "inf",
+    "-inf",
+    "1.5",
+    "true",
+    "\"\"",
+    "\"x\"",
+    "\"../../escaped\"",
+    "\"a/b\"",
+    "\"🤖\"",
+    "[]",
+    "[1000000000]",
+    "[-1]",
+    "{}",
+    "{ kind = \"nosuch\" }",
+    "\"hilly-1e9-10\"",
+    "\"mlp:100000000\"",
+    "\"distributed-mlp:1000000000\"",
+];
+
+/// What one case did.
+#[derive(Debug)]
+struct Case {
+    what: String,
+    code: Option<i32>,
+    stderr: String,
+    timed_out: bool,
+}
+
+/// Runs the binary with a deadline.
+fn run(args: &[&str], cwd: &Path) -> (Option<i32>, String, bool) {
+    let mut child = Command::new(VSRLAB)
+        .args(args)
+        .current_dir(cwd)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("vsrlab starts");
+    let start = Instant::now();
+    let mut stderr = child.stderr.take().unwrap();
+    let reader = std::thread::spawn(move || {
+        let mut text = String::new();
+        let _ = std::io::Read::read_to_string(&mut stderr, &mut text);
+        text
+    });
+    let timed_out = loop {
+        if child.try_wait().unwrap().is_some() {
+            break false;
+        }
+        if start.elapsed() > Duration::from_secs(60) {
+            let _ = child.kill();
+            break true;
+        }
+        std::thread::sleep(Duration::from_millis(2));
+    };
+    let status = child.wait().unwrap();
+    (status.code(), reader.join().unwrap(), timed_out)
+}
+
+/// The outcome counts, and the list of cases that broke a rule.
+#[derive(Default)]
+struct Tally {
+    cases: usize,
+    by_code: BTreeMap<String, usize>,
+    broken: Vec<String>,
+}
+
+impl Tally {
+    /// Checks one case: `names` are the words one of which the error must contain.
+    fn check(&mut self, case: &Case, names: &[&str]) {
+        self.cases += 1;
+        let code = case.code.map_or("signal".to_string(), |c| c.to_string());
+        *self.by_code.entry(code).or_default() += 1;
+        let mut problem = None;
+        if case.timed_out {
+            problem = Some("timed out".to_string());
+        } else if case.stderr.contains("panicked") || case.stderr.contains("RUST_BACKTRACE") {
+            problem = Some("panicked".to_string());
+        } else if !matches!(case.code, Some(0..=2)) {
+            problem = Some(format!("exit {:?}", case.code));
+        } else if case.code != Some(0) && !names.iter().any(|n| case.stderr.contains(n)) {
+            problem = Some(format!("error names none of {names:?}"));
+        }
+        if case.code == Some(0) && std::env::var_os("VSRLAB_FUZZ_LIST").is_some() {
+            eprintln!("accepted: {}", case.what);
+        }
+        if let Some(p) = problem {
+            self.broken.push(format!("{}: {p}\n{}", case.what, case.stderr.trim()));
+        }
+    }
+}
+
+/// Everything directly inside `dir`, by name.
+fn entries(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+/// A fresh case folder under `root/cases`; checks afterwards that nothing appeared elsewhere.
+struct Sandbox {
+    root: PathBuf,
+    next: usize,
+}
+
+impl Sandbox {
+    fn case(&mut self) -> PathBuf {
+        self.next += 1;
+        let dir = self.root.join("cases").join(format!("{:04}", self.next));
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    /// Nothing outside the case folders: the root holds only `cases`, `cases` only case folders.
+    fn outside_writes(&self) -> Vec<String> {
+        let mut found = Vec::new();
+        for name in entries(&self.root) {
+            if name != "cases" {
+                found.push(name);
+            }
+        }
+        for name in entries(&self.root.join("cases")) {
+            if name.len() != 4 || !name.chars().all(|c| c.is_ascii_digit()) {
+                found.push(format!("cases/{name}"));
+            }
+        }
+        found
+    }
+}
+
+/// `key = value` lines of the experiment: (line index, key).
+fn setting_lines() -> Vec<(usize, String)> {
+    EXPERIMENT
+        .lines()
+        .enumerate()
+        .filter_map(|(i, line)| line.split_once(" = ").map(|(k, _)| (i, k.trim().to_string())))
+        .collect()
+}
+
+/// One malformed experiment file and the names its error may give.
+fn malformed_experiment(rng: &mut ChaCha8Rng) -> (String, Vec<u8>, Vec<String>) {
+    let lines: Vec<&str> = EXPERIMENT.lines().collect();
+    let settings = setting_lines();
+    let join = |lines: &[String]| (lines.join("\n") + "\n").into_bytes();
+    let mut owned: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
+    match rng.random_range(0..10) {
+        // a bad value for a top-level key (most cases)
+        0..=4 => {
+            let (i, key) = settings.choose(rng).unwrap().clone();
+            let value = BAD_VALUES.choose(rng).unwrap();
+            owned[i] = format!("{key} = {value}");
+            (format!("{key} = {value}"), join(&owned), vec![key])
+        }
+        // a bad value inside the brain table
+        5 => {
+            let key = ["kind", "layout", "signals", "hidden"].choose(rng).unwrap();
+            let value = BAD_VALUES.choose(rng).unwrap();
+            let mut brain: BTreeMap<&str, String> = [
+                ("kind", "\"distributed-mlp\"".to_string()),
+                ("layout", "\"homogeneous\"".to_string()),
+                ("signals", "1".to_string()),
+                ("hidden", "[]".to_string()),
+            ]
+            .into();
+            brain.insert(key, value.to_string());
+            let inner: Vec<String> = brain.iter().map(|(k, v)| format!("{k} = {v}")).collect();
+            let i = lines.iter().position(|l| l.starts_with("brain")).unwrap();
+            owned[i] = format!("brain = {{ {} }}", inner.join(", "));
+            (format!("brain.{key} = {value}"), join(&owned), vec![key.to_string()])
+        }
+        // a setting removed
+        6 => {
+            let (i, key) = settings.choose(rng).unwrap().clone();
+            owned.remove(i);
+            (format!("without {key}"), join(&owned), vec![key])
+        }
+        // an unknown setting
+        7 => {
+            let (i, _) = settings.choose(rng).unwrap().clone();
+            let key = format!("unknown_{}", rng.random_range(0..1000));
+            owned.insert(i + 1, format!("{key} = 1"));
+            (format!("extra {key}"), join(&owned), vec![key])
+        }
+        // the file cut short
+        8 => {
+            let cut = rng.random_range(0..EXPERIMENT.len());
+            let bytes = EXPERIMENT.as_bytes()[..cut].to_vec();
+            (
+                format!("cut at byte {cut}"),
+                bytes,
+                vec!["line".into(), "missing".into()],
+            )
+        }
+        // random bytes inserted
+        _ => {
+            let at = rng.random_range(0..EXPERIMENT.len());
+            let mut bytes = EXPERIMENT.as_bytes().to_vec();
+            let junk: Vec<u8> = (0..rng.random_range(1..8)).map(|_| rng.random()).collect();
+            bytes.splice(at..at, junk.iter().copied());
+            (
+                format!("junk {junk:?} at byte {at}"),
+                bytes,
+                vec!["line".into(), "UTF-8".into(), "utf-8".into()],
+            )
+        }
+    }
+}
+
+/// Every path to a value of a JSON document (`["robot", "brain", "weights", "3"]`).
+fn json_paths(value: &serde_json::Value, prefix: &mut Vec<String>, out: &mut Vec<Vec<String>>) {
+    out.push(prefix.clone());
+    match value {
+        serde_json::Value::Object(map) => {
+            for (k, v) in map {
+                prefix.push(k.clone());
+                json_paths(v, prefix, out);
+                prefix.pop();
+            }
+        }
+        serde_json::Value::Array(items) => {
+            for (i, v) in items.iter().enumerate().take(3) {
+                prefix.push(i.to_string());
+                json_paths(v, prefix, out);
+                prefix.pop();
+            }
+        }
+        _ => {}
+    }
+}
+
+fn at_path<'a>(value: &'a mut serde_json::Value, path: &[String]) -> &'a mut serde_json::Value {
+    path.iter().fold(value, |v, p| match v {
+        serde_json::Value::Array(items) => &mut items[p.parse::<usize>().unwrap()],
+        other => &mut other[p.as_str()],
+    })
+}
+
+/// One malformed robot file and the names its error may give.
+fn malformed_robot(rng: &mut ChaCha8Rng, robot: &serde_json::Value) -> (String, Vec<u8>, Vec<String>) {
+    let mut paths = Vec::new();
+    json_paths(robot, &mut Vec::new(), &mut paths);
+    paths.retain(|p| !p.is_empty() && p.last().is_some_and(|k| k != "note"));
+    let path = paths.choose(rng).unwrap().clone();
+    // the innermost key (an array index names its array)
+    let key = path
+        .iter()
+        .rev()
+        .find(|p| p.parse::<usize>().is_err())
+        .cloned()
+        .unwrap_or_default();
+    let mut doc = robot.clone();
+    let text = match rng.random_range(0..6) {
+        0..=2 => {
+            let bad = [
+                serde_json::json!(-1),
+                serde_json::json!(1e300),
+                serde_json::json!("x"),
+                serde_json::json!(""),
+                serde_json::json!(null),
+                serde_json::json!([]),
+                serde_json::json!({}),
+                serde_json::json!(true),
+                serde_json::json!(["#".repeat(2000)]),
+                serde_json::json!(1_000_000_000_000u64),
+            ];
+            let value = bad.choose(rng).unwrap().clone();
+            *at_path(&mut doc, &path) = value.clone();
+            return (
+                format!("{} = {value}", path.join(".")),
+                serde_json::to_vec_pretty(&doc).unwrap(),
+                vec![key, "line".into()],
+            );
+        }
+        3 => {
+            let (last, parent) = path.split_last().unwrap();
+            if let serde_json::Value::Object(map) = at_path(&mut doc, parent) {
+                map.remove(last);
+            } else if let serde_json::Value::Array(items) = at_path(&mut doc, parent) {
+                items.remove(last.parse::<usize>().unwrap());
+            }
+            return (
+                format!("without {}", path.join(".")),
+                serde_json::to_vec_pretty(&doc).unwrap(),
+                vec![key, "line".into(), "expected".into()],
+            );
+        }
+        4 => serde_json::to_string_pretty(&doc).unwrap(),
+        _ => {
+            let text = serde_json::to_string_pretty(&doc).unwrap();
+            let mut bytes = text.into_bytes();
+            let at = rng.random_range(0..bytes.len());
+            bytes.insert(at, rng.random());
+            return (
+                format!("junk at byte {at}"),
+                bytes,
+                vec!["line".into(), key, "UTF-8".into(), "utf-8".into()],
+            );
+        }
+    };
+    let cut = rng.random_range(0..text.len());
+    let cut = (0..=cut).rev().find(|&c| text.is_char_boundary(c)).unwrap();
+    (
+        format!("cut at byte {cut}"),
+        text.as_bytes()[..cut].to_vec(),
+        vec!["line".into(), "EOF".into()],
+    )
+}
+
+/// A random string of printable and odd characters.
+fn random_text(rng: &mut ChaCha8Rng) -> String {
+    const CHARS: &[char] = &[
+        'a', 'z', '0', '9', '-', ':', ',', '.', '/', '#', ' ', 'e', 'é', '🤖', '\u{7f}', '%', '+', '*',
+    ];
+    (0..rng.random_range(0..12))
+        .map(|_| *CHARS.choose(rng).unwrap())
+        .collect()
+}
+
+/// One malformed command line: the arguments and the option it is about.
+fn malformed_command(rng: &mut ChaCha8Rng, results: &Path) -> (Vec<String>, Vec<String>) {
+    let value = if rng.random_bool(0.5) {
+        BAD_VALUES.choose(rng).unwrap().trim_matches('"').to_string()
+    } else {
+        random_text(rng)
+    };
+    let simulate = |option: &str, value: String| {
+        let mut args: Vec<String> = ["simulate", "--duration", "0.1"].map(String::from).to_vec();
+        if option == "--duration" {
+            args.truncate(1);
+        }
+        args.push(format!("{option}={value}"));
+        args
+    };
+    let option = *[
+        "--body",
+        "--brain",
+        "--task",
+        "--sensors",
+        "--duration",
+        "--transient",
+        "--preset",
+        "--substeps",
+        "--robot",
+        "run --threads",
+        "run --max-memory-gib",
+        "bench --robots",
+        "bench --min-seconds",
+        "bench --threads",
+        "label --bins",
+    ]
+    .choose(rng)
+    .unwrap();
+    let args = match option.split_once(' ') {
+        None => simulate(option, value.clone()),
+        Some(("run", flag)) => vec!["run".into(), "exp.toml".into(), format!("{flag}={value}")],
+        Some(("bench", flag)) => {
+            let mut args: Vec<String> = ["bench", "--min-seconds", "0.01", "--robots", "biped-4x3"]
+                .map(String::from)
+                .to_vec();
+            let at = args.iter().position(|a| a == flag).map_or(args.len(), |i| i);
+            if at < args.len() {
+                args.drain(at..at + 2);
+            }
+            args.push(format!("{flag}={value}"));
+            args
+        }
+        Some((command, flag)) => vec![command.into(), results.display().to_string(), format!("{flag}={value}")],
+    };
+    let flag = option.rsplit(' ').next().unwrap().to_string();
+    let mut names = vec![flag.clone(), flag.trim_start_matches('-').to_string()];
+    if !value.is_empty() {
+        names.push(value);
+    }
+    (args, names)
+}
+
+#[test]
+fn malformed_inputs_never_crash_and_always_name_the_field() {
+    let tmp = tempfile::tempdir().unwrap();
+    let mut sandbox = Sandbox {
+        root: tmp.path().to_path_buf(),
+        next: 0,
+    };
+    let mut rng = ChaCha8Rng::seed_from_u64(20);
+    let mut tallies: BTreeMap<&str, Tally> = BTreeMap::new();
+
+    // The base files must be valid, or every case below fails for the wrong reason.
+    let base = sandbox.case();
+    std::fs::write(base.join("exp.toml"), EXPERIMENT).unwrap();
+    let (code, stderr, _) = run(&["run", "exp.toml"], &base);
+    assert_eq!(code, Some(0), "{stderr}");
+    let robot_text = std::fs::read_to_string(base.join("out/fuzz/run-00/best.robot.json")).unwrap();
+    let robot: serde_json::Value = serde_json::from_str(&robot_text).unwrap();
+
+    for _ in 0..320 {
+        let dir = sandbox.case();
+        let (what, bytes, names) = malformed_experiment(&mut rng);
+        std::fs::write(dir.join("exp.toml"), &bytes).unwrap();
+        let (code, stderr, timed_out) = run(&["run", "exp.toml", "--threads", "1"], &dir);
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        let case = Case {
+            what: format!("experiment: {what}"),
+            code,
+            stderr,
+            timed_out,
+        };
+        tallies.entry("experiment files").or_default().check(&case, &names);
+    }
+    for _ in 0..120 {
+        let dir = sandbox.case();
+        let (what, bytes, names) = malformed_robot(&mut rng, &robot);
+        std::fs::write(dir.join("r.robot.json"), &bytes).unwrap();
+        let (code, stderr, timed_out) = run(&["simulate", "--robot", "r.robot.json", "--duration", "0.1"], &dir);
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        let case = Case {
+            what: format!("robot file: {what}"),
+            code,
+            stderr,
+            timed_out,
+        };
+        tallies.entry("robot files").or_default().check(&case, &names);
+    }
+    for _ in 0..120 {
+        let dir = sandbox.case();
+        std::fs::write(dir.join("exp.toml"), EXPERIMENT).unwrap();
+        let (args, names) = malformed_command(&mut rng, &base.join("out"));
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let (code, stderr, timed_out) = run(&args, &dir);
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        let case = Case {
+            what: format!("command: vsrlab {}", args.join(" ")),
+            code,
+            stderr,
+            timed_out,
+        };
+        tallies.entry("command lines").or_default().check(&case, &names);
+    }
+
+    let outside = sandbox.outside_writes();
+    let mut report = String::new();
+    let mut broken = Vec::new();
+    for (kind, tally) in &tallies {
+        report.push_str(&format!(
+            "{kind}: {} cases, exit codes {:?}\n",
+            tally.cases, tally.by_code
+        ));
+        broken.extend(tally.broken.iter().cloned());
+    }
+    eprintln!("{report}");
+    let total: usize = tallies.values().map(|t| t.cases).sum();
+    assert!(total >= 500, "{total} cases");
+    assert!(outside.is_empty(), "written outside the case folders: {outside:?}");
+    assert!(
+        broken.is_empty(),
+        "{} of {total} cases broke a rule:\n\n{}",
+        broken.len(),
+        broken.join("\n\n")
+    );
+}

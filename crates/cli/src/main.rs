@@ -9,8 +9,9 @@ mod label;
 mod replay_setup;
 mod run;
 mod simulate;
+mod validate;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, Parser, Subcommand};
 use std::process::ExitCode;
 
 /// Simulate, render and benchmark voxel-based soft robots.
@@ -29,10 +30,17 @@ enum Command {
     Bench(bench::BenchArgs),
     /// Run an evolutionary experiment described in a TOML file (docs/experiments.md).
     Run(run::RunArgs),
+    /// Check experiment files: print each resolved configuration, its sizes and a time estimate.
+    Validate(validate::ValidateArgs),
     /// Figures and a summary table from the output of `vsrlab run` (docs/analysis.md).
     Analyze(analyze::AnalyzeArgs),
     /// Render a stratified sample of evolved robots into an HTML page for labelling species.
     Label(label::LabelArgs),
+    /// Print a shell completion script, e.g. `vsrlab completions bash > ~/.local/share/bash-completion/completions/vsrlab`.
+    Completions {
+        /// The shell: bash, zsh, fish, elvish or powershell.
+        shell: clap_complete::Shell,
+    },
 }
 
 fn main() -> ExitCode {
@@ -41,8 +49,13 @@ fn main() -> ExitCode {
         Command::Simulate(a) => simulate::run(a),
         Command::Bench(a) => bench::run(a),
         Command::Run(a) => run::run(a),
+        Command::Validate(a) => validate::run(a),
         Command::Analyze(a) => analyze::run(a),
         Command::Label(a) => label::run(a),
+        Command::Completions { shell } => {
+            clap_complete::generate(shell, &mut Cli::command(), "vsrlab", &mut std::io::stdout());
+            Ok(())
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

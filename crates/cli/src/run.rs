@@ -22,6 +22,9 @@ pub struct RunArgs {
     /// Continue an interrupted experiment from its checkpoints (finished runs are kept).
     #[arg(long)]
     pub resume: bool,
+    /// When stderr is not a terminal (batch jobs, nohup, SLURM): seconds between progress lines.
+    #[arg(long, default_value_t = 60.0, value_name = "SECONDS")]
+    pub log_every: f64,
     /// Refuse a run whose estimated memory exceeds this many GiB (docs/experiments.md).
     #[arg(long, default_value_t = 8.0, value_name = "GIB")]
     pub max_memory_gib: f64,
@@ -31,7 +34,8 @@ pub struct RunArgs {
 const TICKS: u64 = 1000;
 
 /// Progress bars: one for the whole experiment, one for the current run. Hidden when stderr is
-/// not a terminal; then one line per finished run is printed instead.
+/// not a terminal; then a progress line is printed every `log_every` seconds and one line per
+/// finished run.
 struct Bars {
     multi: MultiProgress,
     overall: ProgressBar,
@@ -39,10 +43,12 @@ struct Bars {
     runs: usize,
     finished: usize,
     interactive: bool,
+    log_every: f64,
+    last_log: Instant,
 }
 
 impl Bars {
-    fn new(runs: usize) -> Bars {
+    fn new(runs: usize, log_every: f64) -> Bars {
         let multi = MultiProgress::with_draw_target(ProgressDrawTarget::stderr());
         let interactive = !multi.is_hidden();
         let overall = multi.add(ProgressBar::new(runs as u64 * TICKS));
@@ -61,7 +67,32 @@ impl Bars {
             runs,
             finished: 0,
             interactive,
+            log_every,
+            last_log: Instant::now(),
         }
+    }
+
+    /// A line above the bars on a terminal, a plain line on stderr otherwise.
+    fn say(&self, line: String) {
+        if self.interactive {
+            let _ = self.multi.println(line);
+        } else {
+            eprintln!("{line}");
+        }
+    }
+}
+
+/// Seconds as `1 h 47 min`, `3 min 20 s` or `12 s`.
+pub(crate) fn duration(seconds: f64) -> String {
+    let s = if seconds.is_finite() {
+        seconds.max(0.0).round() as u64
+    } else {
+        0
+    };
+    match s {
+        0..=59 => format!("{s} s"),
+        60..=3599 => format!("{} min {} s", s / 60, s % 60),
+        _ => format!("{} h {} min", s / 3600, (s % 3600) / 60),
     }
 }
 
@@ -87,6 +118,16 @@ impl Observer for Bars {
         bar.set_position((p.fraction * TICKS as f64) as u64);
         bar.reset_eta();
         self.current = Some(bar);
+        if p.generation > 0 {
+            self.say(format!(
+                "run {}/{}: resumed from its checkpoint at generation {} ({} evaluations, best {})",
+                p.run + 1,
+                p.runs,
+                p.generation,
+                p.evaluations,
+                fitness(p.best_fitness)
+            ));
+        }
     }
 
     fn generation(&mut self, p: &Progress) -> Flow {
@@ -101,15 +142,28 @@ impl Observer for Bars {
         }
         self.overall
             .set_position(self.finished as u64 * TICKS + (p.fraction * TICKS as f64) as u64);
+        if !self.interactive && self.last_log.elapsed().as_secs_f64() >= self.log_every {
+            self.last_log = Instant::now();
+            let eta = if p.fraction > 0.0 {
+                format!(", ETA {}", duration(p.elapsed * (1.0 - p.fraction) / p.fraction))
+            } else {
+                String::new()
+            };
+            eprintln!(
+                "run {}/{}: generation {} · {} evaluations · best {} · {:.0}% of the run{eta}",
+                p.run + 1,
+                p.runs,
+                p.generation,
+                p.evaluations,
+                fitness(p.best_fitness),
+                100.0 * p.fraction
+            );
+        }
         Flow::Continue
     }
 
     fn notice(&mut self, message: &str) {
-        if self.interactive {
-            let _ = self.multi.println(format!("note: {message}"));
-        } else {
-            eprintln!("note: {message}");
-        }
+        self.say(format!("note: {message}"));
     }
 
     fn run_finished(&mut self, s: &RunSummary) {
@@ -128,11 +182,7 @@ impl Observer for Bars {
             s.wall_seconds,
             100.0 * s.overhead_fraction
         );
-        if self.interactive {
-            let _ = self.multi.println(line);
-        } else {
-            eprintln!("{line}");
-        }
+        self.say(line);
         self.overall.set_position(self.finished as u64 * TICKS);
         self.overall
             .set_message(format!("{}/{} runs", self.finished, self.runs));
@@ -169,7 +219,13 @@ pub fn run(a: RunArgs) -> Result<(), String> {
         out.display()
     );
     let start = Instant::now();
-    let mut bars = Bars::new(experiment.runs);
+    if !(a.log_every.is_finite() && a.log_every >= 0.0) {
+        return Err(format!(
+            "--log-every must be a number of seconds ≥ 0, got {}",
+            a.log_every
+        ));
+    }
+    let mut bars = Bars::new(experiment.runs, a.log_every);
     let result = run_experiment(&experiment, &evaluator, &out, &options, &mut bars);
     bars.overall.finish_and_clear();
     let summaries = result.map_err(|e| e.to_string())?;

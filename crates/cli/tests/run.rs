@@ -155,3 +155,66 @@ fn an_experiment_name_cannot_write_outside_the_output_folder() {
     assert!(!work.join("out").exists());
     assert!(!dir.path().join("escaped").exists() && !dir.path().join("a/escaped").exists());
 }
+
+#[test]
+fn without_a_terminal_progress_is_logged_at_the_interval_and_resume_says_where_it_starts() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("exp.toml");
+    std::fs::write(&file, EXPERIMENT.replace("generations = 60", "generations = 3")).unwrap();
+    let out_dir = dir.path().join("o");
+    let args = ["run", file.to_str().unwrap(), "--out", out_dir.to_str().unwrap()];
+    // stderr is a pipe here, as in a batch job
+    let out = vsrlab(&[&args[..], &["--log-every", "0"]].concat());
+    assert!(out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    let lines = err.lines().filter(|l| l.contains("· best")).count();
+    assert_eq!(lines, 3, "one line per generation with --log-every 0:\n{err}");
+    assert!(err.contains("run 1/1: generation 3 · 30 evaluations"), "{err}");
+    // Resuming a finished experiment: nothing resumed, the finished run is reported.
+    let again = vsrlab(&[&args[..], &["--resume"]].concat());
+    assert!(again.status.success());
+    assert!(String::from_utf8_lossy(&again.stderr).contains("run 1/1: best"));
+}
+
+#[test]
+fn validate_prints_the_resolved_configuration_of_every_shipped_experiment() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut files: Vec<String> = Vec::new();
+    for dir in ["experiments", "experiments/ch3", "examples"] {
+        for entry in std::fs::read_dir(root.join(dir)).unwrap() {
+            let path = entry.unwrap().path();
+            if path.extension().is_some_and(|e| e == "toml") {
+                files.push(path.display().to_string());
+            }
+        }
+    }
+    files.sort();
+    assert!(files.len() > 70, "{} files", files.len());
+    let args: Vec<&str> = ["validate", "--threads", "1"]
+        .into_iter()
+        .chain(files.iter().map(String::as_str))
+        .collect();
+    let out = vsrlab(&args);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for file in &files {
+        assert!(text.contains(&format!("# {file} (resolved)")), "{file}");
+        assert!(text.contains(&format!("{file}: ok; ")), "{file}");
+    }
+    assert!(text.contains("population_size = "));
+    // a bad file fails naming the field
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(&bad, EXPERIMENT.replace("duration = 3.0", "duration = -1")).unwrap();
+    let out = vsrlab(&["validate", bad.to_str().unwrap()]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("task.duration"));
+}
+
+#[test]
+fn completions_are_printed_for_bash() {
+    let out = vsrlab(&["completions", "bash"]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("_vsrlab") && text.contains("validate"), "{text}");
+}

@@ -14,6 +14,8 @@
 //!   robot, checkpoints and resume; [`checkpoint`]: checkpoint files and the content hashes
 //!   that resume verifies; [`output_lock`]: one process per output folder; [`memory`]: the
 //!   per-run memory estimate checked before a run starts.
+//! - [`validate`](mod@validate): what a file will do before it runs (resolved configuration,
+//!   sizes, a time estimate).
 //! - [`bench`](mod@bench): the simulation speed benchmark on the standard robots (`vsrlab bench`),
 //!   timed in CPU seconds ([`cpu_time`]).
 //!
@@ -47,6 +49,7 @@ pub mod memory;
 pub mod optimizers;
 pub mod output_lock;
 pub mod runner;
+pub mod validate;
 
 pub use bench::{run_bench, BenchError, BenchOptions, BenchReport};
 pub use config::{ConfigError, Experiment};

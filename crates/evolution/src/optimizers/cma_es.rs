@@ -172,6 +172,11 @@ impl CmaEs {
         Self::with_mean(config, mean, seed)
     }
 
+    /// The default λ for `n` dimensions: 4 + ⌊3 ln n⌋ (Hansen's tutorial, pycma).
+    pub fn default_population_size(n: usize) -> usize {
+        4 + (3.0 * (n.max(1) as f64).ln()).floor() as usize
+    }
+
     /// A new run starting from the given mean.
     pub fn with_mean(config: CmaEsConfig, mean: Vec<f64>, seed: u64) -> Result<Self, EvolutionError> {
         let n = mean.len();
@@ -179,9 +184,7 @@ impl CmaEs {
         ensure(config.sigma0 > 0.0 && config.sigma0.is_finite(), || {
             "CMA-ES: sigma0 must be finite and > 0".into()
         })?;
-        let lambda = config
-            .population_size
-            .unwrap_or(4 + (3.0 * (n as f64).ln()).floor() as usize);
+        let lambda = config.population_size.unwrap_or(CmaEs::default_population_size(n));
         ensure(lambda >= 2, || "CMA-ES: population_size must be >= 2".into())?;
         let mut identity = vec![0.0; n * n];
         for i in 0..n {

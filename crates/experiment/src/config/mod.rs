@@ -272,7 +272,8 @@ impl Experiment {
             BodyPart::Encoded(e) => e.width() * e.height(),
             BodyPart::Fixed(m) => m.width() * m.height(),
         };
-        self.optimizer.resolve(cells);
+        let genes = self.representation.genotype_length().ok();
+        self.optimizer.resolve(cells, genes);
         self
     }
 

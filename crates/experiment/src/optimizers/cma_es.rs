@@ -46,6 +46,15 @@ impl OptimizerKind for CmaParams {
         range("init_range", self.init_range)
     }
 
+    /// λ = 4 + ⌊3 ln n⌋ written out when not given.
+    fn resolved(&self, _cells: usize, genes: Option<usize>) -> Option<OptimizerConfig> {
+        let genes = genes?;
+        Some(OptimizerConfig::CmaEs(CmaParams {
+            population_size: Some(self.population_size.unwrap_or(CmaEs::default_population_size(genes))),
+            ..self.clone()
+        }))
+    }
+
     fn build(&self, dimension: usize, senses: &[Sense], seed: u64) -> Result<AnyOptimizer, EvolutionError> {
         Ok(AnyOptimizer::CmaEs(CmaEs::new(
             CmaEsConfig {
@@ -64,13 +73,18 @@ impl OptimizerKind for CmaParams {
     fn held_genotypes(&self, dimension: usize, _budget: Option<u64>) -> u128 {
         let lambda = self
             .population_size
-            .unwrap_or(4 + (3.0 * (dimension.max(1) as f64).ln()).floor() as usize);
+            .unwrap_or(CmaEs::default_population_size(dimension));
         3 * lambda as u128 + 4
     }
 
     /// The covariance matrix, its eigenvectors and a work copy: 3·n².
     fn held_matrix_floats(&self, dimension: usize) -> u128 {
         3 * (dimension as u128) * (dimension as u128)
+    }
+
+    fn batch_size(&self, dimension: usize) -> usize {
+        self.population_size
+            .unwrap_or(CmaEs::default_population_size(dimension))
     }
 }
 

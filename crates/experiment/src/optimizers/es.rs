@@ -52,7 +52,7 @@ impl OptimizerKind for EsParams {
     }
 
     /// μ defaults to ⌊λ/4⌋.
-    fn resolved(&self, _cells: usize) -> Option<OptimizerConfig> {
+    fn resolved(&self, _cells: usize, _genes: Option<usize>) -> Option<OptimizerConfig> {
         let parents = Some(self.parents.unwrap_or((self.population_size / 4).max(1)));
         Some(OptimizerConfig::Es(EsParams {
             parents,
@@ -77,6 +77,10 @@ impl OptimizerKind for EsParams {
 
     fn held_genotypes(&self, _dimension: usize, _budget: Option<u64>) -> u128 {
         3 * self.population_size as u128 + 1
+    }
+
+    fn batch_size(&self, _dimension: usize) -> usize {
+        self.population_size
     }
 }
 

@@ -71,6 +71,10 @@ impl OptimizerKind for GaParams {
     fn held_genotypes(&self, _dimension: usize, _budget: Option<u64>) -> u128 {
         self.population_size as u128 + 2 * self.offspring_size as u128
     }
+
+    fn batch_size(&self, _dimension: usize) -> usize {
+        self.offspring_size
+    }
 }
 
 /// The registry entry of `kind = "ga"`.

@@ -93,7 +93,7 @@ impl OptimizerKind for MapElitesParams {
     }
 
     /// The thesis' grid: d_num over [0, W·H], d_elong and d_compact over [0, 1], 10 bins each.
-    fn resolved(&self, cells: usize) -> Option<OptimizerConfig> {
+    fn resolved(&self, cells: usize, _genes: Option<usize>) -> Option<OptimizerConfig> {
         if !self.axes.is_empty() {
             return None;
         }
@@ -145,6 +145,10 @@ impl OptimizerKind for MapElitesParams {
             .fold(1u128, |acc, a| acc.saturating_mul(a.bins as u128));
         let archive = budget.map_or(cells, |b| cells.min(b as u128));
         archive + 2 * self.initial_population.max(self.batch_size) as u128
+    }
+
+    fn batch_size(&self, _dimension: usize) -> usize {
+        self.batch_size
     }
 }
 

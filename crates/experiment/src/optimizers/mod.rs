@@ -47,8 +47,9 @@ pub trait OptimizerKind {
     /// Checks the parameters: the field (inside `optimizer`) and the message on error.
     fn validate(&self) -> Result<(), (String, String)>;
     /// The same config with the defaults that depend on the representation filled in (`cells`:
-    /// W·H of the body grid), or `None` when there are none to fill.
-    fn resolved(&self, _cells: usize) -> Option<OptimizerConfig> {
+    /// W·H of the body grid; `genes`: the genotype length, when the representation is valid), or
+    /// `None` when there are none to fill.
+    fn resolved(&self, _cells: usize, _genes: Option<usize>) -> Option<OptimizerConfig> {
         None
     }
     /// Whether it optimizes several objectives at once.
@@ -70,6 +71,9 @@ pub trait OptimizerKind {
     /// evaluated, offspring), for the memory estimate; `budget` is the run's evaluation limit
     /// when it has one (archives grow with it).
     fn held_genotypes(&self, dimension: usize, budget: Option<u64>) -> u128;
+    /// Evaluations per generation after the first (offspring, λ, a MAP-Elites batch), for time
+    /// estimates.
+    fn batch_size(&self, dimension: usize) -> usize;
     /// Floats it holds besides genotypes (CMA-ES: its matrices).
     fn held_matrix_floats(&self, _dimension: usize) -> u128 {
         0
@@ -107,9 +111,10 @@ impl OptimizerConfig {
         }
     }
 
-    /// Fills the defaults that depend on the representation (`cells`: W·H of the body grid).
-    pub fn resolve(&mut self, cells: usize) {
-        if let Some(resolved) = self.kind().resolved(cells) {
+    /// Fills the defaults that depend on the representation (`cells`: W·H of the body grid;
+    /// `genes`: the genotype length).
+    pub fn resolve(&mut self, cells: usize, genes: Option<usize>) {
+        if let Some(resolved) = self.kind().resolved(cells, genes) {
             *self = resolved;
         }
     }

@@ -115,6 +115,10 @@ impl OptimizerKind for SeParams {
     fn held_genotypes(&self, _dimension: usize, _budget: Option<u64>) -> u128 {
         3 * self.population_size as u128
     }
+
+    fn batch_size(&self, _dimension: usize) -> usize {
+        self.population_size
+    }
 }
 
 /// The registry entry of `kind = "se"`.

@@ -1,0 +1,52 @@
+//! `vsrlab validate`: checks experiment files and prints what each will do.
+
+use clap::Args;
+use std::path::PathBuf;
+use vsrlab_experiment::config;
+use vsrlab_experiment::memory::gib;
+use vsrlab_experiment::validate::validate;
+
+use crate::run::duration;
+
+/// Arguments of `vsrlab validate`.
+#[derive(Args, Debug)]
+pub struct ValidateArgs {
+    /// Experiment files (TOML).
+    #[arg(required = true)]
+    pub experiments: Vec<PathBuf>,
+    /// Threads the time estimate assumes (default: every core).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Print only the summary line of each file, not its resolved configuration.
+    #[arg(long)]
+    pub brief: bool,
+}
+
+/// Runs `vsrlab validate`: fails on the first bad file.
+pub fn run(a: ValidateArgs) -> Result<(), String> {
+    for path in &a.experiments {
+        let experiment = config::load(path).map_err(|e| e.to_string())?;
+        let v = validate(&experiment, a.threads.unwrap_or(0)).map_err(|e| format!("{}: {e}", path.display()))?;
+        if !a.brief {
+            println!("# {} (resolved)\n{}", path.display(), v.resolved);
+        }
+        let time = match v.estimated_seconds {
+            Some(s) => format!(
+                "about {} for {} run(s) of {} evaluations on {} thread(s)",
+                duration(s),
+                experiment.runs,
+                v.evaluations_per_run.unwrap_or(0),
+                v.threads
+            ),
+            None => "no evaluation bound (wall-clock stop only)".to_string(),
+        };
+        println!(
+            "{}: ok; {} genes per genotype; about {} per run; {:.3} s per evaluation of a random genotype; {time}",
+            path.display(),
+            v.genes,
+            gib(v.memory.bytes),
+            v.seconds_per_evaluation
+        );
+    }
+    Ok(())
+}

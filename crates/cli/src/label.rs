@@ -79,6 +79,7 @@ fn write_video(trace: &Trace, spec: &VideoSpec, path: &Path) -> Result<(), BoxEr
         fps: spec.fps,
         draw_sensors: false,
         draw_lidar: false,
+        ..RenderOptions::default()
     };
     vsrlab_render::save_video(trace, &options, path)?;
     Ok(())

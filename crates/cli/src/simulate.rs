@@ -49,6 +49,11 @@ pub struct SimulateArgs {
     /// Render the episode to this file (.gif, .mp4 with ffmpeg, or .png for the last frame).
     #[arg(long)]
     pub video: Option<PathBuf>,
+    /// What videos draw besides the world and the robot: a comma-separated list of ticks (distance
+    /// marks on the ground), trail (the centre's path), sensors, lidar, overlay (time, distance,
+    /// velocity), legend (voxel colours); or all, or none.
+    #[arg(long, default_value = "ticks,sensors,lidar,overlay,legend")]
+    pub draw: String,
     /// Replay a robot file (JSON) instead of --body/--sensors/--brain/--preset.
     #[arg(long, conflicts_with_all = ["body", "sensors", "brain", "preset"])]
     pub robot: Option<PathBuf>,
@@ -117,8 +122,10 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     let wall = start.elapsed().as_secs_f64();
     let mut video_note = None;
     if let (Some(path), Some(trace)) = (&a.video, &outcome.trace) {
-        let info = vsrlab_render::save_video(trace, &vsrlab_render::RenderOptions::default(), path)
+        let options = vsrlab_render::RenderOptions::default()
+            .with_layers(&a.draw)
             .map_err(|e| e.to_string())?;
+        let info = vsrlab_render::save_video(trace, &options, path).map_err(|e| e.to_string())?;
         video_note = Some(format!("{} ({} frames)", path.display(), info.frames));
     }
     let transient = a.transient.unwrap_or(0.0);

@@ -1,6 +1,7 @@
 //! Drawing one frame with tiny-skia (vsr-model.md §6).
 
 use crate::camera::{self, BBox, View};
+use crate::overlay;
 use crate::{RenderOptions, MAX_SIDE};
 use std::f64::consts::PI;
 use tiny_skia::{Color, FillRule, LineCap, LineJoin, Paint, PathBuilder, Pixmap, Rect, Stroke, Transform};
@@ -114,8 +115,14 @@ impl<'a> Scene<'a> {
         let view = camera::view_at(t, &self.boxes, step, self.opts.width, self.opts.height);
         let px = |p: Vec2| view.to_pixel(p, self.opts.width);
         self.draw_ground(pm, &view);
+        if self.opts.draw_ticks {
+            overlay::draw_ticks(pm, &t.terrain, &view, camera::side(t), self.opts.width);
+        }
         if t.is_empty() {
             return;
+        }
+        if self.opts.draw_trail {
+            overlay::draw_trail(pm, t, &view, step, self.opts.width);
         }
         let polys = t.polygons_at(step);
         let n = t.voxels();
@@ -158,6 +165,12 @@ impl<'a> Scene<'a> {
             self.draw_lidar(pm, &view, step, polys);
         }
         self.draw_time_bar(pm, step);
+        if self.opts.draw_overlay {
+            overlay::draw_overlay(pm, t, step);
+        }
+        if self.opts.draw_legend {
+            overlay::draw_legend(pm);
+        }
     }
 
     /// The ground polygon: the terrain within (a margin around) the view, closed below it.
@@ -376,6 +389,9 @@ mod tests {
         RenderOptions {
             draw_sensors: false,
             draw_lidar: false,
+            draw_overlay: false,
+            draw_ticks: false,
+            draw_legend: false,
             ..RenderOptions::default()
         }
     }

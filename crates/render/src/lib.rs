@@ -22,7 +22,9 @@ mod draw;
 mod file;
 mod gif_out;
 mod mp4_out;
+mod overlay;
 mod palette;
+mod text;
 
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -50,6 +52,14 @@ pub struct RenderOptions {
     pub draw_sensors: bool,
     /// Whether to draw the lidar rays.
     pub draw_lidar: bool,
+    /// Whether to write time, distance and velocity at the top left.
+    pub draw_overlay: bool,
+    /// Whether to draw distance ticks into the ground (one per voxel side).
+    pub draw_ticks: bool,
+    /// Whether to draw the legend of the voxel colours at the top right.
+    pub draw_legend: bool,
+    /// Whether to draw the path of the robot's centre.
+    pub draw_trail: bool,
 }
 
 impl Default for RenderOptions {
@@ -57,14 +67,50 @@ impl Default for RenderOptions {
         RenderOptions {
             width: 640,
             height: 360,
-            fps: 30.0,
+            fps: 25.0,
             draw_sensors: true,
             draw_lidar: true,
+            draw_overlay: true,
+            draw_ticks: true,
+            draw_legend: true,
+            draw_trail: false,
         }
     }
 }
 
+/// The layers `--draw` can name, in drawing order.
+pub const LAYERS: &[&str] = &["ticks", "trail", "sensors", "lidar", "overlay", "legend"];
+
 impl RenderOptions {
+    /// The same options drawing exactly the layers named in `list` (comma-separated names from
+    /// [`LAYERS`], `all`, or `none`: the world and the robot only).
+    pub fn with_layers(&self, list: &str) -> Result<RenderOptions, RenderError> {
+        let mut o = self.clone();
+        let names: Vec<&str> = list.split(',').map(str::trim).filter(|s| !s.is_empty()).collect();
+        let all = names == ["all"];
+        for layer in LAYERS {
+            let on = all || names.contains(layer);
+            match *layer {
+                "ticks" => o.draw_ticks = on,
+                "trail" => o.draw_trail = on,
+                "sensors" => o.draw_sensors = on,
+                "lidar" => o.draw_lidar = on,
+                "overlay" => o.draw_overlay = on,
+                _ => o.draw_legend = on,
+            }
+        }
+        if let Some(bad) = names
+            .iter()
+            .find(|n| !LAYERS.contains(n) && !["all", "none"].contains(n))
+        {
+            return Err(RenderError::InvalidOptions(format!(
+                "draw: unknown layer '{bad}': expected some of {}, or all, or none",
+                LAYERS.join(", ")
+            )));
+        }
+        Ok(o)
+    }
+
     /// Checks sizes and frame rate; the error message names the bad field.
     pub fn validate(&self) -> Result<(), RenderError> {
         for (name, v) in [("width", self.width), ("height", self.height)] {

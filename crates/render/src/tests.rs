@@ -117,14 +117,15 @@ fn gif_has_header_frames_and_final_picture() {
     let v = save_moving_square("walk.gif", 121, (160, 90));
     let info = v.result.unwrap();
     assert_eq!(info.format, VideoFormat::Gif);
-    assert_eq!(info.frames, 61);
+    assert_eq!(info.frames, 51);
     assert_eq!((info.width, info.height), (160, 90));
     let bytes = std::fs::read(&v.path).unwrap();
     assert_eq!(&bytes[..6], b"GIF89a");
     assert_eq!(info.bytes, bytes.len() as u64);
     let (frames, screen, delays) = decode_gif(&v.path);
-    assert_eq!(frames, 61);
-    assert_eq!(delays.iter().map(|&d| u32::from(d)).sum::<u32>(), 203, "{delays:?}");
+    assert_eq!(frames, 51);
+    // 25 fps: every frame lasts exactly 4 hundredths, so playback keeps simulated time
+    assert!(delays.iter().all(|&d| d == 4), "{delays:?}");
     // what the player shows at the end is the last frame (drawn without anti-aliasing), quantized
     let scene = crate::draw::Scene::new(&v.trace, &v.opts, false);
     let mut last = scene.new_pixmap();
@@ -234,7 +235,7 @@ fn mp4_needs_ffmpeg() {
     let Saved { dir, path, result, .. } = save_moving_square("v.mp4", 60, (161, 91));
     if ffmpeg_available() {
         let info = result.unwrap();
-        assert_eq!((info.format, info.frames), (VideoFormat::Mp4, 30));
+        assert_eq!((info.format, info.frames), (VideoFormat::Mp4, 25));
         let bytes = std::fs::read(&path).unwrap();
         assert_eq!(&bytes[4..8], b"ftyp");
         assert_eq!(listing(&dir), vec!["v.mp4"]);
@@ -264,6 +265,19 @@ fn options_deserialize_with_defaults() {
             ..RenderOptions::default()
         }
     );
-    assert_eq!(RenderOptions::default().fps, 30.0);
+    assert_eq!(RenderOptions::default().fps, 25.0);
     assert!(serde_json::from_str::<RenderOptions>(r#"{"widht": 1}"#).is_err());
+}
+
+#[test]
+fn layers_are_chosen_by_name() {
+    let d = RenderOptions::default();
+    let none = d.with_layers("none").unwrap();
+    assert!(!none.draw_sensors && !none.draw_lidar && !none.draw_overlay && !none.draw_ticks && !none.draw_legend);
+    let some = d.with_layers("trail, overlay").unwrap();
+    assert!(some.draw_trail && some.draw_overlay && !some.draw_sensors && !some.draw_ticks);
+    let all = d.with_layers("all").unwrap();
+    assert!(all.draw_trail && all.draw_legend && all.draw_lidar);
+    let err = d.with_layers("sensors,glitter").unwrap_err().to_string();
+    assert!(err.contains("draw: unknown layer 'glitter'"), "{err}");
 }

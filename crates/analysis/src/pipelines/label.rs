@@ -78,7 +78,7 @@ impl LabelOptions {
         VideoSpec {
             width: self.video_width,
             height: (self.video_width * 9 / 16).max(90),
-            fps: 15.0,
+            fps: 20.0,
         }
     }
 }

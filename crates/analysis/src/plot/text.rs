@@ -1,4 +1,4 @@
-//! Text: the bundled DejaVu Sans font (`assets/`, Bitstream Vera licence), registered with
+//! Text: the bundled DejaVu Sans font (`assets/fonts/` of the workspace, Bitstream Vera licence), registered with
 //! plotters' `ab_glyph` feature so no system font is looked up, and the text styles figures use.
 
 use plotters::prelude::*;
@@ -6,7 +6,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::sync::Once;
 
 const FONT: &str = "sans-serif";
-static FONT_BYTES: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
+static FONT_BYTES: &[u8] = include_bytes!("../../../../assets/fonts/DejaVuSans.ttf");
 static REGISTER: Once = Once::new();
 
 /// Registers the bundled font with plotters (once per process).

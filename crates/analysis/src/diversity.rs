@@ -79,27 +79,28 @@ pub const SHAPE_CLASSES: [&str; 4] = ["blob", "limbed", "elongated", "other"];
 pub const BEHAVIOUR_CLASSES: [&str; 4] = ["jumping", "walking", "rolling", "other"];
 
 /// A rule-of-thumb morphology class, to pre-fill the labelling page (not the thesis' labels,
-/// which were given by hand): elongated when elongation ≥ 0.75 and compactness ≥ 0.8; blob when
-/// compactness ≥ 0.85 and elongation < 0.75; limbed when compactness < 0.8; other otherwise (and
-/// for bodies of fewer than 3 voxels).
+/// which were given by hand): elongated when elongation ≥ 0.9 (the body's second moments differ
+/// by more than 5:1, a worm of 2 × 5 or longer; a 4 × 3 biped is 0.78) and compactness ≥ 0.8; blob
+/// when compactness ≥ 0.9 (at most one cell in ten of its convex hull empty); limbed otherwise
+/// (a 4 × 3 biped, compactness 0.83, has two legs); other for bodies of fewer than 3 voxels.
 pub fn propose_shape(d: &crate::morphology::MorphologyDescriptors) -> &'static str {
     if d.voxels < 3 {
         "other"
-    } else if d.elongation >= 0.75 && d.compactness >= 0.8 {
+    } else if d.elongation >= 0.9 && d.compactness >= 0.8 {
         "elongated"
-    } else if d.compactness >= 0.85 {
+    } else if d.compactness >= 0.9 {
         "blob"
-    } else if d.compactness < 0.8 {
-        "limbed"
     } else {
-        "other"
+        "limbed"
     }
 }
 
 /// A rule-of-thumb behaviour class, to pre-fill the labelling page: rolling when the body turns
-/// over at least once in the episode; jumping when no voxel touches the ground in ≥ 15% of the
-/// steps; walking when the main footprint n-gram repeats at least 3 times with purity ≥ 0.5 and
-/// holds at least two different footprints; other otherwise.
+/// over at least once in the episode; jumping when the whole body is off the ground in ≥ 15% of
+/// the steps ([`crate::features::airborne_fraction`]); walking when the main footprint n-gram
+/// repeats at least 3 times with purity ≥ 0.5 and holds at least two different footprints, or
+/// when the centre moved at least 2 voxel sides (either way) over the episode; other otherwise
+/// (robots that stay in place).
 pub fn propose_behaviour(f: &crate::features::RobotFeatures) -> &'static str {
     let distinct = {
         let mut g = f.gait.ngram.clone();
@@ -111,7 +112,7 @@ pub fn propose_behaviour(f: &crate::features::RobotFeatures) -> &'static str {
         "rolling"
     } else if f.airborne >= 0.15 {
         "jumping"
-    } else if f.gait.occurrences >= 3 && f.gait.purity >= 0.5 && distinct >= 2 {
+    } else if (f.gait.occurrences >= 3 && f.gait.purity >= 0.5 && distinct >= 2) || f.displacement.abs() >= 2.0 {
         "walking"
     } else {
         "other"
@@ -141,6 +142,9 @@ mod tests {
         assert_eq!(propose_shape(&d("####/####/####/####")), "blob");
         assert_eq!(propose_shape(&d("##########/##########")), "elongated");
         assert_eq!(propose_shape(&d("#####/#...#/#...#")), "limbed");
+        assert_eq!(propose_shape(&d("####/####/#..#")), "limbed");
+        assert_eq!(propose_shape(&d("#####/#####")), "elongated");
+        assert_eq!(propose_shape(&d("####/####")), "blob");
         assert_eq!(propose_shape(&d("##")), "other");
     }
 

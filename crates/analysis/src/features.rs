@@ -2,7 +2,7 @@
 //! pose, 256 values) and the behaviour features (centre spectra on x and y, 2 × 100 values, and
 //! the five footprint-gait features), thesis §3.3.3.
 
-use crate::footprint::{gait_of, Footprint, FootprintParams, Gait};
+use crate::footprint::{gait_of, terrain_height, Footprint, FootprintParams, Gait};
 use crate::pose::{dynamic_pose, Pose};
 use crate::spectrum::{center_spectrum, Axis, SpectrumParams};
 use serde::{Deserialize, Serialize};
@@ -33,8 +33,13 @@ pub struct RobotFeatures {
     /// Net rotation of the body over the episode, in turns (negative: clockwise), from the
     /// orientation of voxel 0's bottom edge. Not a classifier input; used by the label proposals.
     pub turns: f64,
-    /// Fraction of steps with no voxel touching anything. Not a classifier input.
+    /// Fraction of steps with the whole body off the ground ([`airborne_fraction`]). Not a
+    /// classifier input.
     pub airborne: f64,
+    /// Net x displacement of the centre over the episode, in voxel sides (negative: backwards).
+    /// Not a classifier input; used by the label proposals.
+    #[serde(default)]
+    pub displacement: f64,
 }
 
 /// Net rotation (turns) of the bottom edge (SW → SE corner) of voxel 0, unwrapped step by step.
@@ -61,15 +66,38 @@ pub fn net_turns(trace: &Trace) -> f64 {
     total / (2.0 * std::f64::consts::PI)
 }
 
-/// Fraction of recorded steps in which no voxel touches anything (0 without touch data).
+/// Net x displacement of the centre from the first to the last recorded step, in voxel sides
+/// (0 without centres or side length).
+pub fn displacement(trace: &Trace) -> f64 {
+    match (trace.centers.first(), trace.centers.last()) {
+        (Some(a), Some(b)) if trace.side_length > 0.0 && (b.x - a.x).is_finite() => (b.x - a.x) / trace.side_length,
+        _ => 0.0,
+    }
+}
+
+/// A step is airborne when the body's lowest corner is more than this many voxel sides above the
+/// terrain.
+pub const AIRBORNE_CLEARANCE: f64 = 0.1;
+
+/// Fraction of recorded steps in which the whole body is above the terrain by more than
+/// [`AIRBORNE_CLEARANCE`] voxel sides (0 without outlines). Geometric rather than from the
+/// contact flags, which flicker while a foot rests on the ground.
 pub fn airborne_fraction(trace: &Trace) -> f64 {
-    let n = trace.voxels();
-    if n == 0 || trace.touching.len() < n || trace.is_empty() {
+    if trace.is_empty() || trace.terrain.is_empty() {
         return 0.0;
     }
-    let steps = trace.touching.len() / n;
+    let clearance = AIRBORNE_CLEARANCE * trace.side_length;
+    let steps = trace.len();
     let air = (0..steps)
-        .filter(|&k| !trace.touching[k * n..(k + 1) * n].iter().any(|&t| t))
+        .filter(|&k| {
+            let lowest = trace
+                .polygons_at(k)
+                .iter()
+                .flat_map(|poly| poly.iter())
+                .map(|v| v.y - terrain_height(&trace.terrain, v.x).unwrap_or(f64::NEG_INFINITY))
+                .fold(f64::INFINITY, f64::min);
+            lowest.is_finite() && lowest > clearance
+        })
         .count();
     air as f64 / steps as f64
 }
@@ -87,6 +115,7 @@ impl RobotFeatures {
             gait,
             turns: net_turns(trace),
             airborne: airborne_fraction(trace),
+            displacement: displacement(trace),
         }
     }
 
@@ -176,8 +205,8 @@ mod tests {
         assert_eq!(f.gait.ngram, vec![0, 0]);
         assert_eq!(f.gait.occurrences, 10);
         assert!(f.turns.abs() < 1e-12);
-        // Touching while h < 0.05, i.e. cos θ > 0.9: 14% of each cycle, so airborne ≈ 0.83–0.86.
-        assert!((0.8..0.9).contains(&f.airborne), "{}", f.airborne);
+        // Airborne while h > 0.1 · 3 = 0.3, i.e. cos θ < 0.4: 1 − acos(0.4)/π ≈ 0.631 of each cycle.
+        assert!((0.62..0.645).contains(&f.airborne), "{}", f.airborne);
     }
 
     #[test]

@@ -41,6 +41,11 @@ pub struct FootprintParams {
     pub max_n: usize,
     /// Corners of a touching voxel up to this many voxel sides above its lowest corner count.
     pub contact_tolerance: f64,
+    /// A voxel whose lowest corner is within this many voxel sides of the terrain counts as
+    /// touching even when its contact flag is off at that step (our engine's flags flicker while
+    /// a foot rests on the ground, where dyn4j's persist); 0 uses the flags only.
+    #[serde(default)]
+    pub resting_clearance: f64,
 }
 
 impl Default for FootprintParams {
@@ -50,6 +55,7 @@ impl Default for FootprintParams {
             min_n: 2,
             max_n: 10,
             contact_tolerance: 0.25,
+            resting_clearance: 0.05,
         }
     }
 }
@@ -169,16 +175,34 @@ pub fn footprint_of<P: AsRef<[Vec2]>>(
     f
 }
 
-/// The footprint of every recorded step of a full trace.
+/// Whether the polygon's lowest corner is within `clearance` of the terrain (never for a
+/// clearance ≤ 0 or without terrain).
+fn resting(poly: &[Vec2], terrain: &[Vec2], clearance: f64) -> bool {
+    clearance > 0.0
+        && poly
+            .iter()
+            .any(|v| terrain_height(terrain, v.x).is_some_and(|h| v.y - h <= clearance))
+}
+
+/// The footprint of every recorded step of a full trace (a voxel touches when its contact flag
+/// is on or it rests within [`FootprintParams::resting_clearance`] of the terrain).
 pub fn step_footprints(trace: &Trace, params: &FootprintParams) -> Vec<Footprint> {
     let n = trace.voxels();
     (0..trace.len())
         .map(|k| {
             let polys: Vec<&[Vec2]> = trace.polygons_at(k).iter().collect();
-            let touch = trace.touching.get(k * n..(k + 1) * n).unwrap_or(&[]);
+            let flags = trace.touching.get(k * n..(k + 1) * n).unwrap_or(&[]);
+            let touch: Vec<bool> = polys
+                .iter()
+                .enumerate()
+                .map(|(v, poly)| {
+                    flags.get(v).copied().unwrap_or(false)
+                        || resting(poly, &trace.terrain, params.resting_clearance * trace.side_length)
+                })
+                .collect();
             footprint_of(
                 &polys,
-                touch,
+                &touch,
                 &trace.terrain,
                 trace.side_length,
                 params.contact_tolerance,

@@ -6,7 +6,7 @@
 use super::best_robots::{best_csv, best_robots};
 use super::classifiers::{classifier_table, train_classifiers};
 use super::figures::{boxplot, descriptor_figure, fitness_figure, isi_figure, pca_figure, species_figure};
-use super::settings::{fitness_label, per_setting, settings_of, Setting};
+use super::settings::{fitness_label, per_setting, settings_of, with_unit, Setting};
 use super::species::{isi_csv, species_over_time};
 use super::summary_page::SummaryPage;
 use super::{read_setups, thread_pool};
@@ -110,7 +110,7 @@ pub fn analyze(
     let fitness = fitness_label(&experiments);
     a.figure(
         "fitness",
-        &fitness_figure(&settings, &experiments, &fitness),
+        &fitness_figure(&settings, &experiments, &with_unit(&fitness)),
         "best-so-far and population-median fitness vs evaluations, median ± sd across runs",
     )?;
     let best = per_setting(&settings, &experiments, RunData::final_best);
@@ -125,7 +125,7 @@ pub fn analyze(
         "best-boxplot",
         &boxplot(
             format!("Best {fitness} of each run"),
-            format!("best {fitness}"),
+            format!("best {}", with_unit(&fitness)),
             &settings,
             &best,
         ),

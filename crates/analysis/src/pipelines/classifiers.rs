@@ -96,6 +96,18 @@ fn labelled_features(row: &LabelRow, labels: &Path) -> Result<RobotFeatures, Ana
     Ok(RobotFeatures::from_trace(&trace, &FeatureParams::default()))
 }
 
+/// A warning when a classifier was trained on fewer than two classes: its accuracy is then 1 by
+/// construction and its species mean nothing.
+fn one_class_warning(name: &str, classes: &[String]) -> Option<String> {
+    (classes.len() < 2).then(|| {
+        format!(
+            "{name}: the labels hold only {} class ({}), so its accuracy of 1.000 says nothing; label robots of at least two classes",
+            classes.len(),
+            classes.join(", ")
+        )
+    })
+}
+
 /// The classifiers as a Markdown table for `summary.md`, each also noted to `progress`.
 pub(crate) fn classifier_table(cls: &Classifiers, folds: usize, progress: &dyn Progress) -> String {
     let mut text = String::new();
@@ -123,6 +135,23 @@ pub(crate) fn classifier_table(cls: &Classifiers, folds: usize, progress: &dyn P
             "{name}: CV accuracy {:.3} (majority class {:.3})",
             c.cv.accuracy, c.cv.majority_accuracy
         ));
+        if let Some(warning) = one_class_warning(name, &c.classes) {
+            progress.note(&warning);
+            let _ = writeln!(text, "\n**Warning**: {warning}\n");
+        }
     }
     text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_single_class_is_warned_about() {
+        let one = vec!["walking".to_string()];
+        let warning = one_class_warning("behaviour", &one).unwrap();
+        assert!(warning.contains("only 1 class (walking)"), "{warning}");
+        assert_eq!(one_class_warning("shape", &["blob".into(), "limbed".into()]), None);
+    }
 }

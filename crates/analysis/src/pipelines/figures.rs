@@ -219,7 +219,7 @@ pub(crate) fn species_figure(settings: &[Setting], runs: &[RunSpecies], cls: &Cl
         y_classes: cls.behaviour.classes.clone(),
         x_label: "morphology class".into(),
         y_label: "behaviour class".into(),
-        value_label: "best velocity".into(),
+        value_label: "best velocity [length units/s]".into(),
         panels,
     }
 }

@@ -51,6 +51,18 @@ pub(crate) fn fitness_label(experiments: &[ExperimentData]) -> String {
     }
 }
 
+/// A fitness name with its unit for axis labels: the model's length unit (a voxel side is 3
+/// length units, docs/model.md) and seconds.
+pub(crate) fn with_unit(fitness: &str) -> String {
+    let unit = match fitness {
+        "velocity" => "length units/s",
+        "distance" | "height" | "final_height" => "length units",
+        "elapsed" => "s",
+        _ => return fitness.to_string(),
+    };
+    format!("{fitness} [{unit}]")
+}
+
 /// The values of one metric per setting (one vector per setting, by colour index).
 pub(crate) fn per_setting(
     settings: &[Setting],

@@ -67,7 +67,8 @@ impl Figure for ScatterFigure {
         let x = Axis::numbers(x0..x1, &self.x_label);
         let y = Axis::numbers(y0..y1, &self.y_label);
         let mut chart = chart(&plot, &self.title, &FrameStyle::default(), x, y)?;
-        // Larger markers first so small ones stay visible.
+        // Larger markers first so small ones stay visible; fills are 30 % opaque so markers of
+        // several settings at one place blend instead of hiding each other.
         let mut order: Vec<&ScatterPoint> = self
             .points
             .iter()
@@ -79,7 +80,7 @@ impl Figure for ScatterFigure {
             let r = p.radius.max(2.0) as i32;
             chart
                 .draw_series([
-                    Circle::new((p.x, p.y), r, c.mix(0.6).filled()),
+                    Circle::new((p.x, p.y), r, c.mix(0.3).filled()),
                     Circle::new((p.x, p.y), r, c.stroke_width(2)),
                 ])
                 .map_err(err)?;

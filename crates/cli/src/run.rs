@@ -2,11 +2,11 @@
 
 use clap::Args;
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 use vsrlab_experiment::memory::{gib, MemoryEstimate};
 use vsrlab_experiment::runner::{run_experiment, Flow, Observer, Progress, RunOptions, RunSummary, MAX_THREADS};
-use vsrlab_experiment::{config, RobotEvaluator};
+use vsrlab_experiment::{config, Experiment, RobotEvaluator};
 
 /// Arguments of `vsrlab run`.
 #[derive(Args, Debug)]
@@ -189,18 +189,49 @@ impl Observer for Bars {
     }
 }
 
-/// Runs `vsrlab run`.
+/// Runs `vsrlab run`: one experiment, or every setting of a sweep one after the other (each in
+/// its own folder under the output folder).
 pub fn run(a: RunArgs) -> Result<(), String> {
-    let experiment = config::load(&a.experiment).map_err(|e| e.to_string())?;
-    let name = experiment.name.clone().unwrap_or_else(|| "experiment".to_string());
-    let out = a.out.clone().unwrap_or_else(|| PathBuf::from("out").join(&name));
-    let evaluator = RobotEvaluator::new(&experiment).map_err(|e| e.to_string())?;
     if !(a.max_memory_gib.is_finite() && a.max_memory_gib > 0.0) {
         return Err(format!(
             "--max-memory-gib must be a positive number, got {}",
             a.max_memory_gib
         ));
     }
+    if !(a.log_every.is_finite() && a.log_every >= 0.0) {
+        return Err(format!(
+            "--log-every must be a number of seconds ≥ 0, got {}",
+            a.log_every
+        ));
+    }
+    let experiments = config::load_all(&a.experiment).map_err(|e| e.to_string())?;
+    if let [experiment] = experiments.as_slice() {
+        let name = experiment.name.clone().unwrap_or_else(|| "experiment".to_string());
+        let out = a.out.clone().unwrap_or_else(|| PathBuf::from("out").join(&name));
+        return run_one(experiment, &out, &a);
+    }
+    let stem = a
+        .experiment
+        .file_stem()
+        .map_or("sweep".to_string(), |s| s.to_string_lossy().into_owned());
+    let base = a.out.clone().unwrap_or_else(|| PathBuf::from("out").join(stem));
+    eprintln!(
+        "{}: a sweep of {} settings, each in its own folder under {}",
+        a.experiment.display(),
+        experiments.len(),
+        base.display()
+    );
+    for experiment in &experiments {
+        let name = experiment.name.clone().unwrap_or_else(|| "experiment".to_string());
+        run_one(experiment, &base.join(name), &a)?;
+    }
+    Ok(())
+}
+
+/// Runs one experiment into `out`.
+fn run_one(experiment: &Experiment, out: &Path, a: &RunArgs) -> Result<(), String> {
+    let name = experiment.name.clone().unwrap_or_else(|| "experiment".to_string());
+    let evaluator = RobotEvaluator::new(experiment).map_err(|e| e.to_string())?;
     let options = RunOptions {
         threads: a.threads.unwrap_or(0),
         resume: a.resume,
@@ -210,7 +241,7 @@ pub fn run(a: RunArgs) -> Result<(), String> {
         0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
         n => n.min(MAX_THREADS),
     };
-    let estimate = MemoryEstimate::of(&experiment, evaluator.genotype_length(), threads);
+    let estimate = MemoryEstimate::of(experiment, evaluator.genotype_length(), threads);
     eprintln!(
         "{name}: {} run(s), {} genes per genotype, about {} per run, output in {}",
         experiment.runs,
@@ -219,14 +250,8 @@ pub fn run(a: RunArgs) -> Result<(), String> {
         out.display()
     );
     let start = Instant::now();
-    if !(a.log_every.is_finite() && a.log_every >= 0.0) {
-        return Err(format!(
-            "--log-every must be a number of seconds ≥ 0, got {}",
-            a.log_every
-        ));
-    }
     let mut bars = Bars::new(experiment.runs, a.log_every);
-    let result = run_experiment(&experiment, &evaluator, &out, &options, &mut bars);
+    let result = run_experiment(experiment, &evaluator, out, &options, &mut bars);
     bars.overall.finish_and_clear();
     let summaries = result.map_err(|e| e.to_string())?;
     let best = summaries.iter().filter_map(|s| s.best_fitness).fold(f64::NAN, f64::max);

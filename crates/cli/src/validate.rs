@@ -2,9 +2,9 @@
 
 use clap::Args;
 use std::path::PathBuf;
-use vsrlab_experiment::config;
 use vsrlab_experiment::memory::gib;
 use vsrlab_experiment::validate::validate;
+use vsrlab_experiment::{config, Experiment};
 
 use crate::run::duration;
 
@@ -24,11 +24,25 @@ pub struct ValidateArgs {
 
 /// Runs `vsrlab validate`: fails on the first bad file.
 pub fn run(a: ValidateArgs) -> Result<(), String> {
-    for path in &a.experiments {
-        let experiment = config::load(path).map_err(|e| e.to_string())?;
-        let v = validate(&experiment, a.threads.unwrap_or(0)).map_err(|e| format!("{}: {e}", path.display()))?;
+    let files: Vec<(PathBuf, Experiment)> = a
+        .experiments
+        .iter()
+        .map(|path| Ok(config::load_all(path)?.into_iter().map(move |e| (path.clone(), e))))
+        .collect::<Result<Vec<_>, config::ConfigError>>()
+        .map_err(|e| e.to_string())?
+        .into_iter()
+        .flatten()
+        .collect();
+    for (path, experiment) in &files {
+        let shown = match &experiment.name {
+            Some(name) if files.iter().filter(|(p, _)| p == path).count() > 1 => {
+                format!("{} [{name}]", path.display())
+            }
+            _ => path.display().to_string(),
+        };
+        let v = validate(experiment, a.threads.unwrap_or(0)).map_err(|e| format!("{shown}: {e}"))?;
         if !a.brief {
-            println!("# {} (resolved)\n{}", path.display(), v.resolved);
+            println!("# {shown} (resolved)\n{}", v.resolved);
         }
         let time = match v.estimated_seconds {
             Some(s) => format!(
@@ -41,8 +55,7 @@ pub fn run(a: ValidateArgs) -> Result<(), String> {
             None => "no evaluation bound (wall-clock stop only)".to_string(),
         };
         println!(
-            "{}: ok; {} genes per genotype; about {} per run; {:.3} s per evaluation of a random genotype; {time}",
-            path.display(),
+            "{shown}: ok; {} genes per genotype; about {} per run; {:.3} s per evaluation of a random genotype; {time}",
             v.genes,
             gib(v.memory.bytes),
             v.seconds_per_evaluation

@@ -231,3 +231,29 @@ fn sizes_are_bounded_and_named() {
         assert!(e.contains(field), "expected {field} in: {e}");
     }
 }
+
+#[test]
+fn the_ch3_sweep_expands_into_the_72_generated_files() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../experiments");
+    let settings = vsrlab_experiment::config::load_all(&root.join("ch3.toml")).unwrap();
+    assert_eq!(settings.len(), 72);
+    let without_name = |e: &vsrlab_experiment::Experiment| {
+        let mut e = e.clone();
+        e.name = None;
+        e.description = None;
+        e.to_toml()
+    };
+    let mut compared = 0;
+    for entry in std::fs::read_dir(root.join("ch3")).unwrap() {
+        let path = entry.unwrap().path();
+        let stem = path.file_stem().unwrap().to_string_lossy().into_owned();
+        let file = vsrlab_experiment::config::load(&path).unwrap();
+        let setting = settings
+            .iter()
+            .find(|s| s.name.as_deref() == Some(&format!("ch3-{stem}")))
+            .unwrap_or_else(|| panic!("no setting ch3-{stem}"));
+        assert_eq!(without_name(setting), without_name(&file), "{stem}");
+        compared += 1;
+    }
+    assert_eq!(compared, 72);
+}

@@ -7,9 +7,11 @@
 //! registries ([`vsrlab_tasks::registry`], [`crate::optimizers`]) by `kind`.
 
 mod error;
+mod sweep;
 mod task;
 
 pub use error::ConfigError;
+pub use sweep::{expand, MAX_SETTINGS};
 pub use task::TaskConfig;
 
 use crate::optimizers::{self, OptimizerConfig};
@@ -237,6 +239,31 @@ pub fn load(path: &std::path::Path) -> Result<Experiment, ConfigError> {
         experiment.name = stem;
     }
     Ok(experiment)
+}
+
+/// Reads an experiment file that may hold a `[sweep]`: its experiments, one per setting (one
+/// when there is no sweep, exactly as [`load`] gives it).
+pub fn load_all(path: &std::path::Path) -> Result<Vec<Experiment>, ConfigError> {
+    let text = std::fs::read_to_string(path).map_err(|e| ConfigError {
+        origin: path.display().to_string(),
+        line: None,
+        column: None,
+        field: String::new(),
+        message: e.to_string(),
+    })?;
+    if !text.contains("sweep") {
+        return load(path).map(|e| vec![e]);
+    }
+    let stem = path
+        .file_stem()
+        .map_or("experiment".into(), |s| s.to_string_lossy().into_owned());
+    let mut experiments = expand(&text, &path.display().to_string(), &stem)?;
+    if let [single] = experiments.as_mut_slice() {
+        if single.name.is_none() {
+            return load(path).map(|e| vec![e]);
+        }
+    }
+    Ok(experiments)
 }
 
 /// Most runs of one experiment.

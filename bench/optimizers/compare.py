@@ -10,10 +10,15 @@ Measurements (identical settings on both sides, one run per seed, medians over s
   and polynomial mutation (eta 20, p 1/n), 25 000 evaluations; hypervolume of the final
   non-dominated set w.r.t. (1.1, 1.1), computed with pymoo's HV indicator for both sides
   (the vsrlab value is also checked against vsrlab's own hypervolume).
+- CMA-ES termination: default termination criteria, no target, budget 1e6 evaluations, on
+  the ellipsoid (n = 20, sigma0 = 0.5, mean uniform in [-1, 1]^n) and Rastrigin (n = 10,
+  sigma0 = 2, mean uniform in [-5.12, 5.12]^n): evaluations until the run stops by itself and
+  which criterion stopped it (pycma: the keys of `es.stop()`; vsrlab: `stop_reason()`).
 Time per run: CPU seconds (Python, process_time) vs wall seconds (Rust, single thread).
 """
 
 import argparse
+import collections
 import json
 import math
 import statistics
@@ -45,7 +50,16 @@ def rosenbrock(x):
     return float(np.sum(100.0 * (x[1:] - x[:-1] ** 2) ** 2 + (1.0 - x[:-1]) ** 2))
 
 
-FUNCTIONS = {"sphere": sphere, "rosenbrock": rosenbrock}
+def ellipsoid(x):
+    n = len(x)
+    return float(np.sum(10.0 ** (6.0 * np.arange(n) / (n - 1)) * x * x))
+
+
+def rastrigin(x):
+    return float(10.0 * len(x) + np.sum(x * x - 10.0 * np.cos(2.0 * math.pi * x)))
+
+
+FUNCTIONS = {"sphere": sphere, "rosenbrock": rosenbrock, "ellipsoid": ellipsoid, "rastrigin": rastrigin}
 
 
 def median_or_nan(values):
@@ -66,6 +80,55 @@ def pycma_run(name, n, budget, seed):
     return (es.result.evaluations if reached else None), seconds
 
 
+def pycma_termination_run(name, n, sigma0, half_width, budget, seed):
+    """One run with pycma's default termination criteria and no target: (evaluations, the keys
+    of es.stop() in the order pycma tested them, best f)."""
+    f = FUNCTIONS[name]
+    x0 = np.random.default_rng(seed).uniform(-half_width, half_width, n)
+    es = cma.CMAEvolutionStrategy(x0, sigma0, {"seed": seed + 1, "maxfevals": budget, "verbose": -9})
+    while not es.stop():
+        xs = es.ask()
+        es.tell(xs, [f(x) for x in xs])
+    return es.result.evaluations, list(es.stop().keys()), float(es.result.fbest)
+
+
+def termination_rows(ours):
+    rows = []
+    for mine in ours:
+        name, n = mine["function"], mine["dimension"]
+        runs = [pycma_termination_run(name, n, mine["sigma0"], mine["init_half_width"], mine["budget"], seed)
+                for seed in range(len(mine["evaluations"]))]
+        for seed, (e, keys, best) in enumerate(runs):
+            print(f"[compare] pycma {name} n={n} seed {seed}: stopped after {e} evals by {keys}, best {best:.3e}",
+                  file=sys.stderr)
+        rows.append({
+            "benchmark": f"CMA-ES {name} n={n} sigma0={mine['sigma0']:g}",
+            "seeds": len(runs),
+            "peer": f"pycma {cma.__version__}",
+            "peer_median_evaluations": statistics.median(e for e, _, _ in runs),
+            "vsrlab_median_evaluations": mine["median_evaluations"],
+            "peer_median_best": statistics.median(b for _, _, b in runs),
+            "vsrlab_median_best": mine["median_best"],
+            # pycma may report several criteria at once; count the first (its test order) and all.
+            "peer_first_reason": dict(collections.Counter(keys[0] for _, keys, _ in runs)),
+            "peer_all_reasons": dict(collections.Counter("+".join(keys) for _, keys, _ in runs)),
+            "vsrlab_reason": dict(collections.Counter(mine["reasons"])),
+        })
+    return rows
+
+
+def print_termination(rows):
+    print("\nCMA-ES stopping by itself (default criteria, no target, budget 1e6); medians over seeds\n")
+    header = f"{'benchmark':<34} {'side':<12} {'evals to stop':>13} {'best f':>10}  stop reasons"
+    print(header)
+    print("-" * len(header))
+    for r in rows:
+        print(f"{r['benchmark']:<34} {r['peer']:<12} {r['peer_median_evaluations']:>13.0f} "
+              f"{r['peer_median_best']:>10.3g}  {r['peer_all_reasons']}")
+        print(f"{'':<34} {'vsrlab':<12} {r['vsrlab_median_evaluations']:>13.0f} "
+              f"{r['vsrlab_median_best']:>10.3g}  {r['vsrlab_reason']}")
+
+
 def pymoo_run(seed):
     problem = get_problem("zdt1", n_var=30)
     start = time.process_time()
@@ -74,9 +137,10 @@ def pymoo_run(seed):
     return float(HV(ref_point=REFERENCE)(res.F)), seconds
 
 
-def vsrlab_results(seeds):
+def vsrlab_results(seeds, termination_seeds):
     cmd = ["cargo", "run", "--release", "-q", "-p", "vsrlab-evolution", "--example",
-           "optimizer_bench", "--", "--json", "--seeds", str(seeds)]
+           "optimizer_bench", "--", "--json", "--seeds", str(seeds),
+           "--termination-seeds", str(termination_seeds)]
     print("[compare] " + " ".join(cmd), file=sys.stderr)
     out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
     return json.loads(out)
@@ -89,11 +153,13 @@ def ratio(a, b):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--seeds", type=int, default=15, help="runs per benchmark (default 15)")
+    parser.add_argument("--termination-seeds", type=int, default=10,
+                        help="runs per CMA-ES termination benchmark (default 10)")
     parser.add_argument("--json", action="store_true", help="print JSON instead of the table")
     args = parser.parse_args()
 
     rows = []
-    ours = vsrlab_results(args.seeds)
+    ours = vsrlab_results(args.seeds, args.termination_seeds)
     for (name, n, budget), mine in zip(CMA_CASES, ours["cma_es"]):
         assert (mine["function"], mine["dimension"], mine["budget"]) == (name, n, budget)
         evals, secs = [], []
@@ -139,8 +205,9 @@ def main():
         "vsrlab_seconds": mine["median_seconds"],
     })
 
+    termination = termination_rows(ours["cma_termination"])
     if args.json:
-        print(json.dumps({"seeds": args.seeds, "rows": rows}, indent=2))
+        print(json.dumps({"seeds": args.seeds, "rows": rows, "termination": termination}, indent=2))
         return
     print(f"\nMedians over {args.seeds} seeds; ratio = vsrlab / peer "
           "(evals: < 1 is fewer evaluations; hypervolume: > 1 is better; time: < 1 is faster)\n")
@@ -156,6 +223,7 @@ def main():
               f"{r['peer_success'] + ' ' + r['vsrlab_success']:>12} "
               f"{r['peer_seconds']:>11.4f} {r['vsrlab_seconds']:>13.4f} "
               f"{ratio(r['vsrlab_seconds'], r['peer_seconds']):>10.3f}")
+    print_termination(termination)
 
 
 if __name__ == "__main__":

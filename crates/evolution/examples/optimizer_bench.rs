@@ -3,10 +3,14 @@
 //! - CMA-ES: evaluations to reach f < 1e-8 on sphere and Rosenbrock in 10 and 40 dimensions
 //!   (default λ, σ0 = 0.5, initial mean uniform in [−1, 1]^n), one run per seed;
 //! - NSGA-II: hypervolume (reference point (1.1, 1.1)) of the first front after 25 000
-//!   evaluations on ZDT1 (n = 30, N = 100, SBX + polynomial mutation), one run per seed.
+//!   evaluations on ZDT1 (n = 30, N = 100, SBX + polynomial mutation), one run per seed;
+//! - CMA-ES termination: with the default termination criteria and no target, the evaluations
+//!   until the run stops by itself and the criterion named, on the 20-D ellipsoid (σ0 = 0.5,
+//!   mean in [−1, 1]^n) and the 10-D Rastrigin (σ0 = 2, mean in [−5.12, 5.12]^n), budget 10⁶.
 //!
 //! ```text
-//! cargo run --release -p vsrlab-evolution --example optimizer_bench -- [--seeds 15] [--json]
+//! cargo run --release -p vsrlab-evolution --example optimizer_bench -- [--seeds 15] \
+//!     [--termination-seeds 10] [--json]
 //! ```
 //! Prints medians (and per-seed values with `--json`, including the ZDT1 fronts so the Python
 //! side can recompute the hypervolume with pymoo's indicator).
@@ -14,9 +18,10 @@
 use serde_json::json;
 use std::time::Instant;
 use vsrlab_evolution::pareto::hypervolume_2d;
-use vsrlab_evolution::test_functions::{rosenbrock, sphere, zdt1};
+use vsrlab_evolution::test_functions::{rastrigin, rosenbrock, sphere, zdt1};
 use vsrlab_evolution::{
-    run_to_budget, CmaEs, CmaEsConfig, Evaluation, Nsga2, Nsga2Config, SbxPolynomial, Sense, Stop, StopReason,
+    run_to_budget, CmaEs, CmaEsConfig, Evaluation, Nsga2, Nsga2Config, Optimizer, SbxPolynomial, Sense, Stop,
+    StopReason,
 };
 
 /// (name, function, dimension, evaluation budget)
@@ -30,6 +35,79 @@ const CMA_CASES: [CmaCase; 4] = [
 ];
 const TARGET: f64 = 1e-8;
 const ZDT_BUDGET: u64 = 25_000;
+
+/// (name, function, dimension, σ0, half-width of the initial mean's box)
+type TerminationCase = (&'static str, fn(&[f64]) -> f64, usize, f64, f64);
+
+const TERMINATION_CASES: [TerminationCase; 2] = [
+    ("ellipsoid", ellipsoid, 20, 0.5, 1.0),
+    ("rastrigin", rastrigin, 10, 2.0, 5.12),
+];
+const TERMINATION_BUDGET: u64 = 1_000_000;
+
+/// f = Σ 10^{6(i−1)/(n−1)} x_i² (condition 1e6).
+fn ellipsoid(x: &[f64]) -> f64 {
+    let n = x.len() as f64;
+    x.iter()
+        .enumerate()
+        .map(|(i, v)| 10f64.powf(6.0 * i as f64 / (n - 1.0)) * v * v)
+        .sum()
+}
+
+/// One row per termination case: per seed the evaluations at the stop, the reason and the
+/// best value.
+fn termination_rows(seeds: u64, as_json: bool) -> Vec<serde_json::Value> {
+    let mut rows = Vec::new();
+    for (name, f, n, sigma0, half_width) in TERMINATION_CASES {
+        let (mut evaluations, mut reasons, mut best, mut seconds) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        for seed in 0..seeds {
+            let config = CmaEsConfig {
+                sigma0,
+                init_min: -half_width,
+                init_max: half_width,
+                sense: Sense::Minimize,
+                ..CmaEsConfig::default()
+            };
+            let mut cma = CmaEs::new(config, n, seed).expect("valid configuration");
+            let start = Instant::now();
+            let summary = run_to_budget(
+                &mut cma,
+                |c| Evaluation::single(f(&c.genotype)),
+                &Stop::evaluations(TERMINATION_BUDGET),
+            )
+            .expect("run");
+            seconds.push(start.elapsed().as_secs_f64());
+            evaluations.push(summary.evaluations as f64);
+            reasons.push(match summary.reason {
+                StopReason::Optimizer(reason) => reason.trim_start_matches("cma-es:").to_string(),
+                other => format!("{other:?}"),
+            });
+            best.push(cma.best().map_or(f64::NAN, |b| b.fitness()));
+        }
+        let row = json!({
+            "function": name,
+            "dimension": n,
+            "sigma0": sigma0,
+            "init_half_width": half_width,
+            "budget": TERMINATION_BUDGET,
+            "evaluations": evaluations,
+            "reasons": reasons,
+            "best": best,
+            "median_evaluations": median(&mut evaluations.clone()),
+            "median_best": median(&mut best.clone()),
+            "median_seconds": median(&mut seconds.clone()),
+        });
+        if !as_json {
+            println!(
+                "CMA-ES {name:>10} n={n:<3} until it stops by itself: median {:>9.0} evals, median best {:.3e}, reasons {reasons:?}",
+                row["median_evaluations"].as_f64().unwrap_or(f64::NAN),
+                row["median_best"].as_f64().unwrap_or(f64::NAN),
+            );
+        }
+        rows.push(row);
+    }
+    rows
+}
 
 fn median(values: &mut [f64]) -> f64 {
     if values.is_empty() {
@@ -53,6 +131,12 @@ fn main() {
         .and_then(|i| args.get(i + 1))
         .map(|s| s.parse().expect("--seeds takes an integer"))
         .unwrap_or(15);
+    let termination_seeds: u64 = args
+        .iter()
+        .position(|a| a == "--termination-seeds")
+        .and_then(|i| args.get(i + 1))
+        .map(|s| s.parse().expect("--termination-seeds takes an integer"))
+        .unwrap_or(10);
 
     let mut cma_rows = Vec::new();
     for (name, f, n, budget) in CMA_CASES {
@@ -131,8 +215,12 @@ fn main() {
         "seconds": seconds,
         "fronts": fronts,
     });
+    let termination = termination_rows(termination_seeds, as_json);
     if as_json {
-        println!("{}", json!({ "cma_es": cma_rows, "nsga2": nsga_row }));
+        println!(
+            "{}",
+            json!({ "cma_es": cma_rows, "nsga2": nsga_row, "cma_termination": termination })
+        );
     } else {
         println!(
             "NSGA-II ZDT1 n=30 N=100 {ZDT_BUDGET} evals: median hypervolume {:.5} (true front 0.87667), {:.4} s/run",

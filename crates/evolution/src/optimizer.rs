@@ -196,6 +196,13 @@ pub trait Optimizer {
     /// The current population: survivors (GA, SE, NSGA-II), the last evaluated batch (ES,
     /// CMA-ES) or the archive's elites (MAP-Elites).
     fn population(&self) -> Vec<&Individual<Self::Genotype>>;
+
+    /// Why the optimizer has stopped by itself (a termination criterion of its own, e.g.
+    /// `"cma-es:tolfun"`), or `None` while it can go on. Drivers end the run when it is `Some`;
+    /// calling `ask`/`tell` afterwards is allowed but unlikely to help.
+    fn stop_reason(&self) -> Option<&'static str> {
+        None
+    }
 }
 
 /// The tell half, generic over the outcome type `O` carried by evaluations. Optimizers that

@@ -8,7 +8,8 @@ use serde::{Deserialize, Serialize};
 
 /// When to stop a run. Criteria are checked after every generation, so the last generation
 /// may overshoot an evaluation budget (as in jgea). At least one of `max_evaluations` and
-/// `max_generations` must be set.
+/// `max_generations` must be set. The run also ends when the optimizer stops by itself
+/// ([`StopReason::Optimizer`]); a budget or target reached in the same generation wins.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Stop {
     /// Stop once at least this many fitness evaluations were told.
@@ -45,7 +46,7 @@ impl Stop {
 }
 
 /// Why a run stopped.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 pub enum StopReason {
     /// The evaluation budget was used up.
     Evaluations,
@@ -53,6 +54,9 @@ pub enum StopReason {
     Generations,
     /// The target fitness was reached.
     Target,
+    /// The optimizer stopped by itself ([`Optimizer::stop_reason`](crate::Optimizer::stop_reason),
+    /// e.g. `"cma-es:tolfun"`).
+    Optimizer(String),
 }
 
 /// What [`run_to_budget`] did.
@@ -85,7 +89,7 @@ where
         } else if stop.max_generations.is_some_and(|n| optimizer.generation() >= n) {
             Some(StopReason::Generations)
         } else {
-            None
+            optimizer.stop_reason().map(|r| StopReason::Optimizer(r.to_string()))
         };
         if let Some(reason) = reason {
             return Ok(RunSummary {

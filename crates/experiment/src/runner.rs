@@ -413,7 +413,8 @@ fn check_threads(options: &RunOptions) -> Result<(), RunError> {
     Ok(())
 }
 
-/// Which stop criterion holds, if any.
+/// Which stop criterion holds, if any: the configured ones first, then the optimizer's own
+/// (e.g. `"cma-es:tolfun"`, see [`SearchOptimizer::stop_reason`]).
 fn stop_reason<G, O: SearchOptimizer<G>>(stop: &StopConfig, optimizer: &O, wall: f64) -> Option<&'static str> {
     if let (Some(target), Some(best)) = (stop.target_fitness, optimizer.best()) {
         if first_sense(optimizer).reaches(best.fitness(), target) {
@@ -432,7 +433,7 @@ fn stop_reason<G, O: SearchOptimizer<G>>(stop: &StopConfig, optimizer: &O, wall:
     if stop.wall_seconds.is_some_and(|s| wall >= s) {
         return Some("wall_seconds");
     }
-    None
+    optimizer.stop_reason()
 }
 
 /// The sense of the first objective.

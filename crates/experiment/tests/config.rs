@@ -86,6 +86,19 @@ fn errors_name_the_field_and_the_line() {
             "'representation.sensors'",
         ),
         ("evaluations = 100", "target_fitness = 3.0", "line 18", "'stop'"),
+        // CMA-ES termination thresholds
+        (
+            "kind = \"ga\"\npopulation_size = 10",
+            "kind = \"cma-es\"\ntolfun = -1.0",
+            "line 16",
+            "'optimizer.tolfun'",
+        ),
+        (
+            "kind = \"ga\"\npopulation_size = 10",
+            "kind = \"cma-es\"\ntermination = \"off\"",
+            "line 16",
+            "'optimizer.termination'",
+        ),
         // syntax error
         ("[stop]", "[stop", "line 18", ""),
     ];

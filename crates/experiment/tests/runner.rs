@@ -555,3 +555,26 @@ fn a_run_estimated_above_the_memory_limit_is_refused_before_anything_is_written(
     let estimate = vsrlab_experiment::memory::MemoryEstimate::of(&experiment, evaluator.genotype_length(), 1);
     estimate.check(vsrlab_experiment::memory::DEFAULT_MEMORY_LIMIT).unwrap();
 }
+
+/// A CMA-ES run whose termination criterion holds ends by itself before its budget, with the
+/// criterion as its stop reason (here `tolfun` set so large that the first generation meets it);
+/// with `termination = false` the same run goes on to the budget.
+#[test]
+fn a_cma_es_run_that_stops_by_itself_names_the_criterion() {
+    let summary = |termination: &str| {
+        let experiment = tiny(
+            &format!("kind = \"cma-es\"\npopulation_size = 4\ntolfun = 1e9\n{termination}"),
+            "generations = 3",
+        );
+        let dir = tempfile::tempdir().unwrap();
+        run(&experiment, dir.path(), 2);
+        let text = std::fs::read_to_string(dir.path().join("run-00/summary.json")).unwrap();
+        serde_json::from_str::<serde_json::Value>(&text).unwrap()
+    };
+    let stopped = summary("");
+    assert_eq!(stopped["stop_reason"], "cma-es:tolfun", "{stopped}");
+    assert_eq!(stopped["generations"], 1, "{stopped}");
+    let budget = summary("termination = false");
+    assert_eq!(budget["stop_reason"], "generations", "{budget}");
+    assert_eq!(budget["generations"], 3, "{budget}");
+}

@@ -24,7 +24,18 @@
 //!   reference code and jgea, so the run does not stall on plateaus.
 //! - The exponent of the σ update is capped at 1 (the tutorial's suggested safeguard against a
 //!   far too small σ0).
+//! - Termination criteria (tutorial Appendix B.3, pycma 4.5.0's definitions and defaults, see
+//!   [`CmaTermination`]): once one holds, [`Optimizer::stop_reason`] names it
+//!   (`"cma-es:tolfun"`, …) and drivers stop the run. The state keeps updating if a caller goes on.
+//! - Numerical guards, which only act in states no converging run reaches, so that a run left
+//!   going (criteria off) never produces a non-finite mean, σ or C: an update that would make
+//!   C non-finite or give it a non-positive diagonal is discarded (C is rebuilt from its last
+//!   eigendecomposition); C is rebuilt as `B·max(Λ, floor)·Bᵀ` when an eigenvalue falls below
+//!   the floor; when C's largest diagonal entry leaves [1e-100, 1e100], C and p_c are rescaled and
+//!   σ takes the factor (σ²C unchanged); σ·√max C_ii is capped at 1e100 and σ floored at
+//!   1e-300; a mean update that would not be finite is skipped.
 
+use super::cma_termination::{CmaTermination, Monitor, Snapshot};
 use crate::error::EvolutionError;
 use crate::linalg::symmetric_eigen_from;
 use crate::optimizer::{ensure, Candidate, Individual, Optimizer, Sense, Tell, Told};
@@ -48,7 +59,17 @@ pub struct CmaEsConfig {
     pub active: bool,
     /// Whether fitness is maximised or minimised.
     pub sense: Sense,
+    /// Termination criteria (pycma's defaults; absent in older configs and checkpoints).
+    #[serde(default)]
+    pub termination: CmaTermination,
 }
+
+/// Largest σ·√max C_ii: keeps samples (and their squares) far from overflow.
+const MAX_STEP: f64 = 1e100;
+/// Smallest σ, so that σ never reaches 0, from which it could not grow again.
+const MIN_SIGMA: f64 = 1e-300;
+/// C is rescaled (σ taking the factor) when its largest diagonal entry leaves [1/RESCALE, RESCALE].
+const RESCALE: f64 = 1e100;
 
 impl Default for CmaEsConfig {
     /// Default λ, σ0 = 0.5, initial mean in [−1, 1], active update, maximisation.
@@ -60,6 +81,7 @@ impl Default for CmaEsConfig {
             init_max: 1.0,
             active: true,
             sense: Sense::Maximize,
+            termination: CmaTermination::default(),
         }
     }
 }
@@ -157,6 +179,10 @@ pub struct CmaEs {
     /// Generation count at the last eigendecomposition.
     eigen_generation: u64,
     last: Vec<Individual<Vec<f64>>>,
+    /// Histories of the termination criteria and the criterion that held (absent in older
+    /// checkpoints: they start empty).
+    #[serde(default)]
+    monitor: Monitor,
 }
 
 impl CmaEs {
@@ -186,6 +212,11 @@ impl CmaEs {
         })?;
         let lambda = config.population_size.unwrap_or(CmaEs::default_population_size(n));
         ensure(lambda >= 2, || "CMA-ES: population_size must be >= 2".into())?;
+        if let Err((field, why)) = config.termination.validate() {
+            return Err(EvolutionError::InvalidConfig(format!(
+                "CMA-ES: termination.{field} {why}"
+            )));
+        }
         let mut identity = vec![0.0; n * n];
         for i in 0..n {
             identity[i * n + i] = 1.0;
@@ -203,6 +234,7 @@ impl CmaEs {
             path_c: vec![0.0; n],
             eigen_generation: 0,
             last: Vec::new(),
+            monitor: Monitor::default(),
         })
     }
 
@@ -244,14 +276,95 @@ impl CmaEs {
             .collect()
     }
 
+    /// Eigendecomposition of C; eigenvalues are floored at `1e-20 × max`, and C is rebuilt
+    /// from the floored values when the floor acted, so it stays positive definite.
     fn decompose(&mut self) {
         let n = self.mean.len();
         let (values, vectors) = symmetric_eigen_from(&self.covariance, n, &self.basis);
         let max = values.iter().fold(0.0f64, |m, v| m.max(*v));
         let floor = (max * 1e-20).max(f64::MIN_POSITIVE);
+        let floored = values.iter().any(|v| !(*v >= floor && v.is_finite()));
+        if floored && !(max.is_finite() && vectors.iter().all(|v| v.is_finite())) {
+            // Nothing usable came out: keep the previous decomposition and rebuild C from it.
+            self.recompose();
+            self.eigen_generation = self.state.generation();
+            return;
+        }
         self.scales = values.iter().map(|v| v.max(floor).sqrt()).collect();
         self.basis = vectors;
         self.eigen_generation = self.state.generation();
+        if floored {
+            self.recompose();
+        }
+    }
+
+    /// C ← B · diag(scales²) · Bᵀ, exactly symmetric.
+    fn recompose(&mut self) {
+        let n = self.mean.len();
+        for i in 0..n {
+            for j in i..n {
+                let value: f64 = (0..n)
+                    .map(|k| self.basis[i * n + k] * self.scales[k] * self.scales[k] * self.basis[j * n + k])
+                    .sum();
+                self.covariance[i * n + j] = value;
+                self.covariance[j * n + i] = value;
+            }
+        }
+    }
+
+    /// Whether every entry of C is finite and its diagonal positive.
+    fn covariance_is_sound(&self) -> bool {
+        let n = self.mean.len();
+        self.covariance.iter().all(|v| v.is_finite()) && (0..n).all(|i| self.covariance[i * n + i] > 0.0)
+    }
+
+    /// The numerical guards of the module docs; no-ops in any state a converging run reaches.
+    fn keep_finite(&mut self) {
+        if !self.covariance_is_sound() {
+            self.recompose();
+        }
+        let n = self.mean.len();
+        let max_diagonal = (0..n).map(|i| self.covariance[i * n + i]).fold(0.0f64, f64::max);
+        if max_diagonal.is_finite() && max_diagonal > 0.0 && !(1.0 / RESCALE..=RESCALE).contains(&max_diagonal) {
+            let root = max_diagonal.sqrt();
+            self.covariance.iter_mut().for_each(|c| *c /= max_diagonal);
+            self.path_c.iter_mut().for_each(|p| *p /= root);
+            self.scales.iter_mut().for_each(|d| *d /= root);
+            self.sigma *= root;
+        }
+        let max_std = (0..n).map(|i| self.covariance[i * n + i]).fold(0.0f64, f64::max).sqrt();
+        let step = self.sigma * max_std;
+        if step.is_nan() || step > MAX_STEP {
+            self.sigma = MAX_STEP / max_std.max(f64::MIN_POSITIVE);
+        }
+        self.sigma = self.sigma.clamp(MIN_SIGMA, f64::MAX);
+    }
+
+    /// The numbers the termination criteria read, for the generation just told.
+    fn check_termination(&mut self, order: &[usize]) {
+        let utilities: Vec<f64> = order
+            .iter()
+            .map(|&k| self.config.sense.utility(self.last[k].fitness()))
+            .collect();
+        let generation = self.state.generation();
+        let since_best = self
+            .state
+            .best()
+            .map_or(0, |b| generation.saturating_sub(b.birth_generation + 1));
+        let snapshot = Snapshot {
+            generation,
+            lambda: self.lambda,
+            sigma: self.sigma,
+            sigma0: self.config.sigma0,
+            mean: &self.mean,
+            covariance: &self.covariance,
+            path_c: &self.path_c,
+            scales: &self.scales,
+            basis: &self.basis,
+            utilities: &utilities,
+            since_best,
+        };
+        self.monitor.update(&self.config.termination, &snapshot);
     }
 }
 
@@ -282,6 +395,11 @@ impl Optimizer for CmaEs {
     fn population(&self) -> Vec<&Individual<Vec<f64>>> {
         self.last.iter().collect()
     }
+
+    /// The termination criterion that held, `"cma-es:<pycma key>"`.
+    fn stop_reason(&self) -> Option<&'static str> {
+        self.monitor.stopped().map(|c| c.reason())
+    }
 }
 
 impl<O> Tell<O> for CmaEs {
@@ -308,8 +426,15 @@ impl<O> Tell<O> for CmaEs {
                 z_w[j] += p.weights[i] * zs[i][j];
             }
         }
-        for (m, y) in self.mean.iter_mut().zip(&y_w) {
-            *m += self.sigma * y;
+        if self
+            .mean
+            .iter()
+            .zip(&y_w)
+            .all(|(m, y)| (m + self.sigma * y).is_finite())
+        {
+            for (m, y) in self.mean.iter_mut().zip(&y_w) {
+                *m += self.sigma * y;
+            }
         }
 
         // Step-size path with C^{-1/2} <y>_w = B <z>_w.
@@ -371,11 +496,13 @@ impl<O> Tell<O> for CmaEs {
             self.sigma *= (0.2 + p.c_sigma / p.d_sigma).exp();
         }
 
+        self.keep_finite();
         self.state.advance(&batch);
         let gap = 1.0 / (10.0 * nf * (p.c_1 + p.c_mu));
         if (self.state.generation() - self.eigen_generation) as f64 >= gap {
             self.decompose();
         }
+        self.check_termination(&order);
         Ok(())
     }
 }
@@ -478,14 +605,195 @@ mod tests {
     #[test]
     fn adapts_to_an_ill_conditioned_ellipsoid() {
         // f = Σ 10^{6 i/(n−1)} x_i²: the learned covariance must span 6 orders of magnitude.
-        fn ellipsoid(x: &[f64]) -> f64 {
-            let n = x.len() as f64;
-            x.iter()
-                .enumerate()
-                .map(|(i, v)| 10f64.powf(6.0 * i as f64 / (n - 1.0)) * v * v)
-                .sum()
-        }
         let e = evaluations_to_target(ellipsoid, CmaEsConfig::default(), 10, 1, 1e-8, 20_000);
         assert!(e.is_some_and(|e| e < 12_000), "{e:?}");
+    }
+
+    /// Panics unless mean, σ and C are finite, σ > 0, C symmetric with a positive diagonal.
+    fn assert_sound(cma: &CmaEs, context: &str) {
+        let n = cma.mean().len();
+        assert!(
+            cma.mean().iter().all(|m| m.is_finite()),
+            "{context}: mean {:?}",
+            cma.mean()
+        );
+        assert!(
+            cma.sigma().is_finite() && cma.sigma() > 0.0,
+            "{context}: sigma {}",
+            cma.sigma()
+        );
+        let c = cma.covariance();
+        assert!(c.iter().all(|v| v.is_finite()), "{context}: C {c:?}");
+        for i in 0..n {
+            assert!(c[i * n + i] > 0.0, "{context}: C[{i}][{i}] = {}", c[i * n + i]);
+            for j in 0..i {
+                assert_eq!(c[i * n + j], c[j * n + i], "{context}: C not symmetric at ({i}, {j})");
+            }
+        }
+    }
+
+    /// Runs `generations` generations of `cma` on `f`, checking soundness every `every`.
+    fn run_checked(cma: &mut CmaEs, f: fn(&[f64]) -> f64, generations: u64, every: u64, context: &str) {
+        for g in 0..generations {
+            let batch = cma.ask();
+            let results = batch
+                .iter()
+                .map(|c| c.told(Evaluation::single(f(&c.genotype))))
+                .collect();
+            Tell::<()>::tell(cma, results).unwrap();
+            if g % every == 0 {
+                assert_sound(cma, context);
+            }
+        }
+        assert_sound(cma, context);
+    }
+
+    /// On the 10-D sphere every run ends by a termination criterion, near f ≈ 1e-11 (pycma
+    /// 4.5.0: `tolfun` after ≈ 2 000 evaluations), far below a 1e5 budget; with the criteria off
+    /// the same run uses the whole budget.
+    #[test]
+    fn stops_by_itself_on_the_sphere() {
+        for seed in 0..5 {
+            let config = CmaEsConfig {
+                sense: Sense::Minimize,
+                ..CmaEsConfig::default()
+            };
+            let mut cma = CmaEs::new(config, 10, seed).unwrap();
+            let f = |c: &Candidate<Vec<f64>>| Evaluation::single(sphere(&c.genotype));
+            let summary = run_to_budget(&mut cma, f, &Stop::evaluations(100_000)).unwrap();
+            let StopReason::Optimizer(reason) = &summary.reason else {
+                panic!("seed {seed}: stopped by {:?}", summary.reason);
+            };
+            assert!(
+                ["cma-es:tolfun", "cma-es:tolx", "cma-es:tolfunhist"].contains(&reason.as_str()),
+                "seed {seed}: {reason}"
+            );
+            assert!(summary.evaluations <= 5_000, "seed {seed}: {}", summary.evaluations);
+            let best = cma.best().unwrap().fitness();
+            assert!(best < 1e-9, "seed {seed}: best {best}");
+            assert_eq!(cma.stop_reason(), Some(reason.as_str()));
+        }
+        let config = CmaEsConfig {
+            sense: Sense::Minimize,
+            termination: CmaTermination::off(),
+            ..CmaEsConfig::default()
+        };
+        let mut cma = CmaEs::new(config, 10, 0).unwrap();
+        let f = |c: &Candidate<Vec<f64>>| Evaluation::single(sphere(&c.genotype));
+        let summary = run_to_budget(&mut cma, f, &Stop::evaluations(20_000)).unwrap();
+        assert_eq!(summary.reason, StopReason::Evaluations);
+        assert_eq!(cma.stop_reason(), None);
+    }
+
+    /// Each criterion fires where it should: a tiny tolstagnation-free flat landscape ends by
+    /// `tolfun`, and a far too small σ0 on a linear slope by `tolfacupx`.
+    #[test]
+    fn criteria_name_what_held() {
+        let run = |f: fn(&[f64]) -> f64, sigma0: f64| {
+            let config = CmaEsConfig {
+                sense: Sense::Minimize,
+                sigma0,
+                ..CmaEsConfig::default()
+            };
+            let mut cma = CmaEs::new(config, 5, 3).unwrap();
+            run_to_budget(
+                &mut cma,
+                |c| Evaluation::single(f(&c.genotype)),
+                &Stop::evaluations(50_000),
+            )
+            .unwrap()
+            .reason
+        };
+        let optimizer = |r: &str| StopReason::Optimizer(r.to_string());
+        assert_eq!(run(|_| 1.0, 0.5), optimizer("cma-es:tolfun"));
+        assert_eq!(run(|x| x[0], 1e-3), optimizer("cma-es:tolfacupx"));
+    }
+
+    /// Rastrigin 10-D with the criteria off, 10⁶ evaluations (10⁵ generations) far past
+    /// convergence: σ creeps up while C shrinks (without the guards σ reached 2.7e9 after
+    /// 64 000 evaluations and the mean became NaN near 10⁶), yet mean, σ and C stay finite
+    /// and C keeps a positive diagonal.
+    #[test]
+    fn a_million_evaluations_without_termination_stay_finite() {
+        let config = CmaEsConfig {
+            sigma0: 2.0,
+            init_min: -5.12,
+            init_max: 5.12,
+            sense: Sense::Minimize,
+            termination: CmaTermination::off(),
+            ..CmaEsConfig::default()
+        };
+        let mut cma = CmaEs::new(config, 10, 7).unwrap();
+        run_checked(&mut cma, rastrigin, 100_000, 997, "rastrigin");
+        assert_eq!(cma.evaluations(), 1_000_000);
+        assert!(cma.best().unwrap().fitness() < 50.0);
+    }
+
+    /// Checkpoints written before the termination criteria existed (no `termination` in the
+    /// config, no `monitor`) still load, with the default criteria.
+    #[test]
+    fn old_checkpoints_load_with_default_criteria() {
+        let config = CmaEsConfig {
+            sense: Sense::Minimize,
+            ..CmaEsConfig::default()
+        };
+        let mut cma = CmaEs::new(config, 4, 1).unwrap();
+        run_checked(&mut cma, sphere, 3, 1, "sphere");
+        let mut value = serde_json::to_value(&cma).unwrap();
+        let object = value.as_object_mut().unwrap();
+        assert!(object.remove("monitor").is_some());
+        let config = object.get_mut("config").unwrap().as_object_mut().unwrap();
+        assert!(config.remove("termination").is_some());
+        let old: CmaEs = serde_json::from_value(value).unwrap();
+        assert_eq!(old.config.termination, CmaTermination::default());
+        assert_eq!(old.mean(), cma.mean());
+    }
+
+    #[test]
+    fn invalid_thresholds_are_refused() {
+        let config = CmaEsConfig {
+            termination: CmaTermination {
+                tolfun: -1.0,
+                ..CmaTermination::default()
+            },
+            ..CmaEsConfig::default()
+        };
+        let error = CmaEs::new(config, 3, 0).unwrap_err().to_string();
+        assert!(error.contains("termination.tolfun"), "{error}");
+    }
+
+    fn ellipsoid(x: &[f64]) -> f64 {
+        let n = x.len() as f64;
+        x.iter()
+            .enumerate()
+            .map(|(i, v)| 10f64.powf(6.0 * i as f64 / (n - 1.0).max(1.0)) * v * v)
+            .sum()
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(24))]
+        /// Random dimension, seed, λ and function (ill-conditioned quadratic or Rastrigin), the
+        /// criteria off, 3 000 generations (far past convergence): the state stays sound.
+        #[test]
+        fn state_stays_finite_far_past_convergence(
+            n in 1usize..7,
+            seed in 0u64..1_000,
+            lambda in proptest::option::of(2usize..24),
+            rastrigin_landscape in proptest::bool::ANY,
+            active in proptest::bool::ANY,
+            sigma0 in 1e-3f64..10.0,
+        ) {
+            let config = CmaEsConfig {
+                population_size: lambda,
+                sigma0,
+                active,
+                sense: Sense::Minimize,
+                termination: CmaTermination::off(),
+                ..CmaEsConfig::default()
+            };
+            let mut cma = CmaEs::new(config, n, seed).unwrap();
+            let f = if rastrigin_landscape { rastrigin } else { ellipsoid };
+            run_checked(&mut cma, f, 3_000, 101, "proptest");
+        }
     }
 }

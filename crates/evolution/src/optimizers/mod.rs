@@ -3,6 +3,7 @@
 
 pub mod canonical_es;
 pub mod cma_es;
+pub mod cma_termination;
 pub mod ga;
 pub mod map_elites;
 pub mod nsga2;

@@ -36,6 +36,11 @@ pub trait SearchOptimizer<G>: Serialize + DeserializeOwned {
     fn archive_cells(&self) -> Option<usize> {
         None
     }
+    /// Why the optimizer stopped by itself (e.g. `"cma-es:tolfun"`), if it did; the runner
+    /// then ends the run with this as its stop reason.
+    fn stop_reason(&self) -> Option<&'static str> {
+        None
+    }
 }
 
 /// Any ask/tell optimizer of `vsrlab-evolution` as a [`SearchOptimizer`]: how a genotype that is
@@ -71,6 +76,9 @@ where
     }
     fn population(&self) -> Vec<&Individual<G>> {
         self.0.population()
+    }
+    fn stop_reason(&self) -> Option<&'static str> {
+        self.0.stop_reason()
     }
 }
 
@@ -160,6 +168,9 @@ impl SearchOptimizer<Vec<f64>> for AnyOptimizer {
     }
     fn population(&self) -> Vec<&Individual<Vec<f64>>> {
         self.inner().population()
+    }
+    fn stop_reason(&self) -> Option<&'static str> {
+        self.inner().stop_reason()
     }
     fn species(&self) -> Option<usize> {
         match self {

@@ -3,7 +3,7 @@
 use super::check::range;
 use super::{decode, single, AnyOptimizer, OptimizerConfig, OptimizerEntry, OptimizerKind};
 use serde::{Deserialize, Serialize};
-use vsrlab_evolution::{CmaEs, CmaEsConfig, EvolutionError, Sense};
+use vsrlab_evolution::{CmaEs, CmaEsConfig, CmaTermination, EvolutionError, Sense};
 
 /// Parameters of CMA-ES.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -18,15 +18,70 @@ pub struct CmaParams {
     pub init_range: [f64; 2],
     /// Active covariance update (negative weights).
     pub active: bool,
+    /// Termination criteria on (`false`: the run ends only by its `[stop]` budget).
+    pub termination: bool,
+    /// pycma `tolx`: σ·√C_ii and σ·|p_c,i| below this in every coordinate (default 1e-11).
+    pub tolx: f64,
+    /// pycma `tolfun`: current and recent best fitness ranges below this (default 1e-11).
+    pub tolfun: f64,
+    /// pycma `tolfunhist`: recent best fitness range below this (default 1e-12).
+    pub tolfunhist: f64,
+    /// pycma `tolconditioncov`: condition number of C above this (default 1e14).
+    pub tolconditioncov: f64,
+    /// pycma `tolfacupx`: σ·√C_ii above σ0 times this (default 1e3).
+    pub tolfacupx: f64,
+    /// pycma `tolupsigma`: σ/σ0 above this times √(largest eigenvalue of C) (default 1e20).
+    pub tolupsigma: f64,
+    /// pycma `tolstagnation` in generations (default ⌊100 + 100·n^1.5/λ⌋; 0 = off).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tolstagnation: Option<u64>,
+    /// pycma `tolxstagnation`: the mean moved less than this over 20 + 0.1·g generations
+    /// (default 1e-9).
+    pub tolxstagnation: f64,
+    /// Tutorial `NoEffectAxis` (default on).
+    pub noeffectaxis: bool,
+    /// Tutorial `NoEffectCoord` (default on).
+    pub noeffectcoord: bool,
 }
 
 impl Default for CmaParams {
     fn default() -> Self {
+        let t = CmaTermination::default();
         Self {
             population_size: None,
             sigma0: 0.5,
             init_range: [-1.0, 1.0],
             active: true,
+            termination: t.enabled,
+            tolx: t.tolx,
+            tolfun: t.tolfun,
+            tolfunhist: t.tolfunhist,
+            tolconditioncov: t.tolconditioncov,
+            tolfacupx: t.tolfacupx,
+            tolupsigma: t.tolupsigma,
+            tolstagnation: t.tolstagnation,
+            tolxstagnation: t.tolxstagnation,
+            noeffectaxis: t.noeffectaxis,
+            noeffectcoord: t.noeffectcoord,
+        }
+    }
+}
+
+impl CmaParams {
+    /// The termination criteria these parameters describe.
+    fn termination_criteria(&self) -> CmaTermination {
+        CmaTermination {
+            enabled: self.termination,
+            tolx: self.tolx,
+            tolfun: self.tolfun,
+            tolfunhist: self.tolfunhist,
+            tolconditioncov: self.tolconditioncov,
+            tolfacupx: self.tolfacupx,
+            tolupsigma: self.tolupsigma,
+            tolstagnation: self.tolstagnation,
+            tolxstagnation: self.tolxstagnation,
+            noeffectaxis: self.noeffectaxis,
+            noeffectcoord: self.noeffectcoord,
         }
     }
 }
@@ -43,7 +98,10 @@ impl OptimizerKind for CmaParams {
         if !(self.sigma0.is_finite() && self.sigma0 > 0.0) {
             return Err(("sigma0".into(), format!("must be > 0, got {}", self.sigma0)));
         }
-        range("init_range", self.init_range)
+        range("init_range", self.init_range)?;
+        self.termination_criteria()
+            .validate()
+            .map_err(|(field, why)| (field.to_string(), why))
     }
 
     /// λ = 4 + ⌊3 ln n⌋ written out when not given.
@@ -64,6 +122,7 @@ impl OptimizerKind for CmaParams {
                 init_max: self.init_range[1],
                 active: self.active,
                 sense: single(senses),
+                termination: self.termination_criteria(),
             },
             dimension,
             seed,

@@ -6,10 +6,13 @@ Measurements (identical settings on both sides, one run per seed, medians over s
   1e5 (n = 10) and 4e5 (n = 40) evaluations. pycma runs with its defaults (active CMA,
   no restarts) plus ftarget and maxfevals. A run that misses the target counts as a failure;
   medians are over successful runs.
-- NSGA-II on ZDT1 (n = 30), population 100, 100 offspring per generation, SBX (p 0.9, eta 15)
+- NSGA-II on ZDT1, ZDT2 and ZDT3 (n = 30), population 100, 100 offspring per generation, SBX (p 0.9, eta 15)
   and polynomial mutation (eta 20, p 1/n), 25 000 evaluations; hypervolume of the final
   non-dominated set w.r.t. (1.1, 1.1), computed with pymoo's HV indicator for both sides
-  (the vsrlab value is also checked against vsrlab's own hypervolume).
+  (the vsrlab value is also checked against vsrlab's own hypervolume); two-sided Mann-Whitney
+  U p-value of the per-seed hypervolumes (scipy). vsrlab runs twice: with its default (no
+  duplicate elimination, as Deb et al.) and with `with_duplicate_elimination(true)` ("dedup"),
+  which is pymoo's default.
 - CMA-ES termination: default termination criteria, no target, budget 1e6 evaluations, on
   the ellipsoid (n = 20, sigma0 = 0.5, mean uniform in [-1, 1]^n) and Rastrigin (n = 10,
   sigma0 = 2, mean uniform in [-5.12, 5.12]^n): evaluations until the run stops by itself and
@@ -33,13 +36,15 @@ from pymoo.algorithms.moo.nsga2 import NSGA2
 from pymoo.indicators.hv import HV
 from pymoo.optimize import minimize
 from pymoo.problems import get_problem
+from scipy.stats import mannwhitneyu
 
 TARGET = 1e-8
 CMA_CASES = [("sphere", 10, 100_000), ("sphere", 40, 400_000),
              ("rosenbrock", 10, 100_000), ("rosenbrock", 40, 400_000)]
 ZDT_BUDGET = 25_000
 REFERENCE = np.array([1.1, 1.1])
-TRUE_HV_ZDT1 = 0.1 + 2.0 / 3.0 + 0.11
+# Hypervolume of the true fronts w.r.t. REFERENCE (ZDT3: its five segments sampled densely).
+TRUE_HV = {"zdt1": 0.1 + 2.0 / 3.0 + 0.11, "zdt2": 0.1 + 1.0 / 3.0 + 0.11, "zdt3": 1.33176}
 
 
 def sphere(x):
@@ -129,18 +134,18 @@ def print_termination(rows):
               f"{r['vsrlab_median_best']:>10.3g}  {r['vsrlab_reason']}")
 
 
-def pymoo_run(seed):
-    problem = get_problem("zdt1", n_var=30)
+def pymoo_run(name, seed):
+    problem = get_problem(name, n_var=30)
     start = time.process_time()
     res = minimize(problem, NSGA2(pop_size=100), ("n_eval", ZDT_BUDGET), seed=seed + 1, verbose=False)
     seconds = time.process_time() - start
     return float(HV(ref_point=REFERENCE)(res.F)), seconds
 
 
-def vsrlab_results(seeds, termination_seeds):
+def vsrlab_results(seeds, termination_seeds, nsga2_only):
     cmd = ["cargo", "run", "--release", "-q", "-p", "vsrlab-evolution", "--example",
            "optimizer_bench", "--", "--json", "--seeds", str(seeds),
-           "--termination-seeds", str(termination_seeds)]
+           "--termination-seeds", str(termination_seeds)] + (["--nsga2-only"] if nsga2_only else [])
     print("[compare] " + " ".join(cmd), file=sys.stderr)
     out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
     return json.loads(out)
@@ -156,10 +161,11 @@ def main():
     parser.add_argument("--termination-seeds", type=int, default=10,
                         help="runs per CMA-ES termination benchmark (default 10)")
     parser.add_argument("--json", action="store_true", help="print JSON instead of the table")
+    parser.add_argument("--nsga2-only", action="store_true", help="only the NSGA-II benchmarks")
     args = parser.parse_args()
 
     rows = []
-    ours = vsrlab_results(args.seeds, args.termination_seeds)
+    ours = vsrlab_results(args.seeds, args.termination_seeds, args.nsga2_only)
     for (name, n, budget), mine in zip(CMA_CASES, ours["cma_es"]):
         assert (mine["function"], mine["dimension"], mine["budget"]) == (name, n, budget)
         evals, secs = [], []
@@ -182,28 +188,34 @@ def main():
             "vsrlab_seconds": mine["median_seconds"],
         })
 
-    mine = ours["nsga2"]
-    hvs, secs = [], []
-    for seed in range(args.seeds):
-        hv, s = pymoo_run(seed)
-        hvs.append(hv)
-        secs.append(s)
-        print(f"[compare] pymoo zdt1 seed {seed}: hv {hv:.5f}, {s:.3f} s", file=sys.stderr)
     indicator = HV(ref_point=REFERENCE)
-    mine_hvs = [float(indicator(np.array(front))) for front in mine["fronts"]]
-    for ours_hv, own in zip(mine_hvs, mine["hypervolume"]):
-        assert abs(ours_hv - own) < 1e-9, (ours_hv, own)
-    rows.append({
-        "benchmark": "NSGA-II ZDT1 n=30",
-        "metric": f"hypervolume @ {ZDT_BUDGET} evals (true {TRUE_HV_ZDT1:.5f})",
-        "peer": f"pymoo {pymoo.__version__}",
-        "peer_value": statistics.median(hvs),
-        "vsrlab_value": statistics.median(mine_hvs),
-        "peer_success": "-",
-        "vsrlab_success": "-",
-        "peer_seconds": statistics.median(secs),
-        "vsrlab_seconds": mine["median_seconds"],
-    })
+    peer_runs = {}
+    for mine in ours["nsga2"]:
+        name = mine["problem"]
+        if name not in peer_runs:
+            peer_runs[name] = [pymoo_run(name, seed) for seed in range(args.seeds)]
+            for seed, (hv, s) in enumerate(peer_runs[name]):
+                print(f"[compare] pymoo {name} seed {seed}: hv {hv:.5f}, {s:.3f} s", file=sys.stderr)
+        hvs = [hv for hv, _ in peer_runs[name]]
+        secs = [s for _, s in peer_runs[name]]
+        mine_hvs = [float(indicator(np.array(front))) for front in mine["fronts"]]
+        for ours_hv, own in zip(mine_hvs, mine["hypervolume"]):
+            assert abs(ours_hv - own) < 1e-9, (ours_hv, own)
+        variant = " dedup" if mine["eliminate_duplicates"] else ""
+        rows.append({
+            "benchmark": f"NSGA-II {name.upper()}{variant} n=30",
+            "metric": f"hypervolume @ {ZDT_BUDGET} evals (true {TRUE_HV[name]:.5f})",
+            "peer": f"pymoo {pymoo.__version__}",
+            "peer_value": statistics.median(hvs),
+            "vsrlab_value": statistics.median(mine_hvs),
+            "peer_values": hvs,
+            "vsrlab_values": mine_hvs,
+            "mann_whitney_p": float(mannwhitneyu(mine_hvs, hvs, alternative="two-sided").pvalue),
+            "peer_success": "-",
+            "vsrlab_success": "-",
+            "peer_seconds": statistics.median(secs),
+            "vsrlab_seconds": mine["median_seconds"],
+        })
 
     termination = termination_rows(ours["cma_termination"])
     if args.json:
@@ -222,8 +234,10 @@ def main():
               f"{ratio(r['vsrlab_value'], r['peer_value']):>7.3f} "
               f"{r['peer_success'] + ' ' + r['vsrlab_success']:>12} "
               f"{r['peer_seconds']:>11.4f} {r['vsrlab_seconds']:>13.4f} "
-              f"{ratio(r['vsrlab_seconds'], r['peer_seconds']):>10.3f}")
-    print_termination(termination)
+              f"{ratio(r['vsrlab_seconds'], r['peer_seconds']):>10.3f}"
+              + (f"  Mann-Whitney p = {r['mann_whitney_p']:.3g}" if "mann_whitney_p" in r else ""))
+    if termination:
+        print_termination(termination)
 
 
 if __name__ == "__main__":

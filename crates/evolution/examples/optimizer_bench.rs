@@ -3,22 +3,24 @@
 //! - CMA-ES: evaluations to reach f < 1e-8 on sphere and Rosenbrock in 10 and 40 dimensions
 //!   (default λ, σ0 = 0.5, initial mean uniform in [−1, 1]^n), one run per seed;
 //! - NSGA-II: hypervolume (reference point (1.1, 1.1)) of the first front after 25 000
-//!   evaluations on ZDT1 (n = 30, N = 100, SBX + polynomial mutation), one run per seed;
+//!   evaluations on ZDT1, ZDT2 and ZDT3 (n = 30, N = 100, SBX + polynomial mutation), one run
+//!   per seed, with the default configuration and again with duplicate elimination (as pymoo);
 //! - CMA-ES termination: with the default termination criteria and no target, the evaluations
 //!   until the run stops by itself and the criterion named, on the 20-D ellipsoid (σ0 = 0.5,
 //!   mean in [−1, 1]^n) and the 10-D Rastrigin (σ0 = 2, mean in [−5.12, 5.12]^n), budget 10⁶.
 //!
 //! ```text
 //! cargo run --release -p vsrlab-evolution --example optimizer_bench -- [--seeds 15] \
-//!     [--termination-seeds 10] [--json]
+//!     [--termination-seeds 10] [--nsga2-only] [--json]
 //! ```
-//! Prints medians (and per-seed values with `--json`, including the ZDT1 fronts so the Python
-//! side can recompute the hypervolume with pymoo's indicator).
+//! Prints medians (and per-seed values with `--json`, including the ZDT fronts so the Python
+//! side can recompute the hypervolume with pymoo's indicator). `--nsga2-only` skips the CMA-ES
+//! measurements.
 
 use serde_json::json;
 use std::time::Instant;
 use vsrlab_evolution::pareto::hypervolume_2d;
-use vsrlab_evolution::test_functions::{rastrigin, rosenbrock, sphere, zdt1};
+use vsrlab_evolution::test_functions::{rastrigin, rosenbrock, sphere, zdt1, zdt2, zdt3};
 use vsrlab_evolution::{
     run_to_budget, CmaEs, CmaEsConfig, Evaluation, Nsga2, Nsga2Config, Optimizer, SbxPolynomial, Sense, Stop,
     StopReason,
@@ -35,6 +37,15 @@ const CMA_CASES: [CmaCase; 4] = [
 ];
 const TARGET: f64 = 1e-8;
 const ZDT_BUDGET: u64 = 25_000;
+
+/// (name, function, hypervolume of the true front w.r.t. (1.1, 1.1))
+type ZdtCase = (&'static str, fn(&[f64]) -> [f64; 2], f64);
+
+const ZDT_CASES: [ZdtCase; 3] = [
+    ("zdt1", zdt1, 0.87667),
+    ("zdt2", zdt2, 0.54333),
+    ("zdt3", zdt3, 1.33176),
+];
 
 /// (name, function, dimension, σ0, half-width of the initial mean's box)
 type TerminationCase = (&'static str, fn(&[f64]) -> f64, usize, f64, f64);
@@ -131,6 +142,7 @@ fn main() {
         .and_then(|i| args.get(i + 1))
         .map(|s| s.parse().expect("--seeds takes an integer"))
         .unwrap_or(15);
+    let nsga2_only = args.iter().any(|a| a == "--nsga2-only");
     let termination_seeds: u64 = args
         .iter()
         .position(|a| a == "--termination-seeds")
@@ -139,7 +151,7 @@ fn main() {
         .unwrap_or(10);
 
     let mut cma_rows = Vec::new();
-    for (name, f, n, budget) in CMA_CASES {
+    for (name, f, n, budget) in CMA_CASES.into_iter().filter(|_| !nsga2_only) {
         let mut evaluations = Vec::new();
         let mut seconds = Vec::new();
         for seed in 0..seeds {
@@ -181,16 +193,50 @@ fn main() {
         cma_rows.push(row);
     }
 
+    let nsga_rows: Vec<serde_json::Value> = ZDT_CASES
+        .into_iter()
+        .flat_map(|case| [(case, false), (case, true)])
+        .map(|((problem, f, true_hv), dedup)| {
+            let row = nsga2_row(problem, f, seeds, dedup);
+            if !as_json {
+                let variant = if dedup { " (duplicates eliminated)" } else { "" };
+                println!(
+                    "NSGA-II {problem}{variant} n=30 N=100 {ZDT_BUDGET} evals: median hypervolume {:.5} (true front {true_hv:.5}), {:.4} s/run",
+                    row["median_hypervolume"].as_f64().unwrap_or(f64::NAN),
+                    row["median_seconds"].as_f64().unwrap_or(f64::NAN),
+                );
+            }
+            row
+        })
+        .collect();
+    let termination = if nsga2_only {
+        Vec::new()
+    } else {
+        termination_rows(termination_seeds, as_json)
+    };
+    if as_json {
+        println!(
+            "{}",
+            json!({ "cma_es": cma_rows, "nsga2": nsga_rows, "cma_termination": termination })
+        );
+    }
+}
+
+/// NSGA-II on one ZDT problem (n = 30, default configuration), one run per seed: the
+/// hypervolumes and first fronts.
+fn nsga2_row(problem: &str, f: fn(&[f64]) -> [f64; 2], seeds: u64, eliminate_duplicates: bool) -> serde_json::Value {
     let mut hvs = Vec::new();
     let mut fronts = Vec::new();
     let mut seconds = Vec::new();
     for seed in 0..seeds {
         let config = Nsga2Config::new(vec![Sense::Minimize; 2]);
-        let mut nsga = Nsga2::new(config, SbxPolynomial::new(30, 0.0, 1.0), seed).expect("valid");
+        let mut nsga = Nsga2::new(config, SbxPolynomial::new(30, 0.0, 1.0), seed)
+            .expect("valid")
+            .with_duplicate_elimination(eliminate_duplicates);
         let start = Instant::now();
         run_to_budget(
             &mut nsga,
-            |c| Evaluation::multi(zdt1(&c.genotype).to_vec()),
+            |c| Evaluation::multi(f(&c.genotype).to_vec()),
             &Stop::evaluations(ZDT_BUDGET),
         )
         .expect("run");
@@ -203,8 +249,9 @@ fn main() {
         hvs.push(hypervolume_2d(&front, [1.1, 1.1], [Sense::Minimize; 2]));
         fronts.push(front);
     }
-    let nsga_row = json!({
-        "problem": "zdt1",
+    json!({
+        "problem": problem,
+        "eliminate_duplicates": eliminate_duplicates,
         "n_var": 30,
         "population": 100,
         "budget": ZDT_BUDGET,
@@ -214,18 +261,5 @@ fn main() {
         "median_seconds": median(&mut seconds.clone()),
         "seconds": seconds,
         "fronts": fronts,
-    });
-    let termination = termination_rows(termination_seeds, as_json);
-    if as_json {
-        println!(
-            "{}",
-            json!({ "cma_es": cma_rows, "nsga2": nsga_row, "cma_termination": termination })
-        );
-    } else {
-        println!(
-            "NSGA-II ZDT1 n=30 N=100 {ZDT_BUDGET} evals: median hypervolume {:.5} (true front 0.87667), {:.4} s/run",
-            nsga_row["median_hypervolume"].as_f64().unwrap_or(f64::NAN),
-            nsga_row["median_seconds"].as_f64().unwrap_or(f64::NAN),
-        );
-    }
+    })
 }

@@ -38,6 +38,12 @@ pub trait Representation {
     /// The crossover operator (including any mutation the representation applies after it):
     /// one child from two parents.
     fn crossover(&self, first: &Self::Genotype, second: &Self::Genotype, rng: &mut SeededRng) -> Self::Genotype;
+
+    /// Whether two genotypes count as duplicates, for optimizers that can eliminate duplicate
+    /// children (NSGA-II's `with_duplicate_elimination`). The default says never.
+    fn is_duplicate(&self, _a: &Self::Genotype, _b: &Self::Genotype) -> bool {
+        false
+    }
 }
 
 /// The genotypes of a first batch: `count` random ones, genotype `i` drawn from the

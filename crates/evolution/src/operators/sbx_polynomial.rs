@@ -136,6 +136,11 @@ impl Representation for SbxPolynomial {
         self.polynomial_mutation(&mut child, rng);
         child
     }
+
+    /// Identical gene values.
+    fn is_duplicate(&self, a: &Vec<f64>, b: &Vec<f64>) -> bool {
+        a == b
+    }
 }
 
 #[cfg(test)]

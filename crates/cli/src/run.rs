@@ -5,7 +5,7 @@ use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use vsrlab_experiment::memory::{gib, MemoryEstimate};
-use vsrlab_experiment::runner::{run_experiment, Flow, Observer, Progress, RunOptions, RunSummary, MAX_THREADS};
+use vsrlab_experiment::runner::{run_experiment, worker_threads, Flow, Observer, Progress, RunOptions, RunSummary};
 use vsrlab_experiment::{config, Experiment, RobotEvaluator};
 
 /// Arguments of `vsrlab run`.
@@ -237,10 +237,7 @@ fn run_one(experiment: &Experiment, out: &Path, a: &RunArgs) -> Result<(), Strin
         resume: a.resume,
         memory_limit: Some((a.max_memory_gib * (1u64 << 30) as f64).min(u64::MAX as f64) as u64),
     };
-    let threads = match options.threads {
-        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
-        n => n.min(MAX_THREADS),
-    };
+    let threads = worker_threads(options.threads);
     let estimate = MemoryEstimate::of(experiment, evaluator.genotype_length(), threads);
     eprintln!(
         "{name}: {} run(s), {} genes per genotype, about {} per run, output in {}",

@@ -316,11 +316,7 @@ pub fn run_experiment(
         })
         .collect();
     check_threads(options)?;
-    let threads = match options.threads {
-        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
-        n => n,
-    };
-    MemoryEstimate::of(experiment, dimension, threads)
+    MemoryEstimate::of(experiment, dimension, worker_threads(options.threads))
         .check(options.memory_limit.unwrap_or(DEFAULT_MEMORY_LIMIT))
         .map_err(RunError::Mismatch)?;
     let new_optimizer = |seed: u64| -> Result<AnyOptimizer, RunError> {
@@ -400,6 +396,15 @@ pub fn run_search<G: Genotype, O: SearchOptimizer<G>>(
     let text = serde_json::to_string_pretty(&summaries).expect("summaries serialise");
     write_file(&folder.summary_json(), text.as_bytes())?;
     Ok(summaries)
+}
+
+/// The worker threads a run asking for `requested` gets: one per core for 0, at most
+/// [`MAX_THREADS`].
+pub fn worker_threads(requested: usize) -> usize {
+    match requested {
+        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
+        n => n.min(MAX_THREADS),
+    }
 }
 
 /// Refuses more than [`MAX_THREADS`] worker threads.

@@ -38,10 +38,7 @@ pub struct Validation {
 pub fn validate(experiment: &Experiment, threads: usize) -> Result<Validation, String> {
     let evaluator = RobotEvaluator::new(experiment).map_err(|e| e.to_string())?;
     let genes = evaluator.genotype_length();
-    let threads = match threads {
-        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
-        n => n,
-    };
+    let threads = crate::runner::worker_threads(threads);
     let mut rng = ChaCha8Rng::seed_from_u64(0);
     let start = Instant::now();
     for _ in 0..TIMED_EVALUATIONS {

@@ -6,4 +6,10 @@ pub trait Controller: Send {
     fn reset(&mut self);
     /// Computes one actuation per voxel (grid order) from all readings (grid order).
     fn control(&mut self, t: f64, readings: &[f64], actuations: &mut [f64]);
+    /// Weights that change during the episode ("adaptive weights": a Hebbian network's synapses),
+    /// for snapshots, freezing and histograms; `None` for brains whose weights are fixed.
+    /// Default: `None`.
+    fn adaptive_weights(&self) -> Option<&[f64]> {
+        None
+    }
 }

@@ -62,8 +62,35 @@ pub trait BrainKind: Debug + Send + Sync {
         }
     }
 
+    /// Makes the brain start every episode from these plastic weights and never change them
+    /// (the frozen-weight test, thesis §5.3.4.2). Default: the inner brain's, or an error on
+    /// `kind` for brains without plastic weights.
+    fn freeze_with(&mut self, weights: &[f64]) -> Result<(), BrainError> {
+        match self.inner_mut() {
+            Some(inner) => inner.as_kind_mut().freeze_with(weights),
+            None => Err(no_plasticity(self.name())),
+        }
+    }
+
+    /// Makes learning stop at simulated time `t` (s). Default: the inner brain's, or an error on
+    /// `kind` for brains without plastic weights.
+    fn stop_learning_at(&mut self, t: f64) -> Result<(), BrainError> {
+        match self.inner_mut() {
+            Some(inner) => inner.as_kind_mut().stop_learning_at(t),
+            None => Err(no_plasticity(self.name())),
+        }
+    }
+
     /// Validates every field and builds the controller for a body whose voxels (voxel order) have
     /// these readings counts; a parameter vector of the wrong length is an error naming its field:
     /// "expected N for this body and sensors, got M".
     fn build(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError>;
+}
+
+/// The error of freezing a brain that does not learn.
+fn no_plasticity(name: &str) -> BrainError {
+    BrainError::Invalid {
+        field: "kind",
+        msg: format!("a {name} brain has no plastic weights to freeze (use a hebbian brain)"),
+    }
 }

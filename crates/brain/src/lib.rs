@@ -54,6 +54,7 @@ pub use controller::Controller;
 pub use controllers::centralized_mlp::{CentralizedMlpController, MlpSpec};
 pub use controllers::constant::{ConstantController, ConstantSpec};
 pub use controllers::distributed_mlp::{DistributedConfig, DistributedMlpController, DistributedMlpSpec, Layout};
+pub use controllers::hebbian::{HebbianController, HebbianModel, HebbianSpec, Normalisation, WeightInit};
 pub use controllers::phase::{PhaseController, PhaseSpec};
 pub use controllers::phase_grid::{PhaseGridController, PhaseGridSpec, PhaseLayout};
 pub use controllers::random::{RandomController, RandomSpec};

@@ -28,6 +28,7 @@ pub static SHORT_FORMS: &[ShortForm] = &[
     controllers::distributed_mlp::HETEROGENEOUS_SHORT_FORM,
     controllers::step::SHORT_FORM,
     controllers::smoothed::SHORT_FORM,
+    controllers::hebbian::SHORT_FORM,
 ];
 
 /// Parses `name[:argument]` with the [`SHORT_FORMS`] entry of that name; any failure is
@@ -166,7 +167,7 @@ mod tests {
             BrainError::Unknown("neat".into()).to_string(),
             "unknown brain 'neat': expected phase, phase-grid[:freq], constant:<value>, random[:<period s>], \
              mlp[:<hidden sizes, comma separated, or none>], distributed-mlp[:<signals>], \
-             distributed-mlp-hetero[:<signals>], step:<period s>:<brain> or smoothed:<speed>:<brain>"
+             distributed-mlp-hetero[:<signals>], step:<period s>:<brain>, smoothed:<speed>:<brain> or hebbian[:full|incoming|dew|l2]"
         );
     }
 

@@ -3,6 +3,7 @@
 use crate::controllers::centralized_mlp::MlpSpec;
 use crate::controllers::constant::ConstantSpec;
 use crate::controllers::distributed_mlp::DistributedMlpSpec;
+use crate::controllers::hebbian::HebbianSpec;
 use crate::controllers::phase::PhaseSpec;
 use crate::controllers::phase_grid::PhaseGridSpec;
 use crate::controllers::random::RandomSpec;
@@ -38,6 +39,8 @@ use vsrlab_body::Morphology;
 ///  "input_activation": true, "layout": "homogeneous", "weights": [...]}
 /// {"kind": "step", "period": 0.33, "inner": {"kind": "distributed-mlp", ...}}
 /// {"kind": "smoothed", "speed": 5.0, "inner": {"kind": "mlp", ...}}
+/// {"kind": "hebbian", "model": "full", "eta": 0.01, "normalisation": "none", "init": "zero",
+///  "learning": true, "parameters": [...]}
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "kebab-case")]
@@ -58,6 +61,8 @@ pub enum BrainSpec {
     Step(StepSpec),
     /// Rate-limits the inner brain's output ([`SmoothedSpec`]).
     Smoothed(SmoothedSpec),
+    /// Centralized network whose weights follow evolved Hebbian ABCD rules ([`HebbianSpec`]).
+    Hebbian(HebbianSpec),
 }
 
 /// Every `kind` tag, in the order of [`BrainSpec`]'s variants.
@@ -70,6 +75,7 @@ const KINDS: &[&str] = &[
     "distributed-mlp",
     "step",
     "smoothed",
+    "hebbian",
 ];
 
 impl<'de> Deserialize<'de> for BrainSpec {
@@ -96,6 +102,7 @@ impl<'de> Deserialize<'de> for BrainSpec {
             "distributed-mlp" => BrainSpec::DistributedMlp(payload(fields)?),
             "step" => BrainSpec::Step(payload(fields)?),
             "smoothed" => BrainSpec::Smoothed(payload(fields)?),
+            "hebbian" => BrainSpec::Hebbian(payload(fields)?),
             other => {
                 return Err(D::Error::custom(format!(
                     "kind: unknown brain kind `{other}`, expected one of {}",
@@ -137,6 +144,7 @@ impl BrainSpec {
             BrainSpec::DistributedMlp(kind) => kind,
             BrainSpec::Step(kind) => kind,
             BrainSpec::Smoothed(kind) => kind,
+            BrainSpec::Hebbian(kind) => kind,
         }
     }
 
@@ -151,6 +159,7 @@ impl BrainSpec {
             BrainSpec::DistributedMlp(kind) => kind,
             BrainSpec::Step(kind) => kind,
             BrainSpec::Smoothed(kind) => kind,
+            BrainSpec::Hebbian(kind) => kind,
         }
     }
 
@@ -271,6 +280,10 @@ mod tests {
             "step:0.33:distributed-mlp",
             "smoothed:4:mlp",
             "step:0.5:smoothed:2:phase-grid",
+            "hebbian",
+            "hebbian:incoming",
+            "hebbian:dew",
+            "hebbian:l2",
         ];
         let mut specs: Vec<BrainSpec> = templates
             .iter()
@@ -328,6 +341,7 @@ mod tests {
             [
                 "constant",
                 "distributed-mlp",
+                "hebbian",
                 "mlp",
                 "phase",
                 "phase-grid",

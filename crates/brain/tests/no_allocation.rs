@@ -52,6 +52,10 @@ fn control_does_not_allocate() {
         "distributed-mlp-hetero:2",
         "step:0.33:distributed-mlp",
         "smoothed:3:mlp",
+        "hebbian",
+        "hebbian:incoming",
+        "hebbian:dew",
+        "hebbian:l2",
     ] {
         let spec = BrainSpec::parse(form)
             .unwrap()

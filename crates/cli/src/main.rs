@@ -6,6 +6,9 @@
 mod analyze;
 mod bench;
 mod label;
+mod overrides;
+mod plasticity;
+mod reassess;
 mod replay_setup;
 mod run;
 mod simulate;
@@ -36,6 +39,11 @@ enum Command {
     Analyze(analyze::AnalyzeArgs),
     /// Render a stratified sample of evolved robots into an HTML page for labelling species.
     Label(label::LabelArgs),
+    /// Replay the best robot of every run on unseen episodes (new terrains, damage) and compare
+    /// the settings.
+    Reassess(reassess::ReassessArgs),
+    /// Frozen-weight test and weight histograms of evolved Hebbian robots (docs/ch5.3.md).
+    Plasticity(plasticity::PlasticityArgs),
     /// Print a shell completion script, e.g. `vsrlab completions bash > ~/.local/share/bash-completion/completions/vsrlab`.
     Completions {
         /// The shell: bash, zsh, fish, elvish or powershell.
@@ -52,6 +60,8 @@ fn main() -> ExitCode {
         Command::Validate(a) => validate::run(a),
         Command::Analyze(a) => analyze::run(a),
         Command::Label(a) => label::run(a),
+        Command::Reassess(a) => reassess::run(a),
+        Command::Plasticity(a) => plasticity::run(a),
         Command::Completions { shell } => {
             clap_complete::generate(shell, &mut Cli::command(), "vsrlab", &mut std::io::stdout());
             Ok(())

@@ -17,7 +17,8 @@ pub struct SimulateArgs {
     pub body: String,
     /// Brain: `phase` (open-loop a = sin(2πt + πx/W)), `constant:<v>`, `random[:<period>]`,
     /// `phase-grid`, `mlp[:<hidden,…>|none]`, `distributed-mlp[:<signals>]`,
-    /// `distributed-mlp-hetero[:<signals>]`, `step:<period>:<brain>`, `smoothed:<speed>:<brain>`.
+    /// `distributed-mlp-hetero[:<signals>]`, `step:<period>:<brain>`, `smoothed:<speed>:<brain>`,
+    /// `hebbian[:full|incoming|dew|l2]` (Hebbian ABCD rules, docs/ch5.3.md).
     /// Brains with parameters get seeded random ones in [-1, 1]; evolved ones come in robot files.
     #[arg(long, default_value = "phase")]
     pub brain: String,
@@ -25,7 +26,8 @@ pub struct SimulateArgs {
     /// downhill-DEG) or jump.
     #[arg(long, default_value = "locomotion:flat")]
     pub task: String,
-    /// Sensors: uniform-<s1>+<s2>…-<noise σ>, spinedTouch-…, spinedTouchSighted-…, or empty.
+    /// Sensors: uniform-<s1>+<s2>…-<noise σ>, spinedTouch-…, spinedTouchSighted-…,
+    /// <high|medium|low>_<biped|worm>-<σ>-<cpg t|f> (the Hebbian study's), or empty.
     #[arg(long, default_value = DEFAULT_SENSORS)]
     pub sensors: String,
     /// Episode length in simulated seconds.
@@ -34,6 +36,10 @@ pub struct SimulateArgs {
     /// Initial seconds excluded from distance and velocity (locomotion).
     #[arg(long)]
     pub transient: Option<f64>,
+    /// Voxels break during the episode: `<time s>:<probability>`, e.g. 30:0.5 (each voxel breaks
+    /// at that time with that probability, drawn from the seed; a broken voxel stops actuating).
+    #[arg(long)]
+    pub damage: Option<String>,
     /// Seed of the episode (random terrains, sensor noise).
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
@@ -68,6 +74,7 @@ pub fn task_from_args(
     duration: f64,
     transient: Option<f64>,
     substeps: Option<u32>,
+    damage: Option<&str>,
 ) -> Result<TaskSpec, String> {
     let spec = TaskSpec::parse(task).map_err(|e| format!("--task: {e}"))?;
     let mut settings = vec![("duration", json!(duration))];
@@ -76,6 +83,9 @@ pub fn task_from_args(
     }
     if let Some(n) = substeps {
         settings.push(("physics.substeps", json!(n)));
+    }
+    if let Some(d) = damage {
+        settings.push(("damage", damage_value(d).map_err(|e| format!("--damage: {e}"))?));
     }
     let spec = spec.with_settings(&settings).map_err(|e| {
         let option = match e.path.as_str() {
@@ -86,6 +96,15 @@ pub fn task_from_args(
     })?;
     spec.task().validate().map_err(|e| e.to_string())?;
     Ok(spec)
+}
+
+/// The JSON value of a `--damage` option: `<time>:<probability>`, or `none` (no damage).
+pub fn damage_value(text: &str) -> Result<serde_json::Value, String> {
+    if text.trim() == "none" {
+        return Ok(serde_json::Value::Null);
+    }
+    let d = vsrlab_tasks::Damage::parse(text)?;
+    Ok(json!({"at": d.at, "probability": d.probability}))
 }
 
 /// Builds the robot description from command-line strings; errors name the option.
@@ -111,7 +130,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         Some(path) => path.display().to_string(),
         None => a.body.clone(),
     };
-    let task = task_from_args(&a.task, a.duration, a.transient, a.substeps)?;
+    let task = task_from_args(&a.task, a.duration, a.transient, a.substeps, a.damage.as_deref())?;
     let level = if a.video.is_some() {
         TraceLevel::Full
     } else {
@@ -148,7 +167,10 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
             "body      {} ({} voxels, preset {})",
             body_name, outcome.units, robot.preset
         );
-        let transient_note = a.transient.map(|t| format!(", transient {t} s")).unwrap_or_default();
+        let mut transient_note = a.transient.map(|t| format!(", transient {t} s")).unwrap_or_default();
+        if let Some(d) = &a.damage {
+            transient_note += &format!(", damage {d}");
+        }
         println!(
             "task      {} for {} s (seed {}{transient_note})",
             a.task, a.duration, a.seed

@@ -28,6 +28,9 @@ pub(crate) const YELLOW: Rgba = [255, 255, 0, 128];
 /// Fill of an expanded voxel (area ratio ≥ 1.25).
 pub(crate) const GREEN: Rgba = [0, 255, 0, 128];
 /// Fill of a sensor reading sector.
+/// Fill of a broken voxel (it no longer actuates, [`vsrlab_tasks::Damage`]).
+pub(crate) const BROKEN: Rgba = [60, 60, 60, 150];
+/// Fill of sensor glyphs.
 pub(crate) const SENSOR_FILL: Rgba = [0, 0, 0, 84];
 /// Outline of a sensor half-disk.
 pub(crate) const SENSOR_OUTLINE: Rgba = [0, 0, 0, 255];
@@ -143,13 +146,22 @@ impl<'a> Scene<'a> {
                 .get(idx)
                 .copied()
                 .unwrap_or_else(|| area(poly) / camera::side(t).powi(2));
-            pm.fill_path(
-                &path,
-                &paint(area_color(ratio)),
-                FillRule::Winding,
-                Transform::identity(),
-                None,
-            );
+            let broken = t.is_broken(step, v);
+            let fill = if broken { BROKEN } else { area_color(ratio) };
+            pm.fill_path(&path, &paint(fill), FillRule::Winding, Transform::identity(), None);
+            if broken && poly.len() == 4 {
+                // a cross over the broken voxel, corner to corner
+                let mut cross = PathBuilder::new();
+                for (a, b) in [(0, 2), (1, 3)] {
+                    let (ax, ay) = px(poly[a]);
+                    let (bx, by) = px(poly[b]);
+                    cross.move_to(ax, ay);
+                    cross.line_to(bx, by);
+                }
+                if let Some(cross) = cross.finish() {
+                    pm.stroke_path(&cross, &paint(VOXEL_OUTLINE), &stroke(1.0), Transform::identity(), None);
+                }
+            }
             let touching = t.touching.get(idx).copied().unwrap_or(false);
             let (color, width) = if touching {
                 (TOUCH_OUTLINE, 2.0)
@@ -169,7 +181,7 @@ impl<'a> Scene<'a> {
             overlay::draw_overlay(pm, t, step);
         }
         if self.opts.draw_legend {
-            overlay::draw_legend(pm);
+            overlay::draw_legend(pm, t.damage.is_some());
         }
     }
 
@@ -423,6 +435,28 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn broken_voxels_turn_grey_from_the_damage_on() {
+        let opts = plain();
+        let mut t = moving_square(3, 0.0);
+        t.damage = Some(vsrlab_tasks::DamageRecord {
+            time: t.times[1],
+            broken: vec![true],
+        });
+        // off the cross (which runs corner to corner), inside the voxel
+        let p = Vec2::new(11.5, 5.6);
+        let before = at(&t, 0, &opts, &render_frame(&t, 0, &opts), p);
+        let after = at(&t, 2, &opts, &render_frame(&t, 2, &opts), p);
+        assert!(
+            before[0] > 250 && before[1] > 250 && before[2] < 140,
+            "intact: the area colour, got {before:?}"
+        );
+        assert!(
+            after[0] == after[1] && after[1] == after[2] && after[0] < 160,
+            "broken: grey, got {after:?}"
+        );
     }
 
     #[test]

@@ -3,7 +3,7 @@
 //! the legend of the area-ratio colours.
 
 use crate::camera::View;
-use crate::draw::{area_color, Rgba};
+use crate::draw::{area_color, Rgba, BROKEN};
 use crate::text;
 use tiny_skia::{Color, LineCap, Paint, PathBuilder, Pixmap, Rect, Stroke, Transform};
 use vsrlab_physics::Vec2;
@@ -145,7 +145,8 @@ pub(crate) fn draw_overlay(pm: &mut Pixmap, trace: &Trace, step: usize) {
 
 /// The legend of voxel colours at the top right: a bar from contracted (area ratio 0.75, red)
 /// through rest (1, yellow) to expanded (1.25, green), labelled at both ends.
-pub(crate) fn draw_legend(pm: &mut Pixmap) {
+/// The colour bar of voxel areas, and, when the episode has damage, the broken voxels' swatch.
+pub(crate) fn draw_legend(pm: &mut Pixmap, damage: bool) {
     let size = text_size(pm.height()) * 0.85;
     let (left_label, right_label) = ("contracted", "expanded");
     let bar = (size * 6.0).round();
@@ -168,6 +169,21 @@ pub(crate) fn draw_legend(pm: &mut Pixmap) {
         }
     }
     text::draw(pm, right_label, bar_x + bar + size * 0.5, y0, size, INK);
+    if damage {
+        let label = "broken (no actuation)";
+        let y1 = y0 + size * 1.6;
+        let width = size * 1.5 + text::width(label, size);
+        if let Some(rect) = Rect::from_xywh(x0 - 4.0, y1 - 2.0, width + 8.0, size * 1.4) {
+            pm.fill_rect(rect, &paint(BACKING), Transform::identity(), None);
+        }
+        let [r, g, b, a] = BROKEN;
+        for i in 0..size as i64 {
+            for y in 0..(size as i64) {
+                text::blend(pm, x0 as i64 + i, y1 as i64 + 2 + y, [r, g, b], f32::from(a) / 255.0);
+            }
+        }
+        text::draw(pm, label, x0 + size * 1.5, y1, size, INK);
+    }
 }
 
 #[cfg(test)]

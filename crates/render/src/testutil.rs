@@ -43,6 +43,7 @@ pub fn trace_from_positions(xs: &[f64]) -> Trace {
         readings: Vec::new(),
         rays: Vec::new(),
         ray_distances: Vec::new(),
+        damage: None,
     }
 }
 

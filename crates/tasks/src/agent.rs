@@ -36,4 +36,17 @@ pub trait Agent: Send {
     fn describe(&mut self, trace: &mut Trace);
     /// Appends this step's per-unit data (states, readings, actuations) to a trace.
     fn record(&self, trace: &mut Trace);
+    /// Breaks the actuated units marked `true` (one flag per [`Body::actuator_count`] unit): their
+    /// actuation stays 0 from the next step on ([`crate::Damage`]). Default: an error, for bodies
+    /// that cannot be damaged.
+    fn break_actuators(&mut self, _broken: &[bool]) -> Result<(), EpisodeError> {
+        Err(EpisodeError::Invalid(
+            "task.damage: this robot's body cannot be damaged".into(),
+        ))
+    }
+    /// The brain's weights that change during the episode (Hebbian brains), for snapshots.
+    /// Default: none.
+    fn brain_weights(&self) -> Option<&[f64]> {
+        None
+    }
 }

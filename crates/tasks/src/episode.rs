@@ -3,7 +3,7 @@
 //! or until the task stops the episode. Pure: the same inputs give bit-identical outcomes.
 
 use crate::agent::{Agent, Robot};
-use crate::outcome::{Outcome, Trace, TraceLevel};
+use crate::outcome::{DamageRecord, Outcome, Trace, TraceLevel};
 use crate::task::{fitness_values, Flow, Scene, StepView, Task};
 use vsrlab_physics::{PhysicsError, Vec2, World, WorldBuilder};
 
@@ -25,6 +25,18 @@ pub enum EpisodeError {
 
 /// Runs one episode of `robot` on `task` with episode seed `seed`, recording a trace at `level`.
 pub fn run(robot: &dyn Robot, task: &dyn Task, seed: u64, level: TraceLevel) -> Result<Outcome, EpisodeError> {
+    run_observed(robot, task, seed, level, &mut |_, _| {})
+}
+
+/// [`run`], calling `observe(t, agent)` after every step (after the task has seen it): the hook of
+/// analyses that look inside the robot during the episode, such as weight snapshots.
+pub fn run_observed(
+    robot: &dyn Robot,
+    task: &dyn Task,
+    seed: u64,
+    level: TraceLevel,
+    observe: &mut dyn FnMut(f64, &dyn Agent),
+) -> Result<Outcome, EpisodeError> {
     task.validate()?;
     let mut builder = WorldBuilder::new(task.physics().clone());
     let scene = task.build_world(&mut builder, seed);
@@ -34,12 +46,21 @@ pub fn run(robot: &dyn Robot, task: &dyn Task, seed: u64, level: TraceLevel) -> 
     let mut episode = task.start();
     let mut recorder = Recorder::new(level, task, &scene, agent.as_mut());
     let dt = task.physics().dt;
+    let mut damage = task
+        .damage()
+        .map(|d| (d.at, d.mask(agent.body().actuator_count(), seed)));
     let mut t = 0.0;
     while t < task.duration() {
         t += dt;
         world
             .step()
             .map_err(|source| EpisodeError::Physics { time: t, source })?;
+        // half a step of tolerance: t accumulates rounding errors
+        if damage.as_ref().is_some_and(|(at, _)| t >= at - 0.5 * dt) {
+            let (_, broken) = damage.take().expect("checked");
+            agent.break_actuators(&broken)?;
+            recorder.damaged(t, broken);
+        }
         agent.act(&mut world, t);
         let center = agent.body().center(&world);
         if !center.is_finite() {
@@ -58,6 +79,7 @@ pub fn run(robot: &dyn Robot, task: &dyn Task, seed: u64, level: TraceLevel) -> 
             center,
         });
         recorder.record(t, center, &world, agent.as_ref());
+        observe(t, agent.as_ref());
         if flow == Flow::Stop {
             break;
         }
@@ -109,6 +131,13 @@ impl Recorder {
         }
         agent.body().outline(world, &mut self.trace.outlines);
         agent.record(&mut self.trace);
+    }
+
+    /// Notes the damage of this step (traces of every level but `None`).
+    fn damaged(&mut self, t: f64, broken: Vec<bool>) {
+        if self.level != TraceLevel::None {
+            self.trace.damage = Some(DamageRecord { time: t, broken });
+        }
     }
 
     fn finish(self) -> Option<Trace> {

@@ -12,6 +12,7 @@
 #![warn(missing_docs)]
 
 pub mod agent;
+pub mod damage;
 pub mod episode;
 pub mod files;
 pub mod fitness;
@@ -28,11 +29,12 @@ pub mod terrain;
 pub mod voxel_robot;
 
 pub use agent::{Agent, Robot};
+pub use damage::Damage;
 pub use episode::EpisodeError;
 pub use fitness::Fitness;
 pub use jump::Jump;
 pub use locomotion::Locomotion;
-pub use outcome::{Outcome, Polygons, Trace, TraceLevel};
+pub use outcome::{DamageRecord, Outcome, Polygons, Trace, TraceLevel};
 pub use registry::{FieldError, TaskParseError, TaskSpec};
 pub use representation::{evaluate, evaluate_traced, BodyPart, EvaluationError, Mapper, Representation};
 pub use robot::{RobotError, RobotSpec};

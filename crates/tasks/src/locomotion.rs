@@ -5,6 +5,7 @@
 //! window's duration) and `voxels` (actuated units of the body). Fitness: `velocity` unless
 //! `fitness` says otherwise.
 
+use crate::damage::Damage;
 use crate::episode::EpisodeError;
 use crate::fitness::Fitness;
 use crate::task::{check_episode, Flow, Metrics, Objective, Scene, StepView, Task, TaskEpisode};
@@ -33,6 +34,10 @@ pub struct Locomotion {
     pub fitness: Fitness,
     /// Physics engine settings.
     pub physics: WorldSettings,
+    /// Voxels that break during the episode (thesis §5.3: `{ at = 30.0, probability = 0.5 }`);
+    /// absent = none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub damage: Option<Damage>,
 }
 
 impl Default for Locomotion {
@@ -45,6 +50,7 @@ impl Default for Locomotion {
             initial_gap: 1.0,
             fitness: Fitness::maximize("velocity"),
             physics: WorldSettings::default(),
+            damage: None,
         }
     }
 }
@@ -66,7 +72,7 @@ impl Task for Locomotion {
         if !(self.initial_x.is_finite() && self.initial_gap.is_finite() && self.initial_gap >= 0.0) {
             return bad("task.initial_x and task.initial_gap must be finite (gap ≥ 0)".into());
         }
-        Ok(())
+        self.damage.as_ref().map_or(Ok(()), Damage::validate)
     }
 
     fn duration(&self) -> f64 {
@@ -100,6 +106,10 @@ impl Task for Locomotion {
 
     fn objectives(&self) -> &[Objective] {
         &self.fitness.0
+    }
+
+    fn damage(&self) -> Option<&Damage> {
+        self.damage.as_ref()
     }
 }
 

@@ -91,6 +91,29 @@ pub struct Trace {
     pub rays: Vec<RayInfo>,
     /// Lidar distances, `[step][ray]`.
     pub ray_distances: Vec<f32>,
+    /// When units broke and which ([`crate::Damage`]); absent without damage.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damage: Option<DamageRecord>,
+}
+
+/// The damage that happened during an episode: from `time` on, the units marked in `broken` do
+/// not actuate.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DamageRecord {
+    /// Simulated time (s) of the first step without their actuation.
+    pub time: f64,
+    /// One flag per unit (grid order for voxels).
+    pub broken: Vec<bool>,
+}
+
+impl Trace {
+    /// Whether unit `unit` is broken at recorded step `step`.
+    pub fn is_broken(&self, step: usize, unit: usize) -> bool {
+        match (&self.damage, self.times.get(step)) {
+            (Some(d), Some(&t)) => t >= d.time && d.broken.get(unit).copied().unwrap_or(false),
+            _ => false,
+        }
+    }
 }
 
 /// The outline polygons of one step (see [`Trace::polygons_at`]).

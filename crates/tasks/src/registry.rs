@@ -195,19 +195,33 @@ impl TaskSpec {
             message: e.to_string(),
         })?;
         for (path, v) in settings {
-            let mut slot = &mut value;
-            for key in path.split('.') {
-                slot = slot
-                    .as_object_mut()
-                    .and_then(|t| t.get_mut(key))
-                    .ok_or_else(|| FieldError {
-                        path: path.to_string(),
-                        message: format!("a {} task has no such setting", self.kind()),
-                    })?;
+            let no_such = || FieldError {
+                path: path.to_string(),
+                message: format!("a {} task has no such setting", self.kind()),
+            };
+            let (parents, last) = path.rsplit_once('.').map_or(("", *path), |(p, l)| (p, l));
+            let mut table = &mut value;
+            for key in parents.split('.').filter(|k| !k.is_empty()) {
+                table = table.as_object_mut().and_then(|t| t.get_mut(key)).ok_or_else(no_such)?;
             }
-            *slot = v.clone();
+            // an optional setting left out of the serialised form (`damage`) is added; the
+            // decoder refuses names the task does not have
+            let table = table.as_object_mut().ok_or_else(no_such)?;
+            table.insert(last.to_string(), v.clone());
         }
-        TaskSpec::from_json(value)
+        TaskSpec::from_json(value).map_err(|e| {
+            let unknown = settings.iter().find(|(p, _)| {
+                let last = p.rsplit('.').next().unwrap_or(p);
+                e.message.contains(&format!("unknown field `{last}`"))
+            });
+            match unknown {
+                Some((path, _)) => FieldError {
+                    path: path.to_string(),
+                    message: format!("a {} task has no such setting", self.kind()),
+                },
+                None => e,
+            }
+        })
     }
 }
 
@@ -252,6 +266,22 @@ mod tests {
             .with_settings(&[("transient", json!(1.0))])
             .unwrap_err();
         assert_eq!(e.to_string(), "transient: a jump task has no such setting");
+        // an optional setting absent from the serialised form can be added and removed
+        let damaged = TaskSpec::default()
+            .with_settings(&[("damage", json!({"at": 30.0, "probability": 0.5}))])
+            .unwrap();
+        assert_eq!(damaged.task().damage().map(|d| d.probability), Some(0.5));
+        let healed = damaged.with_settings(&[("damage", json!(null))]).unwrap();
+        assert_eq!(healed, TaskSpec::default());
+        let e = TaskSpec::parse("jump")
+            .unwrap()
+            .with_settings(&[("damage", json!({"at": 1.0, "probability": 0.5}))])
+            .unwrap_err();
+        assert_eq!(e.to_string(), "damage: a jump task has no such setting");
+        let e = TaskSpec::default()
+            .with_settings(&[("damage", json!({"at": 1.0}))])
+            .unwrap_err();
+        assert!(e.to_string().contains("probability"), "{e}");
     }
 
     #[test]

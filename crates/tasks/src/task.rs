@@ -5,6 +5,7 @@
 //! A new task is one module with a settings struct that implements [`Task`], plus one line in
 //! the registry ([`crate::registry`]).
 
+use crate::damage::Damage;
 use crate::episode::EpisodeError;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -103,6 +104,10 @@ pub trait Task: Send + Sync + std::fmt::Debug {
     fn metric_names(&self) -> &'static [&'static str];
     /// The fitness values, in order (one for single-objective tasks).
     fn objectives(&self) -> &[Objective];
+    /// Body parts that break during the episode, if any ([`Damage`]). Default: none.
+    fn damage(&self) -> Option<&Damage> {
+        None
+    }
 }
 
 /// The fitness values of `objectives` read from `metrics` (NaN for a missing metric, which

@@ -57,6 +57,8 @@ pub struct VoxelAgent {
     states: Vec<VoxelState>,
     readings: Vec<f64>,
     actuations: Vec<f64>,
+    /// Broken voxels: their actuation stays 0 (empty until damage happens).
+    broken: Vec<bool>,
     /// Domain of every reading, for scaling recorded readings to [0, 1] (filled by `describe`).
     domains: Vec<(f64, f64)>,
 }
@@ -73,6 +75,7 @@ impl VoxelAgent {
             states: vec![VoxelState::default(); n],
             readings,
             actuations: vec![0.0; n],
+            broken: Vec::new(),
             domains: Vec::new(),
         }
     }
@@ -89,7 +92,28 @@ impl Agent for VoxelAgent {
         }
         self.sensors.sense(world, &self.states, t, &mut self.readings);
         self.brain.control(t, &self.readings, &mut self.actuations);
+        for (a, &broken) in self.actuations.iter_mut().zip(&self.broken) {
+            if broken {
+                *a = 0.0;
+            }
+        }
         self.vsr.actuate(world, &self.actuations);
+    }
+
+    fn break_actuators(&mut self, broken: &[bool]) -> Result<(), EpisodeError> {
+        if broken.len() != self.actuations.len() {
+            return Err(EpisodeError::Invalid(format!(
+                "task.damage: {} flags for a body of {} voxels",
+                broken.len(),
+                self.actuations.len()
+            )));
+        }
+        self.broken = broken.to_vec();
+        Ok(())
+    }
+
+    fn brain_weights(&self) -> Option<&[f64]> {
+        self.brain.adaptive_weights()
     }
 
     fn describe(&mut self, trace: &mut Trace) {

@@ -14,6 +14,8 @@ mod classifiers;
 mod figures;
 pub mod label;
 mod label_page;
+pub mod plasticity;
+pub mod reassess;
 mod settings;
 mod species;
 mod summary_page;
@@ -21,6 +23,8 @@ mod summary_page;
 pub use analyze::{analyze, AnalysisReport, AnalyzeOptions, FigureNote};
 pub use classes::{parse_classes, THESIS_BEHAVIOURS, THESIS_SHAPES};
 pub use label::{label, LabelOptions, LabelReport, VideoSpec, VideoWriter};
+pub use plasticity::{plasticity, PlasticityOptions, PlasticityReport};
+pub use reassess::{reassess, ReassessOptions, ReassessReport};
 
 use crate::error::AnalysisError;
 use crate::progress::Progress;

@@ -54,7 +54,7 @@ pub use lidar::{LidarSpec, MAX_RAYS};
 pub use named::{NamedSensor, NAMED_SENSORS, SENSOR_NAMES};
 pub use noise::NoisySpec;
 pub use normalization::NormalizationSpec;
-pub use placement::SensorConfig;
+pub use placement::{ApparatusShape, Level, SensorConfig};
 pub use soft_normalization::SoftNormalizationSpec;
 pub use spec::SensorSpec;
 pub use trend::TrendSpec;

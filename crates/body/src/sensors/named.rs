@@ -10,7 +10,7 @@
 //! | `px`, `py` | ConstantPosition(x / y) |
 //! | `m` | Malfunction |
 //! | `cpg` | Normalization(Cpg) |
-//! | `l5`, `l1` | Normalization(Lidar(range 10, 5 / 1 rays)) |
+//! | `l5`, `l3`, `l1` | Normalization(Lidar(range 10, 5 / 3 / 1 rays)) (`l3`: 2D-VSR-Sim 07f9395, the Hebbian study) |
 //!
 //! Soft normalisations here do not clip (thesis era). `ax`…`axy` use `Trend` (2D-VSR-Sim since
 //! 2021-08; earlier versions used a one-step `Derivative`), and the lidars are normalised (since
@@ -56,6 +56,10 @@ pub const NAMED_SENSORS: &[NamedSensor] = &[
     NamedSensor {
         name: "l1",
         spec: || lidar(1).normalized(),
+    },
+    NamedSensor {
+        name: "l3",
+        spec: || lidar(3).normalized(),
     },
     NamedSensor {
         name: "l5",
@@ -183,7 +187,7 @@ mod tests {
             .iter()
             .map(|n| SensorSpec::named(n).unwrap().dimension())
             .collect();
-        assert_eq!(dims, vec![1, 1, 2, 1, 1, 1, 5, 1, 1, 1, 1, 1, 1, 2, 1]);
+        assert_eq!(dims, vec![1, 1, 2, 1, 1, 1, 3, 5, 1, 1, 1, 1, 1, 1, 2, 1]);
         assert_eq!(SensorSpec::named("t").unwrap().domains(), vec![(0.0, 1.0)]);
         assert_eq!(SensorSpec::named("l5").unwrap().domains(), vec![(0.0, 1.0); 5]);
     }

@@ -10,6 +10,14 @@
 //!   everywhere; `m` everywhere if malfunction is `t`; `t` on the bottom row; `vxy` on the top row;
 //!   `cpg` on the top-right voxel if cpg is `t`.
 //! - `spinedTouchSighted-<cpg>-<malfunction>-<σ>`: the same, plus `l5` last on the rightmost column.
+//! - The sensory apparatuses of the Hebbian study (thesis §5.3, 2D-VSR-Sim 07f9395), written
+//!   `<level>_<shape>-<σ>-<cpg>` as in the original (e.g. `high_biped-0.01-f`):
+//!   `high_*`: `a` everywhere, `t` on the bottom row, `vxy` on the top row, `l3` on the rightmost
+//!   column; `medium_*`: the same without `l3`; `low_biped`: `a` on the top two rows only;
+//!   `low_worm`: `a` on the columns 2, 3 and 4 only (counted from the leftmost, the three central
+//!   voxels of a worm-7x1); every one adds `cpg` on the top-right voxel if cpg is `t`. For
+//!   biped-4x3 they give 29, 20 and 8 readings; for worm-7x1 31, 28 and 3 (the thesis text says
+//!   48, 36 and 8 for the biped, which the original code does not produce).
 //!
 //! With σ > 0 every placed sensor is wrapped in `Noisy(σ)`. σ is any finite number ≥ 0 (the
 //! original only accepted digits with an optional fraction).
@@ -63,13 +71,53 @@ pub enum SensorConfig {
         /// Noise level (0: no noise wrapper).
         sigma: f64,
     },
+    /// `<level>_<shape>-<σ>-<cpg>`: a sensory apparatus of the Hebbian study (module docs).
+    Apparatus {
+        /// `high`, `medium` or `low`.
+        level: Level,
+        /// The shape the apparatus was written for (it only matters for `low`).
+        shape: ApparatusShape,
+        /// Noise level (0: no noise wrapper).
+        sigma: f64,
+        /// `cpg` on the top-right voxel.
+        cpg: bool,
+    },
     /// One list of sensor names per voxel, in grid order.
     PerVoxel(Vec<Vec<String>>),
 }
 
+/// How many sensors an apparatus has (thesis §5.3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Level {
+    /// Area, touch, velocity and lidar.
+    High,
+    /// Area, touch and velocity.
+    Medium,
+    /// Area on a few voxels.
+    Low,
+}
+
+/// The shape an apparatus names.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ApparatusShape {
+    /// `*_biped`.
+    Biped,
+    /// `*_worm`.
+    Worm,
+}
+
+const APPARATUSES: [(&str, Level, ApparatusShape); 6] = [
+    ("high_biped", Level::High, ApparatusShape::Biped),
+    ("medium_biped", Level::Medium, ApparatusShape::Biped),
+    ("low_biped", Level::Low, ApparatusShape::Biped),
+    ("high_worm", Level::High, ApparatusShape::Worm),
+    ("medium_worm", Level::Medium, ApparatusShape::Worm),
+    ("low_worm", Level::Low, ApparatusShape::Worm),
+];
+
 /// What a placement string should look like, for error messages.
 const PLACEMENT_FORMS: &str =
-    "one of uniform-<k1>+<k2>+…-<σ>, uniformAll-<σ>, spinedTouch-<t|f>-<t|f>-<σ>, spinedTouchSighted-<t|f>-<t|f>-<σ>, empty";
+    "one of uniform-<k1>+<k2>+…-<σ>, uniformAll-<σ>, spinedTouch-<t|f>-<t|f>-<σ>, spinedTouchSighted-<t|f>-<t|f>-<σ>, <high|medium|low>_<biped|worm>-<σ>-<t|f>, empty";
 
 impl SensorConfig {
     /// Parses a placement string; every name, flag and number is checked.
@@ -116,7 +164,20 @@ impl SensorConfig {
                     sigma: parse_sigma(sigma, &bad)?,
                 })
             }
-            _ => Err(bad(kind, PLACEMENT_FORMS)),
+            _ => {
+                let Some(&(_, level, shape)) = APPARATUSES.iter().find(|a| a.0 == kind) else {
+                    return Err(bad(kind, PLACEMENT_FORMS));
+                };
+                let Some((sigma, cpg)) = rest.rsplit_once('-') else {
+                    return Err(bad(rest, "<σ>-<cpg t|f> after the apparatus name"));
+                };
+                Ok(SensorConfig::Apparatus {
+                    level,
+                    shape,
+                    sigma: parse_sigma(sigma, &bad)?,
+                    cpg: parse_flag(cpg, "cpg", &bad)?,
+                })
+            }
         }
     }
 
@@ -159,6 +220,15 @@ impl SensorConfig {
                 let lists = spined_names(&cells, *sighted, *cpg, *malfunction);
                 named_lists(lists, checked_sigma(self, *sigma)?)
             }
+            SensorConfig::Apparatus {
+                level,
+                shape,
+                sigma,
+                cpg,
+            } => named_lists(
+                apparatus_names(&cells, *level, *shape, *cpg),
+                checked_sigma(self, *sigma)?,
+            ),
             SensorConfig::PerVoxel(lists) => {
                 if lists.len() != cells.len() {
                     return Err(SensorError::WrongVoxelCount {
@@ -199,6 +269,42 @@ fn spined_names(cells: &[(usize, usize)], sighted: bool, cpg: bool, malfunction:
             }
             if sighted && x == right {
                 names.push("l5");
+            }
+            names
+        })
+        .collect()
+}
+
+/// Names per voxel for the Hebbian study's apparatuses (see the module docs).
+fn apparatus_names(cells: &[(usize, usize)], level: Level, shape: ApparatusShape, cpg: bool) -> Vec<Vec<&'static str>> {
+    let bottom = cells.iter().map(|c| c.1).min().unwrap_or(0);
+    let top = cells.iter().map(|c| c.1).max().unwrap_or(0);
+    let left = cells.iter().map(|c| c.0).min().unwrap_or(0);
+    let right = cells.iter().map(|c| c.0).max().unwrap_or(0);
+    let top_right = cells.iter().filter(|c| c.1 == top).map(|c| c.0).max();
+    cells
+        .iter()
+        .map(|&(x, y)| {
+            let area = match (level, shape) {
+                (Level::Low, ApparatusShape::Biped) => y + 1 >= top,
+                (Level::Low, ApparatusShape::Worm) => (2..=4).contains(&(x - left)),
+                _ => true,
+            };
+            let mut names = Vec::new();
+            if area {
+                names.push("a");
+            }
+            if level != Level::Low && y == bottom {
+                names.push("t");
+            }
+            if level != Level::Low && y == top {
+                names.push("vxy");
+            }
+            if level == Level::High && x == right {
+                names.push("l3");
+            }
+            if cpg && y == top && Some(x) == top_right {
+                names.push("cpg");
             }
             names
         })
@@ -269,6 +375,18 @@ impl fmt::Display for SensorConfig {
             } => {
                 let kind = if *sighted { "spinedTouchSighted" } else { "spinedTouch" };
                 write!(f, "{kind}-{}-{}-{sigma}", flag(*cpg), flag(*malfunction))
+            }
+            SensorConfig::Apparatus {
+                level,
+                shape,
+                sigma,
+                cpg,
+            } => {
+                let name = APPARATUSES
+                    .iter()
+                    .find(|a| a.1 == *level && a.2 == *shape)
+                    .map_or("", |a| a.0);
+                write!(f, "{name}-{sigma}-{}", flag(*cpg))
             }
             SensorConfig::PerVoxel(lists) => write!(f, "{lists:?}"),
         }
@@ -379,6 +497,36 @@ mod tests {
                 sigma: 1e-3
             }
         );
+    }
+
+    #[test]
+    fn hebbian_apparatuses_have_the_original_reading_counts() {
+        let count = |config: &str, body: &str| -> usize {
+            let body = Morphology::named(body).unwrap();
+            let specs = SensorConfig::parse(config).unwrap().specs(&body).unwrap();
+            specs.iter().flatten().map(|s| s.dimension()).sum()
+        };
+        assert_eq!(count("high_biped-0.01-f", "biped-4x3"), 29);
+        assert_eq!(count("medium_biped-0.01-f", "biped-4x3"), 20);
+        assert_eq!(count("low_biped-0.01-f", "biped-4x3"), 8);
+        assert_eq!(count("high_worm-0.01-f", "worm-7x1"), 31);
+        assert_eq!(count("medium_worm-0.01-f", "worm-7x1"), 28);
+        assert_eq!(count("low_worm-0.01-f", "worm-7x1"), 3);
+        assert_eq!(count("low_worm-0-t", "worm-7x1"), 4);
+        let got = names_per_voxel("high_biped-0-f", "biped-4x3");
+        assert_eq!(got[1], vec!["a".to_string(), "t".into(), "l3".into()]);
+        assert_eq!(got[5], vec!["a".to_string(), "l3".into()]);
+        assert_eq!(names_per_voxel("low_biped-0-f", "biped-4x3")[1], Vec::<String>::new());
+        let low_worm = names_per_voxel("low_worm-1e-3-f", "worm-7x1");
+        let with_area: Vec<usize> = (0..7).filter(|&v| !low_worm[v].is_empty()).collect();
+        assert_eq!(with_area, [2, 3, 4]);
+        for text in ["high_biped-0.01-f", "low_worm-0-t"] {
+            assert_eq!(SensorConfig::parse(text).unwrap().to_string(), text);
+        }
+        let err = SensorConfig::parse("high_biped-0.01").unwrap_err().to_string();
+        assert!(err.contains("'0.01'") || err.contains("<σ>-<cpg"), "{err}");
+        let err = SensorConfig::parse("huge_biped-0-f").unwrap_err().to_string();
+        assert!(err.contains("high|medium|low"), "{err}");
     }
 
     #[test]

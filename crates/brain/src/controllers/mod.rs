@@ -3,6 +3,7 @@
 pub mod centralized_mlp;
 pub mod constant;
 pub mod distributed_mlp;
+pub mod hebbian;
 pub mod phase;
 pub mod phase_grid;
 pub mod random;

@@ -39,6 +39,10 @@ impl Controller for SmoothedController {
         self.current.fill(0.0);
     }
 
+    fn adaptive_weights(&self) -> Option<&[f64]> {
+        self.inner.adaptive_weights()
+    }
+
     fn control(&mut self, t: f64, readings: &[f64], actuations: &mut [f64]) {
         let target = self.inner.control(t, readings);
         let max_change = self.speed * (t - self.last_t).max(0.0);

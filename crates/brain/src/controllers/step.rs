@@ -41,6 +41,10 @@ impl Controller for StepController {
         self.held.fill(0.0);
     }
 
+    fn adaptive_weights(&self) -> Option<&[f64]> {
+        self.inner.adaptive_weights()
+    }
+
     fn control(&mut self, t: f64, readings: &[f64], actuations: &mut [f64]) {
         let target = self.inner.control(t, readings);
         if self.last_refresh.is_none_or(|last| t - last >= self.period) {

@@ -25,6 +25,11 @@ impl Inner {
         &self.actuations
     }
 
+    /// The inner controller's adaptive weights.
+    pub(crate) fn adaptive_weights(&self) -> Option<&[f64]> {
+        self.controller.adaptive_weights()
+    }
+
     /// Resets the inner controller.
     pub(crate) fn reset(&mut self) {
         self.controller.reset();

@@ -316,9 +316,10 @@ pub fn read_experiment(dir: &Path) -> Result<ExperimentData, ResultsError> {
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_else(|| "experiment".into());
-    let name = config
-        .get("name")
-        .and_then(|v| v.as_str())
+    // the setting the runs pool into: `setting` when the experiment names one, else its name
+    let name = ["setting", "name"]
+        .iter()
+        .find_map(|key| config.get(*key).and_then(|v| v.as_str()))
         .map(str::to_string)
         .unwrap_or(folder_name);
     let runs = folder
@@ -393,6 +394,29 @@ mod tests {
     fn write(path: &Path, text: &str) {
         std::fs::create_dir_all(path.parent().unwrap()).unwrap();
         std::fs::write(path, text).unwrap();
+    }
+
+    #[test]
+    fn a_setting_label_pools_differently_named_experiments() {
+        let tmp = tempfile::tempdir().unwrap();
+        for (folder, head) in [
+            ("x", "name = \"moved-a\"\nsetting = \"moved\""),
+            ("y", "name = \"moved-b\"\nsetting = \"moved\""),
+            ("z", "name = \"scratch\""),
+        ] {
+            let d = tmp.path().join(folder);
+            write(&d.join("experiment.toml"), &format!("{head}\nruns = 1\n"));
+            write(
+                &d.join("run-00/generations.csv"),
+                "generation,evaluations,births,best_fitness\n1,4,4,0.5\n",
+            );
+        }
+        let exps = discover(&[tmp.path().to_path_buf()]).unwrap();
+        let s = settings(&exps);
+        assert_eq!(
+            s,
+            vec![("moved".to_string(), vec![0, 1]), ("scratch".to_string(), vec![2])]
+        );
     }
 
     #[test]

@@ -81,6 +81,24 @@ pub trait BrainKind: Debug + Send + Sync {
         }
     }
 
+    /// Takes the transferable module of `source` (an evolved brain of another body) and fixes it
+    /// in this brain, whose parameters then are the rest (thesis §4.2.4.1: an attention module
+    /// moved to another body, the downstream network re-evolved). Default: the inner brain's,
+    /// with the source's inner brain when it is a wrapper too; an error on `kind` for brains
+    /// without a transferable module.
+    fn transfer_from(&mut self, source: &BrainSpec) -> Result<(), BrainError> {
+        let name = self.name();
+        match self.inner_mut() {
+            Some(inner) => inner
+                .as_kind_mut()
+                .transfer_from(source.as_kind().inner().unwrap_or(source)),
+            None => Err(BrainError::Invalid {
+                field: "kind",
+                msg: format!("a {name} brain has no module to transfer (use an attention brain)"),
+            }),
+        }
+    }
+
     /// Validates every field and builds the controller for a body whose voxels (voxel order) have
     /// these readings counts; a parameter vector of the wrong length is an error naming its field:
     /// "expected N for this body and sensors, got M".

@@ -51,6 +51,7 @@ mod testing;
 mod validation;
 
 pub use controller::Controller;
+pub use controllers::attention::{AttentionController, AttentionSpec};
 pub use controllers::centralized_mlp::{CentralizedMlpController, MlpSpec};
 pub use controllers::constant::{ConstantController, ConstantSpec};
 pub use controllers::distributed_mlp::{DistributedConfig, DistributedMlpController, DistributedMlpSpec, Layout};

@@ -26,9 +26,11 @@ pub static SHORT_FORMS: &[ShortForm] = &[
     controllers::centralized_mlp::SHORT_FORM,
     controllers::distributed_mlp::SHORT_FORM,
     controllers::distributed_mlp::HETEROGENEOUS_SHORT_FORM,
+    controllers::distributed_mlp::LOCAL_SHORT_FORM,
     controllers::step::SHORT_FORM,
     controllers::smoothed::SHORT_FORM,
     controllers::hebbian::SHORT_FORM,
+    controllers::attention::SHORT_FORM,
 ];
 
 /// Parses `name[:argument]` with the [`SHORT_FORMS`] entry of that name; any failure is
@@ -167,7 +169,7 @@ mod tests {
             BrainError::Unknown("neat".into()).to_string(),
             "unknown brain 'neat': expected phase, phase-grid[:freq], constant:<value>, random[:<period s>], \
              mlp[:<hidden sizes, comma separated, or none>], distributed-mlp[:<signals>], \
-             distributed-mlp-hetero[:<signals>], step:<period s>:<brain>, smoothed:<speed>:<brain> or hebbian[:full|incoming|dew|l2]"
+             distributed-mlp-hetero[:<signals>], local-mlp[:<signals>], step:<period s>:<brain>, smoothed:<speed>:<brain>, hebbian[:full|incoming|dew|l2] or attention[:hetero|slow]"
         );
     }
 

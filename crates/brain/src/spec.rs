@@ -1,5 +1,6 @@
 //! [`BrainSpec`]: the serialisable description of a brain — the list of registered brain kinds.
 
+use crate::controllers::attention::AttentionSpec;
 use crate::controllers::centralized_mlp::MlpSpec;
 use crate::controllers::constant::ConstantSpec;
 use crate::controllers::distributed_mlp::DistributedMlpSpec;
@@ -41,6 +42,7 @@ use vsrlab_body::Morphology;
 /// {"kind": "smoothed", "speed": 5.0, "inner": {"kind": "mlp", ...}}
 /// {"kind": "hebbian", "model": "full", "eta": 0.01, "normalisation": "none", "init": "zero",
 ///  "learning": true, "parameters": [...]}
+/// {"kind": "attention", "d_k": 8, "layout": "homogeneous", "slow": false, "parameters": [...]}
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "kebab-case")]
@@ -63,6 +65,8 @@ pub enum BrainSpec {
     Smoothed(SmoothedSpec),
     /// Centralized network whose weights follow evolved Hebbian ABCD rules ([`HebbianSpec`]).
     Hebbian(HebbianSpec),
+    /// The same self-attention network in every voxel, no communication ([`AttentionSpec`]).
+    Attention(AttentionSpec),
 }
 
 /// Every `kind` tag, in the order of [`BrainSpec`]'s variants.
@@ -76,6 +80,7 @@ const KINDS: &[&str] = &[
     "step",
     "smoothed",
     "hebbian",
+    "attention",
 ];
 
 impl<'de> Deserialize<'de> for BrainSpec {
@@ -103,6 +108,7 @@ impl<'de> Deserialize<'de> for BrainSpec {
             "step" => BrainSpec::Step(payload(fields)?),
             "smoothed" => BrainSpec::Smoothed(payload(fields)?),
             "hebbian" => BrainSpec::Hebbian(payload(fields)?),
+            "attention" => BrainSpec::Attention(payload(fields)?),
             other => {
                 return Err(D::Error::custom(format!(
                     "kind: unknown brain kind `{other}`, expected one of {}",
@@ -145,6 +151,7 @@ impl BrainSpec {
             BrainSpec::Step(kind) => kind,
             BrainSpec::Smoothed(kind) => kind,
             BrainSpec::Hebbian(kind) => kind,
+            BrainSpec::Attention(kind) => kind,
         }
     }
 
@@ -160,6 +167,7 @@ impl BrainSpec {
             BrainSpec::Step(kind) => kind,
             BrainSpec::Smoothed(kind) => kind,
             BrainSpec::Hebbian(kind) => kind,
+            BrainSpec::Attention(kind) => kind,
         }
     }
 
@@ -284,6 +292,12 @@ mod tests {
             "hebbian:incoming",
             "hebbian:dew",
             "hebbian:l2",
+            "attention",
+            "attention:hetero",
+            "attention:slow",
+            "local-mlp",
+            "local-mlp:1",
+            "step:0.33:attention",
         ];
         let mut specs: Vec<BrainSpec> = templates
             .iter()
@@ -302,6 +316,7 @@ mod tests {
                 activation: Activation::Sin,
                 input_activation: false,
                 layout: Layout::Heterogeneous,
+                positional: false,
                 weights: Vec::new(),
             })
             .with_random_parameters(99, &m, &rpv)
@@ -339,6 +354,7 @@ mod tests {
         assert_eq!(
             names,
             [
+                "attention",
                 "constant",
                 "distributed-mlp",
                 "hebbian",
@@ -370,6 +386,7 @@ mod tests {
                 activation: Activation::Tanh,
                 input_activation: true,
                 layout: Layout::Heterogeneous,
+                positional: false,
                 weights: vec![]
             })
         );

@@ -56,6 +56,12 @@ fn control_does_not_allocate() {
         "hebbian:incoming",
         "hebbian:dew",
         "hebbian:l2",
+        "attention",
+        "attention:hetero",
+        "attention:slow",
+        "step:0.33:attention",
+        "local-mlp",
+        "local-mlp:1",
     ] {
         let spec = BrainSpec::parse(form)
             .unwrap()

@@ -170,8 +170,21 @@ impl<'a> Scene<'a> {
             };
             pm.stroke_path(&path, &paint(color), &stroke(width), Transform::identity(), None);
         }
-        if self.opts.draw_sensors {
+        let attention = self.opts.draw_attention && t.attention_side > 0;
+        if self.opts.draw_sensors && !attention {
             self.draw_sensors(pm, &view, step, polys);
+        }
+        if attention {
+            let px = |p: Vec2| view.to_pixel(p, self.opts.width);
+            for (v, poly) in polys.iter().enumerate() {
+                if let Some(matrix) = t.attention_at(step, v) {
+                    let c = center(poly);
+                    let half = area(poly).sqrt() * 0.3;
+                    let (x0, y0) = px(c - Vec2::new(half, -half));
+                    let (x1, _) = px(c + Vec2::new(half, half));
+                    crate::attention::draw_matrix(pm, (x0, y0), x1 - x0, t.attention_side, matrix);
+                }
+            }
         }
         if self.opts.draw_lidar {
             self.draw_lidar(pm, &view, step, polys);

@@ -17,6 +17,7 @@
 //! World y points up, image y points down. A thin bar along the top edge shows elapsed time.
 #![warn(missing_docs)]
 
+mod attention;
 mod camera;
 mod draw;
 mod file;
@@ -60,6 +61,9 @@ pub struct RenderOptions {
     pub draw_legend: bool,
     /// Whether to draw the path of the robot's centre.
     pub draw_trail: bool,
+    /// Whether to draw each voxel's attention matrix (attention brains), in place of its sensor
+    /// glyph.
+    pub draw_attention: bool,
 }
 
 impl Default for RenderOptions {
@@ -74,12 +78,13 @@ impl Default for RenderOptions {
             draw_ticks: true,
             draw_legend: true,
             draw_trail: false,
+            draw_attention: true,
         }
     }
 }
 
 /// The layers `--draw` can name, in drawing order.
-pub const LAYERS: &[&str] = &["ticks", "trail", "sensors", "lidar", "overlay", "legend"];
+pub const LAYERS: &[&str] = &["ticks", "trail", "sensors", "lidar", "attention", "overlay", "legend"];
 
 impl RenderOptions {
     /// The same options drawing exactly the layers named in `list` (comma-separated names from
@@ -95,6 +100,7 @@ impl RenderOptions {
                 "trail" => o.draw_trail = on,
                 "sensors" => o.draw_sensors = on,
                 "lidar" => o.draw_lidar = on,
+                "attention" => o.draw_attention = on,
                 "overlay" => o.draw_overlay = on,
                 _ => o.draw_legend = on,
             }

@@ -44,6 +44,8 @@ pub fn trace_from_positions(xs: &[f64]) -> Trace {
         rays: Vec::new(),
         ray_distances: Vec::new(),
         damage: None,
+        attention_side: 0,
+        attention: Vec::new(),
     }
 }
 

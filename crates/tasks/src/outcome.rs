@@ -91,9 +91,19 @@ pub struct Trace {
     pub rays: Vec<RayInfo>,
     /// Lidar distances, `[step][ray]`.
     pub ray_distances: Vec<f32>,
+    /// Side r of each unit's attention matrix (attention brains; 0 otherwise).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub attention_side: usize,
+    /// Attention matrices, `[step][unit][r][r]` (attention brains; empty otherwise).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub attention: Vec<f32>,
     /// When units broke and which ([`crate::Damage`]); absent without damage.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub damage: Option<DamageRecord>,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 /// The damage that happened during an episode: from `time` on, the units marked in `broken` do
@@ -107,6 +117,13 @@ pub struct DamageRecord {
 }
 
 impl Trace {
+    /// Unit `unit`'s attention matrix at recorded step `step` (r·r values, row-major), if recorded.
+    pub fn attention_at(&self, step: usize, unit: usize) -> Option<&[f32]> {
+        let r2 = self.attention_side * self.attention_side;
+        let start = (step * self.voxels() + unit) * r2;
+        (r2 > 0).then(|| self.attention.get(start..start + r2)).flatten()
+    }
+
     /// Whether unit `unit` is broken at recorded step `step`.
     pub fn is_broken(&self, step: usize, unit: usize) -> bool {
         match (&self.damage, self.times.get(step)) {

@@ -139,6 +139,10 @@ impl Agent for VoxelAgent {
             trace.touching.push(s.touching);
         }
         trace.actuations.extend_from_slice(&self.actuations);
+        if let Some((side, matrices)) = self.brain.attention() {
+            trace.attention_side = side;
+            trace.attention.extend(matrices.iter().map(|&a| a as f32));
+        }
         for (r, (lo, hi)) in self.readings.iter().zip(&self.domains) {
             let span = hi - lo;
             let v = if span > 0.0 { (r - lo) / span } else { 0.0 };

@@ -37,6 +37,7 @@ pub(crate) fn fitness_figure(settings: &[Setting], experiments: &[ExperimentData
         })
     };
     BandFigure {
+        note: crate::plot::band::median_sd_note(),
         title: format!("Fitness ({fitness}) during evolution"),
         legend_title: "setting".into(),
         panels: vec![
@@ -57,6 +58,7 @@ pub(crate) fn isi_figure(settings: &[Setting], runs: &[RunSpecies]) -> BandFigur
         })
     };
     BandFigure {
+        note: crate::plot::band::median_sd_note(),
         title: "Diversity of the population (Inverse Simpson Index)".into(),
         legend_title: "setting".into(),
         panels: vec![

@@ -365,6 +365,7 @@ fn frozen_figure(robots: &[BestRobot], frozen: &[FrozenScore], options: &Plastic
         ),
         panels,
         legend_title: "protocol".into(),
+        note: crate::plot::band::median_sd_note(),
     }
 }
 
@@ -427,6 +428,7 @@ fn weight_histograms(
         title: "weights of the best robots during the learning episode".into(),
         panels,
         legend_title: "time".into(),
+        note: vec!["pooled over the runs'".into(), "best robots".into()],
     };
     (csv, figure, stats)
 }

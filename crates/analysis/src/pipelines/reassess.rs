@@ -301,6 +301,7 @@ pub fn reassess(
             series,
         }],
         legend_title: "setting".into(),
+        note: crate::plot::band::median_sd_note(),
     };
     files.extend(plot::save(
         &over_time,

@@ -46,6 +46,16 @@ pub struct BandFigure {
     pub panels: Vec<BandChart>,
     /// Legend title (e.g. "setting").
     pub legend_title: String,
+    /// Lines under the legend saying what lines and bands show ([`median_sd_note`] for curves
+    /// across runs).
+    pub note: Vec<String>,
+}
+
+/// The note of median ± sd curves across runs.
+pub fn median_sd_note() -> Vec<String> {
+    ["line: median", "band: ± sd", "(across runs)"]
+        .map(String::from)
+        .to_vec()
 }
 
 impl BandSeries {
@@ -130,7 +140,7 @@ impl Figure for BandFigure {
         }
         draw_legend(&legend, &self.legend_title, &entries)?;
         let y = legend_bottom(&entries) + 10;
-        for (k, line) in ["line: median", "band: ± sd", "(across runs)"].iter().enumerate() {
+        for (k, line) in self.note.iter().enumerate() {
             draw_text_line(&legend, line, 13, y + 18 * k as i32)?;
         }
         Ok(())

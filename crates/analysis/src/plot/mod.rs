@@ -148,6 +148,7 @@ mod tests {
         let band = BandFigure {
             title: "Fitness".into(),
             legend_title: "setting".into(),
+            note: band::median_sd_note(),
             panels: vec![
                 BandChart {
                     title: "best".into(),

@@ -26,8 +26,17 @@
 //! - heterogeneous: one block per grid cell, empty cells included (count W·H·n_w); the voxel at
 //!   (x, y) uses `weights[(y·W + x)·n_w .. (y·W + x + 1)·n_w]`. 10×10 grid: 4500; 5×5: 1125.
 //!
+//! # Positional encoding
+//!
+//! With `positional = true` (thesis §4.2.3.1, the baselines of the attention chapter) the own
+//! readings enter as a one-hot block: voxel i of n sees n·r reading inputs, all 0 but block i,
+//! which holds its r readings. The network then has n·r + 4s inputs, so the weights depend on the
+//! body's voxel count; with s = 0 and no hidden layer this is the thesis' "MLP" (n·r + 1 weights:
+//! 41 on a biped-4x3 with 4 readings), with s = 1 its "MLP-Comm" (5·(n·r + 5) = 225).
+//!
 //! Short forms: `distributed-mlp[:<signals>]` (homogeneous) and
-//! `distributed-mlp-hetero[:<signals>]` (heterogeneous), both without hidden layer, default 1 signal.
+//! `distributed-mlp-hetero[:<signals>]` (heterogeneous), both without hidden layer, default 1 signal;
+//! `local-mlp[:<signals>]`: homogeneous, positional, default 0 signals.
 
 use crate::mlp::{check_at_most, check_parameter_total, Activation, Mlp};
 use crate::short_form::{self, ShortForm};
@@ -106,7 +115,7 @@ pub fn common_readings(morphology: &Morphology, readings_per_voxel: &[usize]) ->
         return Err(BrainError::Invalid {
             field: "readings_per_voxel",
             msg: format!(
-                "a distributed MLP needs the same number of readings on every voxel, but voxel 0 at {} has {first} \
+                "this brain needs the same number of readings on every voxel, but voxel 0 at {} has {first} \
                  and voxel {v} at {} has {} (check the sensors)",
                 cell(0),
                 cell(v),
@@ -115,6 +124,15 @@ pub fn common_readings(morphology: &Morphology, readings_per_voxel: &[usize]) ->
         });
     }
     Ok(first)
+}
+
+/// Reading inputs of one network: r, or n·r with positional encoding.
+fn reading_inputs(readings: usize, voxels: usize, positional: bool) -> usize {
+    if positional {
+        readings.saturating_mul(voxels)
+    } else {
+        readings
+    }
 }
 
 /// Number of weights for a body: n_w (homogeneous) or W·H·n_w (heterogeneous).
@@ -148,6 +166,8 @@ pub struct DistributedConfig {
     pub input_activation: bool,
     /// Shared or per-cell weights.
     pub layout: Layout,
+    /// Own readings as a one-hot block of n·r inputs (module documentation).
+    pub positional: bool,
 }
 
 /// One MLP per voxel exchanging signals with its four neighbours (module documentation).
@@ -155,6 +175,9 @@ pub struct DistributedConfig {
 pub struct DistributedMlpController {
     signals: usize,
     readings: usize,
+    /// Reading inputs of a network: r, or n·r with positional encoding.
+    reading_inputs: usize,
+    positional: bool,
     n_in: usize,
     n_out: usize,
     /// One network (homogeneous) or one per voxel (heterogeneous).
@@ -185,11 +208,13 @@ impl DistributedMlpController {
             activation,
             input_activation,
             layout,
+            positional,
         } = *config;
         check_voxels(morphology, readings_per_voxel)?;
         let readings = common_readings(morphology, readings_per_voxel)?;
-        let expected = checked_parameter_count(morphology, readings, signals, hidden, layout)?;
-        let sizes = network_sizes(readings, signals, hidden);
+        let reading_inputs = reading_inputs(readings, morphology.voxel_count(), positional);
+        let expected = checked_parameter_count(morphology, reading_inputs, signals, hidden, layout)?;
+        let sizes = network_sizes(reading_inputs, signals, hidden);
         check_count("weights", expected, weights.len())?;
         let n_w = Mlp::parameter_count(&sizes);
         let (w, h) = (morphology.width(), morphology.height());
@@ -230,6 +255,8 @@ impl DistributedMlpController {
         Ok(DistributedMlpController {
             signals,
             readings,
+            reading_inputs,
+            positional,
             n_in,
             n_out,
             networks,
@@ -255,7 +282,7 @@ impl DistributedMlpController {
     /// The 4s signals the voxel received at the last call, blocks from N, E, S, W in this order
     /// (zeros before the first call).
     pub fn incoming(&self, voxel: usize) -> &[f64] {
-        &self.inputs[voxel * self.n_in + self.readings..(voxel + 1) * self.n_in]
+        &self.inputs[voxel * self.n_in + self.reading_inputs..(voxel + 1) * self.n_in]
     }
 
     /// The 4s signals the voxel emitted at the last call, blocks towards N, E, S, W in this order.
@@ -272,16 +299,18 @@ impl Controller for DistributedMlpController {
     }
 
     fn control(&mut self, _t: f64, readings: &[f64], actuations: &mut [f64]) {
-        let (r, s, n_in) = (self.readings, self.signals, self.n_in);
+        let (r, s, n_in, ri) = (self.readings, self.signals, self.n_in, self.reading_inputs);
         let s4 = 4 * s;
         debug_assert_eq!(readings.len(), r * self.neighbours.len());
         debug_assert_eq!(actuations.len(), self.neighbours.len());
         // Gather every voxel's inputs from the previous step's signals before anyone emits.
         for (v, neighbours) in self.neighbours.iter().enumerate() {
             let input = &mut self.inputs[v * n_in..(v + 1) * n_in];
-            input[..r].copy_from_slice(&readings[v * r..(v + 1) * r]);
+            // positional: block v of the n·r reading inputs; the others stay 0
+            let own = if self.positional { v * r } else { 0 };
+            input[own..own + r].copy_from_slice(&readings[v * r..(v + 1) * r]);
             for (d, neighbour) in neighbours.iter().enumerate() {
-                let slot = &mut input[r + d * s..r + (d + 1) * s];
+                let slot = &mut input[ri + d * s..ri + (d + 1) * s];
                 match neighbour {
                     Some(n) => {
                         let from = n * s4 + opposite(d) * s;
@@ -319,6 +348,9 @@ pub struct DistributedMlpSpec {
     pub input_activation: bool,
     /// `homogeneous` (one shared weight vector, default) or `heterogeneous` (one per grid cell).
     pub layout: Layout,
+    /// Own readings as a one-hot block of n·r inputs (default false; module documentation).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub positional: bool,
     /// The weights: n_w (homogeneous) or W·H·n_w (heterogeneous); default none (a template).
     pub weights: Vec<f64>,
 }
@@ -331,6 +363,7 @@ impl Default for DistributedMlpSpec {
             activation: Activation::Tanh,
             input_activation: true,
             layout: Layout::Homogeneous,
+            positional: false,
             weights: Vec::new(),
         }
     }
@@ -344,7 +377,8 @@ impl BrainKind for DistributedMlpSpec {
     fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
         check_voxels(morphology, readings_per_voxel)?;
         let readings = common_readings(morphology, readings_per_voxel)?;
-        checked_parameter_count(morphology, readings, self.signals, &self.hidden, self.layout)
+        let inputs = reading_inputs(readings, morphology.voxel_count(), self.positional);
+        checked_parameter_count(morphology, inputs, self.signals, &self.hidden, self.layout)
     }
 
     fn parameters(&self) -> &[f64] {
@@ -362,6 +396,7 @@ impl BrainKind for DistributedMlpSpec {
             activation: self.activation,
             input_activation: self.input_activation,
             layout: self.layout,
+            positional: self.positional,
         };
         Ok(Box::new(DistributedMlpController::new(
             morphology,
@@ -392,6 +427,26 @@ fn parse_homogeneous(argument: Option<&str>) -> Option<BrainSpec> {
 
 fn parse_heterogeneous(argument: Option<&str>) -> Option<BrainSpec> {
     parse_short_form(argument, Layout::Heterogeneous)
+}
+
+/// `local-mlp[:<signals>]`: homogeneous, positional encoding, default 0 signals (the attention
+/// chapter's MLP; `local-mlp:1` is its MLP-Comm).
+pub const LOCAL_SHORT_FORM: ShortForm = ShortForm {
+    name: "local-mlp",
+    usage: "local-mlp[:<signals>]",
+    parse: parse_local,
+};
+
+fn parse_local(argument: Option<&str>) -> Option<BrainSpec> {
+    let signals = match argument {
+        None => 0,
+        Some(signals) => short_form::count(signals)?,
+    };
+    Some(BrainSpec::DistributedMlp(DistributedMlpSpec {
+        signals,
+        positional: true,
+        ..DistributedMlpSpec::default()
+    }))
 }
 
 /// `[<signals>]`: signals per direction, default 1; no hidden layer.
@@ -425,6 +480,7 @@ mod tests {
             activation,
             input_activation,
             layout,
+            positional: false,
         }
     }
 

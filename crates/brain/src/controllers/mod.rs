@@ -1,5 +1,6 @@
 //! The controllers, one per file.
 
+pub mod attention;
 pub mod centralized_mlp;
 pub mod constant;
 pub mod distributed_mlp;

@@ -43,6 +43,10 @@ impl Controller for SmoothedController {
         self.inner.adaptive_weights()
     }
 
+    fn attention(&self) -> Option<(usize, &[f64])> {
+        self.inner.attention()
+    }
+
     fn control(&mut self, t: f64, readings: &[f64], actuations: &mut [f64]) {
         let target = self.inner.control(t, readings);
         let max_change = self.speed * (t - self.last_t).max(0.0);

@@ -45,6 +45,10 @@ impl Controller for StepController {
         self.inner.adaptive_weights()
     }
 
+    fn attention(&self) -> Option<(usize, &[f64])> {
+        self.inner.attention()
+    }
+
     fn control(&mut self, t: f64, readings: &[f64], actuations: &mut [f64]) {
         let target = self.inner.control(t, readings);
         if self.last_refresh.is_none_or(|last| t - last >= self.period) {

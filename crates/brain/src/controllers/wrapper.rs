@@ -30,6 +30,11 @@ impl Inner {
         self.controller.adaptive_weights()
     }
 
+    /// The inner controller's attention matrices.
+    pub(crate) fn attention(&self) -> Option<(usize, &[f64])> {
+        self.controller.attention()
+    }
+
     /// Resets the inner controller.
     pub(crate) fn reset(&mut self) {
         self.controller.reset();

@@ -28,6 +28,11 @@ pub struct Experiment {
     /// Free text.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub description: Option<String>,
+    /// The setting analyses pool this experiment's runs into (default: its name): experiments
+    /// of a sweep that share it count as runs of one setting (e.g. fine-tuning from several
+    /// source robots, one experiment each).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub setting: Option<String>,
     /// Number of independent runs.
     pub runs: usize,
     /// Base seed; run r uses [`run_seed`]`(seed, r)`.
@@ -53,6 +58,8 @@ struct ExperimentFile {
     name: Option<String>,
     #[serde(default)]
     description: Option<String>,
+    #[serde(default)]
+    setting: Option<String>,
     #[serde(default = "one")]
     runs: usize,
     #[serde(default)]
@@ -63,6 +70,18 @@ struct ExperimentFile {
     stop: StopConfig,
     #[serde(default)]
     output: OutputConfig,
+    #[serde(default)]
+    transfer: Option<TransferConfig>,
+}
+
+/// `[transfer]`: fix a module of an evolved robot's brain in this experiment's brain (thesis
+/// §4.2.4.1: an attention module moved to another body). Applied when the file is read: the
+/// resolved `experiment.toml` holds the module's genes in the brain, not this table.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TransferConfig {
+    /// The robot file (JSON) whose brain gives the module, e.g. a run's `best.robot.json`.
+    from: std::path::PathBuf,
 }
 
 fn one() -> usize {
@@ -195,13 +214,24 @@ pub fn parse(text: &str, origin: &str) -> Result<Experiment, ConfigError> {
         ConfigError::at_field(origin, text, &field, message)
     };
     let task = TaskConfig::decode(file.task).map_err(|e| in_table("task", e))?;
+    let mut representation = file.representation;
+    if let Some(transfer) = &file.transfer {
+        let field = |message: String| ConfigError::at_field(origin, text, "transfer.from", message);
+        let source = vsrlab_tasks::files::load_robot(&transfer.from).map_err(|e| field(e.to_string()))?;
+        representation
+            .brain
+            .as_kind_mut()
+            .transfer_from(&source.brain)
+            .map_err(|e| field(format!("{}: {e}", transfer.from.display())))?;
+    }
     let optimizer = optimizers::decode_table(file.optimizer).map_err(|e| in_table("optimizer", e))?;
     let experiment = Experiment {
         name: file.name,
         description: file.description,
+        setting: file.setting,
         runs: file.runs,
         seed: file.seed,
-        representation: file.representation,
+        representation,
         task,
         optimizer,
         stop: file.stop,

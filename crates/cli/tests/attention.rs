@@ -2,26 +2,10 @@
 //! attention module to a bigger body through `[transfer]`, pooled by `setting` → the
 //! frozen-attention ablation through `vsrlab plasticity` → a video with attention maps.
 
+mod common;
+
+use common::{ok, vsrlab};
 use std::path::Path;
-use std::process::Command;
-
-const VSRLAB: &str = env!("CARGO_BIN_EXE_vsrlab");
-
-fn vsrlab(args: &[&str]) -> (bool, String) {
-    let out = Command::new(VSRLAB).args(args).output().expect("vsrlab runs");
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    (out.status.success(), text)
-}
-
-fn ok(args: &[&str]) -> String {
-    let (success, text) = vsrlab(args);
-    assert!(success, "vsrlab {args:?} failed:\n{text}");
-    text
-}
 
 fn config(body: &str, extra: &str) -> String {
     format!(

@@ -343,33 +343,38 @@ impl HebbianController {
 
     /// One Hebbian update of every synapse from this step's activations, then the normalisation.
     fn learn(&mut self) {
-        if self.rules == Rules::None {
-            return;
-        }
-        let len = if self.learning.evolve_eta { 5 } else { 4 };
+        let Self {
+            sizes,
+            weights,
+            rules,
+            learning,
+            activations,
+            offsets,
+            ..
+        } = self;
+        let (rules, per_synapse) = match rules {
+            Rules::None => return,
+            Rules::PerSynapse(r) => (&r[..], true),
+            Rules::PerNeuron(r) => (&r[..], false),
+        };
+        let len = if learning.evolve_eta { 5 } else { 4 };
         let mut w = 0;
         let mut neuron = 0;
-        for l in 0..self.sizes.len() - 1 {
-            let (n_src, n_dst) = (self.sizes[l], self.sizes[l + 1]);
-            let (src_at, dst_at) = (self.offsets[l], self.offsets[l + 1]);
+        for l in 0..sizes.len() - 1 {
+            let (n_src, n_dst) = (sizes[l], sizes[l + 1]);
+            let src = &activations[offsets[l]..offsets[l] + n_src];
             for o in 0..n_dst {
-                let post = self.activations[dst_at + o];
-                for i in 0..=n_src {
-                    let pre = if i == 0 { 1.0 } else { self.activations[src_at + i - 1] };
-                    let rule = match &self.rules {
-                        Rules::None => unreachable!("checked above"),
-                        Rules::PerSynapse(r) => &r[(w + i) * len..(w + i + 1) * len],
-                        Rules::PerNeuron(r) => &r[neuron * len..(neuron + 1) * len],
-                    };
-                    let eta = if self.learning.evolve_eta {
-                        rule[4]
-                    } else {
-                        self.learning.eta
-                    };
-                    self.weights[w + i] += eta * (rule[0] * pre * post + rule[1] * post + rule[2] * pre + rule[3]);
+                let post = activations[offsets[l + 1] + o];
+                let row = &mut weights[w..w + n_src + 1];
+                for (i, weight) in row.iter_mut().enumerate() {
+                    let pre = if i == 0 { 1.0 } else { src[i - 1] };
+                    let at = if per_synapse { (w + i) * len } else { neuron * len };
+                    let rule = &rules[at..at + len];
+                    let eta = if len == 5 { rule[4] } else { learning.eta };
+                    *weight += eta * (rule[0] * pre * post + rule[1] * post + rule[2] * pre + rule[3]);
                 }
-                if self.learning.normalisation == Normalisation::L2 {
-                    normalise(&mut self.weights[w..w + n_src + 1]);
+                if learning.normalisation == Normalisation::L2 {
+                    normalise(row);
                 }
                 w += n_src + 1;
                 neuron += 1;

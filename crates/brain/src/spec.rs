@@ -4,6 +4,7 @@ use crate::controllers::attention::AttentionSpec;
 use crate::controllers::centralized_mlp::MlpSpec;
 use crate::controllers::constant::ConstantSpec;
 use crate::controllers::distributed_mlp::DistributedMlpSpec;
+use crate::controllers::graph::GraphSpec;
 use crate::controllers::hebbian::HebbianSpec;
 use crate::controllers::phase::PhaseSpec;
 use crate::controllers::phase_grid::PhaseGridSpec;
@@ -43,6 +44,8 @@ use vsrlab_body::Morphology;
 /// {"kind": "hebbian", "model": "full", "eta": 0.01, "normalisation": "none", "init": "zero",
 ///  "learning": true, "parameters": [...]}
 /// {"kind": "attention", "d_k": 8, "layout": "homogeneous", "slow": false, "parameters": [...]}
+/// {"kind": "graph", "neurons": [{"kind": "sensing", "x": 0, "y": 0, "reading": 0}, ...],
+///  "edges": [{"from": 0, "to": 4}, ...], "parameters": [...]}
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "kebab-case")]
@@ -67,6 +70,8 @@ pub enum BrainSpec {
     Hebbian(HebbianSpec),
     /// The same self-attention network in every voxel, no communication ([`AttentionSpec`]).
     Attention(AttentionSpec),
+    /// A graph of neurons located in voxels (the self-organizing controller, [`GraphSpec`]).
+    Graph(GraphSpec),
 }
 
 /// Every `kind` tag, in the order of [`BrainSpec`]'s variants.
@@ -81,6 +86,7 @@ const KINDS: &[&str] = &[
     "smoothed",
     "hebbian",
     "attention",
+    "graph",
 ];
 
 impl<'de> Deserialize<'de> for BrainSpec {
@@ -109,6 +115,7 @@ impl<'de> Deserialize<'de> for BrainSpec {
             "smoothed" => BrainSpec::Smoothed(payload(fields)?),
             "hebbian" => BrainSpec::Hebbian(payload(fields)?),
             "attention" => BrainSpec::Attention(payload(fields)?),
+            "graph" => BrainSpec::Graph(payload(fields)?),
             other => {
                 return Err(D::Error::custom(format!(
                     "kind: unknown brain kind `{other}`, expected one of {}",
@@ -152,6 +159,7 @@ impl BrainSpec {
             BrainSpec::Smoothed(kind) => kind,
             BrainSpec::Hebbian(kind) => kind,
             BrainSpec::Attention(kind) => kind,
+            BrainSpec::Graph(kind) => kind,
         }
     }
 
@@ -168,6 +176,7 @@ impl BrainSpec {
             BrainSpec::Smoothed(kind) => kind,
             BrainSpec::Hebbian(kind) => kind,
             BrainSpec::Attention(kind) => kind,
+            BrainSpec::Graph(kind) => kind,
         }
     }
 
@@ -298,6 +307,7 @@ mod tests {
             "local-mlp",
             "local-mlp:1",
             "step:0.33:attention",
+            "graph",
         ];
         let mut specs: Vec<BrainSpec> = templates
             .iter()
@@ -357,6 +367,7 @@ mod tests {
                 "attention",
                 "constant",
                 "distributed-mlp",
+                "graph",
                 "hebbian",
                 "mlp",
                 "phase",

@@ -62,6 +62,7 @@ fn control_does_not_allocate() {
         "step:0.33:attention",
         "local-mlp",
         "local-mlp:1",
+        "graph",
     ] {
         let spec = BrainSpec::parse(form)
             .unwrap()

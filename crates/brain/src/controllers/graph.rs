@@ -1,0 +1,543 @@
+//! The self-organizing embodied controller of thesis §4.1 (thesis-code-facts.md §4.1–4.2): a graph
+//! of neurons, each located in a voxel, joined by weighted edges.
+//!
+//! # Neurons and edges
+//!
+//! - *sensing*: bound to one reading of its voxel; outputs tanh(reading);
+//! - *actuator*: at most one per voxel; its output is the voxel's actuation (voxels without one
+//!   get 0);
+//! - *hidden*: any activation (node addition makes sigmoid ones).
+//!
+//! An edge from `from` to `to` adds w·out_from + b to its target's input (each edge has its own
+//! bias). No edge goes into a sensing neuron or out of an actuator.
+//!
+//! # Per-step update
+//!
+//! Every neuron computes from the *previous* step's outputs of its sources, then all commit: every
+//! edge carries one step of delay, so the order of the neurons never matters (tested by shuffling
+//! them; bit for bit). A neuron without incoming edges outputs f(0). Outputs are clamped to
+//! ±[`MAX_OUTPUT`], so that loops through identity or relu neurons cannot overflow. Incoming contributions are
+//! summed in the order the edges are listed, so listing the edges in another order changes the
+//! outputs only by rounding.
+//!
+//! # Parameters
+//!
+//! `[w, b]` per edge, in edge order (2·E). With no neurons listed, the graph is the thesis' initial
+//! one for the body: one sensing neuron per reading and one actuator per voxel, in voxel order
+//! (grid order, each voxel's readings then its actuator), and an edge from each sensing neuron to
+//! its voxel's actuator. Evolving only the parameters of a fixed graph is the thesis'
+//! "weights-only" control; evolving the topology needs the graph operators (not yet in vsrlab).
+
+use crate::mlp::{check_at_most, Activation};
+use crate::short_form::ShortForm;
+use crate::validation::{check_count, check_voxels, set_finite};
+use crate::{BrainError, BrainKind, BrainSpec, Controller};
+use serde::{Deserialize, Serialize};
+use vsrlab_body::Morphology;
+
+/// Largest output of a neuron in absolute value: feedback loops through unbounded activations
+/// (identity, relu) would otherwise overflow to infinity and then NaN.
+pub const MAX_OUTPUT: f64 = 1e9;
+
+/// Most neurons or edges of one graph.
+pub const MAX_GRAPH_ITEMS: usize = 1_000_000;
+
+/// One neuron of a graph brain, located in the voxel at grid cell (x, y).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum NeuronSpec {
+    /// Reads one of its voxel's readings (index among that voxel's readings).
+    Sensing {
+        /// Grid column.
+        x: usize,
+        /// Grid row (0 = bottom).
+        y: usize,
+        /// Which of the voxel's readings.
+        reading: usize,
+    },
+    /// Drives its voxel.
+    Actuator {
+        /// Grid column.
+        x: usize,
+        /// Grid row (0 = bottom).
+        y: usize,
+    },
+    /// Computes f(Σ w·in + b).
+    Hidden {
+        /// Grid column.
+        x: usize,
+        /// Grid row (0 = bottom).
+        y: usize,
+        /// Its activation (default sigmoid, as node addition makes them).
+        #[serde(default = "sigmoid")]
+        activation: Activation,
+    },
+}
+
+fn sigmoid() -> Activation {
+    Activation::Sigmoid
+}
+
+impl NeuronSpec {
+    /// The grid cell of its voxel.
+    pub fn cell(&self) -> (usize, usize) {
+        match *self {
+            NeuronSpec::Sensing { x, y, .. } | NeuronSpec::Actuator { x, y } | NeuronSpec::Hidden { x, y, .. } => {
+                (x, y)
+            }
+        }
+    }
+}
+
+/// One edge: from neuron `from` to neuron `to` (indices into `neurons`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EdgeSpec {
+    /// Source neuron.
+    pub from: usize,
+    /// Target neuron.
+    pub to: usize,
+}
+
+/// Description of a graph brain (`{"kind": "graph", "neurons": […], "edges": […], "parameters":
+/// […]}`), module documentation.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct GraphSpec {
+    /// The neurons; empty = the initial graph of the body (module documentation).
+    pub neurons: Vec<NeuronSpec>,
+    /// The edges (with `neurons` empty, must be empty too).
+    pub edges: Vec<EdgeSpec>,
+    /// `[w, b]` per edge.
+    pub parameters: Vec<f64>,
+}
+
+impl GraphSpec {
+    /// The thesis' initial graph for a body whose voxels have these readings counts: sensing
+    /// neurons and an actuator per voxel, every sensing neuron wired to its voxel's actuator.
+    pub fn initial(morphology: &Morphology, readings_per_voxel: &[usize]) -> (Vec<NeuronSpec>, Vec<EdgeSpec>) {
+        let mut neurons = Vec::new();
+        let mut edges = Vec::new();
+        for ((x, y), &count) in morphology.voxels().zip(readings_per_voxel) {
+            let first = neurons.len();
+            neurons.extend((0..count).map(|reading| NeuronSpec::Sensing { x, y, reading }));
+            let actuator = neurons.len();
+            neurons.push(NeuronSpec::Actuator { x, y });
+            edges.extend((first..actuator).map(|from| EdgeSpec { from, to: actuator }));
+        }
+        (neurons, edges)
+    }
+
+    /// The neurons and edges in force for a body: the listed ones, or the initial graph.
+    fn graph(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> (Vec<NeuronSpec>, Vec<EdgeSpec>) {
+        if self.neurons.is_empty() {
+            Self::initial(morphology, readings_per_voxel)
+        } else {
+            (self.neurons.clone(), self.edges.clone())
+        }
+    }
+
+    /// Checks the graph against the body; errors name the neuron or edge.
+    fn check(
+        &self,
+        morphology: &Morphology,
+        readings_per_voxel: &[usize],
+        neurons: &[NeuronSpec],
+        edges: &[EdgeSpec],
+    ) -> Result<(), BrainError> {
+        check_voxels(morphology, readings_per_voxel)?;
+        check_at_most("neurons", "neurons", neurons.len(), MAX_GRAPH_ITEMS)?;
+        check_at_most("edges", "edges", edges.len(), MAX_GRAPH_ITEMS)?;
+        if self.neurons.is_empty() && !self.edges.is_empty() {
+            return Err(invalid(
+                "edges",
+                "edges need their neurons: list the neurons too".into(),
+            ));
+        }
+        let voxel_of = |cell: (usize, usize)| morphology.voxels().position(|c| c == cell);
+        let mut actuators = vec![None; morphology.voxel_count()];
+        for (i, n) in neurons.iter().enumerate() {
+            let Some(v) = voxel_of(n.cell()) else {
+                return Err(invalid(
+                    "neurons",
+                    format!("neurons[{i}]: cell {:?} holds no voxel of the body", n.cell()),
+                ));
+            };
+            match *n {
+                NeuronSpec::Sensing { reading, .. } if reading >= readings_per_voxel[v] => {
+                    return Err(invalid(
+                        "neurons",
+                        format!(
+                            "neurons[{i}]: reading {reading}, but the voxel at {:?} has {} readings",
+                            n.cell(),
+                            readings_per_voxel[v]
+                        ),
+                    ))
+                }
+                NeuronSpec::Actuator { .. } => {
+                    if let Some(j) = actuators[v].replace(i) {
+                        return Err(invalid(
+                            "neurons",
+                            format!(
+                                "neurons[{i}]: a second actuator in the voxel at {:?} (the first is neurons[{j}])",
+                                n.cell()
+                            ),
+                        ));
+                    }
+                }
+                _ => {}
+            }
+        }
+        for (k, e) in edges.iter().enumerate() {
+            for (end, index) in [("from", e.from), ("to", e.to)] {
+                if index >= neurons.len() {
+                    return Err(invalid(
+                        "edges",
+                        format!(
+                            "edges[{k}]: {end} {index}: no such neuron (there are {})",
+                            neurons.len()
+                        ),
+                    ));
+                }
+            }
+            if matches!(neurons[e.to], NeuronSpec::Sensing { .. }) {
+                return Err(invalid("edges", format!("edges[{k}]: into sensing neuron {}", e.to)));
+            }
+            if matches!(neurons[e.from], NeuronSpec::Actuator { .. }) {
+                return Err(invalid(
+                    "edges",
+                    format!("edges[{k}]: out of actuator neuron {}", e.from),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+fn invalid(field: &'static str, msg: String) -> BrainError {
+    BrainError::Invalid { field, msg }
+}
+
+impl BrainKind for GraphSpec {
+    fn name(&self) -> &'static str {
+        "graph"
+    }
+
+    fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
+        let (neurons, edges) = self.graph(morphology, readings_per_voxel);
+        self.check(morphology, readings_per_voxel, &neurons, &edges)?;
+        Ok(2 * edges.len())
+    }
+
+    fn parameters(&self) -> &[f64] {
+        &self.parameters
+    }
+
+    fn set_parameters(&mut self, params: &[f64]) -> Result<(), BrainError> {
+        set_finite("parameters", &mut self.parameters, params)
+    }
+
+    fn build(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
+        Ok(Box::new(self.controller(morphology, readings_per_voxel)?))
+    }
+}
+
+impl GraphSpec {
+    /// [`BrainKind::build`], as the concrete controller (to look at its neurons' outputs).
+    pub fn controller(
+        &self,
+        morphology: &Morphology,
+        readings_per_voxel: &[usize],
+    ) -> Result<GraphController, BrainError> {
+        let (neurons, edges) = self.graph(morphology, readings_per_voxel);
+        self.check(morphology, readings_per_voxel, &neurons, &edges)?;
+        check_count("parameters", 2 * edges.len(), self.parameters.len())?;
+        Ok(GraphController::new(
+            morphology,
+            readings_per_voxel,
+            &neurons,
+            &edges,
+            &self.parameters,
+        ))
+    }
+}
+
+/// What a neuron computes, at run time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Role {
+    /// tanh of this index into the flat readings.
+    Sensing(usize),
+    /// f(Σ w·in + b).
+    Computing(Activation),
+}
+
+/// The running graph: neurons with their incoming edges in compressed form, and two output
+/// buffers (previous step, this step). [`Controller::control`] allocates nothing.
+#[derive(Debug, Clone)]
+pub struct GraphController {
+    roles: Vec<Role>,
+    /// Incoming edges of neuron i: `incoming[starts[i]..starts[i + 1]]`, as (source, w, b).
+    starts: Vec<usize>,
+    incoming: Vec<(usize, f64, f64)>,
+    /// Per voxel, its actuator neuron.
+    actuator_of: Vec<Option<usize>>,
+    previous: Vec<f64>,
+    current: Vec<f64>,
+}
+
+impl GraphController {
+    fn new(
+        morphology: &Morphology,
+        readings_per_voxel: &[usize],
+        neurons: &[NeuronSpec],
+        edges: &[EdgeSpec],
+        parameters: &[f64],
+    ) -> Self {
+        let cells: Vec<(usize, usize)> = morphology.voxels().collect();
+        let voxel_of = |cell: (usize, usize)| cells.iter().position(|&c| c == cell).expect("checked");
+        let mut first_reading = Vec::with_capacity(cells.len());
+        let mut total = 0;
+        for &count in readings_per_voxel {
+            first_reading.push(total);
+            total += count;
+        }
+        let mut actuator_of = vec![None; cells.len()];
+        let roles = neurons
+            .iter()
+            .enumerate()
+            .map(|(i, n)| match *n {
+                NeuronSpec::Sensing { reading, .. } => Role::Sensing(first_reading[voxel_of(n.cell())] + reading),
+                NeuronSpec::Actuator { .. } => {
+                    actuator_of[voxel_of(n.cell())] = Some(i);
+                    Role::Computing(Activation::Tanh)
+                }
+                NeuronSpec::Hidden { activation, .. } => Role::Computing(activation),
+            })
+            .collect();
+        let mut order: Vec<usize> = (0..edges.len()).collect();
+        order.sort_by_key(|&k| edges[k].to);
+        let mut starts = vec![0; neurons.len() + 1];
+        for e in edges {
+            starts[e.to + 1] += 1;
+        }
+        for i in 0..neurons.len() {
+            starts[i + 1] += starts[i];
+        }
+        let incoming = order
+            .iter()
+            .map(|&k| (edges[k].from, parameters[2 * k], parameters[2 * k + 1]))
+            .collect();
+        GraphController {
+            roles,
+            starts,
+            incoming,
+            actuator_of,
+            previous: vec![0.0; neurons.len()],
+            current: vec![0.0; neurons.len()],
+        }
+    }
+}
+
+impl GraphController {
+    /// Every neuron's output after the last step, in neuron order.
+    pub fn outputs(&self) -> &[f64] {
+        &self.previous
+    }
+}
+
+impl Controller for GraphController {
+    fn reset(&mut self) {
+        self.previous.fill(0.0);
+        self.current.fill(0.0);
+    }
+
+    fn control(&mut self, _t: f64, readings: &[f64], actuations: &mut [f64]) {
+        for (i, role) in self.roles.iter().enumerate() {
+            self.current[i] = match *role {
+                Role::Sensing(r) => readings[r].tanh(),
+                Role::Computing(f) => {
+                    let sum: f64 = self.incoming[self.starts[i]..self.starts[i + 1]]
+                        .iter()
+                        .map(|&(src, w, b)| w * self.previous[src] + b)
+                        .sum();
+                    f.apply(sum).clamp(-MAX_OUTPUT, MAX_OUTPUT)
+                }
+            };
+        }
+        std::mem::swap(&mut self.previous, &mut self.current);
+        for (a, actuator) in actuations.iter_mut().zip(&self.actuator_of) {
+            *a = actuator.map_or(0.0, |n| self.previous[n].clamp(-1.0, 1.0));
+        }
+    }
+}
+
+/// `graph`: the initial graph of the body (thesis §4.1), parameters to be filled.
+pub const SHORT_FORM: ShortForm = ShortForm {
+    name: "graph",
+    usage: "graph",
+    parse: parse_short_form,
+};
+
+fn parse_short_form(argument: Option<&str>) -> Option<BrainSpec> {
+    match argument {
+        None => Some(BrainSpec::Graph(GraphSpec::default())),
+        Some(_) => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testing::{assert_invalid, biped};
+
+    fn sensing(x: usize, y: usize, reading: usize) -> NeuronSpec {
+        NeuronSpec::Sensing { x, y, reading }
+    }
+
+    #[test]
+    fn the_initial_graph_wires_each_reading_to_its_actuator() {
+        let (m, rpv) = biped();
+        let spec = BrainSpec::parse("graph").unwrap();
+        // 10 voxels × 4 readings → 40 edges, 80 parameters
+        assert_eq!(spec.parameter_count(&m, &rpv).unwrap(), 80);
+        let (neurons, edges) = GraphSpec::initial(&m, &rpv);
+        assert_eq!(neurons.len(), 50);
+        assert_eq!(edges[0], EdgeSpec { from: 0, to: 4 });
+        assert_eq!(neurons[4], NeuronSpec::Actuator { x: 0, y: 0 });
+    }
+
+    #[test]
+    fn every_edge_has_one_step_of_delay() {
+        // worm-2x1, one reading each: s0 → h → a1, and s1 → a0
+        let m = Morphology::named("worm-2x1").unwrap();
+        let neurons = vec![
+            sensing(0, 0, 0),
+            sensing(1, 0, 0),
+            NeuronSpec::Hidden {
+                x: 0,
+                y: 0,
+                activation: Activation::Identity,
+            },
+            NeuronSpec::Actuator { x: 0, y: 0 },
+            NeuronSpec::Actuator { x: 1, y: 0 },
+        ];
+        let edges = vec![
+            EdgeSpec { from: 0, to: 2 },
+            EdgeSpec { from: 2, to: 4 },
+            EdgeSpec { from: 1, to: 3 },
+        ];
+        let spec = BrainSpec::Graph(GraphSpec {
+            neurons,
+            edges,
+            parameters: vec![2.0, 0.0, 1.0, 0.5, 1.0, 0.0],
+        });
+        let mut c = spec.build(&m, &[1, 1]).unwrap();
+        let mut a = [0.0; 2];
+        c.control(0.0, &[0.3, 0.6], &mut a);
+        // step 1: every computing neuron reads zeros: h = 0, a1 = tanh(0·1 + 0.5)
+        assert_eq!(a, [0.0, 0.5f64.tanh()]);
+        c.control(0.0, &[0.3, 0.6], &mut a);
+        // step 2: h = 2·tanh(0.3); a0 = tanh(tanh(0.6)); a1 still sees h of step 1 (0)
+        assert_eq!(a, [0.6f64.tanh().tanh(), 0.5f64.tanh()]);
+        c.control(0.0, &[0.3, 0.6], &mut a);
+        assert_eq!(a[1], (2.0 * 0.3f64.tanh() + 0.5).tanh());
+        c.reset();
+        c.control(0.0, &[0.3, 0.6], &mut a);
+        assert_eq!(a, [0.0, 0.5f64.tanh()], "reset clears the outputs");
+    }
+
+    #[test]
+    fn shuffling_the_neurons_changes_nothing() {
+        let (m, rpv) = biped();
+        let (neurons, mut edges) = GraphSpec::initial(&m, &rpv);
+        // add a hidden neuron bridging two voxels, and a feedback edge between hidden neurons
+        let mut neurons = neurons;
+        neurons.push(NeuronSpec::Hidden {
+            x: 1,
+            y: 1,
+            activation: Activation::Sigmoid,
+        });
+        neurons.push(NeuronSpec::Hidden {
+            x: 2,
+            y: 2,
+            activation: Activation::Tanh,
+        });
+        edges.extend([
+            EdgeSpec { from: 0, to: 50 },
+            EdgeSpec { from: 50, to: 51 },
+            EdgeSpec { from: 51, to: 50 },
+            EdgeSpec { from: 51, to: 49 },
+        ]);
+        let params: Vec<f64> = (0..2 * edges.len())
+            .map(|k| ((k * 37 % 19) as f64 / 9.0) - 1.0)
+            .collect();
+        let original = GraphSpec {
+            neurons: neurons.clone(),
+            edges: edges.clone(),
+            parameters: params.clone(),
+        };
+        // a fixed permutation of the neuron indices, the edges in their order
+        let n = neurons.len();
+        let new_index: Vec<usize> = (0..n).map(|i| (i * 31 + 7) % n).collect();
+        let mut shuffled_neurons = neurons.clone();
+        for (i, neuron) in neurons.iter().enumerate() {
+            shuffled_neurons[new_index[i]] = neuron.clone();
+        }
+        let mut shuffled_edges = Vec::new();
+        let mut shuffled_params = Vec::new();
+        for (k, e) in edges.iter().enumerate() {
+            shuffled_edges.push(EdgeSpec {
+                from: new_index[e.from],
+                to: new_index[e.to],
+            });
+            shuffled_params.extend_from_slice(&params[2 * k..2 * k + 2]);
+        }
+        let shuffled = GraphSpec {
+            neurons: shuffled_neurons,
+            edges: shuffled_edges,
+            parameters: shuffled_params,
+        };
+        let mut a = original.build(&m, &rpv).unwrap();
+        let mut b = shuffled.build(&m, &rpv).unwrap();
+        let (mut out_a, mut out_b) = (vec![0.0; 10], vec![0.0; 10]);
+        for k in 0..50 {
+            let readings: Vec<f64> = (0..40).map(|i| ((i * 7 + k * 3) as f64 * 0.13).sin()).collect();
+            a.control(k as f64 / 60.0, &readings, &mut out_a);
+            b.control(k as f64 / 60.0, &readings, &mut out_b);
+            assert_eq!(out_a, out_b, "step {k}");
+        }
+    }
+
+    #[test]
+    fn bad_graphs_are_refused_naming_the_item() {
+        let m = Morphology::named("worm-2x1").unwrap();
+        let spec = |neurons: Vec<NeuronSpec>, edges: Vec<EdgeSpec>| GraphSpec {
+            parameters: vec![0.0; 2 * edges.len()],
+            neurons,
+            edges,
+        };
+        let message = |s: GraphSpec, field: &str| {
+            let err = s.build(&m, &[2, 2]).err().expect("refused");
+            assert_invalid(&err, field);
+            err.to_string()
+        };
+        let two = || vec![sensing(0, 0, 0), NeuronSpec::Actuator { x: 0, y: 0 }];
+        let e = |from, to| EdgeSpec { from, to };
+        assert!(message(spec(two(), vec![e(0, 5)]), "edges").contains("edges[0]: to 5: no such neuron"));
+        assert!(message(spec(two(), vec![e(1, 0)]), "edges").contains("into sensing neuron 0"));
+        assert!(message(spec(two(), vec![e(0, 1), e(1, 1)]), "edges").contains("edges[1]: out of actuator neuron 1"));
+        let outside = vec![sensing(0, 0, 0), NeuronSpec::Actuator { x: 3, y: 0 }];
+        assert!(message(spec(outside, vec![]), "neurons").contains("neurons[1]: cell (3, 0) holds no voxel"));
+        let bad_reading = vec![sensing(1, 0, 2)];
+        assert!(message(spec(bad_reading, vec![]), "neurons").contains("reading 2, but the voxel at (1, 0) has 2"));
+        let twice = vec![NeuronSpec::Actuator { x: 0, y: 0 }, NeuronSpec::Actuator { x: 0, y: 0 }];
+        assert!(message(spec(twice, vec![]), "neurons").contains("second actuator"));
+        let err =
+            serde_json::from_str::<BrainSpec>(r#"{"kind": "graph", "neurons": [{"kind": "glial", "x": 0, "y": 0}]}"#)
+                .unwrap_err();
+        assert!(
+            err.to_string().contains("neurons") && err.to_string().contains("glial"),
+            "{err}"
+        );
+    }
+}

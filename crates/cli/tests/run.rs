@@ -177,6 +177,52 @@ fn without_a_terminal_progress_is_logged_at_the_interval_and_resume_says_where_i
 }
 
 #[test]
+fn the_chapter_experiments_validate_and_transfers_name_their_missing_source() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut files: Vec<String> = Vec::new();
+    let mut transfers: Vec<String> = Vec::new();
+    for dir in ["experiments/ch4.2", "experiments/ch5.3"] {
+        for entry in std::fs::read_dir(root.join(dir)).unwrap() {
+            let path = entry.unwrap().path();
+            let name = path.file_name().unwrap().to_string_lossy().into_owned();
+            if name.ends_with(".toml") {
+                // transfer files read the best robots of runs not made yet
+                let list = if name.contains("transfer") {
+                    &mut transfers
+                } else {
+                    &mut files
+                };
+                list.push(path.display().to_string());
+            }
+        }
+    }
+    files.sort();
+    let args: Vec<&str> = ["validate", "--brief", "--threads", "1"]
+        .into_iter()
+        .chain(files.iter().map(String::as_str))
+        .collect();
+    let out = vsrlab(&args);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    // 4 bodies × 3 brains, 2 × 2 variants, 6 reduced, 1 scratch; 4 × 6 apparatus × brain, 2
+    // normalised, 3 variants, 2 + 2 reduced
+    assert_eq!(
+        text.matches(": ok; ").count(),
+        12 + 4 + 6 + 1 + 24 + 2 + 3 + 4,
+        "{text}"
+    );
+    assert_eq!(transfers.len(), 5);
+    for file in &transfers {
+        let out = vsrlab(&["validate", "--brief", file]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            !out.status.success() && err.contains("transfer.from") && err.contains("best.robot.json"),
+            "{err}"
+        );
+    }
+}
+
+#[test]
 fn validate_prints_the_resolved_configuration_of_every_shipped_experiment() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let mut files: Vec<String> = Vec::new();

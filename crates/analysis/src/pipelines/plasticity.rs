@@ -360,7 +360,7 @@ fn frozen_figure(robots: &[BestRobot], frozen: &[FrozenScore], options: &Plastic
         .collect();
     BandFigure {
         title: format!(
-            "frozen-weight test: mean over {} unseen episodes, median ± sd across runs",
+            "frozen weights or attention: mean over {} unseen episodes, median ± sd across runs",
             options.episodes
         ),
         panels,

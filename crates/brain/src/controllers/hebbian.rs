@@ -6,7 +6,7 @@
 //! Layer sizes `[n_in, hidden…, n_voxels]`, all readings in (voxel order), one actuation per voxel
 //! out; by default one hidden layer as wide as the input (the thesis: ratio 1, at least 2
 //! neurons). Inputs are used raw (the readings are already normalised to [0, 1]); every other layer
-//! is tanh. The weights use the [`Mlp`](crate::Mlp) layout: layer → destination → `[bias, one
+//! is tanh. The weights use the [`Mlp`] layout: layer → destination → `[bias, one
 //! weight per source]`, so there are Σ_l n_{l+1}·(n_l + 1) of them. The bias is a synapse from a
 //! constant-1 neuron with its own rule (the original overwrote the last sensor reading with 1
 //! instead; we keep every reading).

@@ -42,6 +42,7 @@
 mod controller;
 pub mod controllers;
 mod error;
+pub mod graph_ops;
 mod kind;
 pub mod mlp;
 mod short_form;

@@ -176,26 +176,28 @@ fn without_a_terminal_progress_is_logged_at_the_interval_and_resume_says_where_i
     assert!(String::from_utf8_lossy(&again.stderr).contains("run 1/1: best"));
 }
 
-#[test]
-fn the_chapter_experiments_validate_and_transfers_name_their_missing_source() {
+/// The `.toml` files directly in these folders of the workspace, as paths.
+fn shipped_toml_files(dirs: &[&str]) -> Vec<String> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let mut files: Vec<String> = Vec::new();
-    let mut transfers: Vec<String> = Vec::new();
-    for dir in ["experiments/ch4.2", "experiments/ch5.3"] {
+    let mut files = Vec::new();
+    for dir in dirs {
         for entry in std::fs::read_dir(root.join(dir)).unwrap() {
             let path = entry.unwrap().path();
-            let name = path.file_name().unwrap().to_string_lossy().into_owned();
-            if name.ends_with(".toml") {
-                // transfer files read the best robots of runs not made yet
-                let list = if name.contains("transfer") {
-                    &mut transfers
-                } else {
-                    &mut files
-                };
-                list.push(path.display().to_string());
+            if path.extension().is_some_and(|e| e == "toml") {
+                files.push(path.display().to_string());
             }
         }
     }
+    files
+}
+
+#[test]
+fn the_chapter_experiments_validate_and_transfers_name_their_missing_source() {
+    // transfer files read the best robots of runs not made yet
+    let (transfers, mut files): (Vec<String>, Vec<String>) =
+        shipped_toml_files(&["experiments/ch4.2", "experiments/ch5.3"])
+            .into_iter()
+            .partition(|f| f.rsplit('/').next().is_some_and(|name| name.contains("transfer")));
     files.sort();
     let args: Vec<&str> = ["validate", "--brief", "--threads", "1"]
         .into_iter()
@@ -224,17 +226,11 @@ fn the_chapter_experiments_validate_and_transfers_name_their_missing_source() {
 
 #[test]
 fn validate_prints_the_resolved_configuration_of_every_shipped_experiment() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let mut files: Vec<String> = Vec::new();
-    for dir in ["experiments", "experiments/ch3", "examples"] {
-        for entry in std::fs::read_dir(root.join(dir)).unwrap() {
-            let path = entry.unwrap().path();
-            // ch3.toml is the sweep of the 72 ch3/ files, checked by the experiment crate's tests
-            if path.extension().is_some_and(|e| e == "toml") && !path.ends_with("experiments/ch3.toml") {
-                files.push(path.display().to_string());
-            }
-        }
-    }
+    // ch3.toml is the sweep of the 72 ch3/ files, checked by the experiment crate's tests
+    let mut files: Vec<String> = shipped_toml_files(&["experiments", "experiments/ch3", "examples"])
+        .into_iter()
+        .filter(|f| !f.ends_with("experiments/ch3.toml"))
+        .collect();
     files.sort();
     assert!(files.len() > 70, "{} files", files.len());
     let args: Vec<&str> = ["validate", "--threads", "1"]

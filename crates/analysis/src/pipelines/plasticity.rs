@@ -128,7 +128,6 @@ impl PlasticityReport {
             .iter()
             .map(|f| (f.setting.clone(), f.protocol, f.time.to_bits()))
             .collect();
-        keys.dedup();
         keys.sort_by(|a, b| {
             (&a.0, a.1.name(), f64::from_bits(a.2))
                 .partial_cmp(&(&b.0, b.1.name(), f64::from_bits(b.2)))
@@ -172,10 +171,12 @@ pub fn weight_snapshots(
     let dt = task.physics().dt;
     let mut snapshots: Vec<Option<Vec<f64>>> = vec![None; times.len()];
     let mut last: Option<Vec<f64>> = None;
+    let mut plastic = false;
     run_observed(robot, task, seed, TraceLevel::None, &mut |t, agent| {
         let Some(w) = agent.brain_weights() else {
             return;
         };
+        plastic = true;
         for (slot, &at) in snapshots.iter_mut().zip(times) {
             // the weights after the step ending at `at` (at = 0: after the first step, one
             // update away from the initial weights)
@@ -183,21 +184,24 @@ pub fn weight_snapshots(
                 *slot = Some(w.to_vec());
             }
         }
-        match &mut last {
-            Some(l) => l.copy_from_slice(w),
-            None => last = Some(w.to_vec()),
+        // the latest weights, for times beyond the episode: kept only while some are unfilled
+        if snapshots.iter().any(Option::is_none) {
+            match &mut last {
+                Some(l) => l.copy_from_slice(w),
+                None => last = Some(w.to_vec()),
+            }
         }
     })?;
-    let Some(last) = last else {
+    if !plastic {
         return Err(ReplayError::Episode(EpisodeError::Invalid(format!(
             "robot.brain: a {} brain has no plastic weights (use a hebbian brain)",
             robot.brain.kind()
         ))));
-    };
+    }
     // times beyond the episode take the final weights
     Ok(snapshots
         .into_iter()
-        .map(|s| s.unwrap_or_else(|| last.clone()))
+        .map(|s| s.or_else(|| last.clone()).unwrap_or_default())
         .collect())
 }
 

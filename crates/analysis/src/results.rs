@@ -100,6 +100,9 @@ pub struct GenerationRow {
     pub population_median: f64,
     /// Best fitness of the population after the generation.
     pub population_best: f64,
+    /// Size |G| = neurons + edges of the best graph genotype (`best_size`; NaN for other
+    /// genotypes).
+    pub best_size: f64,
 }
 
 /// One population member of a snapshot.
@@ -132,9 +135,16 @@ pub struct SnapshotRow {
     /// Why the evaluation failed.
     #[serde(default)]
     pub error: Option<String>,
-    /// The genotype.
-    #[serde(default)]
+    /// The genotype when it is a flat vector; empty for other genotypes (graphs), which
+    /// analyses that replay snapshots skip.
+    #[serde(default, deserialize_with = "flat_or_empty")]
     pub genotype: Vec<f64>,
+}
+
+/// A flat genotype, or nothing for a genotype of another shape.
+fn flat_or_empty<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<Vec<f64>, D::Error> {
+    let value = serde_json::Value::deserialize(deserializer)?;
+    Ok(serde_json::from_value(value).unwrap_or_default())
 }
 
 impl SnapshotRow {
@@ -261,6 +271,7 @@ pub fn read_generations(path: &Path) -> Result<Vec<GenerationRow>, ResultsError>
             best_fitness: num("best_fitness"),
             population_median: num("population_median"),
             population_best: num("population_best"),
+            best_size: num("best_size"),
         });
     }
     Ok(rows)
@@ -456,6 +467,15 @@ mod tests {
         let rows = read_snapshot(&run.final_snapshot().unwrap().1).unwrap();
         assert_eq!(rows[0].genotype, vec![0.1, -0.2]);
         assert_eq!(rows[0].body.as_deref(), Some("##/##"));
+        let graph = root.join("graph.jsonl");
+        let line = r#"{"generation": 3, "fitness": 0.5, "genotype": {"neurons": [], "edges": [], "parameters": []}}"#;
+        write(&graph, line);
+        let rows = read_snapshot(&graph).unwrap();
+        assert!(
+            rows[0].genotype.is_empty(),
+            "a graph genotype reads as no flat genotype"
+        );
+        assert_eq!(rows[0].fitness, Some(0.5));
         assert_eq!(exps[0].fitness_kind(), "velocity");
         assert_eq!(exps[0].run_label(run), format!("{}/run-00", root.join("a").display()));
         assert_eq!(run.files().best_robot(), root.join("a/run-00/best.robot.json"));

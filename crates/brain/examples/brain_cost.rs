@@ -24,6 +24,8 @@ fn main() {
         "hebbian",
         "hebbian:incoming",
         "hebbian:l2",
+        "graph",
+        "graph:37",
     ];
     let brains: Vec<&str> = if args.len() > 2 {
         args[2..].iter().map(String::as_str).collect()

@@ -18,4 +18,20 @@ pub trait Controller: Send {
     fn attention(&self) -> Option<(usize, &[f64])> {
         None
     }
+    /// The neurons and edges of a graph brain with the neurons' outputs after the last step, for
+    /// drawing; `None` for other brains. Default: `None`.
+    fn graph(&self) -> Option<GraphView<'_>> {
+        None
+    }
+}
+
+/// What a graph brain shows of itself ([`Controller::graph`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GraphView<'a> {
+    /// Each neuron's voxel (grid order index) and kind (0 sensing, 1 hidden, 2 actuator).
+    pub neurons: &'a [(usize, u8)],
+    /// Edges as (source, target, weight).
+    pub edges: &'a [(usize, usize, f64)],
+    /// Each neuron's output after the last step.
+    pub outputs: &'a [f64],
 }

@@ -1,6 +1,7 @@
 //! The five topology operators of the self-organizing controller (thesis §4.1,
 //! thesis-code-facts.md §4.3–4.4) on a [`GraphSpec`] with its neurons listed: add a node, remove
-//! a node, add an edge, remove an edge, mutate an edge. Every operator returns a valid graph: no
+//! a node, add an edge, remove an edge, mutate an edge; and the sixth of the "resume" protocol
+//! (§4.5), remove an edge crossing modules. Every operator returns a valid graph: no
 //! edge into a sensing neuron or out of an actuator, no edge longer than `max_dist` (voxel cells,
 //! Euclidean), no hidden neuron left without edges.
 //!
@@ -9,11 +10,14 @@
 //! [1, 1], modular [10, 1], unmodular [1, 10]).
 
 use crate::controllers::graph::{EdgeSpec, GraphSpec, NeuronSpec};
+use crate::graph_modules::ModuleMap;
 use crate::Activation;
 use rand::Rng;
+use serde::{Deserialize, Serialize};
 
 /// The operators, with the thesis' probabilities ([`THESIS_OPERATORS`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Operator {
     /// A sigmoid hidden neuron between a candidate pair, with edges source → new → target.
     AddNode,
@@ -23,8 +27,28 @@ pub enum Operator {
     AddEdge,
     /// A random edge goes; isolated hidden neurons are pruned.
     RemoveEdge,
-    /// One random edge: weight and bias += N(0, 0.7²).
+    /// One random edge: weight and bias += N(0, σ²) (thesis σ = 0.7).
     MutateEdge,
+    /// A random edge whose ends lie in different modules goes; isolated hidden neurons are
+    /// pruned (the "resume" protocol, thesis-code-facts.md §4.5).
+    RemoveCrossingEdge,
+}
+
+impl Operator {
+    /// Every operator with its name in experiment files.
+    pub const NAMED: [(&'static str, Operator); 6] = [
+        ("add_node", Operator::AddNode),
+        ("remove_node", Operator::RemoveNode),
+        ("add_edge", Operator::AddEdge),
+        ("remove_edge", Operator::RemoveEdge),
+        ("mutate_edge", Operator::MutateEdge),
+        ("remove_crossing_edge", Operator::RemoveCrossingEdge),
+    ];
+
+    /// Its name in experiment files.
+    pub fn name(self) -> &'static str {
+        Self::NAMED.iter().find(|n| n.1 == self).map_or("?", |n| n.0)
+    }
 }
 
 /// The thesis' operator probabilities (they sum to 1).
@@ -36,18 +60,59 @@ pub const THESIS_OPERATORS: [(Operator, f64); 5] = [
     (Operator::MutateEdge, 0.5),
 ];
 
-/// Standard deviation of "mutate edge".
+/// Standard deviation of "mutate edge" in the thesis.
 pub const EDGE_SIGMA: f64 = 0.7;
 
-/// Where new edges may go.
-#[derive(Debug, Clone)]
+/// Where new edges may go, and how far edges mutate.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Topology {
-    /// Longest edge, in voxel cells (minimal 0, hopping 1, full ∞).
+    /// Longest edge, in voxel cells (minimal 0, hopping 1, full ∞; `"inf"` in JSON).
+    #[serde(with = "distance")]
     pub max_dist: f64,
     /// Candidate weights [within a module, crossing modules].
     pub omega: [f64; 2],
-    /// The module of a grid cell (x, y); `None`: every pair is within.
-    pub module_of: Option<fn(usize, usize) -> usize>,
+    /// The modules of the body; `None`: every pair is within.
+    pub modules: Option<ModuleMap>,
+    /// Standard deviation of "mutate edge".
+    pub sigma: f64,
+}
+
+impl Topology {
+    /// Whether two cells lie in the same module.
+    fn within(&self, a: (usize, usize), b: (usize, usize)) -> bool {
+        self.modules.as_ref().is_none_or(|m| m.same(a, b))
+    }
+}
+
+/// A distance that may be ∞, as a number or `"inf"` (JSON has no infinity, and checkpoints hold
+/// topologies).
+mod distance {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(d: &f64, s: S) -> Result<S::Ok, S::Error> {
+        if d.is_infinite() && *d > 0.0 {
+            s.serialize_str("inf")
+        } else {
+            s.serialize_f64(*d)
+        }
+    }
+
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum Written {
+        Number(f64),
+        Text(String),
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        match Written::deserialize(d)? {
+            Written::Number(x) => Ok(x),
+            Written::Text(t) if t == "inf" => Ok(f64::INFINITY),
+            Written::Text(t) => Err(serde::de::Error::custom(format!(
+                "expected a distance or \"inf\", got \"{t}\""
+            ))),
+        }
+    }
 }
 
 /// Applies `op` to `graph` (neurons listed); returns the new graph. Operators that find nothing
@@ -100,8 +165,22 @@ pub fn apply<R: Rng>(graph: &GraphSpec, op: Operator, topology: &Topology, rng: 
         Operator::MutateEdge => {
             if !g.edges.is_empty() {
                 let k = rng.random_range(0..g.edges.len());
-                g.parameters[2 * k] += EDGE_SIGMA * gaussian(rng);
-                g.parameters[2 * k + 1] += EDGE_SIGMA * gaussian(rng);
+                g.parameters[2 * k] += topology.sigma * gaussian(rng);
+                g.parameters[2 * k + 1] += topology.sigma * gaussian(rng);
+            }
+        }
+        Operator::RemoveCrossingEdge => {
+            let crossing: Vec<usize> = (0..g.edges.len())
+                .filter(|&k| !topology.within(g.neurons[g.edges[k].from].cell(), g.neurons[g.edges[k].to].cell()))
+                .collect();
+            if !crossing.is_empty() {
+                let k = crossing[rng.random_range(0..crossing.len())];
+                let mut index = 0;
+                remove_edges(&mut g, |_| {
+                    index += 1;
+                    index - 1 == k
+                });
+                prune(&mut g);
             }
         }
     }
@@ -138,6 +217,8 @@ fn pick_pair<R: Rng>(g: &GraphSpec, t: &Topology, near: Option<(usize, usize)>, 
             (cx as f64 - x as f64).hypot(cy as f64 - y as f64) <= t.max_dist
         })
     };
+    let mut existing: Vec<(usize, usize)> = g.edges.iter().map(|e| (e.from, e.to)).collect();
+    existing.sort_unstable();
     let mut candidates: Vec<(usize, usize, f64)> = Vec::new();
     for from in (0..n).filter(|&i| !matches!(g.neurons[i], NeuronSpec::Actuator { .. }) && near_ok(i)) {
         for to in (0..n).filter(|&j| !matches!(g.neurons[j], NeuronSpec::Sensing { .. }) && near_ok(j)) {
@@ -145,13 +226,10 @@ fn pick_pair<R: Rng>(g: &GraphSpec, t: &Topology, near: Option<(usize, usize)>, 
                 continue;
             }
             // node addition puts a neuron between them, so an existing edge does not matter
-            if near.is_none() && g.edges.iter().any(|e| e.from == from && e.to == to) {
+            if near.is_none() && existing.binary_search(&(from, to)).is_ok() {
                 continue;
             }
-            let within = t.module_of.is_none_or(|m| {
-                let ((fx, fy), (tx, ty)) = (g.neurons[from].cell(), g.neurons[to].cell());
-                m(fx, fy) == m(tx, ty)
-            });
+            let within = t.within(g.neurons[from].cell(), g.neurons[to].cell());
             let weight = if within { t.omega[0] } else { t.omega[1] };
             if weight > 0.0 {
                 candidates.push((from, to, weight));
@@ -190,7 +268,7 @@ fn remove_edges(g: &mut GraphSpec, mut gone: impl FnMut(&EdgeSpec) -> bool) {
 }
 
 /// Removes hidden neurons without edges and renumbers the edges.
-fn prune(g: &mut GraphSpec) {
+pub(crate) fn prune(g: &mut GraphSpec) {
     let used: Vec<bool> = (0..g.neurons.len())
         .map(|i| !matches!(g.neurons[i], NeuronSpec::Hidden { .. }) || g.edges.iter().any(|e| e.from == i || e.to == i))
         .collect();

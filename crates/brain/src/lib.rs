@@ -42,7 +42,9 @@
 mod controller;
 pub mod controllers;
 mod error;
+pub mod graph_modules;
 pub mod graph_ops;
+pub mod graph_transfer;
 mod kind;
 pub mod mlp;
 mod short_form;
@@ -51,7 +53,7 @@ mod spec;
 mod testing;
 mod validation;
 
-pub use controller::Controller;
+pub use controller::{Controller, GraphView};
 pub use controllers::attention::{AttentionController, AttentionSpec};
 pub use controllers::centralized_mlp::{CentralizedMlpController, MlpSpec};
 pub use controllers::constant::{ConstantController, ConstantSpec};

@@ -7,16 +7,13 @@ use proptest::prelude::*;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use vsrlab_body::Morphology;
-use vsrlab_brain::graph_ops::{apply, draw, Operator, Topology, THESIS_OPERATORS};
+use vsrlab_brain::graph_modules::ModuleMap;
+use vsrlab_brain::graph_ops::{apply, draw, Operator, Topology, EDGE_SIGMA, THESIS_OPERATORS};
 use vsrlab_brain::{BrainKind, GraphSpec, NeuronSpec};
 
 /// The thesis' biped modules: column 0, column 3, the middle columns.
-fn biped_module(x: usize, _y: usize) -> usize {
-    match x {
-        0 => 0,
-        3 => 1,
-        _ => 2,
-    }
+fn biped_modules() -> ModuleMap {
+    ModuleMap::parse("legs-torso", &Morphology::named("biped-4x3").unwrap()).unwrap()
 }
 
 proptest! {
@@ -33,12 +30,12 @@ proptest! {
         let m = Morphology::named("biped-4x3").unwrap();
         let rpv = vec![2; 10];
         let (neurons, edges) = GraphSpec::initial(&m, &rpv);
-        let mut g = GraphSpec { parameters: vec![0.1; 2 * edges.len()], neurons, edges };
-        let topology = Topology { max_dist, omega, module_of: Some(biped_module) };
+        let mut g = GraphSpec { parameters: vec![0.1; 2 * edges.len()], neurons, edges, grow: 0 };
+        let topology = Topology { max_dist, omega, modules: Some(biped_modules()), sigma: EDGE_SIGMA };
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let uniform_ops = [
             (Operator::AddNode, 1.0), (Operator::RemoveNode, 1.0), (Operator::AddEdge, 1.0),
-            (Operator::RemoveEdge, 1.0), (Operator::MutateEdge, 1.0),
+            (Operator::RemoveEdge, 1.0), (Operator::MutateEdge, 1.0), (Operator::RemoveCrossingEdge, 1.0),
         ];
         for step in 0..steps {
             let op = draw(if uniform { &uniform_ops } else { &THESIS_OPERATORS }, &mut rng);
@@ -73,12 +70,14 @@ fn the_modularity_bias_favours_its_kind_of_edge() {
         parameters: vec![0.0; 2 * edges.len()],
         neurons,
         edges,
+        grow: 0,
     };
     let crossing_share = |omega: [f64; 2]| {
         let t = Topology {
             max_dist: f64::INFINITY,
             omega,
-            module_of: Some(biped_module),
+            modules: Some(biped_modules()),
+            sigma: EDGE_SIGMA,
         };
         let mut rng = ChaCha8Rng::seed_from_u64(1);
         let mut crossing = 0;
@@ -86,7 +85,7 @@ fn the_modularity_bias_favours_its_kind_of_edge() {
             let added = apply(&g, Operator::AddEdge, &t, &mut rng);
             let e = added.edges.last().unwrap();
             let (a, b) = (added.neurons[e.from].cell(), added.neurons[e.to].cell());
-            crossing += usize::from(biped_module(a.0, a.1) != biped_module(b.0, b.1));
+            crossing += usize::from(!biped_modules().same(a, b));
         }
         crossing as f64 / 2000.0
     };

@@ -48,6 +48,7 @@ fn graph(draws: &[u32], params: &[f64]) -> GraphSpec {
         neurons,
         edges,
         parameters,
+        grow: 0,
     }
 }
 
@@ -74,6 +75,7 @@ proptest! {
             neurons,
             edges: g.edges.iter().map(|e| EdgeSpec { from: new(e.from), to: new(e.to) }).collect(),
             parameters: g.parameters.clone(),
+            grow: 0,
         };
         let mut a = g.controller(&m, &[2; 10]).unwrap();
         let mut b = shuffled.controller(&m, &[2; 10]).unwrap();

@@ -6,6 +6,7 @@
 mod analyze;
 mod bench;
 mod label;
+mod modules;
 mod overrides;
 mod plasticity;
 mod reassess;
@@ -44,6 +45,13 @@ enum Command {
     Reassess(reassess::ReassessArgs),
     /// Frozen-weight test and weight histograms of evolved Hebbian robots (docs/ch5.3.md).
     Plasticity(plasticity::PlasticityArgs),
+    /// Discover the most compact module of every evolved graph brain (docs/ch4.1.md).
+    Modules(modules::ModulesArgs),
+    /// Reassemble evolved graph brains from two runs' robots and write their re-optimisation
+    /// experiment (docs/ch4.1.md).
+    Reassemble(modules::ReassembleArgs),
+    /// Transferability ρ and edges cut η of re-optimised reassembled robots, per setting.
+    Transferability(modules::TransferabilityArgs),
     /// Print a shell completion script, e.g. `vsrlab completions bash > ~/.local/share/bash-completion/completions/vsrlab`.
     Completions {
         /// The shell: bash, zsh, fish, elvish or powershell.
@@ -62,6 +70,9 @@ fn main() -> ExitCode {
         Command::Label(a) => label::run(a),
         Command::Reassess(a) => reassess::run(a),
         Command::Plasticity(a) => plasticity::run(a),
+        Command::Modules(a) => modules::run_modules(a),
+        Command::Reassemble(a) => modules::run_reassemble(a),
+        Command::Transferability(a) => modules::run_transferability(a),
         Command::Completions { shell } => {
             clap_complete::generate(shell, &mut Cli::command(), "vsrlab", &mut std::io::stdout());
             Ok(())

@@ -5,8 +5,8 @@ use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use vsrlab_experiment::memory::{gib, MemoryEstimate};
-use vsrlab_experiment::runner::{run_experiment, worker_threads, Flow, Observer, Progress, RunOptions, RunSummary};
-use vsrlab_experiment::{config, Experiment, RobotEvaluator};
+use vsrlab_experiment::runner::{run_configured, worker_threads, Flow, Observer, Progress, RunOptions, RunSummary};
+use vsrlab_experiment::{config, graph_genotype, Experiment, RobotEvaluator};
 
 /// Arguments of `vsrlab run`.
 #[derive(Args, Debug)]
@@ -231,24 +231,37 @@ pub fn run(a: RunArgs) -> Result<(), String> {
 /// Runs one experiment into `out`.
 fn run_one(experiment: &Experiment, out: &Path, a: &RunArgs) -> Result<(), String> {
     let name = experiment.name.clone().unwrap_or_else(|| "experiment".to_string());
-    let evaluator = RobotEvaluator::new(experiment).map_err(|e| e.to_string())?;
     let options = RunOptions {
         threads: a.threads.unwrap_or(0),
         resume: a.resume,
         memory_limit: Some((a.max_memory_gib * (1u64 << 30) as f64).min(u64::MAX as f64) as u64),
     };
     let threads = worker_threads(options.threads);
-    let estimate = MemoryEstimate::of(experiment, evaluator.genotype_length(), threads);
+    let (genes, genotype) = match &experiment.genotype {
+        None => {
+            let genes = RobotEvaluator::new(experiment)
+                .map_err(|e| e.to_string())?
+                .genotype_length();
+            (genes, format!("{genes} genes per genotype"))
+        }
+        Some(graph) => {
+            let (neurons, edges) = graph_genotype::start_size(experiment, graph)?;
+            (
+                2 * edges,
+                format!("graph genotypes from {neurons} neurons and {edges} edges"),
+            )
+        }
+    };
+    let estimate = MemoryEstimate::of(experiment, genes, threads);
     eprintln!(
-        "{name}: {} run(s), {} genes per genotype, about {} per run, output in {}",
+        "{name}: {} run(s), {genotype}, about {} per run, output in {}",
         experiment.runs,
-        evaluator.genotype_length(),
         gib(estimate.bytes),
         out.display()
     );
     let start = Instant::now();
     let mut bars = Bars::new(experiment.runs, a.log_every);
-    let result = run_experiment(experiment, &evaluator, out, &options, &mut bars);
+    let result = run_configured(experiment, out, &options, &mut bars);
     bars.overall.finish_and_clear();
     let summaries = result.map_err(|e| e.to_string())?;
     let best = summaries.iter().filter_map(|s| s.best_fitness).fold(f64::NAN, f64::max);

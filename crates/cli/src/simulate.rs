@@ -19,7 +19,8 @@ pub struct SimulateArgs {
     /// `phase-grid`, `mlp[:<hidden,…>|none]`, `distributed-mlp[:<signals>]`,
     /// `distributed-mlp-hetero[:<signals>]`, `step:<period>:<brain>`, `smoothed:<speed>:<brain>`,
     /// `hebbian[:full|incoming|dew|l2]` (Hebbian ABCD rules, docs/ch5.3.md), `attention[:hetero|slow]`
-    /// and `local-mlp[:<signals>]` (self-attention and its baselines, docs/ch4.2.md).
+    /// and `local-mlp[:<signals>]` (self-attention and its baselines, docs/ch4.2.md),
+    /// `graph[:<added hidden neurons>]` (the self-organizing graph controller, docs/ch4.1.md).
     /// Brains with parameters get seeded random ones in [-1, 1]; evolved ones come in robot files.
     #[arg(long, default_value = "phase")]
     pub brain: String,
@@ -58,9 +59,10 @@ pub struct SimulateArgs {
     pub video: Option<PathBuf>,
     /// What videos draw besides the world and the robot: a comma-separated list of ticks (distance
     /// marks on the ground), trail (the centre's path), sensors, lidar, attention (each voxel's
-    /// attention matrix, attention brains, in place of its sensors), overlay (time, distance,
-    /// velocity), legend (voxel colours); or all, or none.
-    #[arg(long, default_value = "ticks,sensors,lidar,attention,overlay,legend")]
+    /// attention matrix, attention brains, in place of its sensors), graph (a graph brain's
+    /// neurons and edges, in place of the sensors), overlay (time, distance, velocity), legend
+    /// (voxel colours); or all, or none.
+    #[arg(long, default_value = "ticks,sensors,lidar,attention,graph,overlay,legend")]
     pub draw: String,
     /// Replay a robot file (JSON) instead of --body/--sensors/--brain/--preset.
     #[arg(long, conflicts_with_all = ["body", "sensors", "brain", "preset"])]

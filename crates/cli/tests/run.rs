@@ -286,3 +286,31 @@ fn a_sweep_runs_every_setting_into_its_folder_and_analyze_compares_them() {
     let csv = std::fs::read_to_string(analysis.join("summary.csv")).unwrap();
     assert!(csv.contains("grid-1.0") && csv.contains("grid-2.0"), "{csv}");
 }
+
+#[test]
+fn the_graph_chapter_experiments_validate_and_resume_names_its_missing_robot() {
+    let (resume, mut files): (Vec<String>, Vec<String>) = shipped_toml_files(&["experiments/ch4.1"])
+        .into_iter()
+        .partition(|f| f.ends_with("resume.toml"));
+    files.sort();
+    let args: Vec<&str> = ["validate", "--brief", "--threads", "1"]
+        .into_iter()
+        .chain(files.iter().map(String::as_str))
+        .collect();
+    let out = vsrlab(&args);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    // 3 bodies × 2 operator sets, 2 × 3 modularity biases, 2 reduced, 3 reduced donors
+    assert_eq!(text.matches(": ok; ").count(), 6 + 6 + 2 + 3, "{text}");
+    assert!(
+        text.contains("graph genotypes") || text.contains("genes per genotype"),
+        "{text}"
+    );
+    // the resume protocol reads a run's best robot, not made yet
+    let out = vsrlab(&["validate", "--brief", &resume[0]]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("genotype.initial") && err.contains("best.robot.json"),
+        "{err}"
+    );
+}

@@ -97,6 +97,15 @@ pub trait Evaluator<G>: Sync {
     fn save_robot(&self, _genotype: &G, _path: &Path, _note: &str) -> Result<(), String> {
         Ok(())
     }
+    /// Names of the per-genotype statistics logged for the best genotype of every generation
+    /// (`best_<name>` columns of `generations.csv`); none by default.
+    fn genotype_columns(&self) -> &'static [&'static str] {
+        &[]
+    }
+    /// The statistics named by [`Evaluator::genotype_columns`], for one genotype.
+    fn genotype_stats(&self, _genotype: &G) -> Vec<f64> {
+        Vec::new()
+    }
     /// Checks that a genotype read from a file (a checkpoint) fits the representation, without
     /// evaluating it; accepts everything by default.
     fn check(&self, _genotype: &G) -> Result<(), String> {
@@ -241,6 +250,14 @@ impl<G, M: Mapper<G>> Evaluator<G> for RobotEvaluator<M> {
 
     fn failure(&self, seed: u64, error: String) -> Evaluated {
         self.failed_with(seed, None, error, Instant::now())
+    }
+
+    fn genotype_columns(&self) -> &'static [&'static str] {
+        self.mapper.stats_columns()
+    }
+
+    fn genotype_stats(&self, genotype: &G) -> Vec<f64> {
+        self.mapper.stats(genotype)
     }
 
     /// The genotype must become a robot (right length, finite genes, a body).

@@ -45,6 +45,7 @@ pub mod cpu_time;
 pub mod evaluator;
 pub mod features;
 pub mod genotype;
+pub mod graph_genotype;
 pub mod memory;
 pub mod optimizers;
 pub mod output_lock;

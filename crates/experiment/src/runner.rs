@@ -28,7 +28,7 @@
 
 use crate::checkpoint::{self, content_hash, Checkpoint, RunState, SnapshotEntry};
 use crate::config::{Experiment, OutputConfig, StopConfig};
-use crate::evaluator::{Evaluated, Evaluator, Record};
+use crate::evaluator::{Evaluated, Evaluator, Record, RobotEvaluator};
 use crate::genotype::Genotype;
 use crate::memory::{MemoryEstimate, DEFAULT_MEMORY_LIMIT};
 use crate::optimizers::{AnyOptimizer, SearchOptimizer};
@@ -325,6 +325,23 @@ pub fn run_experiment(
     run_search(&Plan::of(experiment), &new_optimizer, evaluator, out, options, observer)
 }
 
+/// Runs every run of an experiment file into `out`, whatever its genotype: flat vectors with the
+/// optimizer its `[optimizer]` table names, or the graphs of `[genotype] kind = "graph"`.
+pub fn run_configured(
+    experiment: &Experiment,
+    out: &Path,
+    options: &RunOptions,
+    observer: &mut dyn Observer,
+) -> Result<Vec<RunSummary>, RunError> {
+    match &experiment.genotype {
+        None => {
+            let evaluator = RobotEvaluator::new(experiment).map_err(|e| RunError::Other(e.to_string()))?;
+            run_experiment(experiment, &evaluator, out, options, observer)
+        }
+        Some(graph) => crate::graph_genotype::run(experiment, graph, out, options, observer),
+    }
+}
+
 /// Runs every run of a plan into `out` with optimizers of any genotype type: `new_optimizer`
 /// builds the optimizer of a run from its seed.
 pub fn run_search<G: Genotype, O: SearchOptimizer<G>>(
@@ -548,10 +565,15 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
                 next_snapshot: every,
                 ..RunState::default()
             };
+            let extra: String = evaluator
+                .genotype_columns()
+                .iter()
+                .map(|c| format!(",best_{c}"))
+                .collect();
             (
                 optimizer,
                 state,
-                format!("{GENERATIONS_HEADER}\n"),
+                format!("{GENERATIONS_HEADER}{extra}\n"),
                 format!("{TIMINGS_HEADER}\n"),
             )
         }
@@ -647,6 +669,18 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
             optimizer.species().map_or(String::new(), |s| s.to_string()),
             optimizer.archive_cells().map_or(String::new(), |s| s.to_string()),
         );
+        // columns of the best genotype's own statistics (graph size, …), when it has any
+        if !evaluator.genotype_columns().is_empty() {
+            let stats = optimizer
+                .best()
+                .map(|b| evaluator.genotype_stats(&b.genotype))
+                .unwrap_or_default();
+            csv.pop(); // the row's newline
+            for k in 0..evaluator.genotype_columns().len() {
+                let _ = write!(csv, ",{}", num(stats.get(k).copied().unwrap_or(f64::NAN)));
+            }
+            csv.push('\n');
+        }
         drop(population);
         write_file(&csv_path, csv.as_bytes())?;
 

@@ -17,7 +17,7 @@ const TIMED_EVALUATIONS: usize = 3;
 pub struct Validation {
     /// The resolved configuration, as `experiment.toml` will hold it.
     pub resolved: String,
-    /// Genes per genotype.
+    /// Genes per genotype (a graph genotype: the starting graph's parameters, 2 per edge).
     pub genes: usize,
     /// The per-run memory estimate.
     pub memory: MemoryEstimate,
@@ -36,15 +36,24 @@ pub struct Validation {
 /// Checks an experiment (already parsed and validated) and estimates its cost on `threads`
 /// threads (0: every core). Runs a few evaluations of random genotypes.
 pub fn validate(experiment: &Experiment, threads: usize) -> Result<Validation, String> {
-    let evaluator = RobotEvaluator::new(experiment).map_err(|e| e.to_string())?;
-    let genes = evaluator.genotype_length();
     let threads = crate::runner::worker_threads(threads);
-    let mut rng = ChaCha8Rng::seed_from_u64(0);
     let start = Instant::now();
-    for _ in 0..TIMED_EVALUATIONS {
-        let genotype: Vec<f64> = (0..genes).map(|_| rng.random_range(-1.0..1.0)).collect();
-        let _ = Evaluator::<Vec<f64>>::evaluate(&evaluator, &genotype, 0);
-    }
+    let genes = match &experiment.genotype {
+        None => {
+            let evaluator = RobotEvaluator::new(experiment).map_err(|e| e.to_string())?;
+            let genes = evaluator.genotype_length();
+            let mut rng = ChaCha8Rng::seed_from_u64(0);
+            for _ in 0..TIMED_EVALUATIONS {
+                let genotype: Vec<f64> = (0..genes).map(|_| rng.random_range(-1.0..1.0)).collect();
+                let _ = Evaluator::<Vec<f64>>::evaluate(&evaluator, &genotype, 0);
+            }
+            genes
+        }
+        Some(graph) => {
+            crate::graph_genotype::timed_evaluations(experiment, graph, TIMED_EVALUATIONS)?;
+            2 * crate::graph_genotype::start_size(experiment, graph)?.1
+        }
+    };
     let seconds_per_evaluation = start.elapsed().as_secs_f64() / TIMED_EVALUATIONS as f64;
     let kind = experiment.optimizer.kind();
     let stop = &experiment.stop;

@@ -171,7 +171,8 @@ impl<'a> Scene<'a> {
             pm.stroke_path(&path, &paint(color), &stroke(width), Transform::identity(), None);
         }
         let attention = self.opts.draw_attention && t.attention_side > 0;
-        if self.opts.draw_sensors && !attention {
+        let graph = self.opts.draw_graph && !t.graph_neurons.is_empty();
+        if self.opts.draw_sensors && !attention && !graph {
             self.draw_sensors(pm, &view, step, polys);
         }
         if attention {
@@ -185,6 +186,19 @@ impl<'a> Scene<'a> {
                     crate::attention::draw_matrix(pm, (x0, y0), x1 - x0, t.attention_side, matrix);
                 }
             }
+        }
+        if graph {
+            let px = |p: Vec2| view.to_pixel(p, self.opts.width);
+            let polys: Vec<&[Vec2]> = polys.iter().collect();
+            crate::graph::draw_graph(
+                pm,
+                &polys,
+                &t.graph_neurons,
+                &t.graph_edges,
+                t.graph_outputs_at(step),
+                px,
+                self.anti_alias,
+            );
         }
         if self.opts.draw_lidar {
             self.draw_lidar(pm, &view, step, polys);

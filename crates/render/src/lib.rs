@@ -22,6 +22,7 @@ mod camera;
 mod draw;
 mod file;
 mod gif_out;
+mod graph;
 mod mp4_out;
 mod overlay;
 mod palette;
@@ -64,6 +65,9 @@ pub struct RenderOptions {
     /// Whether to draw each voxel's attention matrix (attention brains), in place of its sensor
     /// glyph.
     pub draw_attention: bool,
+    /// Whether to draw a graph brain's neurons and edges over the body (graph brains), in
+    /// place of the sensor glyphs.
+    pub draw_graph: bool,
 }
 
 impl Default for RenderOptions {
@@ -79,12 +83,22 @@ impl Default for RenderOptions {
             draw_legend: true,
             draw_trail: false,
             draw_attention: true,
+            draw_graph: true,
         }
     }
 }
 
 /// The layers `--draw` can name, in drawing order.
-pub const LAYERS: &[&str] = &["ticks", "trail", "sensors", "lidar", "attention", "overlay", "legend"];
+pub const LAYERS: &[&str] = &[
+    "ticks",
+    "trail",
+    "sensors",
+    "lidar",
+    "attention",
+    "graph",
+    "overlay",
+    "legend",
+];
 
 impl RenderOptions {
     /// The same options drawing exactly the layers named in `list` (comma-separated names from
@@ -101,6 +115,7 @@ impl RenderOptions {
                 "sensors" => o.draw_sensors = on,
                 "lidar" => o.draw_lidar = on,
                 "attention" => o.draw_attention = on,
+                "graph" => o.draw_graph = on,
                 "overlay" => o.draw_overlay = on,
                 _ => o.draw_legend = on,
             }

@@ -46,6 +46,9 @@ pub fn trace_from_positions(xs: &[f64]) -> Trace {
         damage: None,
         attention_side: 0,
         attention: Vec::new(),
+        graph_neurons: Vec::new(),
+        graph_edges: Vec::new(),
+        graph_outputs: Vec::new(),
     }
 }
 

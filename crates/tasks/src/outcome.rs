@@ -97,6 +97,16 @@ pub struct Trace {
     /// Attention matrices, `[step][unit][r][r]` (attention brains; empty otherwise).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub attention: Vec<f32>,
+    /// A graph brain's neurons: each one's unit and kind (0 sensing, 1 hidden, 2 actuator);
+    /// empty for other brains.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub graph_neurons: Vec<(usize, u8)>,
+    /// A graph brain's edges: (source, target, weight).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub graph_edges: Vec<(usize, usize, f32)>,
+    /// A graph brain's neuron outputs, `[step][neuron]`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub graph_outputs: Vec<f32>,
     /// When units broke and which ([`crate::Damage`]); absent without damage.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub damage: Option<DamageRecord>,
@@ -122,6 +132,14 @@ impl Trace {
         let r2 = self.attention_side * self.attention_side;
         let start = (step * self.voxels() + unit) * r2;
         (r2 > 0).then(|| self.attention.get(start..start + r2)).flatten()
+    }
+
+    /// A graph brain's neuron outputs at recorded step `step`, if recorded.
+    pub fn graph_outputs_at(&self, step: usize) -> Option<&[f32]> {
+        let n = self.graph_neurons.len();
+        (n > 0)
+            .then(|| self.graph_outputs.get(step * n..(step + 1) * n))
+            .flatten()
     }
 
     /// Whether unit `unit` is broken at recorded step `step`.

@@ -188,6 +188,14 @@ fn representation_error<E: std::fmt::Display>(field: &'static str) -> impl Fn(E)
 pub trait Mapper<G>: Send + Sync {
     /// The robot a genotype stands for.
     fn robot(&self, genotype: &G) -> Result<Box<dyn Robot>, EvaluationError>;
+    /// Names of statistics of a genotype worth logging (a graph's size, …); none by default.
+    fn stats_columns(&self) -> &'static [&'static str] {
+        &[]
+    }
+    /// The statistics named by [`Mapper::stats_columns`].
+    fn stats(&self, _genotype: &G) -> Vec<f64> {
+        Vec::new()
+    }
 }
 
 impl Mapper<Vec<f64>> for Representation {

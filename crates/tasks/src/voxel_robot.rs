@@ -119,6 +119,10 @@ impl Agent for VoxelAgent {
     fn describe(&mut self, trace: &mut Trace) {
         trace.side_length = self.vsr.params().side_length;
         trace.cells = self.vsr.voxels().iter().map(|v| v.cell).collect();
+        if let Some(g) = self.brain.graph() {
+            trace.graph_neurons = g.neurons.to_vec();
+            trace.graph_edges = g.edges.iter().map(|&(a, b, w)| (a, b, w as f32)).collect();
+        }
         for v in 0..self.vsr.voxel_count() {
             trace.readings_per_voxel.push(self.sensors.readings_per_voxel(v));
             self.domains.extend(self.sensors.domains(v));
@@ -139,6 +143,9 @@ impl Agent for VoxelAgent {
             trace.touching.push(s.touching);
         }
         trace.actuations.extend_from_slice(&self.actuations);
+        if let Some(g) = self.brain.graph() {
+            trace.graph_outputs.extend(g.outputs.iter().map(|&o| o as f32));
+        }
         if let Some((side, matrices)) = self.brain.attention() {
             trace.attention_side = side;
             trace.attention.extend(matrices.iter().map(|&a| a as f32));

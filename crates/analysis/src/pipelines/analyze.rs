@@ -5,7 +5,9 @@
 
 use super::best_robots::{best_csv, best_robots};
 use super::classifiers::{classifier_table, train_classifiers};
-use super::figures::{boxplot, descriptor_figure, fitness_figure, isi_figure, pca_figure, species_figure};
+use super::figures::{
+    boxplot, descriptor_figure, fitness_figure, graph_size_figure, isi_figure, pca_figure, species_figure,
+};
 use super::settings::{fitness_label, per_setting, settings_of, with_unit, Setting};
 use super::species::{isi_csv, species_over_time};
 use super::summary_page::SummaryPage;
@@ -113,6 +115,13 @@ pub fn analyze(
         &fitness_figure(&settings, &experiments, &with_unit(&fitness)),
         "best-so-far and population-median fitness vs evaluations, median ± sd across runs",
     )?;
+    if let Some(figure) = graph_size_figure(&settings, &experiments) {
+        a.figure(
+            "graph-size",
+            &figure,
+            "size |G| of the best controller graph vs evaluations, median ± sd across runs",
+        )?;
+    }
     let best = per_setting(&settings, &experiments, RunData::final_best);
     progress.note("replaying the best robot of every run…");
     let setups = read_setups(&experiments, setups, progress);

@@ -47,6 +47,34 @@ pub(crate) fn fitness_figure(settings: &[Setting], experiments: &[ExperimentData
     }
 }
 
+/// The size |G| of the best graph vs evaluations, median ± sd across runs; `None` when no run
+/// logs one (genotypes other than graphs).
+pub(crate) fn graph_size_figure(settings: &[Setting], experiments: &[ExperimentData]) -> Option<BandFigure> {
+    let curves_of = |s: &Setting| -> Vec<Vec<(f64, f64)>> {
+        s.runs(experiments)
+            .map(|(_, r)| {
+                r.generations
+                    .iter()
+                    .map(|g| (g.evaluations as f64, g.best_size))
+                    .filter(|p| p.1.is_finite())
+                    .collect()
+            })
+            .filter(|c: &Vec<(f64, f64)>| !c.is_empty())
+            .collect()
+    };
+    if settings.iter().all(|s| curves_of(s).is_empty()) {
+        return None;
+    }
+    Some(BandFigure {
+        note: crate::plot::band::median_sd_note(),
+        title: "Size of the best controller graph during evolution".into(),
+        legend_title: "setting".into(),
+        panels: vec![evaluations_panel("|G| = neurons + edges", "|G|", settings, |s| {
+            curves_of(s)
+        })],
+    })
+}
+
 /// ISI of species, morphology and behaviour classes vs evaluations, median ± sd across runs.
 pub(crate) fn isi_figure(settings: &[Setting], runs: &[RunSpecies]) -> BandFigure {
     let panel = |title: &str, pick: &dyn Fn(&SnapshotIsi) -> f64| {

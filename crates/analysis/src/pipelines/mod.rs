@@ -14,7 +14,9 @@ mod classifiers;
 mod figures;
 pub mod label;
 mod label_page;
+pub mod modules;
 pub mod plasticity;
+pub mod reassemble;
 pub mod reassess;
 mod settings;
 mod species;
@@ -23,7 +25,11 @@ mod summary_page;
 pub use analyze::{analyze, AnalysisReport, AnalyzeOptions, FigureNote};
 pub use classes::{parse_classes, THESIS_BEHAVIOURS, THESIS_SHAPES};
 pub use label::{label, LabelOptions, LabelReport, VideoSpec, VideoWriter};
+pub use modules::{modules, ModulesOptions, ModulesReport};
 pub use plasticity::{plasticity, PlasticityOptions, PlasticityReport};
+pub use reassemble::{
+    reassemble, transferability, ReassembleOptions, ReassembleReport, TransferabilityOptions, TransferabilityReport,
+};
 pub use reassess::{reassess, ReassessOptions, ReassessReport};
 
 use crate::error::AnalysisError;

@@ -110,7 +110,19 @@ pub struct GraphSpec {
     pub edges: Vec<EdgeSpec>,
     /// `[w, b]` per edge.
     pub parameters: Vec<f64>,
+    /// With no neurons listed: grow the initial graph by this many "add node" operations (a
+    /// sigmoid hidden neuron between a random pair, anywhere in the body, fixed seed): a synthetic
+    /// evolved-looking graph of |G| = initial + 3·grow, for benchmarks and demos.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub grow: usize,
 }
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
+}
+
+/// Seed of [`GraphSpec::grow`]'s operations.
+const GROW_SEED: u64 = 4_1;
 
 impl GraphSpec {
     /// The thesis' initial graph for a body whose voxels have these readings counts: sensing
@@ -128,13 +140,33 @@ impl GraphSpec {
         (neurons, edges)
     }
 
-    /// The neurons and edges in force for a body: the listed ones, or the initial graph.
-    fn graph(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> (Vec<NeuronSpec>, Vec<EdgeSpec>) {
-        if self.neurons.is_empty() {
-            Self::initial(morphology, readings_per_voxel)
-        } else {
-            (self.neurons.clone(), self.edges.clone())
+    /// The neurons and edges in force for a body: the listed ones, or the initial graph (grown
+    /// by `grow` additions).
+    pub fn topology(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> (Vec<NeuronSpec>, Vec<EdgeSpec>) {
+        if !self.neurons.is_empty() {
+            return (self.neurons.clone(), self.edges.clone());
         }
+        let (neurons, edges) = Self::initial(morphology, readings_per_voxel);
+        if self.grow == 0 {
+            return (neurons, edges);
+        }
+        let mut g = GraphSpec {
+            parameters: vec![0.0; 2 * edges.len()],
+            neurons,
+            edges,
+            grow: 0,
+        };
+        let anywhere = crate::graph_ops::Topology {
+            max_dist: f64::INFINITY,
+            omega: [1.0, 1.0],
+            modules: None,
+            sigma: 0.0,
+        };
+        let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(GROW_SEED);
+        for _ in 0..self.grow.min(MAX_GRAPH_ITEMS / 3) {
+            g = crate::graph_ops::apply(&g, crate::graph_ops::Operator::AddNode, &anywhere, &mut rng);
+        }
+        (g.neurons, g.edges)
     }
 
     /// Checks the graph against the body; errors name the neuron or edge.
@@ -148,6 +180,9 @@ impl GraphSpec {
         check_voxels(morphology, readings_per_voxel)?;
         check_at_most("neurons", "neurons", neurons.len(), MAX_GRAPH_ITEMS)?;
         check_at_most("edges", "edges", edges.len(), MAX_GRAPH_ITEMS)?;
+        if !self.neurons.is_empty() && self.grow > 0 {
+            return Err(invalid("grow", "grows the initial graph: leave the neurons out".into()));
+        }
         if self.neurons.is_empty() && !self.edges.is_empty() {
             return Err(invalid(
                 "edges",
@@ -224,7 +259,7 @@ impl BrainKind for GraphSpec {
     }
 
     fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
-        let (neurons, edges) = self.graph(morphology, readings_per_voxel);
+        let (neurons, edges) = self.topology(morphology, readings_per_voxel);
         self.check(morphology, readings_per_voxel, &neurons, &edges)?;
         Ok(2 * edges.len())
     }
@@ -249,7 +284,7 @@ impl GraphSpec {
         morphology: &Morphology,
         readings_per_voxel: &[usize],
     ) -> Result<GraphController, BrainError> {
-        let (neurons, edges) = self.graph(morphology, readings_per_voxel);
+        let (neurons, edges) = self.topology(morphology, readings_per_voxel);
         self.check(morphology, readings_per_voxel, &neurons, &edges)?;
         check_count("parameters", 2 * edges.len(), self.parameters.len())?;
         Ok(GraphController::new(
@@ -281,6 +316,9 @@ pub struct GraphController {
     incoming: Vec<(usize, f64, f64)>,
     /// Per voxel, its actuator neuron.
     actuator_of: Vec<Option<usize>>,
+    /// For drawing: each neuron's voxel and kind, and the edges with their weights.
+    layout: Vec<(usize, u8)>,
+    edges: Vec<(usize, usize, f64)>,
     previous: Vec<f64>,
     current: Vec<f64>,
 }
@@ -327,11 +365,29 @@ impl GraphController {
             .iter()
             .map(|&k| (edges[k].from, parameters[2 * k], parameters[2 * k + 1]))
             .collect();
+        let layout = neurons
+            .iter()
+            .map(|n| {
+                let kind = match n {
+                    NeuronSpec::Sensing { .. } => 0,
+                    NeuronSpec::Hidden { .. } => 1,
+                    NeuronSpec::Actuator { .. } => 2,
+                };
+                (voxel_of(n.cell()), kind)
+            })
+            .collect();
+        let edges = edges
+            .iter()
+            .enumerate()
+            .map(|(k, e)| (e.from, e.to, parameters[2 * k]))
+            .collect();
         GraphController {
             roles,
             starts,
             incoming,
             actuator_of,
+            layout,
+            edges,
             previous: vec![0.0; neurons.len()],
             current: vec![0.0; neurons.len()],
         }
@@ -346,6 +402,14 @@ impl GraphController {
 }
 
 impl Controller for GraphController {
+    fn graph(&self) -> Option<crate::controller::GraphView<'_>> {
+        Some(crate::controller::GraphView {
+            neurons: &self.layout,
+            edges: &self.edges,
+            outputs: &self.previous,
+        })
+    }
+
     fn reset(&mut self) {
         self.previous.fill(0.0);
         self.current.fill(0.0);
@@ -371,18 +435,23 @@ impl Controller for GraphController {
     }
 }
 
-/// `graph`: the initial graph of the body (thesis §4.1), parameters to be filled.
+/// `graph[:<grow>]`: the initial graph of the body (thesis §4.1), grown by `grow` node
+/// additions, parameters to be filled.
 pub const SHORT_FORM: ShortForm = ShortForm {
     name: "graph",
-    usage: "graph",
+    usage: "graph[:<added hidden neurons>]",
     parse: parse_short_form,
 };
 
 fn parse_short_form(argument: Option<&str>) -> Option<BrainSpec> {
-    match argument {
-        None => Some(BrainSpec::Graph(GraphSpec::default())),
-        Some(_) => None,
-    }
+    let grow = match argument {
+        None => 0,
+        Some(a) => crate::short_form::count(a)?,
+    };
+    Some(BrainSpec::Graph(GraphSpec {
+        grow,
+        ..GraphSpec::default()
+    }))
 }
 
 #[cfg(test)]
@@ -404,6 +473,27 @@ mod tests {
         assert_eq!(neurons.len(), 50);
         assert_eq!(edges[0], EdgeSpec { from: 0, to: 4 });
         assert_eq!(neurons[4], NeuronSpec::Actuator { x: 0, y: 0 });
+    }
+
+    #[test]
+    fn a_grown_graph_adds_a_neuron_and_two_edges_per_step_deterministically() {
+        let (m, rpv) = biped();
+        let spec = BrainSpec::parse("graph:37").unwrap();
+        // 40 + 2·37 edges
+        assert_eq!(spec.parameter_count(&m, &rpv).unwrap(), 2 * (40 + 74));
+        let BrainSpec::Graph(g) = &spec else { unreachable!() };
+        let (n1, e1) = g.topology(&m, &rpv);
+        let (n2, e2) = g.topology(&m, &rpv);
+        assert_eq!((n1.len(), e1.len()), (50 + 37, 40 + 74));
+        assert_eq!((n1, e1), (n2, e2));
+        let (neurons, edges) = GraphSpec::initial(&m, &rpv);
+        let listed = GraphSpec {
+            parameters: vec![0.0; 2 * edges.len()],
+            neurons,
+            edges,
+            grow: 3,
+        };
+        assert_invalid(&listed.build(&m, &rpv).err().unwrap(), "grow");
     }
 
     #[test]
@@ -430,6 +520,7 @@ mod tests {
             neurons,
             edges,
             parameters: vec![2.0, 0.0, 1.0, 0.5, 1.0, 0.0],
+            grow: 0,
         });
         let mut c = spec.build(&m, &[1, 1]).unwrap();
         let mut a = [0.0; 2];
@@ -475,6 +566,7 @@ mod tests {
             neurons: neurons.clone(),
             edges: edges.clone(),
             parameters: params.clone(),
+            grow: 0,
         };
         // a fixed permutation of the neuron indices, the edges in their order
         let n = neurons.len();
@@ -496,6 +588,7 @@ mod tests {
             neurons: shuffled_neurons,
             edges: shuffled_edges,
             parameters: shuffled_params,
+            grow: 0,
         };
         let mut a = original.build(&m, &rpv).unwrap();
         let mut b = shuffled.build(&m, &rpv).unwrap();
@@ -515,6 +608,7 @@ mod tests {
             parameters: vec![0.0; 2 * edges.len()],
             neurons,
             edges,
+            grow: 0,
         };
         let message = |s: GraphSpec, field: &str| {
             let err = s.build(&m, &[2, 2]).err().expect("refused");

@@ -47,6 +47,10 @@ impl Controller for SmoothedController {
         self.inner.attention()
     }
 
+    fn graph(&self) -> Option<crate::controller::GraphView<'_>> {
+        self.inner.graph()
+    }
+
     fn control(&mut self, t: f64, readings: &[f64], actuations: &mut [f64]) {
         let target = self.inner.control(t, readings);
         let max_change = self.speed * (t - self.last_t).max(0.0);

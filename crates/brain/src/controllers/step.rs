@@ -49,6 +49,10 @@ impl Controller for StepController {
         self.inner.attention()
     }
 
+    fn graph(&self) -> Option<crate::controller::GraphView<'_>> {
+        self.inner.graph()
+    }
+
     fn control(&mut self, t: f64, readings: &[f64], actuations: &mut [f64]) {
         let target = self.inner.control(t, readings);
         if self.last_refresh.is_none_or(|last| t - last >= self.period) {

@@ -35,6 +35,11 @@ impl Inner {
         self.controller.attention()
     }
 
+    /// The inner controller's graph, when it is a graph brain.
+    pub(crate) fn graph(&self) -> Option<crate::controller::GraphView<'_>> {
+        self.controller.graph()
+    }
+
     /// Resets the inner controller.
     pub(crate) fn reset(&mut self) {
         self.controller.reset();

@@ -32,6 +32,12 @@ pub trait Representation {
     /// A random genotype for the initial population.
     fn random(&self, rng: &mut SeededRng) -> Self::Genotype;
 
+    /// Member `index` of the initial population: a random genotype by default; a representation
+    /// seeded from a known genotype may put that genotype itself first (transfer experiments).
+    fn initial(&self, _index: usize, rng: &mut SeededRng) -> Self::Genotype {
+        self.random(rng)
+    }
+
     /// The mutation operator: one child from one parent.
     fn mutate(&self, parent: &Self::Genotype, rng: &mut SeededRng) -> Self::Genotype;
 
@@ -46,7 +52,7 @@ pub trait Representation {
     }
 }
 
-/// The genotypes of a first batch: `count` random ones, genotype `i` drawn from the
+/// The genotypes of a first batch: `count` initial ones, genotype `i` drawn from the
 /// initialisation stream of index `i` in the current generation.
 pub(crate) fn random_genotypes<R: Representation>(
     representation: &R,
@@ -54,7 +60,7 @@ pub(crate) fn random_genotypes<R: Representation>(
     count: usize,
 ) -> Vec<R::Genotype> {
     (0..count)
-        .map(|i| representation.random(&mut state.rng(i, Stream::Initialisation)))
+        .map(|i| representation.initial(i, &mut state.rng(i, Stream::Initialisation)))
         .collect()
 }
 

@@ -14,6 +14,7 @@ pub use error::ConfigError;
 pub use sweep::{expand, MAX_SETTINGS};
 pub use task::TaskConfig;
 
+use crate::graph_genotype::GraphGenotypeConfig;
 use crate::optimizers::{self, OptimizerConfig};
 use error::{dotted, line_column, locate, Step};
 use serde::{Deserialize, Serialize};
@@ -39,6 +40,9 @@ pub struct Experiment {
     pub seed: u64,
     /// Genotype → robot mapping.
     pub representation: Representation,
+    /// A genotype other than a flat vector (`[genotype] kind = "graph"`); `None`: flat vectors.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub genotype: Option<GraphGenotypeConfig>,
     /// The task, its fitness and how episodes are seeded.
     pub task: TaskConfig,
     /// The optimizer and its parameters.
@@ -65,6 +69,8 @@ struct ExperimentFile {
     #[serde(default)]
     seed: u64,
     representation: Representation,
+    #[serde(default)]
+    genotype: Option<GraphGenotypeConfig>,
     task: toml::Table,
     optimizer: toml::Table,
     stop: StopConfig,
@@ -224,6 +230,12 @@ pub fn parse(text: &str, origin: &str) -> Result<Experiment, ConfigError> {
             .transfer_from(&source.brain)
             .map_err(|e| field(format!("{}: {e}", transfer.from.display())))?;
     }
+    let mut genotype = file.genotype;
+    if let Some(graph) = &mut genotype {
+        graph
+            .load_initial(&mut representation)
+            .map_err(|(field, message)| ConfigError::at_field(origin, text, &field, message))?;
+    }
     let optimizer = optimizers::decode_table(file.optimizer).map_err(|e| in_table("optimizer", e))?;
     let experiment = Experiment {
         name: file.name,
@@ -232,6 +244,7 @@ pub fn parse(text: &str, origin: &str) -> Result<Experiment, ConfigError> {
         runs: file.runs,
         seed: file.seed,
         representation,
+        genotype,
         task,
         optimizer,
         stop: file.stop,
@@ -351,6 +364,9 @@ impl Experiment {
                 _ => ("representation".to_string(), text.clone()),
             };
             return err(&field, msg);
+        }
+        if let Some(graph) = &self.genotype {
+            graph.validate(self)?;
         }
         self.task.validate()?;
         let s = &self.stop;

@@ -152,6 +152,12 @@ impl<G: Clone> SearchState<G> {
             .collect()
     }
 
+    /// Makes `individual` the best, whatever the best was (optimizers of noisy tasks whose best
+    /// is that of the current population, evaluated afresh).
+    pub fn replace_best(&mut self, individual: Option<&Individual<G>>) {
+        self.best = individual.cloned();
+    }
+
     /// Makes `candidate` the best so far when it is strictly better (lexicographically over
     /// the objectives) than the current best.
     pub fn offer(&mut self, candidate: &Individual<G>, senses: &[Sense]) {

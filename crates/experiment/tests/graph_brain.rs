@@ -3,13 +3,14 @@
 //! topology fixed in the weights-only ablation, starts from a seed graph, and names the field of
 //! every mistake in the file.
 
+mod common;
+
+use common::Killer;
 use vsrlab_body::Morphology;
 use vsrlab_brain::graph_ops::{apply, Operator, Topology};
 use vsrlab_brain::{BrainSpec, GraphSpec};
 use vsrlab_experiment::config;
-use vsrlab_experiment::runner::{
-    deterministic_files, run_configured, run_dir, Flow, Observer, Progress, RunOptions, Silent,
-};
+use vsrlab_experiment::runner::{deterministic_files, run_configured, run_dir, RunOptions, Silent};
 
 /// A tiny graph experiment; `extra` lines go into `[genotype]`.
 fn text(extra: &str) -> String {
@@ -49,19 +50,6 @@ save_best = true
     )
 }
 
-/// Interrupts run 1 after its third generation, as a kill would.
-struct Killer;
-
-impl Observer for Killer {
-    fn generation(&mut self, p: &Progress) -> Flow {
-        if p.run == 1 && p.generation >= 3 {
-            Flow::Interrupt
-        } else {
-            Flow::Continue
-        }
-    }
-}
-
 /// The `best_<name>` column of every row of a generations.csv.
 fn column(csv: &str, name: &str) -> Vec<f64> {
     let mut lines = csv.lines();
@@ -78,11 +66,7 @@ fn a_graph_experiment_logs_its_graphs_and_resumes_bit_for_bit() {
     let experiment = config::parse(&text(""), "g.toml").unwrap();
     let dir = tempfile::tempdir().unwrap();
     let (straight, resumed) = (dir.path().join("straight"), dir.path().join("resumed"));
-    let options = |resume| RunOptions {
-        threads: 2,
-        resume,
-        ..RunOptions::default()
-    };
+    let options = common::two_threads;
     let summaries = run_configured(&experiment, &straight, &options(false), &mut Silent).unwrap();
     assert!(summaries.iter().all(|s| s.failures == 0 && s.best_fitness.is_some()));
     let csv = std::fs::read_to_string(run_dir(&straight, 0, 2).join("generations.csv")).unwrap();
@@ -103,7 +87,7 @@ fn a_graph_experiment_logs_its_graphs_and_resumes_bit_for_bit() {
     let best = vsrlab_tasks::files::load_robot(&run_dir(&straight, 0, 2).join("best.robot.json")).unwrap();
     assert!(matches!(&best.brain, BrainSpec::Graph(g) if !g.neurons.is_empty()));
 
-    run_configured(&experiment, &resumed, &options(false), &mut Killer).unwrap();
+    run_configured(&experiment, &resumed, &options(false), &mut Killer { run: 1, after: 3 }).unwrap();
     assert!(run_dir(&resumed, 1, 2).join("checkpoint.json").exists());
     run_configured(&experiment, &resumed, &options(true), &mut Silent).unwrap();
     assert_eq!(

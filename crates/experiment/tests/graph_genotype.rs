@@ -3,6 +3,9 @@
 //! small graph of "phase neurons" placed in the cells of a biped; the mapper turns it into the
 //! biped's per-cell phases. Everything specific to the graph lives in this file.
 
+mod common;
+
+use common::Killer;
 use serde::{Deserialize, Serialize};
 use vsrlab_body::sensors::SensorConfig;
 use vsrlab_body::{Morphology, Preset};
@@ -12,7 +15,7 @@ use vsrlab_evolution::{GaConfig, GeneticAlgorithm, Representation, Sense};
 use vsrlab_experiment::config::{self, Experiment};
 use vsrlab_experiment::genotype::fnv1a;
 use vsrlab_experiment::optimizers::Searcher;
-use vsrlab_experiment::runner::{run_dir, run_search, Flow, Observer, Plan, Progress, RunError, RunOptions, Silent};
+use vsrlab_experiment::runner::{run_dir, run_search, Plan, RunError, Silent};
 use vsrlab_experiment::{Genotype, RobotEvaluator};
 use vsrlab_tasks::{EvaluationError, Mapper, Robot, RobotSpec};
 
@@ -144,19 +147,6 @@ fn new_optimizer(seed: u64) -> Result<Searcher<GeneticAlgorithm<GraphOps>>, RunE
     Ok(Searcher(GeneticAlgorithm::new(config, GraphOps, seed)?))
 }
 
-/// Interrupts run 1 after its second generation, as a kill would.
-struct Killer;
-
-impl Observer for Killer {
-    fn generation(&mut self, p: &Progress) -> Flow {
-        if p.run == 1 && p.generation >= 2 {
-            Flow::Interrupt
-        } else {
-            Flow::Continue
-        }
-    }
-}
-
 #[test]
 fn a_graph_genotype_runs_checkpoints_and_resumes_like_an_uninterrupted_run() {
     let experiment = experiment();
@@ -164,11 +154,7 @@ fn a_graph_genotype_runs_checkpoints_and_resumes_like_an_uninterrupted_run() {
     let plan = Plan::of(&experiment);
     let dir = tempfile::tempdir().unwrap();
     let (straight, resumed) = (dir.path().join("straight"), dir.path().join("resumed"));
-    let options = |resume| RunOptions {
-        threads: 2,
-        resume,
-        ..RunOptions::default()
-    };
+    let options = common::two_threads;
 
     let summaries = run_search(
         &plan,
@@ -188,7 +174,7 @@ fn a_graph_genotype_runs_checkpoints_and_resumes_like_an_uninterrupted_run() {
         &evaluator,
         &resumed,
         &options(false),
-        &mut Killer,
+        &mut Killer { run: 1, after: 2 },
     )
     .unwrap();
     assert_eq!(done.len(), 1);

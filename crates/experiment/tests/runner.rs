@@ -2,14 +2,15 @@
 //! populations): thread count does not change results; an interrupted then resumed run ends
 //! with the same files as an uninterrupted one; failed evaluations are counted, not fatal.
 
+mod common;
+
+use common::Killer;
 use std::path::Path;
 use vsrlab_evolution::Sense;
 use vsrlab_experiment::config::{self, Experiment};
 use vsrlab_experiment::evaluator::{Evaluated, Evaluator, Record, RobotEvaluator};
 use vsrlab_experiment::optimizers::AnyOptimizer;
-use vsrlab_experiment::runner::{
-    run_dir, run_experiment, run_search, Flow, Observer, Plan, Progress, RunError, RunOptions, Silent,
-};
+use vsrlab_experiment::runner::{run_dir, run_experiment, run_search, Observer, Plan, RunError, RunOptions, Silent};
 
 /// The brain of the tiny experiments.
 const BRAIN: &str = r#"{ kind = "distributed-mlp", layout = "homogeneous", signals = 1, hidden = [] }"#;
@@ -94,22 +95,6 @@ fn thread_count_does_not_change_results() {
     vsrlab_tasks::files::load_robot(&one.join("run-00/best.robot.json")).unwrap();
 }
 
-/// Interrupts the run after `after` generations of run `run`, as a kill would.
-struct Killer {
-    run: usize,
-    after: u64,
-}
-
-impl Observer for Killer {
-    fn generation(&mut self, progress: &Progress) -> Flow {
-        if progress.run == self.run && progress.generation >= self.after {
-            Flow::Interrupt
-        } else {
-            Flow::Continue
-        }
-    }
-}
-
 #[test]
 fn resumed_runs_end_like_uninterrupted_ones() {
     for optimizer in [
@@ -124,11 +109,7 @@ fn resumed_runs_end_like_uninterrupted_ones() {
         let (straight, resumed) = (dir.path().join("straight"), dir.path().join("resumed"));
         run(&experiment, &straight, 2);
         // Kill run 1 after its 2nd generation, then run 0 is done and run 1 has a checkpoint.
-        let options = RunOptions {
-            threads: 2,
-            resume: false,
-            ..RunOptions::default()
-        };
+        let options = common::two_threads(false);
         let done = run_experiment(
             &experiment,
             &evaluator,
@@ -225,11 +206,7 @@ fn failed_and_panicking_evaluations_get_the_worst_fitness_and_are_counted() {
         "generations = 15",
     );
     let dir = tempfile::tempdir().unwrap();
-    let options = RunOptions {
-        threads: 2,
-        resume: false,
-        ..RunOptions::default()
-    };
+    let options = common::two_threads(false);
     // three genes, whatever the representation says: the optimizer comes from the plan's kind
     let new_optimizer = |seed: u64| -> Result<AnyOptimizer, RunError> {
         Ok(experiment.optimizer.kind().build(3, &[Sense::Maximize], seed)?)

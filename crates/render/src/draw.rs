@@ -54,14 +54,16 @@ pub(crate) fn area_color(ratio: f64) -> Rgba {
     }
 }
 
-fn paint(c: Rgba, anti_alias: bool) -> Paint<'static> {
+/// A solid paint of colour `c`.
+pub(crate) fn paint(c: Rgba, anti_alias: bool) -> Paint<'static> {
     let mut p = Paint::default();
     p.set_color(Color::from_rgba8(c[0], c[1], c[2], c[3]));
     p.anti_alias = anti_alias;
     p
 }
 
-fn stroke(width: f32) -> Stroke {
+/// A round-capped, round-joined stroke `width` pixels wide.
+pub(crate) fn stroke(width: f32) -> Stroke {
     Stroke {
         width,
         line_cap: LineCap::Round,

@@ -4,7 +4,8 @@
 //! weight and blue for a negative one, more opaque the larger |w|. Neurons of one voxel sit on a
 //! small grid inside it, in the order the brain lists them.
 
-use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Stroke, Transform};
+use crate::draw::{paint, stroke};
+use tiny_skia::{FillRule, PathBuilder, Pixmap, Transform};
 use vsrlab_physics::Vec2;
 
 /// Where neuron k of `count` in a voxel with these corners (NW, NE, SE, SW) is drawn.
@@ -21,15 +22,6 @@ fn slot(poly: &[Vec2], k: usize, count: usize) -> Vec2 {
     let bottom = sw + (se - sw) * u;
     let top = nw + (ne - nw) * u;
     top + (bottom - top) * w
-}
-
-fn paint(rgba: [u8; 4], anti_alias: bool) -> Paint<'static> {
-    let mut p = Paint {
-        anti_alias,
-        ..Paint::default()
-    };
-    p.set_color(Color::from_rgba8(rgba[0], rgba[1], rgba[2], rgba[3]));
-    p
 }
 
 /// Draws the graph: `neurons` (unit, kind), `edges` (source, target, weight), this step's
@@ -57,10 +49,7 @@ pub(crate) fn draw_graph(
         .zip(&index_in_unit)
         .map(|(&(unit, _), &k)| polys.get(unit).map(|poly| px(slot(poly, k, per_unit[unit]))))
         .collect();
-    let line = Stroke {
-        width: 1.0,
-        ..Stroke::default()
-    };
+    let line = stroke(1.0);
     for &(a, b, w) in edges {
         let (Some(Some(p)), Some(Some(q))) = (at.get(a), at.get(b)) else {
             continue;
@@ -79,10 +68,7 @@ pub(crate) fn draw_graph(
             pm.stroke_path(&path, &paint(colour, anti_alias), &line, Transform::identity(), None);
         }
     }
-    let rim = Stroke {
-        width: 1.0,
-        ..Stroke::default()
-    };
+    let rim = stroke(1.0);
     for (i, &(_, kind)) in neurons.iter().enumerate() {
         let Some(Some((x, y))) = at.get(i) else { continue };
         let (radius, rim_colour) = match kind {

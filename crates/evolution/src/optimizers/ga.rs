@@ -13,7 +13,10 @@
 //!   drift on plateaus), and tournaments break ties by population order.
 //! - With `reevaluate_survivors` (jgea "remap", for noisy tasks) the μ parents are re-evaluated
 //!   every generation in the same batch as the children; re-evaluations count as evaluations but
-//!   not births, and the new value replaces the old one.
+//!   not births, and the new value replaces the old one. The best is then the best of the
+//!   current population (jgea's choice), every member of which was evaluated in this generation:
+//!   the best over all evaluations would be the luckiest draw of the noise, a robot that does
+//!   not do well on new episodes.
 
 use crate::error::EvolutionError;
 use crate::operators::{mutate_or_crossover, random_genotypes, Representation};
@@ -156,13 +159,18 @@ impl<R: Representation, O> Tell<O> for GeneticAlgorithm<R> {
         // Children first, so that on equal fitness the stable sort keeps them ahead of parents.
         merged.extend(survivors);
         let senses = std::slice::from_ref(&self.config.sense);
-        for individual in &merged {
-            if individual.birth_generation == generation || self.config.reevaluate_survivors {
+        if !self.config.reevaluate_survivors {
+            for individual in merged.iter().filter(|i| i.birth_generation == generation) {
                 self.state.offer(individual, senses);
             }
         }
         sort_best_first(&mut merged, self.config.sense);
         merged.truncate(self.config.population_size);
+        if self.config.reevaluate_survivors {
+            // every member was just evaluated: the best is the population's, not the luckiest
+            // draw of the noise so far
+            self.state.replace_best(merged.first());
+        }
         self.population = merged;
         self.state.advance(&batch);
         Ok(())
@@ -258,6 +266,33 @@ mod tests {
         assert!(ga.population().iter().all(|p| p.fitness() == 10.0));
         assert_eq!(ga.births(), 8);
         assert_eq!(ga.evaluations(), 13);
+    }
+
+    #[test]
+    fn with_reevaluation_the_best_is_the_populations_not_the_luckiest_draw() {
+        let config = GaConfig {
+            population_size: 4,
+            offspring_size: 4,
+            reevaluate_survivors: true,
+            ..GaConfig::default()
+        };
+        let mut ga = GeneticAlgorithm::new(config, RealVector::thesis(2), 1).unwrap();
+        // one lucky evaluation (100) in the first generation, then every value is 1
+        let first = ga.ask();
+        ga.tell(
+            first
+                .iter()
+                .enumerate()
+                .map(|(i, c)| c.told(crate::Evaluation::single(if i == 0 { 100.0 } else { 1.0 })))
+                .collect(),
+        )
+        .unwrap();
+        assert_eq!(ga.best().unwrap().fitness(), 100.0);
+        let second = ga.ask();
+        ga.tell(second.iter().map(|c| c.told(crate::Evaluation::single(1.0))).collect())
+            .unwrap();
+        assert_eq!(ga.best().unwrap().fitness(), 1.0, "the lucky draw was re-evaluated");
+        assert_eq!(ga.best().unwrap().fitness(), ga.population()[0].fitness());
     }
 
     #[test]

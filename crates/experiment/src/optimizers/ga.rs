@@ -73,7 +73,13 @@ impl OptimizerKind for GaParams {
     }
 
     fn batch_size(&self, _dimension: usize) -> usize {
+        // re-evaluated survivors are evaluated in the same batch as the children
         self.offspring_size
+            + if self.reevaluate_survivors {
+                self.population_size
+            } else {
+                0
+            }
     }
 }
 

@@ -41,7 +41,7 @@ pub(crate) fn fitness_figure(settings: &[Setting], experiments: &[ExperimentData
         title: format!("Fitness ({fitness}) during evolution"),
         legend_title: "setting".into(),
         panels: vec![
-            panel("best so far", &|g| g.best_fitness),
+            panel("best so far (re-evaluated: of the population)", &|g| g.best_fitness),
             panel("population median", &|g| g.population_median),
         ],
     }

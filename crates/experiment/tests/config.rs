@@ -99,6 +99,19 @@ fn errors_name_the_field_and_the_line() {
             "line 16",
             "'optimizer.termination'",
         ),
+        // IPOP restarts need the criteria, and a factor ≥ 1
+        (
+            "kind = \"ga\"\npopulation_size = 10",
+            "kind = \"cma-es\"\ntermination = false\nrestarts = 3",
+            "",
+            "'optimizer.restarts'",
+        ),
+        (
+            "kind = \"ga\"\npopulation_size = 10",
+            "kind = \"cma-es\"\nrestarts = 3\nrestart_increase = 0.5",
+            "",
+            "'optimizer.restart_increase'",
+        ),
         // syntax error
         ("[stop]", "[stop", "line 18", ""),
     ];

@@ -62,7 +62,21 @@ pub struct CmaEsConfig {
     /// Termination criteria (pycma's defaults; absent in older configs and checkpoints).
     #[serde(default)]
     pub termination: CmaTermination,
+    /// IPOP restarts: when a termination criterion holds, start again this many times from a new
+    /// random mean with σ0, C = I and λ multiplied by `restart_increase` (Auger & Hansen 2005).
+    #[serde(default)]
+    pub restarts: usize,
+    /// λ's factor at every restart (IPOP: 2).
+    #[serde(default = "two")]
+    pub restart_increase: f64,
 }
+
+fn two() -> f64 {
+    2.0
+}
+
+/// Largest λ a restart may reach.
+const MAX_LAMBDA: usize = 1 << 20;
 
 /// Largest σ·√max C_ii: keeps samples (and their squares) far from overflow.
 const MAX_STEP: f64 = 1e100;
@@ -82,6 +96,8 @@ impl Default for CmaEsConfig {
             active: true,
             sense: Sense::Maximize,
             termination: CmaTermination::default(),
+            restarts: 0,
+            restart_increase: 2.0,
         }
     }
 }
@@ -183,6 +199,11 @@ pub struct CmaEs {
     /// checkpoints: they start empty).
     #[serde(default)]
     monitor: Monitor,
+    /// IPOP restarts made so far, and the generation of the last one.
+    #[serde(default)]
+    restarts_done: usize,
+    #[serde(default)]
+    restart_generation: u64,
 }
 
 impl CmaEs {
@@ -217,6 +238,10 @@ impl CmaEs {
                 "CMA-ES: termination.{field} {why}"
             )));
         }
+        ensure(
+            config.restart_increase.is_finite() && config.restart_increase >= 1.0,
+            || "CMA-ES: restart_increase must be a finite number ≥ 1".into(),
+        )?;
         let mut identity = vec![0.0; n * n];
         for i in 0..n {
             identity[i * n + i] = 1.0;
@@ -235,7 +260,44 @@ impl CmaEs {
             eigen_generation: 0,
             last: Vec::new(),
             monitor: Monitor::default(),
+            restarts_done: 0,
+            restart_generation: 0,
         })
+    }
+
+    /// IPOP restarts made so far.
+    pub fn restarts(&self) -> usize {
+        self.restarts_done
+    }
+
+    /// Starts again (IPOP): a new uniform mean (drawn from the run seed, the generation and the
+    /// restart's number), σ0, C = I, empty paths and histories, λ times `restart_increase`.
+    fn restart(&mut self) {
+        self.restarts_done += 1;
+        let n = self.mean.len();
+        let generation = self.state.generation();
+        let grown = (self.lambda as f64 * self.config.restart_increase).round() as usize;
+        self.lambda = grown.clamp(self.lambda, MAX_LAMBDA);
+        let mut rng = SeededRng::derive(
+            self.state.seed(),
+            generation,
+            self.restarts_done as u64,
+            Stream::Initialisation,
+        );
+        self.mean = rng.uniform_vec(n, self.config.init_min, self.config.init_max);
+        self.sigma = self.config.sigma0;
+        let mut identity = vec![0.0; n * n];
+        for i in 0..n {
+            identity[i * n + i] = 1.0;
+        }
+        self.covariance = identity.clone();
+        self.basis = identity;
+        self.scales = vec![1.0; n];
+        self.path_sigma = vec![0.0; n];
+        self.path_c = vec![0.0; n];
+        self.eigen_generation = generation;
+        self.restart_generation = generation;
+        self.monitor = Monitor::default();
     }
 
     /// The strategy parameters in use.
@@ -347,10 +409,10 @@ impl CmaEs {
             .map(|&k| self.config.sense.utility(self.last[k].fitness()))
             .collect();
         let generation = self.state.generation();
-        let since_best = self
-            .state
-            .best()
-            .map_or(0, |b| generation.saturating_sub(b.birth_generation + 1));
+        // generations since the best was found, counted from the last restart at most
+        let since_best = self.state.best().map_or(0, |b| {
+            generation.saturating_sub(b.birth_generation.max(self.restart_generation) + 1)
+        });
         let snapshot = Snapshot {
             generation,
             lambda: self.lambda,
@@ -503,6 +565,9 @@ impl<O> Tell<O> for CmaEs {
             self.decompose();
         }
         self.check_termination(&order);
+        if self.monitor.stopped().is_some() && self.restarts_done < self.config.restarts {
+            self.restart();
+        }
         Ok(())
     }
 }
@@ -646,6 +711,44 @@ mod tests {
             }
         }
         assert_sound(cma, context);
+    }
+
+    /// IPOP on 10-D Rastrigin: every termination is followed by a restart with λ doubled until
+    /// the restarts are spent; the run then stops by its criterion, the best is never worse than
+    /// the first descent's, and nothing is non-finite.
+    #[test]
+    fn ipop_restarts_double_lambda_and_keep_the_best() {
+        for seed in 0..3 {
+            let single = CmaEsConfig {
+                sense: Sense::Minimize,
+                init_min: -5.12,
+                init_max: 5.12,
+                sigma0: 2.0,
+                ..CmaEsConfig::default()
+            };
+            let f = |c: &Candidate<Vec<f64>>| Evaluation::single(rastrigin(&c.genotype));
+            let mut once = CmaEs::new(single.clone(), 10, seed).unwrap();
+            let first = run_to_budget(&mut once, f, &Stop::evaluations(1_000_000)).unwrap();
+            assert!(
+                matches!(first.reason, StopReason::Optimizer(_)),
+                "seed {seed}: {:?}",
+                first.reason
+            );
+            let ipop = CmaEsConfig { restarts: 3, ..single };
+            let mut cma = CmaEs::new(ipop, 10, seed).unwrap();
+            let summary = run_to_budget(&mut cma, f, &Stop::evaluations(1_000_000)).unwrap();
+            assert!(
+                matches!(summary.reason, StopReason::Optimizer(_)),
+                "seed {seed}: {:?}",
+                summary.reason
+            );
+            assert_eq!(cma.restarts(), 3);
+            assert_eq!(cma.parameters().lambda, 10 * 8, "λ = 10 doubled three times");
+            assert!(summary.evaluations > first.evaluations);
+            let (best, first_best) = (cma.best().unwrap().fitness(), once.best().unwrap().fitness());
+            assert!(best <= first_best, "seed {seed}: {best} > {first_best}");
+            assert_sound(&cma, "ipop");
+        }
     }
 
     /// On the 10-D sphere every run ends by a termination criterion, near f ≈ 1e-11 (pycma

@@ -42,6 +42,16 @@ pub struct CmaParams {
     pub noeffectaxis: bool,
     /// Tutorial `NoEffectCoord` (default on).
     pub noeffectcoord: bool,
+    /// IPOP restarts after a termination criterion holds (default 0: none); needs `termination`.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub restarts: usize,
+    /// λ's factor at each restart (default 2).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub restart_increase: Option<f64>,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 impl Default for CmaParams {
@@ -63,11 +73,26 @@ impl Default for CmaParams {
             tolxstagnation: t.tolxstagnation,
             noeffectaxis: t.noeffectaxis,
             noeffectcoord: t.noeffectcoord,
+            restarts: 0,
+            restart_increase: None,
         }
     }
 }
 
 impl CmaParams {
+    /// λ's factor at each restart.
+    fn increase(&self) -> f64 {
+        self.restart_increase.unwrap_or(2.0)
+    }
+
+    /// The largest λ of a run: after every restart.
+    fn largest_lambda(&self, dimension: usize) -> usize {
+        let lambda = self
+            .population_size
+            .unwrap_or(CmaEs::default_population_size(dimension)) as f64;
+        (lambda * self.increase().powi(self.restarts.min(64) as i32)).min(1e9) as usize
+    }
+
     /// The termination criteria these parameters describe.
     fn termination_criteria(&self) -> CmaTermination {
         CmaTermination {
@@ -99,6 +124,18 @@ impl OptimizerKind for CmaParams {
             return Err(("sigma0".into(), format!("must be > 0, got {}", self.sigma0)));
         }
         range("init_range", self.init_range)?;
+        if !(self.increase().is_finite() && self.increase() >= 1.0) {
+            return Err((
+                "restart_increase".into(),
+                format!("must be ≥ 1, got {}", self.increase()),
+            ));
+        }
+        if self.restarts > 0 && !self.termination {
+            return Err((
+                "restarts".into(),
+                "restarts follow the termination criteria: set termination = true".into(),
+            ));
+        }
         self.termination_criteria()
             .validate()
             .map_err(|(field, why)| (field.to_string(), why))
@@ -123,6 +160,8 @@ impl OptimizerKind for CmaParams {
                 active: self.active,
                 sense: single(senses),
                 termination: self.termination_criteria(),
+                restarts: self.restarts,
+                restart_increase: self.increase(),
             },
             dimension,
             seed,
@@ -130,10 +169,7 @@ impl OptimizerKind for CmaParams {
     }
 
     fn held_genotypes(&self, dimension: usize, _budget: Option<u64>) -> u128 {
-        let lambda = self
-            .population_size
-            .unwrap_or(CmaEs::default_population_size(dimension));
-        3 * lambda as u128 + 4
+        3 * self.largest_lambda(dimension) as u128 + 4
     }
 
     /// The covariance matrix, its eigenvectors and a work copy: 3·n².

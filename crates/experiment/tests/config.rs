@@ -283,3 +283,24 @@ fn the_ch3_sweep_expands_into_the_72_generated_files() {
     }
     assert_eq!(compared, 72);
 }
+
+#[test]
+fn nsga2_duplicate_elimination_is_read_and_written_only_when_set() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../experiments/two-objectives.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    let plain = config::parse(&text, "two.toml").unwrap();
+    assert!(
+        !plain.to_toml().contains("eliminate_duplicates"),
+        "unchanged resolved files"
+    );
+    let with = text.replace("kind = \"nsga2\"", "kind = \"nsga2\"\neliminate_duplicates = true");
+    let e = config::parse(&with, "two.toml").unwrap();
+    match &e.optimizer {
+        OptimizerConfig::Nsga2(p) => assert!(p.eliminate_duplicates),
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(config::parse(&e.to_toml(), "resolved").unwrap(), e);
+    let bad = text.replace("kind = \"nsga2\"", "kind = \"nsga2\"\neliminate_duplicates = \"yes\"");
+    let err = config::parse(&bad, "two.toml").unwrap_err().to_string();
+    assert!(err.contains("optimizer.eliminate_duplicates"), "{err}");
+}

@@ -106,12 +106,24 @@ impl Representation for RealVector {
         self.perturb(&mut child, self.crossover_sigma, rng);
         child
     }
+
+    /// Identical gene values (NSGA-II's optional duplicate elimination).
+    fn is_duplicate(&self, a: &Vec<f64>, b: &Vec<f64>) -> bool {
+        a == b
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::rng::Stream;
+
+    #[test]
+    fn duplicates_are_identical_genes() {
+        let rep = RealVector::thesis(2);
+        assert!(rep.is_duplicate(&vec![0.5, -1.0], &vec![0.5, -1.0]));
+        assert!(!rep.is_duplicate(&vec![0.5, -1.0], &vec![0.5, -1.000_000_1]));
+    }
 
     #[test]
     fn crossover_spans_the_extended_segment_per_gene() {

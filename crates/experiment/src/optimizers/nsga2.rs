@@ -20,6 +20,10 @@ pub struct Nsga2Params {
     pub offspring_size: usize,
     /// Probability of a child by mutation alone instead of crossover.
     pub mutation_probability: f64,
+    /// Redraw children whose genes equal a population member's or an earlier child's (pymoo's
+    /// `eliminate_duplicates`; default false, as Deb et al.).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub eliminate_duplicates: bool,
     /// The operators' parameters (`init_range`, `mutation_sigma`, `crossover_range`,
     /// `crossover_sigma`), written flat in the table.
     #[serde(flatten)]
@@ -32,6 +36,7 @@ impl Default for Nsga2Params {
             population_size: 100,
             offspring_size: 100,
             mutation_probability: 0.2,
+            eliminate_duplicates: false,
             operators: Operators::default(),
         }
     }
@@ -54,16 +59,19 @@ impl OptimizerKind for Nsga2Params {
     }
 
     fn build(&self, dimension: usize, senses: &[Sense], seed: u64) -> Result<AnyOptimizer, EvolutionError> {
-        Ok(AnyOptimizer::Nsga2(Nsga2::new(
-            Nsga2Config {
-                population_size: self.population_size,
-                offspring_size: self.offspring_size,
-                mutation_probability: self.mutation_probability,
-                senses: senses.to_vec(),
-            },
-            self.operators.real_vector(dimension),
-            seed,
-        )?))
+        Ok(AnyOptimizer::Nsga2(
+            Nsga2::new(
+                Nsga2Config {
+                    population_size: self.population_size,
+                    offspring_size: self.offspring_size,
+                    mutation_probability: self.mutation_probability,
+                    senses: senses.to_vec(),
+                },
+                self.operators.real_vector(dimension),
+                seed,
+            )?
+            .with_duplicate_elimination(self.eliminate_duplicates),
+        ))
     }
 
     fn held_genotypes(&self, _dimension: usize, _budget: Option<u64>) -> u128 {

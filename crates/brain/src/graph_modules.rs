@@ -96,18 +96,10 @@ impl ModuleMap {
     /// [`ModuleMap::parse`] reads; modules above 9 are written modulo 10).
     pub fn to_rows(&self) -> String {
         let h = self.cells.len() / self.width.max(1);
-        (0..h)
-            .rev()
-            .map(|y| {
-                (0..self.width)
-                    .map(|x| match self.module(x, y) {
-                        usize::MAX => '.',
-                        m => char::from_digit((m % 10) as u32, 10).unwrap_or('?'),
-                    })
-                    .collect::<String>()
-            })
-            .collect::<Vec<_>>()
-            .join("/")
+        grid_rows(self.width, h, |x, y| match self.module(x, y) {
+            usize::MAX => '.',
+            m => digit(m),
+        })
     }
 
     /// The module of cell (x, y) (`usize::MAX` outside the body).
@@ -119,6 +111,21 @@ impl ModuleMap {
     pub fn same(&self, a: Cell, b: Cell) -> bool {
         self.module(a.0, a.1) == self.module(b.0, b.1)
     }
+}
+
+/// A W × H grid written as rows of one character per cell, top row first, joined by `/` (the
+/// form of module maps, regions and partitions in files and messages).
+pub fn grid_rows(width: usize, height: usize, cell: impl Fn(usize, usize) -> char) -> String {
+    (0..height)
+        .rev()
+        .map(|y| (0..width).map(|x| cell(x, y)).collect::<String>())
+        .collect::<Vec<_>>()
+        .join("/")
+}
+
+/// The last decimal digit of `n`, as a character.
+pub fn digit(n: usize) -> char {
+    char::from_digit((n % 10) as u32, 10).unwrap_or('?')
 }
 
 /// A body region by name or as rows, top row first (`#` in the region, `.` not): `legs` (the

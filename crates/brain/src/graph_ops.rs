@@ -269,9 +269,15 @@ fn remove_edges(g: &mut GraphSpec, mut gone: impl FnMut(&EdgeSpec) -> bool) {
 
 /// Removes hidden neurons without edges and renumbers the edges.
 pub(crate) fn prune(g: &mut GraphSpec) {
-    let used: Vec<bool> = (0..g.neurons.len())
-        .map(|i| !matches!(g.neurons[i], NeuronSpec::Hidden { .. }) || g.edges.iter().any(|e| e.from == i || e.to == i))
+    let mut used: Vec<bool> = g
+        .neurons
+        .iter()
+        .map(|n| !matches!(n, NeuronSpec::Hidden { .. }))
         .collect();
+    for e in &g.edges {
+        used[e.from] = true;
+        used[e.to] = true;
+    }
     let mut new_index = vec![usize::MAX; g.neurons.len()];
     let mut neurons = Vec::with_capacity(g.neurons.len());
     for (i, n) in g.neurons.iter().enumerate() {

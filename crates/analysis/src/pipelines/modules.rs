@@ -12,7 +12,7 @@ use crate::progress::Progress;
 use crate::results;
 use std::path::PathBuf;
 use vsrlab_body::Morphology;
-use vsrlab_brain::graph_modules::{discover, Cell, Partition, MAX_MODULE_SIZE};
+use vsrlab_brain::graph_modules::{digit, discover, grid_rows, Cell, Partition, MAX_MODULE_SIZE};
 use vsrlab_brain::BrainSpec;
 use vsrlab_tasks::files::load_robot;
 
@@ -77,18 +77,7 @@ pub fn partition_rows(body: &Morphology, p: &Partition) -> String {
             p.rest.iter().position(|r| r.contains(&c)).map(|k| k + 1)
         }
     };
-    (0..body.height())
-        .rev()
-        .map(|y| {
-            (0..body.width())
-                .map(|x| match piece_of((x, y)) {
-                    Some(k) => char::from_digit((k % 10) as u32, 10).unwrap_or('?'),
-                    None => '.',
-                })
-                .collect::<String>()
-        })
-        .collect::<Vec<_>>()
-        .join("/")
+    grid_rows(body.width(), body.height(), |x, y| piece_of((x, y)).map_or('.', digit))
 }
 
 /// Discovers a module in the best robot of every run of `results` whose brain is a graph.

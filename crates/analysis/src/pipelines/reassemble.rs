@@ -23,7 +23,7 @@ use crate::results::{self, ExperimentData};
 use crate::stats::{mann_whitney_u, median};
 use std::path::{Path, PathBuf};
 use vsrlab_body::Morphology;
-use vsrlab_brain::graph_modules::{discover, region, Cell};
+use vsrlab_brain::graph_modules::{discover, grid_rows, region, Cell};
 use vsrlab_brain::graph_transfer::reassemble as hybrid_of;
 use vsrlab_brain::BrainSpec;
 use vsrlab_tasks::files::{load_robot, robot_to_json};
@@ -86,15 +86,13 @@ fn option(option: &'static str, message: String) -> AnalysisError {
 
 /// A region's cells as rows of `#` (in it) and `.`, top row first.
 fn region_rows(body: &Morphology, cells: &[Cell]) -> String {
-    (0..body.height())
-        .rev()
-        .map(|y| {
-            (0..body.width())
-                .map(|x| if cells.contains(&(x, y)) { '#' } else { '.' })
-                .collect::<String>()
-        })
-        .collect::<Vec<_>>()
-        .join("/")
+    grid_rows(body.width(), body.height(), |x, y| {
+        if cells.contains(&(x, y)) {
+            '#'
+        } else {
+            '.'
+        }
+    })
 }
 
 /// Builds the hybrids of one setting's runs and the experiment that re-optimises them.
@@ -435,7 +433,7 @@ pub fn transferability(
         .iter()
         .map(|n| SettingTransfer {
             setting: n.clone(),
-            pairs: of(n, &|_| 0.0).len(),
+            pairs: pairs.iter().filter(|p| &p.setting == n).count(),
             rho: (median(&of(n, &first_rho)), median(&of(n, &|p| p.final_rho()))),
             eta: (median(&of(n, &|p| p.eta.0)), median(&of(n, &|p| p.eta.1))),
         })

@@ -75,6 +75,15 @@ fn two() -> f64 {
     2.0
 }
 
+/// The n × n identity matrix, row-major.
+fn identity(n: usize) -> Vec<f64> {
+    let mut m = vec![0.0; n * n];
+    for i in 0..n {
+        m[i * n + i] = 1.0;
+    }
+    m
+}
+
 /// Largest λ a restart may reach.
 const MAX_LAMBDA: usize = 1 << 20;
 
@@ -242,10 +251,7 @@ impl CmaEs {
             config.restart_increase.is_finite() && config.restart_increase >= 1.0,
             || "CMA-ES: restart_increase must be a finite number ≥ 1".into(),
         )?;
-        let mut identity = vec![0.0; n * n];
-        for i in 0..n {
-            identity[i * n + i] = 1.0;
-        }
+        let identity = identity(n);
         Ok(Self {
             sigma: config.sigma0,
             config,
@@ -286,12 +292,8 @@ impl CmaEs {
         );
         self.mean = rng.uniform_vec(n, self.config.init_min, self.config.init_max);
         self.sigma = self.config.sigma0;
-        let mut identity = vec![0.0; n * n];
-        for i in 0..n {
-            identity[i * n + i] = 1.0;
-        }
-        self.covariance = identity.clone();
-        self.basis = identity;
+        self.covariance = identity(n);
+        self.basis = identity(n);
         self.scales = vec![1.0; n];
         self.path_sigma = vec![0.0; n];
         self.path_c = vec![0.0; n];

@@ -59,6 +59,7 @@ pub use controllers::centralized_mlp::{CentralizedMlpController, MlpSpec};
 pub use controllers::constant::{ConstantController, ConstantSpec};
 pub use controllers::distributed_mlp::{DistributedConfig, DistributedMlpController, DistributedMlpSpec, Layout};
 pub use controllers::graph::{EdgeSpec, GraphController, GraphSpec, NeuronSpec};
+pub use controllers::heads::{HeadsController, HeadsSpec};
 pub use controllers::hebbian::{HebbianController, HebbianModel, HebbianSpec, Normalisation, WeightInit};
 pub use controllers::phase::{PhaseController, PhaseSpec};
 pub use controllers::phase_grid::{PhaseGridController, PhaseGridSpec, PhaseLayout};

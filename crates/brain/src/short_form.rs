@@ -32,6 +32,7 @@ pub static SHORT_FORMS: &[ShortForm] = &[
     controllers::hebbian::SHORT_FORM,
     controllers::attention::SHORT_FORM,
     controllers::graph::SHORT_FORM,
+    controllers::heads::SHORT_FORM,
 ];
 
 /// Parses `name[:argument]` with the [`SHORT_FORMS`] entry of that name; any failure is
@@ -170,7 +171,7 @@ mod tests {
             BrainError::Unknown("neat".into()).to_string(),
             "unknown brain 'neat': expected phase, phase-grid[:freq], constant:<value>, random[:<period s>], \
              mlp[:<hidden sizes, comma separated, or none>], distributed-mlp[:<signals>], \
-             distributed-mlp-hetero[:<signals>], local-mlp[:<signals>], step:<period s>:<brain>, smoothed:<speed>:<brain>, hebbian[:full|incoming|dew|l2], attention[:hetero|slow] or graph[:<added hidden neurons>]"
+             distributed-mlp-hetero[:<signals>], local-mlp[:<signals>], step:<period s>:<brain>, smoothed:<speed>:<brain>, hebbian[:full|incoming|dew|l2], attention[:hetero|slow], graph[:<added hidden neurons>] or heads[:<linear outputs>]"
         );
     }
 

@@ -5,6 +5,7 @@ use crate::controllers::centralized_mlp::MlpSpec;
 use crate::controllers::constant::ConstantSpec;
 use crate::controllers::distributed_mlp::DistributedMlpSpec;
 use crate::controllers::graph::GraphSpec;
+use crate::controllers::heads::HeadsSpec;
 use crate::controllers::hebbian::HebbianSpec;
 use crate::controllers::phase::PhaseSpec;
 use crate::controllers::phase_grid::PhaseGridSpec;
@@ -46,6 +47,7 @@ use vsrlab_body::Morphology;
 /// {"kind": "attention", "d_k": 8, "layout": "homogeneous", "slow": false, "parameters": [...]}
 /// {"kind": "graph", "neurons": [{"kind": "sensing", "x": 0, "y": 0, "reading": 0}, ...],
 ///  "edges": [{"from": 0, "to": 4}, ...], "parameters": [...]}
+/// {"kind": "heads", "linear_outputs": 1, "weights": [...]}
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "kebab-case")]
@@ -72,6 +74,8 @@ pub enum BrainSpec {
     Attention(AttentionSpec),
     /// A graph of neurons located in voxels (the self-organizing controller, [`GraphSpec`]).
     Graph(GraphSpec),
+    /// One layer, tanh heads and linear heads (the PSA controller, [`HeadsSpec`]).
+    Heads(HeadsSpec),
 }
 
 /// Every `kind` tag, in the order of [`BrainSpec`]'s variants.
@@ -87,6 +91,7 @@ const KINDS: &[&str] = &[
     "hebbian",
     "attention",
     "graph",
+    "heads",
 ];
 
 impl<'de> Deserialize<'de> for BrainSpec {
@@ -116,6 +121,7 @@ impl<'de> Deserialize<'de> for BrainSpec {
             "hebbian" => BrainSpec::Hebbian(payload(fields)?),
             "attention" => BrainSpec::Attention(payload(fields)?),
             "graph" => BrainSpec::Graph(payload(fields)?),
+            "heads" => BrainSpec::Heads(payload(fields)?),
             other => {
                 return Err(D::Error::custom(format!(
                     "kind: unknown brain kind `{other}`, expected one of {}",
@@ -160,6 +166,7 @@ impl BrainSpec {
             BrainSpec::Hebbian(kind) => kind,
             BrainSpec::Attention(kind) => kind,
             BrainSpec::Graph(kind) => kind,
+            BrainSpec::Heads(kind) => kind,
         }
     }
 
@@ -177,6 +184,7 @@ impl BrainSpec {
             BrainSpec::Hebbian(kind) => kind,
             BrainSpec::Attention(kind) => kind,
             BrainSpec::Graph(kind) => kind,
+            BrainSpec::Heads(kind) => kind,
         }
     }
 

@@ -4,15 +4,16 @@ use clap::Args;
 use serde_json::json;
 use std::path::PathBuf;
 use std::time::Instant;
-use vsrlab_tasks::files::{load_robot, save_robot};
+use vsrlab_tasks::files::{load_any_robot, save_any_robot, AnyRobot};
 use vsrlab_tasks::short_forms::DEFAULT_SENSORS;
-use vsrlab_tasks::{episode, RobotArgsError, RobotSpec, TaskSpec, TraceLevel};
+use vsrlab_tasks::{episode, PsaRobot, RobotArgsError, RobotSpec, TaskSpec, TraceLevel};
 
 /// Arguments of `vsrlab simulate`.
 #[derive(Args, Debug)]
 pub struct SimulateArgs {
     /// Body: a named shape (biped-4x3, worm-10x4, comb-7x2, box-5x5, tripod-5x3, t-5x4, ball-5) or a
-    /// text grid with rows separated by '/', top row first ('#' voxel, '.' empty), e.g. "###/#.#".
+    /// text grid with rows separated by '/', top row first ('#' voxel, '.' empty), e.g. "###/#.#";
+    /// or a pressure-based soft agent, psa[:small|medium|large] (docs/psa.md).
     #[arg(long, default_value = "biped-4x3")]
     pub body: String,
     /// Brain: `phase` (open-loop a = sin(2πt + πx/W)), `constant:<v>`, `random[:<period>]`,
@@ -20,12 +21,15 @@ pub struct SimulateArgs {
     /// `distributed-mlp-hetero[:<signals>]`, `step:<period>:<brain>`, `smoothed:<speed>:<brain>`,
     /// `hebbian[:full|incoming|dew|l2]` (Hebbian ABCD rules, docs/ch5.3.md), `attention[:hetero|slow]`
     /// and `local-mlp[:<signals>]` (self-attention and its baselines, docs/ch4.2.md),
-    /// `graph[:<added hidden neurons>]` (the self-organizing graph controller, docs/ch4.1.md).
+    /// `graph[:<added hidden neurons>]` (the self-organizing graph controller, docs/ch4.1.md),
+    /// `heads[:<linear outputs>]` (the PSA controller, docs/psa.md). Default: phase for voxel
+    /// bodies, heads for a PSA.
     /// Brains with parameters get seeded random ones in [-1, 1]; evolved ones come in robot files.
-    #[arg(long, default_value = "phase")]
-    pub brain: String,
+    #[arg(long)]
+    pub brain: Option<String>,
     /// Task: locomotion:<terrain> (terrain = flat | hilly-H-W[-SEED] | steppy-H-W[-SEED] | uphill-DEG |
-    /// downhill-DEG) or jump.
+    /// downhill-DEG | psa-hilly-H-W[-SEED]), jump, escape[:<cage side>] or carrier (PSA tasks,
+    /// docs/psa.md).
     #[arg(long, default_value = "locomotion:flat")]
     pub task: String,
     /// Sensors: uniform-<s1>+<s2>…-<noise σ>, spinedTouch-…, spinedTouchSighted-…,
@@ -124,12 +128,28 @@ pub fn robot_option_error(e: &RobotArgsError) -> String {
 /// Runs `vsrlab simulate`.
 pub fn run(a: SimulateArgs) -> Result<(), String> {
     let robot = match &a.robot {
-        Some(path) => load_robot(path).map_err(|e| e.to_string())?,
-        None => robot_from_args(&a.body, &a.preset, &a.sensors, &a.brain)?,
+        Some(path) => load_any_robot(path).map_err(|e| e.to_string())?,
+        None if PsaRobot::is_short_form(&a.body) => AnyRobot::Psa(
+            PsaRobot::from_short_forms(&a.body, a.brain.as_deref().unwrap_or("heads")).map_err(|e| format!("--{e}"))?,
+        ),
+        None => AnyRobot::Voxel(robot_from_args(
+            &a.body,
+            &a.preset,
+            &a.sensors,
+            a.brain.as_deref().unwrap_or("phase"),
+        )?),
     };
     if let Some(path) = &a.save_robot {
-        save_robot(path, &robot, None).map_err(|e| e.to_string())?;
+        save_any_robot(path, &robot, None).map_err(|e| e.to_string())?;
     }
+    let (sensors, preset) = match &robot {
+        AnyRobot::Voxel(r) => (r.sensors.to_string(), r.preset.to_string()),
+        AnyRobot::Psa(r) => (
+            format!("psa ({} readings)", r.body.params.reading_count()),
+            "psa".to_string(),
+        ),
+    };
+    let brain = robot.brain();
     let body_name = match &a.robot {
         Some(path) => path.display().to_string(),
         None => a.body.clone(),
@@ -141,7 +161,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         TraceLevel::None
     };
     let start = Instant::now();
-    let outcome = episode::run(&robot, task.task(), a.seed, level).map_err(|e| e.to_string())?;
+    let outcome = episode::run(robot.as_robot(), task.task(), a.seed, level).map_err(|e| e.to_string())?;
     let wall = start.elapsed().as_secs_f64();
     let mut video_note = None;
     if let (Some(path), Some(trace)) = (&a.video, &outcome.trace) {
@@ -154,8 +174,8 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     let transient = a.transient.unwrap_or(0.0);
     if a.json {
         let mut v = json!({
-            "body": body_name, "brain": robot.brain.kind(), "task": a.task, "sensors": robot.sensors.to_string(),
-            "preset": robot.preset.to_string(),
+            "body": body_name, "brain": brain.kind(), "task": a.task, "sensors": sensors,
+            "preset": preset,
             "seed": a.seed, "duration": a.duration, "transient": transient,
             "steps": outcome.steps, "voxels": outcome.units, "wall_seconds": wall,
             "video": a.video.as_ref().map(|p| p.display().to_string()),
@@ -167,10 +187,16 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         }
         println!("{}", serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?);
     } else {
-        println!(
-            "body      {} ({} voxels, preset {})",
-            body_name, outcome.units, robot.preset
-        );
+        match &robot {
+            AnyRobot::Voxel(r) => println!(
+                "body      {} ({} voxels, preset {})",
+                body_name, outcome.units, r.preset
+            ),
+            AnyRobot::Psa(r) => println!(
+                "body      {} ({} masses, radius {}, {} actuators)",
+                body_name, r.body.params.masses, r.body.params.radius, outcome.units
+            ),
+        }
         let mut transient_note = a.transient.map(|t| format!(", transient {t} s")).unwrap_or_default();
         if let Some(d) = &a.damage {
             transient_note += &format!(", damage {d}");
@@ -179,12 +205,8 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
             "task      {} for {} s (seed {}{transient_note})",
             a.task, a.duration, a.seed
         );
-        println!(
-            "brain     {} ({} parameters)",
-            robot.brain.kind(),
-            robot.brain.parameters().len()
-        );
-        println!("sensors   {}", robot.sensors);
+        println!("brain     {} ({} parameters)", brain.kind(), brain.parameters().len());
+        println!("sensors   {sensors}");
         for (name, value) in &outcome.metrics {
             if name != "elapsed" && name != "voxels" {
                 println!("{name:<9} {value:.4}");

@@ -7,7 +7,8 @@
 //! ropes; rigid welds (welded parts are merged into one rigid body, exactly rigid and free of cost);
 //! contacts with Coulomb friction and restitution between convex polygons and against static
 //! polygons; gravity (any vector, including none for top-down worlds); linear and angular damping;
-//! external forces; ray casts against static geometry.
+//! external forces; ray casts against static geometry; circles (dynamic only); parts that never
+//! rotate; gas pressure inside closed rings of parts.
 //!
 //! Guarantees: a step allocates nothing once the world is warm; the same world stepped the same
 //! way gives bit-identical states (no hashing, no threads, fixed iteration order); a state that
@@ -22,9 +23,10 @@ pub mod geometry;
 mod math;
 
 pub use dynamics::{
-    builder::{PartDesc, RopeDesc, SpringDesc, WorldBuilder},
+    builder::{PartDesc, PressureRingDesc, RopeDesc, SpringDesc, WorldBuilder},
+    pressure::EdgeLength,
     settings::{SpringMassModel, WorldSettings},
-    world::{PartHandle, RopeHandle, SpringHandle, World},
+    world::{PartHandle, RingHandle, RopeHandle, SpringHandle, World},
 };
 pub use geometry::shape::Polygon;
 pub use math::{Rot, Vec2};

@@ -49,6 +49,7 @@ pub fn trace_from_positions(xs: &[f64]) -> Trace {
         graph_neurons: Vec::new(),
         graph_edges: Vec::new(),
         graph_outputs: Vec::new(),
+        ..Trace::default()
     }
 }
 

@@ -77,8 +77,9 @@ pub fn run_observed(
             world: &world,
             body: agent.body(),
             center,
+            scene: &scene,
         });
-        recorder.record(t, center, &world, agent.as_ref());
+        recorder.record(t, center, &world, &scene, agent.as_ref());
         observe(t, agent.as_ref());
         if flow == Flow::Stop {
             break;
@@ -114,13 +115,15 @@ impl Recorder {
         }
         if level == TraceLevel::Full {
             trace.terrain = scene.terrain.clone();
+            trace.obstacles = scene.obstacles.clone();
+            trace.object_radii = scene.objects.iter().map(|o| o.radius).collect();
             trace.outline_corners = agent.body().outline_corners();
             trace.outlines.reserve(steps * trace.corners_per_step());
         }
         Recorder { level, trace }
     }
 
-    fn record(&mut self, t: f64, center: Vec2, world: &World, agent: &dyn Agent) {
+    fn record(&mut self, t: f64, center: Vec2, world: &World, scene: &Scene, agent: &dyn Agent) {
         if self.level == TraceLevel::None {
             return;
         }
@@ -130,6 +133,11 @@ impl Recorder {
             return;
         }
         agent.body().outline(world, &mut self.trace.outlines);
+        for o in &scene.objects {
+            self.trace
+                .objects
+                .push((world.part_position(o.part), world.part_angle(o.part)));
+        }
         agent.record(&mut self.trace);
     }
 

@@ -61,7 +61,7 @@ impl Task for Jump {
     fn build_world(&self, builder: &mut WorldBuilder, seed: u64) -> Scene {
         let terrain = Terrain::Flat.profile(seed);
         add_ground(builder, &terrain);
-        Scene { terrain }
+        Scene::ground(terrain)
     }
 
     fn place(&self, scene: &Scene, footprint: &[Vec2]) -> Vec2 {

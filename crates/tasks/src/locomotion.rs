@@ -86,7 +86,7 @@ impl Task for Locomotion {
     fn build_world(&self, builder: &mut WorldBuilder, seed: u64) -> Scene {
         let terrain = self.terrain.profile(seed);
         add_ground(builder, &terrain);
-        Scene { terrain }
+        Scene::ground(terrain)
     }
 
     fn place(&self, scene: &Scene, footprint: &[Vec2]) -> Vec2 {

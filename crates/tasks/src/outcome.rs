@@ -107,6 +107,18 @@ pub struct Trace {
     /// A graph brain's neuron outputs, `[step][neuron]`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub graph_outputs: Vec<f32>,
+    /// Static polygons besides the ground (a cage), for drawing.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub obstacles: Vec<Vec<Vec2>>,
+    /// Radius of each loose ball of the world.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub object_radii: Vec<f64>,
+    /// Each ball's centre and angle, `[step][ball]`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub objects: Vec<(Vec2, f64)>,
+    /// A pressurised body's pressure over its largest pressure, `[step]` (PSAs; empty otherwise).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub pressures: Vec<f32>,
     /// When units broke and which ([`crate::Damage`]); absent without damage.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub damage: Option<DamageRecord>,

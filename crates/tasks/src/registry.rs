@@ -5,6 +5,8 @@
 //! [`TaskSpec`], one arm to [`TaskSpec::task`] and one entry to
 //! [`TASKS`]. Nothing else matches on task kinds.
 
+use crate::carrier::Carrier;
+use crate::escape::Escape;
 use crate::jump::Jump;
 use crate::locomotion::Locomotion;
 use crate::task::Task;
@@ -20,6 +22,10 @@ pub enum TaskSpec {
     Locomotion(Locomotion),
     /// Rise as high as possible ([`Jump`]).
     Jump(Jump),
+    /// Get out of a cage ([`Escape`]).
+    Escape(Escape),
+    /// Walk with a ball on top ([`Carrier`]).
+    Carrier(Carrier),
 }
 
 impl Default for TaskSpec {
@@ -85,7 +91,38 @@ pub const TASKS: &[TaskKind] = &[
         parse: parse_jump,
         decode: |v| decode::<Jump>(v).map(TaskSpec::Jump),
     },
+    TaskKind {
+        name: "escape",
+        usage: "escape[:<cage side>]",
+        parse: parse_escape,
+        decode: |v| decode::<Escape>(v).map(TaskSpec::Escape),
+    },
+    TaskKind {
+        name: "carrier",
+        usage: "carrier",
+        parse: parse_carrier,
+        decode: |v| decode::<Carrier>(v).map(TaskSpec::Carrier),
+    },
 ];
+
+fn parse_escape(arg: Option<&str>) -> Result<TaskSpec, String> {
+    let mut escape = Escape::default();
+    if let Some(a) = arg {
+        escape.side = a
+            .parse()
+            .ok()
+            .filter(|s: &f64| s.is_finite() && *s > 0.0)
+            .ok_or_else(|| format!("expected the cage's side (a number > 0), got '{a}'"))?;
+    }
+    Ok(TaskSpec::Escape(escape))
+}
+
+fn parse_carrier(arg: Option<&str>) -> Result<TaskSpec, String> {
+    match arg {
+        None => Ok(TaskSpec::Carrier(Carrier::default())),
+        Some(a) => Err(format!("the carrier task takes no argument, got '{a}'")),
+    }
+}
 
 fn parse_locomotion(arg: Option<&str>) -> Result<TaskSpec, String> {
     let terrain: Terrain = arg.unwrap_or("flat").parse()?;
@@ -137,6 +174,8 @@ impl TaskSpec {
         match self {
             TaskSpec::Locomotion(t) => t,
             TaskSpec::Jump(t) => t,
+            TaskSpec::Escape(t) => t,
+            TaskSpec::Carrier(t) => t,
         }
     }
 
@@ -236,7 +275,7 @@ mod tests {
         assert_eq!(TaskSpec::parse("locomotion").unwrap().kind(), "locomotion");
         assert_eq!(TaskSpec::parse("jump").unwrap().kind(), "jump");
         let err = TaskSpec::parse("swim:deep").unwrap_err().to_string();
-        assert!(err.contains("locomotion:<terrain> or jump"), "{err}");
+        assert!(err.contains("locomotion:<terrain> or jump or escape"), "{err}");
         assert!(TaskSpec::parse("locomotion:bumpy").is_err());
 
         let t = TaskSpec::from_json(json!({"terrain": "hilly-1-10", "duration": 5.0})).unwrap();
@@ -251,7 +290,7 @@ mod tests {
         assert_eq!(e.path, "physics.dt");
         let e = TaskSpec::from_json(json!({"kind": "fly"})).unwrap_err();
         assert_eq!(e.path, "kind");
-        assert!(e.message.contains("locomotion, jump"), "{e}");
+        assert!(e.message.contains("locomotion, jump, escape, carrier"), "{e}");
     }
 
     #[test]
@@ -286,7 +325,13 @@ mod tests {
 
     #[test]
     fn specs_round_trip_through_json_with_their_kind() {
-        for s in ["locomotion:hilly-1-10-3", "jump"] {
+        for s in [
+            "locomotion:hilly-1-10-3",
+            "jump",
+            "escape:15",
+            "carrier",
+            "locomotion:psa-hilly-3-10",
+        ] {
             let t = TaskSpec::parse(s).unwrap();
             let v = serde_json::to_value(&t).unwrap();
             assert_eq!(v["kind"], json!(t.kind()));

@@ -10,7 +10,7 @@ use crate::episode::EpisodeError;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use vsrlab_body::Body;
-use vsrlab_physics::{Vec2, World, WorldBuilder, WorldSettings};
+use vsrlab_physics::{PartHandle, Vec2, World, WorldBuilder, WorldSettings};
 
 /// Named figures a task measured in one episode (e.g. `distance`, `velocity`).
 pub type Metrics = BTreeMap<String, f64>;
@@ -47,11 +47,34 @@ impl Objective {
     }
 }
 
-/// The world a task built: what placement and drawing need to know of it.
+/// The world a task built: what placement, the task's episode and drawing need to know of it.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Scene {
     /// The ground's polyline, (x, y) with increasing x.
     pub terrain: Vec<Vec2>,
+    /// Static polygons besides the ground (walls, a cage's roof), for drawing.
+    pub obstacles: Vec<Vec<Vec2>>,
+    /// Loose bodies the task added (a ball to carry).
+    pub objects: Vec<SceneObject>,
+}
+
+/// A loose circular body of a task's world.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SceneObject {
+    /// Its part in the world.
+    pub part: PartHandle,
+    /// Its radius.
+    pub radius: f64,
+}
+
+impl Scene {
+    /// A scene of just a ground polyline.
+    pub fn ground(terrain: Vec<Vec2>) -> Scene {
+        Scene {
+            terrain,
+            ..Scene::default()
+        }
+    }
 }
 
 /// What a task sees after each step (physics → sense → control → actuate, vsr-model.md §2.2).
@@ -64,6 +87,8 @@ pub struct StepView<'a> {
     pub body: &'a dyn Body,
     /// The body's centre ([`Body::center`]), already checked to be finite.
     pub center: Vec2,
+    /// What the task built.
+    pub scene: &'a Scene,
 }
 
 /// Whether the episode goes on after a step.

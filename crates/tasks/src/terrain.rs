@@ -52,7 +52,20 @@ pub enum Terrain {
         /// Angle in degrees.
         angle: f64,
     },
+    /// The PSA paper's hills (psa-model.md "Terrains"): vertices |N(0, H²)| high, segments
+    /// max(W·N(1, 1/16), 1) wide, from x = −20 to about 400, a wall at each end.
+    PsaHilly {
+        /// Standard deviation of each vertex's height.
+        height: f64,
+        /// Mean width of each segment.
+        width: f64,
+        /// Explicit seed, or `None` for the episode seed.
+        seed: Option<i64>,
+    },
 }
+
+/// Where the PSA hills start and roughly end (x).
+pub const PSA_HILLS: (f64, f64) = (-20.0, 400.0);
 
 impl TryFrom<String> for Terrain {
     type Error = String;
@@ -76,6 +89,7 @@ impl std::fmt::Display for Terrain {
             Terrain::Steppy { height, width, seed: s } => write!(f, "steppy-{height}-{width}{}", seed(s)),
             Terrain::Uphill { angle } => write!(f, "uphill-{angle}"),
             Terrain::Downhill { angle } => write!(f, "downhill-{angle}"),
+            Terrain::PsaHilly { height, width, seed: s } => write!(f, "psa-hilly-{height}-{width}{}", seed(s)),
         }
     }
 }
@@ -85,9 +99,19 @@ impl std::str::FromStr for Terrain {
     fn from_str(s: &str) -> Result<Self, String> {
         let bad = || {
             format!(
-                "unknown terrain '{s}': expected flat, hilly-H-W[-SEED], steppy-H-W[-SEED], uphill-DEG or downhill-DEG"
+                "unknown terrain '{s}': expected flat, hilly-H-W[-SEED], steppy-H-W[-SEED], uphill-DEG, downhill-DEG or psa-hilly-H-W[-SEED]"
             )
         };
+        if let Some(rest) = s.strip_prefix("psa-") {
+            if !rest.starts_with("hilly-") {
+                return Err(bad());
+            }
+            return match rest.parse::<Terrain>() {
+                Ok(Terrain::Hilly { height, width, seed }) => Ok(Terrain::PsaHilly { height, width, seed }),
+                Ok(_) => Err(bad()),
+                Err(e) => Err(e.replace(rest, s)),
+            };
+        }
         let parts: Vec<&str> = s.split('-').collect();
         let num = |i: usize| -> Result<f64, String> {
             let v: f64 = parts.get(i).ok_or_else(bad)?.parse().map_err(|_| bad())?;
@@ -164,6 +188,19 @@ impl Terrain {
                 pts.push(Vec2::new(x + BORDER_WIDTH, BORDER_HEIGHT));
                 pts
             }
+            Terrain::PsaHilly { height, width, seed } => {
+                let mut rng = JavaRandom::new(seed.unwrap_or(episode_seed as i64));
+                let (start, end) = PSA_HILLS;
+                let mut x = start;
+                let mut pts = vec![Vec2::new(start - 1.0, BORDER_HEIGHT)];
+                while x < end {
+                    pts.push(Vec2::new(x, (rng.next_gaussian() * height).abs()));
+                    x += ((rng.next_gaussian() * 0.25 + 1.0) * width).max(1.0);
+                }
+                let last = pts[pts.len() - 1];
+                pts.push(Vec2::new(last.x + 1.0, BORDER_HEIGHT));
+                pts
+            }
             Terrain::Downhill { angle } => {
                 let dy = end_drop(angle);
                 vec![
@@ -226,6 +263,8 @@ mod tests {
             "steppy-2-5-7",
             "uphill-20",
             "downhill-30",
+            "psa-hilly-3-10",
+            "psa-hilly-3-10-4",
         ] {
             let t: Terrain = s.parse().unwrap();
             assert_eq!(t.to_string(), s);
@@ -265,5 +304,23 @@ mod tests {
         let s = steppy.profile(3);
         // treads are flat: every other segment has zero slope
         assert!(s[1..s.len() - 1].windows(2).step_by(2).all(|w| w[0].y == w[1].y));
+    }
+
+    #[test]
+    fn psa_hills_are_non_negative_seeded_and_walled() {
+        let t: Terrain = "psa-hilly-3-10".parse().unwrap();
+        let p = t.profile(5);
+        assert_eq!(p, t.profile(5));
+        assert_ne!(p, t.profile(6));
+        assert!(p.windows(2).all(|w| w[1].x > w[0].x));
+        assert_eq!(p[1].x, PSA_HILLS.0);
+        assert!(p[1..p.len() - 1].iter().all(|v| v.y >= 0.0));
+        assert!(p[p.len() - 2].x >= PSA_HILLS.1 - 30.0);
+        assert_eq!((p[0].y, p[p.len() - 1].y), (BORDER_HEIGHT, BORDER_HEIGHT));
+        let mean = p[1..p.len() - 1].iter().map(|v| v.y).sum::<f64>() / (p.len() - 2) as f64;
+        // E|N(0, 3²)| = 3·√(2/π) ≈ 2.39
+        assert!((mean - 2.39).abs() < 0.6, "mean height {mean}");
+        assert!("psa-hilly-1e9-10".parse::<Terrain>().unwrap_err().contains("height"));
+        assert!("psa-flat".parse::<Terrain>().is_err());
     }
 }

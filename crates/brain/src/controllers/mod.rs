@@ -5,6 +5,7 @@ pub mod centralized_mlp;
 pub mod constant;
 pub mod distributed_mlp;
 pub mod graph;
+pub mod heads;
 pub mod hebbian;
 pub mod phase;
 pub mod phase_grid;

@@ -3,8 +3,9 @@
 //! Parts joined by welds are merged into one rigid body when the world is built: the weld is then
 //! exactly rigid and costs nothing per step. Handles to the original parts stay valid.
 
+use super::pressure::EdgeLength;
 use super::settings::{SpringMassModel, WorldSettings};
-use super::world::{PartHandle, RopeHandle, SpringHandle, World};
+use super::world::{PartHandle, RingHandle, RopeHandle, SpringHandle, World};
 use crate::geometry::shape::Polygon;
 use crate::math::Vec2;
 use crate::PhysicsError;
@@ -30,6 +31,8 @@ pub struct PartDesc {
     pub group: u32,
     /// Whether the part may collide with other parts of its own group.
     pub collide_within_group: bool,
+    /// Whether the part never rotates (infinite inertia; a body with one such part keeps its angle).
+    pub fixed_rotation: bool,
 }
 
 impl PartDesc {
@@ -45,6 +48,7 @@ impl PartDesc {
             angular_damping: 0.0,
             group: 0,
             collide_within_group: true,
+            fixed_rotation: false,
         }
     }
     /// Sets the density.
@@ -66,6 +70,11 @@ impl PartDesc {
     pub fn damping(mut self, linear: f64, angular: f64) -> Self {
         self.linear_damping = linear;
         self.angular_damping = angular;
+        self
+    }
+    /// Keeps the part from rotating.
+    pub fn fixed_rotation(mut self) -> Self {
+        self.fixed_rotation = true;
         self
     }
     /// Sets the collision group and whether parts of that group collide with each other.
@@ -116,6 +125,21 @@ pub struct RopeDesc {
     pub collide_connected: bool,
 }
 
+/// A closed ring of parts with gas pressure inside (see [`crate::dynamics::pressure`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PressureRingDesc {
+    /// The ring's parts in order (edge i joins part i and part i+1, the last joins the first);
+    /// each must be a body of its own (not welded) and appear once.
+    pub parts: Vec<PartHandle>,
+    /// Which length the force p·L of an edge uses.
+    pub length: EdgeLength,
+    /// For [`EdgeLength::SpringRest`]: the spring along each edge, in the same order (edge i is
+    /// the spring between part i and part i+1); empty otherwise.
+    pub springs: Vec<SpringHandle>,
+    /// Initial pressure.
+    pub pressure: f64,
+}
+
 /// A static polygon in world coordinates (terrain, walls).
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct StaticDesc {
@@ -133,6 +157,7 @@ pub struct WorldBuilder {
     pub(crate) springs: Vec<SpringDesc>,
     pub(crate) ropes: Vec<RopeDesc>,
     pub(crate) statics: Vec<StaticDesc>,
+    pub(crate) rings: Vec<PressureRingDesc>,
     pub(crate) excluded: Vec<(PartHandle, PartHandle)>,
 }
 
@@ -163,7 +188,12 @@ impl WorldBuilder {
         self.ropes.push(rope);
         RopeHandle(self.ropes.len() as u32 - 1)
     }
-    /// Adds a static convex polygon (world coordinates).
+    /// Adds a pressurised ring of parts.
+    pub fn add_pressure_ring(&mut self, ring: PressureRingDesc) -> RingHandle {
+        self.rings.push(ring);
+        RingHandle(self.rings.len() as u32 - 1)
+    }
+    /// Adds a static convex polygon (world coordinates; circles are not supported as statics).
     pub fn add_static_polygon(&mut self, polygon: Polygon, friction: f64, restitution: f64) {
         self.statics.push(StaticDesc {
             polygon,
@@ -174,6 +204,10 @@ impl WorldBuilder {
     /// Prevents two parts from ever colliding.
     pub fn exclude_collision(&mut self, a: PartHandle, b: PartHandle) {
         self.excluded.push((a, b));
+    }
+    /// The settings the world will run with.
+    pub fn settings(&self) -> &WorldSettings {
+        &self.settings
     }
     /// Number of parts added so far.
     pub fn part_count(&self) -> usize {
@@ -230,6 +264,60 @@ impl WorldBuilder {
             check(r.part_a, "rope")?;
             check(r.part_b, "rope")?;
         }
+        for (i, st) in self.statics.iter().enumerate() {
+            if st.polygon.count < 3 || st.polygon.verts().iter().any(|v| !v.is_finite()) {
+                return Err(PhysicsError::Invalid(format!(
+                    "static polygon {i}: must be a finite polygon with at least 3 vertices"
+                )));
+            }
+        }
+        self.validate_rings()?;
         Ok(World::from_builder(self))
+    }
+
+    fn validate_rings(&self) -> Result<(), PhysicsError> {
+        let n = self.parts.len() as u32;
+        let welded: std::collections::HashSet<u32> = self.welds.iter().flat_map(|&(a, b)| [a.0, b.0]).collect();
+        for (i, r) in self.rings.iter().enumerate() {
+            let bad = |why: String| Err(PhysicsError::Invalid(format!("pressure ring {i}: {why}")));
+            if r.parts.len() < 3 {
+                return bad(format!("needs at least 3 parts, got {}", r.parts.len()));
+            }
+            let mut seen = std::collections::HashSet::new();
+            for p in &r.parts {
+                if p.0 >= n {
+                    return bad(format!("refers to unknown part {}", p.0));
+                }
+                if welded.contains(&p.0) {
+                    return bad(format!(
+                        "part {} is welded; ring parts must be bodies of their own",
+                        p.0
+                    ));
+                }
+                if !seen.insert(p.0) {
+                    return bad(format!("part {} appears twice", p.0));
+                }
+            }
+            if !r.pressure.is_finite() {
+                return bad(format!("pressure must be finite, got {}", r.pressure));
+            }
+            match r.length {
+                EdgeLength::Actual if !r.springs.is_empty() => {
+                    return bad("springs are only used with EdgeLength::SpringRest".into())
+                }
+                EdgeLength::SpringRest if r.springs.len() != r.parts.len() => {
+                    return bad(format!(
+                        "needs one spring per edge ({}), got {}",
+                        r.parts.len(),
+                        r.springs.len()
+                    ))
+                }
+                _ => {}
+            }
+            if let Some(s) = r.springs.iter().find(|s| s.0 as usize >= self.springs.len()) {
+                return bad(format!("refers to unknown spring {}", s.0));
+            }
+        }
+        Ok(())
     }
 }

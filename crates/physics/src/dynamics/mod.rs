@@ -8,6 +8,7 @@ pub(crate) mod broad_phase;
 pub mod builder;
 pub(crate) mod contact;
 pub(crate) mod contact_batch;
+pub mod pressure;
 pub(crate) mod rope;
 pub mod settings;
 pub(crate) mod simd;

@@ -4,6 +4,7 @@ use super::broad_phase::{ExcludedPairs, StaticIndex, SweepAndPrune};
 use super::builder::WorldBuilder;
 use super::contact::{apply_restitution, ContactConstraint, ContactPass, ContactSchedule};
 use super::contact_batch::ContactBatches;
+use super::pressure::PressureRing;
 use super::rope::{rope_batches, solve_ropes, Rope, RopeBatch};
 use super::settings::WorldSettings;
 use super::soft::Softness;
@@ -21,6 +22,9 @@ pub struct PartHandle(pub u32);
 /// Handle to a spring added with [`WorldBuilder::add_spring`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct SpringHandle(pub u32);
+/// Handle to a pressure ring added with [`WorldBuilder::add_pressure_ring`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct RingHandle(pub u32);
 /// Handle to a rope added with [`WorldBuilder::add_rope`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct RopeHandle(pub u32);
@@ -144,6 +148,7 @@ pub struct World {
     /// The ropes by colour, for the slack test of the first sub-step.
     rope_batches: Vec<RopeBatch>,
     rope_slot: Vec<u32>,
+    rings: Vec<PressureRing>,
     /// Part pairs that never collide.
     excluded: ExcludedPairs,
     contacts: Vec<ContactConstraint>,
@@ -254,10 +259,14 @@ impl World {
                 let members: Vec<usize> = (0..n).filter(|&j| roots[j] == r).collect();
                 let mass: f64 = members.iter().map(|&j| props[j].0).sum();
                 let com = members.iter().fold(Vec2::ZERO, |acc, &j| acc + props[j].1 * props[j].0) / mass;
-                let inertia: f64 = members
-                    .iter()
-                    .map(|&j| props[j].2 + props[j].0 * (props[j].1 - com).length_squared())
-                    .sum();
+                let inertia: f64 = if members.iter().any(|&j| b.parts[j].fixed_rotation) {
+                    0.0 // never rotates: zero inverse inertia
+                } else {
+                    members
+                        .iter()
+                        .map(|&j| props[j].2 + props[j].0 * (props[j].1 - com).length_squared())
+                        .sum()
+                };
                 let lin = members
                     .iter()
                     .map(|&j| b.parts[j].linear_damping * props[j].0)
@@ -292,7 +301,8 @@ impl World {
                         .verts()
                         .iter()
                         .map(|v| (*v + parts[i].local).length())
-                        .fold(0.0, f64::max),
+                        .fold(0.0, f64::max)
+                        + p.shape.radius,
                     friction: p.friction,
                     restitution: p.restitution,
                     group: p.group,
@@ -337,13 +347,20 @@ impl World {
                 local_b: world_b - bodies.state[bb as usize].pos,
                 rest: s.rest_length,
             });
+            let part_inv_inertia = |k: usize| {
+                if b.parts[k].fixed_rotation {
+                    0.0
+                } else {
+                    1.0 / props[k].2
+                }
+            };
             spring_models.push(SpringModel {
                 arm_a: world_a - props[pa].1,
                 arm_b: world_b - props[pb].1,
                 part_inv_mass_a: 1.0 / ma,
-                part_inv_inertia_a: 1.0 / props[pa].2,
+                part_inv_inertia_a: part_inv_inertia(pa),
                 part_inv_mass_b: 1.0 / mb,
-                part_inv_inertia_b: 1.0 / props[pb].2,
+                part_inv_inertia_b: part_inv_inertia(pb),
                 omega: 2.0 * std::f64::consts::PI * s.frequency,
                 zeta: s.damping_ratio,
                 model: s.mass_model,
@@ -397,6 +414,16 @@ impl World {
             }
             r.1 = k as u32 + 1;
         }
+        let rings = b
+            .rings
+            .iter()
+            .map(|r| PressureRing {
+                bodies: r.parts.iter().map(|p| part_body[p.0 as usize]).collect(),
+                spring_slots: r.springs.iter().map(|h| spring_slot[h.0 as usize]).collect(),
+                length: r.length,
+                pressure: r.pressure,
+            })
+            .collect();
         let n_bodies = bodies.len();
         World {
             settings: b.settings,
@@ -436,6 +463,7 @@ impl World {
             rope_batches: rope_batches(&ropes, &rope_ranges),
             ropes,
             rope_slot,
+            rings,
             excluded,
             contacts: Vec::new(),
             contact_schedule: ContactSchedule::default(),
@@ -472,6 +500,7 @@ impl World {
 
     /// Advances the world by one time step `dt`.
     pub fn step(&mut self) -> Result<(), PhysicsError> {
+        self.apply_pressure();
         self.integrate_velocities();
         self.detect_contacts();
         self.contact_schedule.build(&self.contacts, self.bodies.len());
@@ -488,6 +517,14 @@ impl World {
         self.step_count += 1;
         self.time += self.settings.dt;
         self.check_finite()
+    }
+
+    /// Adds every pressure ring's forces, from the positions at the start of the step.
+    fn apply_pressure(&mut self) {
+        let springs = &self.springs;
+        for ring in &self.rings {
+            ring.apply(&mut self.bodies, |slot| springs.rest(slot));
+        }
     }
 
     /// Gravity, external forces and damping, once per step (semi-implicit Euler).
@@ -520,7 +557,7 @@ impl World {
             poly.set_transformed(&s.local, st.rot, st.pos);
             let reach = s.radius * st.omega.abs() + st.vel.length();
             self.margins[k] = 0.5 * base + reach * dt;
-            self.aabbs[k] = Aabb::of_points(poly.verts()).inflated(self.margins[k]);
+            self.aabbs[k] = Aabb::of_points(poly.verts()).inflated(self.margins[k] + poly.radius);
         }
         for (b, &(lo, hi)) in self.body_shapes.iter().enumerate().skip(1) {
             let boxes = &self.aabbs[lo as usize..hi as usize];
@@ -800,6 +837,19 @@ impl World {
     pub fn spring_rest_length(&self, h: SpringHandle) -> Option<f64> {
         let slot = self.spring_slot[h.0 as usize];
         (slot != NONE).then(|| self.springs.rest(slot))
+    }
+    /// Sets a pressure ring's pressure (acts from the next step on).
+    pub fn set_ring_pressure(&mut self, h: RingHandle, pressure: f64) {
+        self.rings[h.0 as usize].pressure = pressure;
+    }
+    /// A pressure ring's current pressure.
+    pub fn ring_pressure(&self, h: RingHandle) -> f64 {
+        self.rings[h.0 as usize].pressure
+    }
+    /// Area enclosed by a ring's part centres now (shoelace formula; positive whichever way the
+    /// ring was listed, as long as it does not fold over itself).
+    pub fn ring_area(&self, h: RingHandle) -> f64 {
+        self.rings[h.0 as usize].signed_area(&self.bodies).abs()
     }
     /// Whether a rope is simulated (false when its two parts were welded together).
     pub fn rope_active(&self, h: RopeHandle) -> bool {

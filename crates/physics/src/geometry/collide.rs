@@ -47,6 +47,9 @@ fn max_separation(a: &Polygon, b: &Polygon) -> (f64, usize) {
 
 /// Computes the contact manifold of two world-space polygons, keeping points closer than `margin`.
 pub fn collide_polygons(a: &Polygon, b: &Polygon, margin: f64) -> Manifold {
+    if a.is_circle() || b.is_circle() {
+        return collide_with_circle(a, b, margin);
+    }
     let mut out = Manifold::default();
     let (sep_a, edge_a) = max_separation(a, b);
     if sep_a > margin {
@@ -100,6 +103,66 @@ pub fn collide_polygons(a: &Polygon, b: &Polygon, margin: f64) -> Manifold {
 }
 
 /// Clips segment p1–p2 (with tangent coordinates d1, d2) to [lower, upper]; false if nothing is left.
+/// One contact point between a circle and a polygon or another circle (B or A is the circle);
+/// the normal points from A to B as for polygons.
+fn collide_with_circle(a: &Polygon, b: &Polygon, margin: f64) -> Manifold {
+    let mut out = Manifold::default();
+    let (normal, separation, point_on_a) = match (a.is_circle(), b.is_circle()) {
+        (true, true) => {
+            let (ca, cb) = (a.vertices[0], b.vertices[0]);
+            let d = cb - ca;
+            let dist = d.length();
+            let n = if dist > 1e-12 { d / dist } else { Vec2::new(0.0, 1.0) };
+            (n, dist - a.radius - b.radius, ca + n * a.radius)
+        }
+        (false, true) => polygon_circle(a, b.vertices[0], b.radius),
+        (true, false) => {
+            let (n, sep, on_b) = polygon_circle(b, a.vertices[0], a.radius);
+            (-n, sep, on_b + n * sep)
+        }
+        (false, false) => unreachable!("called only with a circle"),
+    };
+    if separation > margin {
+        return out;
+    }
+    out.normal = normal;
+    out.points[0] = ManifoldPoint {
+        point: point_on_a + normal * (0.5 * separation),
+        separation,
+    };
+    out.count = 1;
+    out
+}
+
+/// Normal from the polygon towards the circle's centre, the separation, and the closest point of
+/// the polygon's surface (the centre's projection when the centre is inside).
+fn polygon_circle(poly: &Polygon, centre: Vec2, radius: f64) -> (Vec2, f64, Vec2) {
+    let mut best = f64::NEG_INFINITY;
+    let mut edge = 0;
+    for i in 0..poly.count {
+        let s = poly.normals[i].dot(centre - poly.vertices[i]);
+        if s > best {
+            best = s;
+            edge = i;
+        }
+    }
+    let v1 = poly.vertices[edge];
+    let v2 = poly.vertices[(edge + 1) % poly.count];
+    let face = |n: Vec2| (n, best - radius, centre - n * best);
+    if best <= 0.0 {
+        return face(poly.normals[edge]);
+    }
+    for (v, w) in [(v1, v2), (v2, v1)] {
+        if (centre - v).dot(w - v) <= 0.0 {
+            let d = centre - v;
+            let dist = d.length();
+            let n = if dist > 1e-12 { d / dist } else { poly.normals[edge] };
+            return (n, dist - radius, v);
+        }
+    }
+    face(poly.normals[edge])
+}
+
 fn clip_segment(p1: &mut Vec2, p2: &mut Vec2, d1: f64, d2: f64, lower: f64, upper: f64) -> bool {
     let (a, b) = (*p1, *p2);
     let (lo_d, hi_d) = (d1.min(d2), d1.max(d2));
@@ -131,6 +194,47 @@ fn clip_segment(p1: &mut Vec2, p2: &mut Vec2, d1: f64, d2: f64, lower: f64, uppe
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn circle_on_box_touches_at_one_point_below_its_centre() {
+        let ground = Polygon::rect(Vec2::new(0.0, -1.0), 10.0, 1.0);
+        let ball = Polygon::circle(Vec2::new(0.3, 0.49), 0.5).unwrap();
+        let m = collide_polygons(&ground, &ball, 0.05);
+        assert_eq!(m.count, 1);
+        assert!((m.normal - Vec2::new(0.0, 1.0)).length() < 1e-12);
+        assert!((m.points[0].separation + 0.01).abs() < 1e-12);
+        assert!((m.points[0].point - Vec2::new(0.3, -0.005)).length() < 1e-12);
+        // same pair, other order: the normal flips, the point and separation stay
+        let r = collide_polygons(&ball, &ground, 0.05);
+        assert_eq!(r.count, 1);
+        assert!((r.normal + m.normal).length() < 1e-12);
+        assert!((r.points[0].point - m.points[0].point).length() < 1e-12);
+        // lifted beyond the margin: no contact
+        let high = Polygon::circle(Vec2::new(0.3, 0.6), 0.5).unwrap();
+        assert_eq!(collide_polygons(&ground, &high, 0.05).count, 0);
+    }
+
+    #[test]
+    fn circle_near_a_corner_is_pushed_away_from_the_corner() {
+        let b = Polygon::square(Vec2::ZERO, 2.0);
+        let ball = Polygon::circle(Vec2::new(1.3, 1.4), 0.6).unwrap();
+        let m = collide_polygons(&b, &ball, 0.0);
+        assert_eq!(m.count, 1);
+        let expected = Vec2::new(0.3, 0.4) / 0.5;
+        assert!((m.normal - expected).length() < 1e-12);
+        assert!((m.points[0].separation + 0.1).abs() < 1e-12);
+    }
+
+    #[test]
+    fn two_circles_collide_along_their_centres() {
+        let a = Polygon::circle(Vec2::ZERO, 1.0).unwrap();
+        let b = Polygon::circle(Vec2::new(1.5, 0.0), 1.0).unwrap();
+        let m = collide_polygons(&a, &b, 0.0);
+        assert_eq!(m.count, 1);
+        assert_eq!(m.normal, Vec2::new(1.0, 0.0));
+        assert!((m.points[0].separation + 0.5).abs() < 1e-12);
+        assert!((m.points[0].point - Vec2::new(0.75, 0.0)).length() < 1e-12);
+    }
 
     #[test]
     fn box_resting_on_box_gives_two_points_with_upward_normal() {

@@ -1,4 +1,5 @@
-//! Convex polygons, the one shape family the engine collides (boxes are polygons).
+//! Convex polygons and circles, the shapes the engine collides (boxes are polygons; a circle is a
+//! one-vertex polygon with a radius, so both share one inline layout).
 
 use crate::math::{Rot, Vec2};
 use serde::{Deserialize, Serialize};
@@ -6,15 +7,19 @@ use serde::{Deserialize, Serialize};
 /// Most vertices a collision polygon may have (keeps polygons inline, without heap storage).
 pub const MAX_POLYGON_VERTICES: usize = 8;
 
-/// A convex polygon in counter-clockwise order, in its owner's local frame.
+/// A convex polygon in counter-clockwise order, in its owner's local frame; or a circle (one
+/// vertex, the centre, and a radius).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Polygon {
-    /// Number of used vertices (3..=8).
+    /// Number of used vertices (3..=8 for a polygon, 1 for a circle).
     pub count: usize,
     /// Vertices, counter-clockwise; only the first `count` are used.
     pub vertices: [Vec2; MAX_POLYGON_VERTICES],
     /// Outward unit normal of edge i (from vertex i to vertex i+1).
     pub normals: [Vec2; MAX_POLYGON_VERTICES],
+    /// Radius of a circle (0 for a polygon).
+    #[serde(default)]
+    pub radius: f64,
 }
 
 impl Polygon {
@@ -59,7 +64,29 @@ impl Polygon {
             count: n,
             vertices,
             normals,
+            radius: 0.0,
         })
+    }
+
+    /// A circle of `radius` around `center` (`None` unless the radius is finite and > 0).
+    pub fn circle(center: Vec2, radius: f64) -> Option<Polygon> {
+        if !(radius.is_finite() && radius > 0.0 && center.is_finite()) {
+            return None;
+        }
+        let mut vertices = [Vec2::ZERO; MAX_POLYGON_VERTICES];
+        vertices[0] = center;
+        Some(Polygon {
+            count: 1,
+            vertices,
+            normals: [Vec2::ZERO; MAX_POLYGON_VERTICES],
+            radius,
+        })
+    }
+
+    /// True for a circle made by [`Polygon::circle`].
+    #[inline]
+    pub fn is_circle(&self) -> bool {
+        self.count == 1
     }
 
     /// The used vertices.
@@ -70,6 +97,10 @@ impl Polygon {
 
     /// Area, centroid and second moment of area about the centroid (for unit density).
     pub fn mass_properties(&self) -> (f64, Vec2, f64) {
+        if self.is_circle() {
+            let area = std::f64::consts::PI * self.radius * self.radius;
+            return (area, self.vertices[0], 0.5 * area * self.radius * self.radius);
+        }
         let v = self.verts();
         let origin = v[0];
         let mut area = 0.0;
@@ -105,6 +136,7 @@ impl Polygon {
     pub(crate) fn set_transformed(&mut self, src: &Polygon, rot: Rot, pos: Vec2) {
         let n = src.count.min(MAX_POLYGON_VERTICES);
         self.count = n;
+        self.radius = src.radius;
         for (v, s) in self.vertices[..n].iter_mut().zip(&src.vertices[..n]) {
             *v = rot.apply(*s) + pos;
         }
@@ -126,6 +158,18 @@ mod tests {
         assert!((c - Vec2::new(1.0, 2.0)).length() < 1e-12);
         // I = A (w² + h²) / 12 for unit density
         assert!((i - 1.44 * (1.44 + 1.44) / 12.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn circle_mass_properties_match_formula() {
+        let c = Polygon::circle(Vec2::new(1.0, -2.0), 2.0).unwrap();
+        let (a, centre, i) = c.mass_properties();
+        let area = std::f64::consts::PI * 4.0;
+        assert!((a - area).abs() < 1e-12);
+        assert_eq!(centre, Vec2::new(1.0, -2.0));
+        assert!((i - area * 2.0).abs() < 1e-12, "I = m r²/2 per unit density");
+        assert!(Polygon::circle(Vec2::ZERO, 0.0).is_none());
+        assert!(Polygon::circle(Vec2::ZERO, f64::NAN).is_none());
     }
 
     #[test]

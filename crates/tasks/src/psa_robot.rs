@@ -1,0 +1,255 @@
+//! The pressure-based soft agent as a [`Robot`] (thesis ch. 6): a [`PsaRobot`] assembles into a
+//! [`Psa`] body, its [`PsaSensors`] and its brain; at every step its [`PsaAgent`] senses, controls
+//! and actuates, in that order (the step order of every vsrlab robot).
+//!
+//! The brain sees the agent as a row of units, one per controlled actuator: with spring control,
+//! unit i is mass i (readings touch, x, y; actuator: spring i, joining mass i and i+1); with
+//! pressure control, one more unit is the gas (readings Δx, Δy, p/p_max; actuator: Δp). Without
+//! pressure control the gas's three readings go to the last spring unit; without spring control
+//! the gas unit has all 3n+3 readings. Any brain whose shape fits runs a PSA; the thesis's is
+//! `heads` (tanh spring heads, a linear Δp head).
+
+use crate::agent::{Agent, Robot};
+use crate::episode::EpisodeError;
+use crate::outcome::Trace;
+use serde::{Deserialize, Serialize};
+use vsrlab_body::psa::{Psa, PsaBody, PsaSensors};
+use vsrlab_body::{Body, Morphology};
+use vsrlab_brain::{BrainSpec, Controller, HeadsSpec};
+use vsrlab_physics::{Vec2, World, WorldBuilder};
+
+/// Collision group of the agent (touch sensing).
+const PSA_GROUP: u32 = 1;
+
+/// A PSA robot: its body and its brain.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PsaRobot {
+    /// Size and constants.
+    pub body: PsaBody,
+    /// The controller (default: the thesis's `heads`).
+    #[serde(default = "default_brain")]
+    pub brain: BrainSpec,
+}
+
+fn default_brain() -> BrainSpec {
+    BrainSpec::Heads(HeadsSpec::default())
+}
+
+impl PsaRobot {
+    /// The brain's view of the agent: a one-row grid of the controlled units and the readings of
+    /// each (see the module documentation).
+    pub fn brain_shape(&self) -> (Morphology, Vec<usize>) {
+        let p = &self.body.params;
+        let n = p.masses;
+        let mut readings = Vec::new();
+        if p.spring_control {
+            readings.extend(std::iter::repeat_n(3, n));
+            if p.pressure_control {
+                readings.push(3);
+            } else {
+                readings[n - 1] += 3;
+            }
+        } else {
+            readings.push(3 * n + 3);
+        }
+        let units = readings.len();
+        let row = Morphology::from_fn(units, 1, |_, _| true).expect("a PSA has 1 to 201 units");
+        (row, readings)
+    }
+
+    /// Number of brain parameters for this body.
+    pub fn brain_parameters(&self) -> Result<usize, EpisodeError> {
+        let (row, readings) = self.brain_shape();
+        self.brain
+            .parameter_count(&row, &readings)
+            .map_err(|e| EpisodeError::Invalid(format!("robot.brain.{e}")))
+    }
+
+    /// Checks that body and brain fit together; errors name the field.
+    pub fn validate(&self) -> Result<(), EpisodeError> {
+        let p = &self.body.params;
+        p.validate()
+            .map_err(|e| EpisodeError::Invalid(format!("robot.body.{e}")))?;
+        if let BrainSpec::Heads(h) = &self.brain {
+            let expected = usize::from(p.pressure_control);
+            if h.linear_outputs != expected {
+                return Err(EpisodeError::Invalid(format!(
+                    "robot.brain.linear_outputs: {} with pressure control {}; the last output is {} here, so set {expected}",
+                    h.linear_outputs,
+                    if p.pressure_control { "on" } else { "off" },
+                    if p.pressure_control { "Δp (linear)" } else { "a spring (tanh)" }
+                )));
+            }
+        }
+        let (row, readings) = self.brain_shape();
+        self.brain
+            .build(&row, &readings)
+            .map(|_| ())
+            .map_err(|e| EpisodeError::Invalid(format!("robot.brain.{e}")))
+    }
+}
+
+impl Robot for PsaRobot {
+    /// The undersides of the masses, relative to the origin: the lower left corner of the
+    /// circle's bounding box.
+    fn footprint(&self) -> Vec<Vec2> {
+        let p = &self.body.params;
+        let n = p.masses;
+        (0..n)
+            .map(|i| {
+                let a = 2.0 * std::f64::consts::PI * i as f64 / n as f64;
+                Vec2::new(
+                    p.radius * (1.0 + a.cos()),
+                    p.radius * (1.0 + a.sin()) - 0.5 * p.mass_side,
+                )
+            })
+            .collect()
+    }
+
+    fn assemble(&self, builder: &mut WorldBuilder, origin: Vec2, _seed: u64) -> Result<Box<dyn Agent>, EpisodeError> {
+        self.validate()?;
+        let p = &self.body.params;
+        let centre = origin + Vec2::new(p.radius, p.radius);
+        let psa = Psa::assemble(builder, p, centre, PSA_GROUP);
+        let (row, readings) = self.brain_shape();
+        let mut brain = self
+            .brain
+            .build(&row, &readings)
+            .map_err(|e| EpisodeError::Invalid(format!("robot.brain.{e}")))?;
+        brain.reset();
+        let sensors = PsaSensors::new(&psa, builder.settings().dt);
+        Ok(Box::new(PsaAgent::new(psa, sensors, brain, readings.len())))
+    }
+
+    fn robot_file(&self, note: Option<&str>) -> Option<String> {
+        Some(crate::files::psa_to_json(self, note))
+    }
+}
+
+/// A PSA in a world: body, sensors, brain and the buffers they share each step.
+pub struct PsaAgent {
+    psa: Psa,
+    sensors: PsaSensors,
+    brain: Box<dyn Controller>,
+    readings: Vec<f64>,
+    /// The brain's outputs, one per controlled unit.
+    outputs: Vec<f64>,
+    /// The body's actuation: one per spring, then Δp.
+    actuations: Vec<f64>,
+    /// Pressure before the last actuation, φ and each mass's touch flag, for the trace.
+    pressure: f64,
+    phi: f64,
+    touching: Vec<bool>,
+}
+
+impl PsaAgent {
+    /// Wires a body, its sensors and a brain built for `units` outputs.
+    pub fn new(psa: Psa, sensors: PsaSensors, brain: Box<dyn Controller>, units: usize) -> Self {
+        let readings = vec![0.0; sensors.reading_count()];
+        let actuations = vec![0.0; psa.actuator_count()];
+        let touching = vec![false; psa.mass_count()];
+        PsaAgent {
+            psa,
+            sensors,
+            brain,
+            readings,
+            outputs: vec![0.0; units],
+            touching,
+            actuations,
+            pressure: 0.0,
+            phi: 1.0,
+        }
+    }
+
+    /// The body.
+    pub fn psa(&self) -> &Psa {
+        &self.psa
+    }
+}
+
+impl Agent for PsaAgent {
+    fn body(&self) -> &dyn Body {
+        &self.psa
+    }
+
+    fn act(&mut self, world: &mut World, t: f64) {
+        self.sensors.sense(&self.psa, world, &mut self.readings);
+        self.brain.control(t, &self.readings, &mut self.outputs);
+        let p = self.psa.params();
+        let n = p.masses;
+        if p.spring_control {
+            self.actuations[..n].copy_from_slice(&self.outputs[..n]);
+        }
+        if p.pressure_control {
+            self.actuations[n] = self.outputs[self.outputs.len() - 1];
+        }
+        self.pressure = self.psa.pressure(world);
+        self.phi = self.psa.area_ratio(world);
+        for (flag, &m) in self.touching.iter_mut().zip(self.psa.masses()) {
+            *flag = world.part_touching(m);
+        }
+        self.psa.actuate(world, &self.actuations);
+    }
+
+    fn describe(&mut self, trace: &mut Trace) {
+        trace.side_length = self.psa.params().mass_side;
+        // the trace's units are the outline's polygons: the membrane, then the masses
+        trace.cells = (0..=self.psa.mass_count()).map(|i| (i, 0)).collect();
+    }
+
+    fn record(&self, trace: &mut Trace) {
+        // the membrane: φ as its area ratio, no touch; then each mass
+        trace.area_ratios.push(self.phi);
+        trace.angles.push(0.0);
+        trace.touching.push(false);
+        trace.actuations.push(self.actuations[self.psa.mass_count()]);
+        for i in 0..self.psa.mass_count() {
+            trace.area_ratios.push(1.0);
+            trace.angles.push(0.0);
+            trace.touching.push(self.touching[i]);
+            trace.actuations.push(self.actuations[i]);
+        }
+        trace.pressures.push((self.pressure / self.psa.max_pressure()) as f32);
+    }
+}
+
+/// Seed of the random brain parameters of a PSA built from short forms (as for voxel robots).
+const RANDOM_BRAIN_SEED: u64 = 0;
+
+impl PsaRobot {
+    /// Whether a command-line body names a PSA (`psa` or `psa:<size>`).
+    pub fn is_short_form(body: &str) -> bool {
+        body == "psa" || body.starts_with("psa:")
+    }
+
+    /// A PSA from command-line short forms: `psa[:small|medium|large]` and a brain short form
+    /// (`heads` for the thesis's controller); a brain with parameters gets seeded random ones in
+    /// [−1, 1]. Errors say which of the two is wrong (`body: …`, `brain: …`).
+    pub fn from_short_forms(body: &str, brain: &str) -> Result<PsaRobot, String> {
+        let size = match body.strip_prefix("psa:") {
+            None if body == "psa" => Default::default(),
+            Some(size) => serde_json::from_value(serde_json::Value::String(size.to_string()))
+                .map_err(|_| format!("body: unknown PSA size '{size}': expected small, medium or large"))?,
+            None => return Err(format!("body: '{body}' is not a PSA (psa[:small|medium|large])")),
+        };
+        let brain = BrainSpec::parse(brain).map_err(|e| format!("brain: {e}"))?;
+        let mut robot = PsaRobot {
+            body: PsaBody::of_size(size),
+            brain,
+        };
+        let (row, readings) = robot.brain_shape();
+        let count = robot
+            .brain
+            .parameter_count(&row, &readings)
+            .map_err(|e| format!("brain: {e}"))?;
+        if count > 0 && robot.brain.parameters().is_empty() {
+            robot.brain = robot
+                .brain
+                .with_random_parameters(RANDOM_BRAIN_SEED, &row, &readings)
+                .map_err(|e| format!("brain: {e}"))?;
+        }
+        robot.validate().map_err(|e| e.to_string())?;
+        Ok(robot)
+    }
+}

@@ -9,7 +9,9 @@ edge along its outward normal, applied after each world step; Step(1/60, 8, 3); 
 
   inflate SIZE [--actual-length]   φ per step of the inflation protocol, as CSV on stdout
   speed SIZE [--steps N]           steps/s of a random-control episode (physics + pressure +
-                                   a random controller in Python, no sensors, no MLP)
+                                   a random controller in Python, no sensors, no MLP), and the
+                                   time inside world.Step alone during that episode (the ceiling
+                                   of any Box2D-based PSA)
 """
 import math
 import random
@@ -89,15 +91,19 @@ def speed(size, steps):
     world, bodies, joints, rest, p_max, r = build(size)
     rng = random.Random(0)
     p = p_max / 1.25
+    in_step = 0.0
     t0 = time.perf_counter()
     for _ in range(steps):
+        s0 = time.perf_counter()
         world.Step(1 / 60, 8, 3)
+        in_step += time.perf_counter() - s0
         for j in joints:
             j.length = rest * (1 + 0.25 * rng.uniform(-1, 1))
         p = min(max(p + rng.uniform(-1, 1) * 100, 0.2 * p_max), p_max)
         apply_pressure(bodies, joints, p, False)
     elapsed = time.perf_counter() - t0
-    print(f"box2d {size}: {steps} steps in {elapsed:.3f} s = {steps / elapsed:.0f} steps/s")
+    print(f"box2d+python {size}: {steps} steps in {elapsed:.3f} s = {steps / elapsed:.0f} steps/s")
+    print(f"box2d-step-only {size}: {steps} steps in {in_step:.3f} s = {steps / in_step:.0f} steps/s")
 
 
 if __name__ == "__main__":

@@ -5,6 +5,7 @@
 
 mod analyze;
 mod bench;
+mod inflate;
 mod label;
 mod modules;
 mod overrides;
@@ -18,7 +19,8 @@ mod validate;
 use clap::{CommandFactory, Parser, Subcommand};
 use std::process::ExitCode;
 
-/// Simulate, render and benchmark voxel-based soft robots.
+/// Simulate, evolve, render and benchmark soft robots: voxel-based soft robots and pressure-based
+/// soft agents.
 #[derive(Parser)]
 #[command(name = "vsrlab", version, about)]
 struct Cli {
@@ -52,6 +54,8 @@ enum Command {
     Reassemble(modules::ReassembleArgs),
     /// Transferability ρ and edges cut η of re-optimised reassembled robots, per setting.
     Transferability(modules::TransferabilityArgs),
+    /// The PSA inflation protocol: φ and pressure per step for each size (docs/psa.md).
+    Inflate(inflate::InflateArgs),
     /// Print a shell completion script, e.g. `vsrlab completions bash > ~/.local/share/bash-completion/completions/vsrlab`.
     Completions {
         /// The shell: bash, zsh, fish, elvish or powershell.
@@ -73,6 +77,7 @@ fn main() -> ExitCode {
         Command::Modules(a) => modules::run_modules(a),
         Command::Reassemble(a) => modules::run_reassemble(a),
         Command::Transferability(a) => modules::run_transferability(a),
+        Command::Inflate(a) => inflate::run(a),
         Command::Completions { shell } => {
             clap_complete::generate(shell, &mut Cli::command(), "vsrlab", &mut std::io::stdout());
             Ok(())

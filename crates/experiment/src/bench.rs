@@ -3,21 +3,29 @@
 //!
 //! Each row runs locomotion episodes until a minimum CPU time is spent. The cross-simulator unit
 //! is voxel·seconds simulated per CPU-second (voxels × simulated seconds / CPU seconds), the
-//! figure the developers' guide compares across simulators.
+//! figure the developers' guide compares across simulators. The pressure-based soft agents
+//! (`psa:small|medium|large`) run on flat ground with the thesis's `heads` brain (random weights);
+//! their "voxels" column counts masses, and they are compared with the original PSA code's
+//! steps/s (psa-model.md, flat, MLP controller).
 
 use crate::cpu_time::{process_cpu_seconds, thread_cpu_seconds};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::time::Instant;
+use vsrlab_tasks::files::AnyRobot;
+use vsrlab_tasks::psa_inflation::psa_physics;
 use vsrlab_tasks::short_forms::DEFAULT_SENSORS;
-use vsrlab_tasks::{EpisodeError, Locomotion, RobotArgsError, RobotSpec, TraceLevel};
+use vsrlab_tasks::{EpisodeError, Locomotion, PsaRobot, RobotArgsError, RobotSpec, TraceLevel};
 
 /// The standard robots of the benchmark, each with the terrain it walks on.
-pub const STANDARD_CASES: [(&str, &str); 4] = [
+pub const STANDARD_CASES: [(&str, &str); 7] = [
     ("biped-4x3", "flat"),
     ("worm-10x4", "flat"),
     ("box-5x5", "hilly-1-10"),
     ("box-10x10", "flat"),
+    ("psa:small", "flat"),
+    ("psa:medium", "flat"),
+    ("psa:large", "flat"),
 ];
 
 /// What to measure. Robots are given by short forms, as on the command line.
@@ -36,9 +44,10 @@ pub struct BenchOptions {
     pub robots: Option<Vec<String>>,
     /// Physics sub-steps per step; `None`: the engine's default.
     pub substeps: Option<u32>,
-    /// Brain of every robot (parameterised brains get seeded random parameters).
+    /// Brain of every voxel robot (parameterised brains get seeded random parameters; PSAs
+    /// always get `heads`).
     pub brain: String,
-    /// Sensors of every voxel; `empty` measures the body and the physics alone.
+    /// Sensors of every voxel; `empty` measures the body and the physics alone (not PSAs).
     pub sensors: String,
     /// Whether to measure the parallel rows too.
     pub parallel: bool,
@@ -99,6 +108,10 @@ pub fn original_speed(preset: &str, robot: &str) -> Option<OriginalSpeed> {
         ("2022", "box-5x5") => (900.0, "HEAD"),
         ("2021", "biped-4x3") => (1900.0, "v1.10.0"),
         ("2021", "worm-10x4") => (1150.0, "v1.10.0"),
+        // the PSA paper's code (PressureSoftAgents stable-release, pybox2d), flat, MLP controller
+        (_, "psa:small") => (2782.0, "PSA stable-release"),
+        (_, "psa:medium") => (1967.0, "PSA stable-release"),
+        (_, "psa:large") => (1716.0, "PSA stable-release"),
         _ => return None,
     };
     Some(OriginalSpeed { steps_per_s, version })
@@ -248,7 +261,7 @@ fn is_selected(options: &BenchOptions, robot: &str) -> bool {
 struct Case<'a> {
     name: &'static str,
     terrain: &'static str,
-    robot: RobotSpec,
+    robot: AnyRobot,
     task: Locomotion,
     preset: &'a str,
 }
@@ -264,10 +277,17 @@ struct Measurement {
 impl<'a> Case<'a> {
     /// The robot `name` with the options' preset, sensors and brain, on `terrain`.
     fn new(name: &'static str, terrain: &'static str, options: &'a BenchOptions) -> Result<Self, BenchError> {
-        let robot = RobotSpec::from_short_forms(name, &options.preset, &options.sensors, &options.brain)?;
+        let (robot, physics) = if PsaRobot::is_short_form(name) {
+            let psa = PsaRobot::from_short_forms(name, "heads").map_err(BenchError::Option)?;
+            (AnyRobot::Psa(psa), psa_physics())
+        } else {
+            let voxels = RobotSpec::from_short_forms(name, &options.preset, &options.sensors, &options.brain)?;
+            (AnyRobot::Voxel(voxels), Locomotion::default().physics)
+        };
         let mut task = Locomotion {
             terrain: terrain.parse().map_err(BenchError::Terrain)?,
             duration: options.duration,
+            physics,
             ..Default::default()
         };
         if let Some(n) = options.substeps {
@@ -284,7 +304,7 @@ impl<'a> Case<'a> {
 
     /// Steps of one episode with episode seed `seed`.
     fn episode(&self, seed: u64) -> Result<u64, EpisodeError> {
-        vsrlab_tasks::episode::run(&self.robot, &self.task, seed, TraceLevel::None).map(|o| o.steps)
+        vsrlab_tasks::episode::run(self.robot.as_robot(), &self.task, seed, TraceLevel::None).map(|o| o.steps)
     }
 
     /// A warm-up episode, then episodes on this thread until `min_cpu_seconds` of its CPU time.
@@ -322,7 +342,10 @@ impl<'a> Case<'a> {
     /// machine); parallel rates use wall time (throughput of the whole machine); the
     /// cross-simulator unit always uses CPU time.
     fn row(&self, mode: Mode, threads: usize, m: Measurement) -> Row {
-        let voxels = self.robot.body.voxel_count();
+        let voxels = match &self.robot {
+            AnyRobot::Voxel(r) => r.body.voxel_count(),
+            AnyRobot::Psa(r) => r.body.params.masses,
+        };
         let steps_per_s = match mode {
             Mode::Single => m.steps as f64 / m.cpu_seconds,
             Mode::Parallel => m.steps as f64 / m.wall_seconds,
@@ -391,6 +414,20 @@ mod tests {
         assert_eq!(original_speed("2022", "worm-10x4").map(|o| o.version), Some("HEAD"));
         assert_eq!(original_speed("2021", "biped-4x3").map(|o| o.steps_per_s), Some(1900.0));
         assert_eq!(original_speed("2021", "box-10x10"), None);
+        assert_eq!(
+            original_speed("2021", "psa:medium").map(|o| o.steps_per_s),
+            Some(1967.0)
+        );
+    }
+
+    #[test]
+    fn psa_rows_count_masses_and_compare_with_the_original_psa_code() {
+        let report = run_bench(&tiny(&["psa:small"])).unwrap();
+        let single = &report.rows[0];
+        assert_eq!((single.robot.as_str(), single.voxels), ("psa:small", 10));
+        assert_eq!(single.steps, 60 * single.episodes as u64);
+        assert_eq!(single.original_version, Some("PSA stable-release"));
+        assert!(single.ratio_to_original.unwrap() > 1.0);
     }
 
     #[test]

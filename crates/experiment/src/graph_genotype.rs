@@ -186,9 +186,9 @@ fn default_sigma() -> f64 {
 fn fixed_body(representation: &Representation) -> Result<&Morphology, (String, String)> {
     match &representation.body {
         BodyPart::Fixed(m) => Ok(m),
-        BodyPart::Encoded(_) => Err((
+        BodyPart::Encoded(_) | BodyPart::Psa(_) => Err((
             "representation.body".into(),
-            "a graph genotype places neurons in voxels: give a fixed body (a shape name or rows)".into(),
+            "a graph genotype places neurons in voxels: give a fixed voxel body (a shape name or rows)".into(),
         )),
     }
 }
@@ -372,7 +372,7 @@ impl Mapper<GraphSpec> for GraphMapper {
             body: body.clone(),
             preset: self.representation.preset,
             voxel: None,
-            sensors: self.representation.sensors.clone(),
+            sensors: self.representation.sensors()?.clone(),
             brain: BrainSpec::Graph(genotype.clone()),
         }))
     }
@@ -399,8 +399,8 @@ pub fn build(experiment: &Experiment, config: &GraphGenotypeConfig) -> Result<(G
     let representation = &experiment.representation;
     let body = fixed_body(representation).map_err(named)?;
     let brain = graph_brain(representation).map_err(named)?;
-    let suite =
-        SensorSuite::new(&representation.sensors, body, 0).map_err(|e| format!("representation.sensors: {e}"))?;
+    let suite = SensorSuite::new(representation.sensors().map_err(|e| e.to_string())?, body, 0)
+        .map_err(|e| format!("representation.sensors: {e}"))?;
     let per_voxel: Vec<usize> = (0..body.voxel_count()).map(|v| suite.readings_per_voxel(v)).collect();
     let (neurons, edges) = brain.topology(body, &per_voxel);
     let start = GraphSpec {

@@ -66,12 +66,34 @@ impl BBox {
 /// without them, a voxel-sized box around its centre.
 pub(crate) fn step_boxes(trace: &Trace) -> Vec<Option<BBox>> {
     let half = side(trace) / 2.0;
+    let balls = trace.object_radii.len();
     (0..trace.len())
         .map(|k| {
-            BBox::of_points(trace.polygons_at(k).iter().flatten().copied()).or_else(|| {
+            let body = BBox::of_points(trace.polygons_at(k).iter().flatten().copied()).or_else(|| {
                 let c = *trace.centers.get(k)?;
                 BBox::of_points([c - Vec2::new(half, half), c + Vec2::new(half, half)])
-            })
+            })?;
+            // the loose balls, and obstacles that overlap the body's box grown by its own size
+            // (a cage around it), stay in view
+            let ball_boxes = trace
+                .objects
+                .get(k * balls..(k + 1) * balls)
+                .unwrap_or(&[])
+                .iter()
+                .zip(&trace.object_radii)
+                .filter_map(|(&(c, _), &r)| BBox::of_points([c - Vec2::new(r, r), c + Vec2::new(r, r)]));
+            let reach = BBox {
+                min: body.min - (body.max - body.min),
+                max: body.max + (body.max - body.min),
+            };
+            let near = trace
+                .obstacles
+                .iter()
+                .filter_map(|p| BBox::of_points(p.iter().copied()))
+                .filter(|o| {
+                    o.min.x <= reach.max.x && o.max.x >= reach.min.x && o.min.y <= reach.max.y && o.max.y >= reach.min.y
+                });
+            Some(ball_boxes.chain(near).fold(body, BBox::union))
         })
         .collect()
 }

@@ -54,6 +54,18 @@ pub(crate) fn area_color(ratio: f64) -> Rgba {
     }
 }
 
+/// Membrane fill of a pressurised body for p/p_max: blue (0) → violet → red (1).
+pub(crate) fn pressure_color(ratio: f64) -> Rgba {
+    let t = if ratio.is_finite() { ratio.clamp(0.0, 1.0) } else { 0.0 };
+    let lerp = |a: f64, b: f64| (a + (b - a) * t).round() as u8;
+    [lerp(40.0, 230.0), lerp(90.0, 40.0), lerp(230.0, 40.0), 110]
+}
+
+/// Fill of static obstacles (walls, a cage's roof) and of loose balls.
+pub(crate) const OBSTACLE: Rgba = [150, 150, 150, 255];
+/// Fill of a loose ball.
+pub(crate) const BALL: Rgba = [230, 60, 60, 230];
+
 /// A solid paint of colour `c`.
 pub(crate) fn paint(c: Rgba, anti_alias: bool) -> Paint<'static> {
     let mut p = Paint::default();
@@ -120,6 +132,7 @@ impl<'a> Scene<'a> {
         let view = camera::view_at(t, &self.boxes, step, self.opts.width, self.opts.height);
         let px = |p: Vec2| view.to_pixel(p, self.opts.width);
         self.draw_ground(pm, &view);
+        self.draw_obstacles(pm, &view);
         if self.opts.draw_ticks {
             overlay::draw_ticks(pm, &t.terrain, &view, camera::side(t), self.opts.width);
         }
@@ -149,7 +162,12 @@ impl<'a> Scene<'a> {
                 .copied()
                 .unwrap_or_else(|| area(poly) / camera::side(t).powi(2));
             let broken = t.is_broken(step, v);
-            let fill = if broken { BROKEN } else { area_color(ratio) };
+            let fill = match t.pressures.get(step) {
+                // a PSA: the membrane (polygon 0) shows the pressure
+                Some(&p) if v == 0 => pressure_color(f64::from(p)),
+                _ if broken => BROKEN,
+                _ => area_color(ratio),
+            };
             pm.fill_path(&path, &paint(fill), FillRule::Winding, Transform::identity(), None);
             if broken && poly.len() == 4 {
                 // a cross over the broken voxel, corner to corner
@@ -172,6 +190,7 @@ impl<'a> Scene<'a> {
             };
             pm.stroke_path(&path, &paint(color), &stroke(width), Transform::identity(), None);
         }
+        self.draw_balls(pm, &view, step);
         let attention = self.opts.draw_attention && t.attention_side > 0;
         let graph = self.opts.draw_graph && !t.graph_neurons.is_empty();
         if self.opts.draw_sensors && !attention && !graph {
@@ -210,7 +229,7 @@ impl<'a> Scene<'a> {
             overlay::draw_overlay(pm, t, step);
         }
         if self.opts.draw_legend {
-            overlay::draw_legend(pm, t.damage.is_some());
+            overlay::draw_legend(pm, t.damage.is_some(), !t.pressures.is_empty());
         }
     }
 
@@ -240,6 +259,67 @@ impl<'a> Scene<'a> {
         if let Some(path) = pb.finish() {
             pm.fill_path(&path, &paint(GROUND), FillRule::Winding, Transform::identity(), None);
             pm.stroke_path(&path, &paint(GROUND_OUTLINE), &stroke(1.5), Transform::identity(), None);
+        }
+    }
+
+    /// Static polygons besides the ground (a cage).
+    fn draw_obstacles(&self, pm: &mut Pixmap, view: &View) {
+        let px = |p: Vec2| view.to_pixel(p, self.opts.width);
+        for poly in &self.trace.obstacles {
+            let Some(&first) = poly.first() else { continue };
+            let mut pb = PathBuilder::new();
+            let (x, y) = px(first);
+            pb.move_to(x, y);
+            for &p in &poly[1..] {
+                let (x, y) = px(p);
+                pb.line_to(x, y);
+            }
+            pb.close();
+            if let Some(path) = pb.finish() {
+                pm.fill_path(
+                    &path,
+                    &paint(OBSTACLE, self.anti_alias),
+                    FillRule::Winding,
+                    Transform::identity(),
+                    None,
+                );
+                let outline = paint(GROUND_OUTLINE, self.anti_alias);
+                pm.stroke_path(&path, &outline, &stroke(1.0), Transform::identity(), None);
+            }
+        }
+    }
+
+    /// Loose balls at `step`, with a spoke that shows their rotation.
+    fn draw_balls(&self, pm: &mut Pixmap, view: &View, step: usize) {
+        let t = self.trace;
+        let n = t.object_radii.len();
+        let Some(states) = t.objects.get(step * n..(step + 1) * n) else {
+            return;
+        };
+        let px = |p: Vec2| view.to_pixel(p, self.opts.width);
+        for (&(centre, angle), &radius) in states.iter().zip(&t.object_radii) {
+            let (cx, cy) = px(centre);
+            let (ex, _) = px(centre + Vec2::new(radius, 0.0));
+            let r = (ex - cx).abs();
+            let Some(circle) = PathBuilder::from_circle(cx, cy, r.max(1.0)) else {
+                continue;
+            };
+            pm.fill_path(
+                &circle,
+                &paint(BALL, self.anti_alias),
+                FillRule::Winding,
+                Transform::identity(),
+                None,
+            );
+            let outline = paint(GROUND_OUTLINE, self.anti_alias);
+            pm.stroke_path(&circle, &outline, &stroke(1.0), Transform::identity(), None);
+            let (sx, sy) = px(centre + Vec2::new(angle.cos(), angle.sin()) * radius);
+            let mut spoke = PathBuilder::new();
+            spoke.move_to(cx, cy);
+            spoke.line_to(sx, sy);
+            if let Some(spoke) = spoke.finish() {
+                pm.stroke_path(&spoke, &outline, &stroke(1.0), Transform::identity(), None);
+            }
         }
     }
 

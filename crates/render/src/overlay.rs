@@ -3,7 +3,7 @@
 //! the legend of the area-ratio colours.
 
 use crate::camera::View;
-use crate::draw::{area_color, Rgba, BROKEN};
+use crate::draw::{area_color, pressure_color, Rgba, BROKEN};
 use crate::text;
 use tiny_skia::{Color, LineCap, Paint, PathBuilder, Pixmap, Rect, Stroke, Transform};
 use vsrlab_physics::Vec2;
@@ -107,7 +107,8 @@ pub(crate) fn overlay_lines(trace: &Trace, step: usize) -> Vec<String> {
     if let (Some(start), Some(now)) = (trace.centers.first(), trace.centers.get(step)) {
         let distance = now.x - start.x;
         let side = trace.side_length;
-        let sides = if side > 0.0 {
+        // a PSA (its trace has pressures) is not measured in voxels
+        let sides = if side > 0.0 && trace.pressures.is_empty() {
             format!(" ({:+.1} voxels)", distance / side)
         } else {
             String::new()
@@ -116,6 +117,9 @@ pub(crate) fn overlay_lines(trace: &Trace, step: usize) -> Vec<String> {
         let elapsed = t - t0;
         if elapsed > 0.0 {
             lines.push(format!("velocity {:+.2} /s", distance / elapsed));
+        }
+        if let Some(p) = trace.pressures.get(step) {
+            lines.push(format!("pressure {:.2} p_max", p));
         }
     }
     lines
@@ -146,9 +150,13 @@ pub(crate) fn draw_overlay(pm: &mut Pixmap, trace: &Trace, step: usize) {
 /// The legend of voxel colours at the top right: a bar from contracted (area ratio 0.75, red)
 /// through rest (1, yellow) to expanded (1.25, green), labelled at both ends.
 /// The colour bar of voxel areas, and, when the episode has damage, the broken voxels' swatch.
-pub(crate) fn draw_legend(pm: &mut Pixmap, damage: bool) {
+pub(crate) fn draw_legend(pm: &mut Pixmap, damage: bool, pressure: bool) {
     let size = text_size(pm.height()) * 0.85;
-    let (left_label, right_label) = ("contracted", "expanded");
+    let (left_label, right_label) = if pressure {
+        ("pressure 0", "p_max")
+    } else {
+        ("contracted", "expanded")
+    };
     let bar = (size * 6.0).round();
     let total = text::width(left_label, size) + bar + text::width(right_label, size) + size;
     let x0 = pm.width() as f32 - total - 6.0;
@@ -162,8 +170,12 @@ pub(crate) fn draw_legend(pm: &mut Pixmap, damage: bool) {
     text::draw(pm, left_label, x0, y0, size, INK);
     let bar_x = x0 + text::width(left_label, size) + size * 0.5;
     for i in 0..bar as i64 {
-        let ratio = 0.75 + 0.5 * i as f64 / (bar as f64 - 1.0).max(1.0);
-        let [r, g, b, a] = area_color(ratio);
+        let fraction = i as f64 / (bar as f64 - 1.0).max(1.0);
+        let [r, g, b, a] = if pressure {
+            pressure_color(fraction)
+        } else {
+            area_color(0.75 + 0.5 * fraction)
+        };
         for y in 0..(size as i64) {
             text::blend(pm, bar_x as i64 + i, y0 as i64 + 2 + y, [r, g, b], f32::from(a) / 255.0);
         }

@@ -63,11 +63,12 @@ impl PsaRobot {
         let (row, readings) = self.brain_shape();
         self.brain
             .parameter_count(&row, &readings)
-            .map_err(|e| EpisodeError::Invalid(format!("robot.brain.{e}")))
+            .map_err(|e| EpisodeError::Invalid(format!("robot.{e}")))
     }
 
-    /// Checks that body and brain fit together; errors name the field.
-    pub fn validate(&self) -> Result<(), EpisodeError> {
+    /// Checks the body's constants and that a `heads` brain's linear outputs fit the treatment;
+    /// errors name the field.
+    pub fn validate_body(&self) -> Result<(), EpisodeError> {
         let p = &self.body.params;
         p.validate()
             .map_err(|e| EpisodeError::Invalid(format!("robot.body.{e}")))?;
@@ -82,11 +83,17 @@ impl PsaRobot {
                 )));
             }
         }
+        Ok(())
+    }
+
+    /// Checks that body and brain fit together, parameters included; errors name the field.
+    pub fn validate(&self) -> Result<(), EpisodeError> {
+        self.validate_body()?;
         let (row, readings) = self.brain_shape();
         self.brain
             .build(&row, &readings)
             .map(|_| ())
-            .map_err(|e| EpisodeError::Invalid(format!("robot.brain.{e}")))
+            .map_err(|e| EpisodeError::Invalid(format!("robot.{e}")))
     }
 }
 
@@ -116,7 +123,7 @@ impl Robot for PsaRobot {
         let mut brain = self
             .brain
             .build(&row, &readings)
-            .map_err(|e| EpisodeError::Invalid(format!("robot.brain.{e}")))?;
+            .map_err(|e| EpisodeError::Invalid(format!("robot.{e}")))?;
         brain.reset();
         let sensors = PsaSensors::new(&psa, builder.settings().dt);
         Ok(Box::new(PsaAgent::new(psa, sensors, brain, readings.len())))

@@ -14,18 +14,21 @@
 use crate::agent::Robot;
 use crate::episode::{self, EpisodeError};
 use crate::outcome::{Outcome, TraceLevel};
+use crate::psa_robot::PsaRobot;
 use crate::robot::RobotSpec;
 use crate::task::Task;
 use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
 use serde::de::{self, MapAccess, SeqAccess, Visitor};
 use serde::{Deserialize, Deserializer, Serialize};
 use vsrlab_body::encodings::BodyEncoding;
+use vsrlab_body::psa::PsaBody;
 use vsrlab_body::sensors::{SensorConfig, SensorSuite};
 use vsrlab_body::{Morphology, Preset};
 use vsrlab_brain::BrainSpec;
 
 /// Where the body comes from. In configs: a shape name or text grid (`"biped-4x3"`, `"##/#."`) or
-/// a list of rows for a fixed body; a table with `kind = "direct"` or `"gmm"` for an encoded one.
+/// a list of rows for a fixed body; a table with `kind = "direct"` or `"gmm"` for an encoded one;
+/// a table with `kind = "psa"` for a pressure-based soft agent (fixed body, thesis ch. 6).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(untagged)]
 pub enum BodyPart {
@@ -33,6 +36,26 @@ pub enum BodyPart {
     Fixed(Morphology),
     /// A body decoded from the first genes of the genotype.
     Encoded(BodyEncoding),
+    /// A pressure-based soft agent (no body genes; the genotype is its brain).
+    Psa(PsaTable),
+}
+
+/// A PSA body in an experiment file: `{ kind = "psa", size = …, … }` (see [`PsaBody`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PsaTable {
+    /// Always `psa`.
+    pub kind: PsaKind,
+    /// Size and constants.
+    #[serde(flatten)]
+    pub body: PsaBody,
+}
+
+/// The `kind` tag of a PSA body table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PsaKind {
+    /// A pressure-based soft agent.
+    Psa,
 }
 
 impl<'de> Deserialize<'de> for BodyPart {
@@ -59,7 +82,18 @@ impl<'de> Visitor<'de> for BodyPartVisitor {
     }
 
     fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<BodyPart, A::Error> {
-        BodyEncoding::deserialize(MapAccessDeserializer::new(map)).map(BodyPart::Encoded)
+        let table = serde_json::Value::deserialize(MapAccessDeserializer::new(map))?;
+        if table.get("kind").and_then(serde_json::Value::as_str) == Some("psa") {
+            return PsaBody::deserialize(table).map_err(de::Error::custom).map(|body| {
+                BodyPart::Psa(PsaTable {
+                    kind: PsaKind::Psa,
+                    body,
+                })
+            });
+        }
+        BodyEncoding::deserialize(table)
+            .map_err(de::Error::custom)
+            .map(BodyPart::Encoded)
     }
 }
 
@@ -69,11 +103,13 @@ impl<'de> Visitor<'de> for BodyPartVisitor {
 pub struct Representation {
     /// The body: fixed, or decoded from the body genes.
     pub body: BodyPart,
-    /// Sensors on every voxel (thesis ch. 3: `uniform-vxy+a+t-0` style placements).
-    pub sensors: SensorConfig,
+    /// Sensors on every voxel (thesis ch. 3: `uniform-vxy+a+t-0` style placements); required for
+    /// voxel bodies, absent for a PSA (it has its own).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sensors: Option<SensorConfig>,
     /// The brain's kind and shape; its parameters are the brain genes.
     pub brain: BrainSpec,
-    /// Physical preset of the voxels.
+    /// Physical preset of the voxels (ignored for a PSA).
     #[serde(default)]
     pub preset: Preset,
 }
@@ -96,9 +132,29 @@ impl Representation {
     /// Number of body genes (0 for a fixed body).
     pub fn body_genes(&self) -> usize {
         match &self.body {
-            BodyPart::Fixed(_) => 0,
+            BodyPart::Fixed(_) | BodyPart::Psa(_) => 0,
             BodyPart::Encoded(encoding) => encoding.gene_count(),
         }
+    }
+
+    /// The voxel sensors; an error for a voxel body without them.
+    pub fn sensors(&self) -> Result<&SensorConfig, EvaluationError> {
+        self.sensors.as_ref().ok_or_else(|| {
+            EvaluationError::Representation("sensors: missing: voxel bodies need a sensor placement".into())
+        })
+    }
+
+    /// The PSA robot (brain as a template) of a PSA representation.
+    fn psa_robot(&self, body: &PsaBody) -> Result<PsaRobot, EvaluationError> {
+        if self.sensors.is_some() {
+            return Err(EvaluationError::Representation(
+                "sensors: a PSA has its own sensors (3 per mass and 3 for the whole); remove this field".into(),
+            ));
+        }
+        Ok(PsaRobot {
+            body: body.clone(),
+            brain: self.brain.clone(),
+        })
     }
 
     /// Number of brain genes. With an encoded body it is computed on the full W×H grid and must be
@@ -106,6 +162,11 @@ impl Representation {
     pub fn brain_genes(&self) -> Result<usize, EvaluationError> {
         match &self.body {
             BodyPart::Fixed(body) => self.brain_parameters_for(body),
+            BodyPart::Psa(table) => {
+                let robot = self.psa_robot(&table.body)?;
+                robot.validate_body().map_err(representation_message)?;
+                robot.brain_parameters().map_err(representation_message)
+            }
             BodyPart::Encoded(encoding) => {
                 encoding
                     .validate()
@@ -139,7 +200,28 @@ impl Representation {
         self.genotype_length().map(|_| ())
     }
 
-    /// Builds the robot a genotype stands for.
+    /// Builds the robot a genotype stands for, of any body kind.
+    pub fn any_robot(&self, genotype: &[f64]) -> Result<Box<dyn Robot>, EvaluationError> {
+        let BodyPart::Psa(table) = &self.body else {
+            return Ok(Box::new(self.robot(genotype)?));
+        };
+        let expected = self.genotype_length()?;
+        if genotype.len() != expected {
+            return Err(EvaluationError::Genotype(format!(
+                "expected {expected} genes (brain), got {}",
+                genotype.len()
+            )));
+        }
+        let mut robot = self.psa_robot(&table.body)?;
+        robot.brain = self
+            .brain
+            .with_parameters(genotype)
+            .map_err(|e| EvaluationError::Genotype(e.to_string()))?;
+        Ok(Box::new(robot))
+    }
+
+    /// Builds the voxel robot a genotype stands for (an error for a PSA: see
+    /// [`Representation::any_robot`]).
     pub fn robot(&self, genotype: &[f64]) -> Result<RobotSpec, EvaluationError> {
         let expected = self.genotype_length()?;
         if genotype.len() != expected {
@@ -156,6 +238,11 @@ impl Representation {
             BodyPart::Encoded(encoding) => encoding
                 .decode(body_genes)
                 .map_err(|e| EvaluationError::Genotype(format!("body: {e}")))?,
+            BodyPart::Psa(_) => {
+                return Err(EvaluationError::Representation(
+                    "body: a PSA is not a voxel robot (this analysis reads voxel robots only)".into(),
+                ))
+            }
         };
         let brain = self
             .brain
@@ -165,13 +252,13 @@ impl Representation {
             body,
             preset: self.preset,
             voxel: None,
-            sensors: self.sensors.clone(),
+            sensors: self.sensors()?.clone(),
             brain,
         })
     }
 
     fn brain_parameters_for(&self, body: &Morphology) -> Result<usize, EvaluationError> {
-        let suite = SensorSuite::new(&self.sensors, body, 0).map_err(representation_error("sensors"))?;
+        let suite = SensorSuite::new(self.sensors()?, body, 0).map_err(representation_error("sensors"))?;
         let per_voxel: Vec<usize> = (0..body.voxel_count()).map(|v| suite.readings_per_voxel(v)).collect();
         self.brain
             .parameter_count(body, &per_voxel)
@@ -200,8 +287,14 @@ pub trait Mapper<G>: Send + Sync {
 
 impl Mapper<Vec<f64>> for Representation {
     fn robot(&self, genotype: &Vec<f64>) -> Result<Box<dyn Robot>, EvaluationError> {
-        Ok(Box::new(Representation::robot(self, genotype)?))
+        self.any_robot(genotype)
     }
+}
+
+/// An episode error's message ("robot.brain.x: …") as a representation error ("brain.x: …").
+fn representation_message(e: EpisodeError) -> EvaluationError {
+    let text = e.to_string();
+    EvaluationError::Representation(text.strip_prefix("robot.").unwrap_or(&text).to_string())
 }
 
 /// Evaluates a genotype on a task: pure, thread-safe, summary outcome only (no trace). The one

@@ -12,6 +12,7 @@ mod candidates;
 mod classes;
 mod classifiers;
 mod figures;
+pub mod inflation;
 pub mod label;
 mod label_page;
 pub mod modules;
@@ -24,6 +25,7 @@ mod summary_page;
 
 pub use analyze::{analyze, AnalysisReport, AnalyzeOptions, FigureNote};
 pub use classes::{parse_classes, THESIS_BEHAVIOURS, THESIS_SHAPES};
+pub use inflation::{inflation, InflationOptions, InflationReport, InflationSummary};
 pub use label::{label, LabelOptions, LabelReport, VideoSpec, VideoWriter};
 pub use modules::{modules, ModulesOptions, ModulesReport};
 pub use plasticity::{plasticity, PlasticityOptions, PlasticityReport};

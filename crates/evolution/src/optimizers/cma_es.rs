@@ -15,9 +15,10 @@
 //!   jgea's `CMAESEvolver`).
 //! - `h_σ` uses the number of updates including the current one, `1 − (1 − c_σ)^{2(g+1)}`, so
 //!   it is not forced to 0 on the first update (a quirk of jgea, thesis-code-facts §2.6).
-//! - Eigendecomposition (Jacobi warm-started from the previous eigenbasis, see `linalg`) after
-//!   every generation in which at least
-//!   `1/(10 n (c_1 + c_μ))` generations have passed since the last one (lazy update of the
+//! - Eigendecomposition (Householder tridiagonalisation + implicit QL, see `linalg`; computed
+//!   afresh each time, the previous eigenbasis is not used, so the order and signs of the axes
+//!   in B may change from one decomposition to the next) after every generation in which at
+//!   least `1/(10 n (c_1 + c_μ))` generations have passed since the last one (lazy update of the
 //!   tutorial; < 1 for n ≲ 100, i.e. every generation). Eigenvalues are floored at
 //!   `1e-20 × max` so C stays positive definite.
 //! - Flat fitness (best equal to the ⌈0.7λ⌉-th best): σ ← σ·exp(0.2 + c_σ/d_σ), as in Hansen's

@@ -341,6 +341,7 @@ impl Experiment {
         let cells = match &self.representation.body {
             BodyPart::Encoded(e) => e.width() * e.height(),
             BodyPart::Fixed(m) => m.width() * m.height(),
+            BodyPart::Psa(t) => t.body.params.masses + 1,
         };
         let genes = self.representation.genotype_length().ok();
         self.optimizer.resolve(cells, genes);

@@ -8,6 +8,9 @@ use vsrlab_tasks::files::{load_any_robot, save_any_robot, AnyRobot};
 use vsrlab_tasks::short_forms::DEFAULT_SENSORS;
 use vsrlab_tasks::{episode, PsaRobot, RobotArgsError, RobotSpec, TaskSpec, TraceLevel};
 
+/// Episode length when neither --duration nor --task-of gives one.
+const DEFAULT_DURATION: f64 = 30.0;
+
 /// Arguments of `vsrlab simulate`.
 #[derive(Args, Debug)]
 pub struct SimulateArgs {
@@ -28,7 +31,7 @@ pub struct SimulateArgs {
     #[arg(long)]
     pub brain: Option<String>,
     /// Task: locomotion:<terrain> (terrain = flat | hilly-H-W[-SEED] | steppy-H-W[-SEED] | uphill-DEG |
-    /// downhill-DEG | psa-hilly-H-W[-SEED]), jump, escape[:<cage side>] or carrier (PSA tasks,
+    /// downhill-DEG | psa-hilly-H-W[-SEED]), jump, escape (or escape:SIDE, the cage side) or carrier (PSA tasks,
     /// docs/psa.md).
     #[arg(long, default_value = "locomotion:flat")]
     pub task: String,
@@ -36,9 +39,14 @@ pub struct SimulateArgs {
     /// <high|medium|low>_<biped|worm>-<σ>-<cpg t|f> (the Hebbian study's), or empty.
     #[arg(long, default_value = DEFAULT_SENSORS)]
     pub sensors: String,
-    /// Episode length in simulated seconds.
-    #[arg(long, default_value_t = 30.0)]
-    pub duration: f64,
+    /// Take the task (kind and every setting: terrain, cage, ball, physics, start) from an
+    /// experiment file, or from the experiment.toml of a `vsrlab run` output folder, instead of
+    /// --task; --duration, --transient, --substeps and --damage still apply when given.
+    #[arg(long, conflicts_with = "task")]
+    pub task_of: Option<PathBuf>,
+    /// Episode length in simulated seconds (default 30, or the --task-of experiment's).
+    #[arg(long)]
+    pub duration: Option<f64>,
     /// Initial seconds excluded from distance and velocity (locomotion).
     #[arg(long)]
     pub transient: Option<f64>,
@@ -85,7 +93,33 @@ pub fn task_from_args(
     damage: Option<&str>,
 ) -> Result<TaskSpec, String> {
     let spec = TaskSpec::parse(task).map_err(|e| format!("--task: {e}"))?;
-    let mut settings = vec![("duration", json!(duration))];
+    with_episode_settings(spec, Some(duration), transient, substeps, damage)
+}
+
+/// The task of an experiment file (or of the `experiment.toml` in a results folder).
+fn task_of_experiment(path: &std::path::Path) -> Result<TaskSpec, String> {
+    let file = if path.is_dir() {
+        path.join("experiment.toml")
+    } else {
+        path.to_path_buf()
+    };
+    vsrlab_experiment::config::load(&file)
+        .map(|e| e.task.spec)
+        .map_err(|e| format!("--task-of: {e}"))
+}
+
+/// `spec` with the episode settings given on the command line.
+fn with_episode_settings(
+    spec: TaskSpec,
+    duration: Option<f64>,
+    transient: Option<f64>,
+    substeps: Option<u32>,
+    damage: Option<&str>,
+) -> Result<TaskSpec, String> {
+    let mut settings = Vec::new();
+    if let Some(d) = duration {
+        settings.push(("duration", json!(d)));
+    }
     if let Some(t) = transient {
         settings.push(("transient", json!(t)));
     }
@@ -154,7 +188,27 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         Some(path) => path.display().to_string(),
         None => a.body.clone(),
     };
-    let task = task_from_args(&a.task, a.duration, a.transient, a.substeps, a.damage.as_deref())?;
+    let task = match &a.task_of {
+        Some(path) => with_episode_settings(
+            task_of_experiment(path)?,
+            a.duration,
+            a.transient,
+            a.substeps,
+            a.damage.as_deref(),
+        )?,
+        None => task_from_args(
+            &a.task,
+            a.duration.unwrap_or(DEFAULT_DURATION),
+            a.transient,
+            a.substeps,
+            a.damage.as_deref(),
+        )?,
+    };
+    let duration = task.task().duration();
+    let task_name = match &a.task_of {
+        Some(path) => format!("{} of {}", task.kind(), path.display()),
+        None => a.task.clone(),
+    };
     let level = if a.video.is_some() {
         TraceLevel::Full
     } else {
@@ -174,9 +228,9 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     let transient = a.transient.unwrap_or(0.0);
     if a.json {
         let mut v = json!({
-            "body": body_name, "brain": brain.kind(), "task": a.task, "sensors": sensors,
+            "body": body_name, "brain": brain.kind(), "task": task_name, "sensors": sensors,
             "preset": preset,
-            "seed": a.seed, "duration": a.duration, "transient": transient,
+            "seed": a.seed, "duration": duration, "transient": transient,
             "steps": outcome.steps, "voxels": outcome.units, "wall_seconds": wall,
             "video": a.video.as_ref().map(|p| p.display().to_string()),
         });
@@ -203,7 +257,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         }
         println!(
             "task      {} for {} s (seed {}{transient_note})",
-            a.task, a.duration, a.seed
+            task_name, duration, a.seed
         );
         println!("brain     {} ({} parameters)", brain.kind(), brain.parameters().len());
         println!("sensors   {sensors}");

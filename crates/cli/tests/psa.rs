@@ -84,3 +84,64 @@ fn bad_psa_options_name_the_option() {
         assert!(!success && text.contains(expected), "{args:?}: {text}");
     }
 }
+
+#[test]
+fn task_of_replays_an_evolved_psa_on_its_experiment_s_task() {
+    let dir = tempfile::tempdir().unwrap();
+    let config = dir.path().join("psa.toml");
+    std::fs::write(
+        &config,
+        r#"
+name = "psa"
+runs = 1
+seed = 2
+[representation]
+body = { kind = "psa", size = "small" }
+brain = { kind = "heads" }
+[task]
+kind = "carrier"
+duration = 3.0
+ball = { radius = 1.25, x = 5.0, y = 13.5, density = 500.0, friction = 10.0 }
+[optimizer]
+kind = "cma-es"
+population_size = 6
+[stop]
+evaluations = 12
+"#,
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    ok(&["run", config.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let robot = out.join("run-00/best.robot.json");
+    let replay = ok(&[
+        "simulate",
+        "--robot",
+        robot.to_str().unwrap(),
+        "--task-of",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_str(&replay).unwrap();
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let best = summary.to_string();
+    let velocity = v["velocity"].as_f64().unwrap();
+    assert_eq!(v["duration"].as_f64(), Some(3.0), "the experiment's duration");
+    assert!(
+        best.contains(&format!("{velocity}")),
+        "replayed {velocity}, summary {best}"
+    );
+    // the default task (a medium PSA's ball) is another episode
+    let other = ok(&[
+        "simulate",
+        "--robot",
+        robot.to_str().unwrap(),
+        "--task",
+        "carrier",
+        "--duration",
+        "3",
+        "--json",
+    ]);
+    let w: serde_json::Value = serde_json::from_str(&other).unwrap();
+    assert_ne!(w["velocity"].as_f64(), Some(velocity));
+}

@@ -146,16 +146,7 @@ impl<'a> Scene<'a> {
         let n = t.voxels();
         for (v, poly) in polys.iter().enumerate() {
             let idx = step * n + v;
-            let Some(&first) = poly.first() else { continue };
-            let mut pb = PathBuilder::new();
-            let (x, y) = px(first);
-            pb.move_to(x, y);
-            for &p in &poly[1..] {
-                let (x, y) = px(p);
-                pb.line_to(x, y);
-            }
-            pb.close();
-            let Some(path) = pb.finish() else { continue };
+            let Some(path) = closed_path(poly, px) else { continue };
             let ratio = t
                 .area_ratios
                 .get(idx)
@@ -266,16 +257,7 @@ impl<'a> Scene<'a> {
     fn draw_obstacles(&self, pm: &mut Pixmap, view: &View) {
         let px = |p: Vec2| view.to_pixel(p, self.opts.width);
         for poly in &self.trace.obstacles {
-            let Some(&first) = poly.first() else { continue };
-            let mut pb = PathBuilder::new();
-            let (x, y) = px(first);
-            pb.move_to(x, y);
-            for &p in &poly[1..] {
-                let (x, y) = px(p);
-                pb.line_to(x, y);
-            }
-            pb.close();
-            if let Some(path) = pb.finish() {
+            if let Some(path) = closed_path(poly, px) {
                 pm.fill_path(
                     &path,
                     &paint(OBSTACLE, self.anti_alias),
@@ -423,6 +405,20 @@ impl<'a> Scene<'a> {
             _ => 0.0,
         }
     }
+}
+
+/// The closed path through a polygon's corners in pixels (`None` for an empty polygon).
+fn closed_path(poly: &[Vec2], px: impl Fn(Vec2) -> (f32, f32)) -> Option<tiny_skia::Path> {
+    let (&first, rest) = poly.split_first()?;
+    let mut pb = PathBuilder::new();
+    let (x, y) = px(first);
+    pb.move_to(x, y);
+    for &p in rest {
+        let (x, y) = px(p);
+        pb.line_to(x, y);
+    }
+    pb.close();
+    pb.finish()
 }
 
 /// Mean of the polygon's corners.

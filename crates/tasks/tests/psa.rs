@@ -158,3 +158,24 @@ mod robustness {
         }
     }
 }
+
+#[test]
+fn absurd_gas_stays_finite_or_is_refused_naming_the_field() {
+    use vsrlab_body::psa::PsaBody;
+    use vsrlab_tasks::{episode, PsaRobot, TaskSpec, TraceLevel};
+    let robot = |gas_mass: f64| {
+        let mut body = PsaBody::of_size(PsaSize::Small);
+        body.params.gas_mass = gas_mass;
+        PsaRobot {
+            body,
+            brain: vsrlab_brain::BrainSpec::parse("constant:0").unwrap(),
+        }
+    };
+    let task = TaskSpec::parse("carrier").unwrap();
+    // forces of 1e303: the engine caps each body's travel per step, the state stays finite
+    let out = episode::run(&robot(1e300), task.task(), 0, TraceLevel::None).unwrap();
+    assert!(out.fitness.iter().all(|f| f.is_finite()), "{out:?}");
+    // an amount of gas whose pressure overflows is refused before the episode, naming the field
+    let err = episode::run(&robot(f64::MAX), task.task(), 0, TraceLevel::None).unwrap_err();
+    assert!(err.to_string().contains("robot.body.gas_mass"), "{err}");
+}

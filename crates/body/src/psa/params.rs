@@ -256,6 +256,13 @@ impl PsaParams {
                 self.radius
             ));
         }
+        if !(self.max_pressure().is_finite() && (self.n_r_t() / self.initial_area()).is_finite()) {
+            return Err(format!(
+                "gas_mass: {} kg gives a pressure too large to represent (nRT = {})",
+                self.gas_mass,
+                self.n_r_t()
+            ));
+        }
         if !self.spring_control && !self.pressure_control {
             return Err("spring_control and pressure_control are both off: the brain would control nothing".into());
         }

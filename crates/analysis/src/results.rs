@@ -71,6 +71,14 @@ pub enum ResultsError {
         /// The roots searched, comma-separated.
         roots: String,
     },
+    /// A `--group-by` key is not in an experiment's resolved configuration.
+    #[error("group-by: '{key}' is not a setting of {} (keys are dotted paths of experiment.toml, e.g. task.terrain)", path.display())]
+    NoSuchKey {
+        /// The key.
+        key: String,
+        /// The experiment's `experiment.toml`.
+        path: PathBuf,
+    },
 }
 
 fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> ResultsError + '_ {
@@ -383,6 +391,51 @@ pub fn discover(roots: &[PathBuf]) -> Result<Vec<ExperimentData>, ResultsError> 
     found.iter().map(|d| read_experiment(d)).collect()
 }
 
+/// Renames every experiment after its values of `keys` (dotted paths of its resolved
+/// `experiment.toml`, e.g. `task.terrain` or `representation.body.pressure_control`), as
+/// `key=value` joined by `, `: the settings then pool the runs of experiments that agree on those
+/// keys, whatever their other settings (a sweep's other axes). No keys: names unchanged.
+pub fn group_by(experiments: &mut [ExperimentData], keys: &[String]) -> Result<(), ResultsError> {
+    if keys.is_empty() {
+        return Ok(());
+    }
+    for e in experiments.iter_mut() {
+        let mut parts = Vec::with_capacity(keys.len());
+        for key in keys {
+            let value = value_at(&e.config, key).ok_or_else(|| ResultsError::NoSuchKey {
+                key: key.clone(),
+                path: RunFolder::new(&e.dir).experiment_toml(),
+            })?;
+            parts.push(format!("{key}={}", short_value(value)));
+        }
+        e.name = parts.join(", ");
+    }
+    Ok(())
+}
+
+/// The value at a dotted path of a TOML table.
+fn value_at<'a>(table: &'a toml::Table, key: &str) -> Option<&'a toml::Value> {
+    let mut parts = key.split('.');
+    let mut value = table.get(parts.next()?)?;
+    for part in parts {
+        value = value.as_table()?.get(part)?;
+    }
+    Some(value)
+}
+
+/// A value as a setting's name shows it: strings without quotes, tables by their `kind` when they
+/// have one, anything else as TOML.
+fn short_value(value: &toml::Value) -> String {
+    match value {
+        toml::Value::String(s) => s.clone(),
+        toml::Value::Table(t) => match t.get("kind").and_then(toml::Value::as_str) {
+            Some(kind) => kind.to_string(),
+            None => value.to_string(),
+        },
+        other => other.to_string(),
+    }
+}
+
 /// Groups experiments into settings by name (experiments with the same name, e.g. the same
 /// file run into two folders, pool their runs). Settings are sorted by name; each lists its
 /// experiments' indices.
@@ -405,6 +458,43 @@ mod tests {
     fn write(path: &Path, text: &str) {
         std::fs::create_dir_all(path.parent().unwrap()).unwrap();
         std::fs::write(path, text).unwrap();
+    }
+
+    #[test]
+    fn group_by_pools_experiments_that_agree_on_the_keys() {
+        let dir = tempfile::tempdir().unwrap();
+        let configs = [
+            (
+                "a",
+                "name = \"s-flat-ho\"\n[task]\nterrain = \"flat\"\n[representation.brain]\nkind = \"mlp\"\n",
+            ),
+            (
+                "b",
+                "name = \"s-flat-he\"\n[task]\nterrain = \"flat\"\n[representation.brain]\nkind = \"graph\"\n",
+            ),
+            (
+                "c",
+                "name = \"s-hilly-ho\"\n[task]\nterrain = \"hilly-1-10\"\n[representation.brain]\nkind = \"mlp\"\n",
+            ),
+        ];
+        for (folder, text) in configs {
+            write(&dir.path().join(folder).join("experiment.toml"), text);
+        }
+        let mut exps = discover(&[dir.path().to_path_buf()]).unwrap();
+        group_by(&mut exps, &["task.terrain".to_string()]).unwrap();
+        let s = settings(&exps);
+        let names: Vec<(&str, usize)> = s.iter().map(|(n, e)| (n.as_str(), e.len())).collect();
+        assert_eq!(names, [("task.terrain=flat", 2), ("task.terrain=hilly-1-10", 1)]);
+        group_by(
+            &mut exps,
+            &["task.terrain".to_string(), "representation.brain".to_string()],
+        )
+        .unwrap();
+        assert_eq!(exps[1].name, "task.terrain=flat, representation.brain=graph");
+        let err = group_by(&mut exps, &["task.terain".to_string()])
+            .unwrap_err()
+            .to_string();
+        assert!(err.starts_with("group-by: 'task.terain' is not a setting of"), "{err}");
     }
 
     #[test]

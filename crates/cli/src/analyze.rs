@@ -35,6 +35,11 @@ pub struct AnalyzeArgs {
     /// Worker threads for replays (default: every core).
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Pool runs by these settings instead of by experiment name: dotted keys of each
+    /// experiment.toml, comma separated, e.g. `task.terrain` to compare terrains across a sweep's
+    /// brains (settings are named `task.terrain=flat`, …).
+    #[arg(long, value_delimiter = ',')]
+    pub group_by: Vec<String>,
 }
 
 impl From<AnalyzeArgs> for AnalyzeOptions {
@@ -47,6 +52,7 @@ impl From<AnalyzeArgs> for AnalyzeOptions {
             folds: a.folds,
             seed: a.seed,
             threads: a.threads,
+            group_by: a.group_by,
         }
     }
 }

@@ -58,6 +58,27 @@ fn label_then_analyze_two_settings() {
         "{md}"
     );
 
+    // --group-by pools by settings of the resolved files: a key both share pools all 4 runs
+    let grouped = d.join("grouped");
+    let g = grouped.to_str().unwrap();
+    vsrlab(&["analyze", results, "--out", g, "--group-by", "optimizer.kind"]);
+    let csv = std::fs::read_to_string(grouped.join("summary.csv")).unwrap();
+    assert!(
+        csv.contains("optimizer.kind=es") && csv.contains("optimizer.kind=ga"),
+        "{csv}"
+    );
+    vsrlab(&[
+        "analyze",
+        results,
+        "--out",
+        g,
+        "--group-by",
+        "stop.evaluations,task.duration",
+    ]);
+    let csv = std::fs::read_to_string(grouped.join("summary.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 2, "{csv}");
+    assert!(csv.contains("\"stop.evaluations=48, task.duration=2.0\",4"), "{csv}");
+
     let lab = d.join("lab");
     vsrlab(&[
         "label",

@@ -39,6 +39,9 @@ pub struct AnalyzeOptions {
     pub seed: u64,
     /// Worker threads for replays (None: every core).
     pub threads: Option<usize>,
+    /// Pool runs into settings by these keys of each experiment's resolved configuration
+    /// (`task.terrain`, …) instead of by experiment name ([`results::group_by`]).
+    pub group_by: Vec<String>,
 }
 
 impl AnalyzeOptions {
@@ -53,6 +56,7 @@ impl AnalyzeOptions {
             folds: 5,
             seed: 0,
             threads: None,
+            group_by: Vec::new(),
         }
     }
 }
@@ -90,7 +94,8 @@ pub fn analyze(
     setups: &dyn SetupReader,
     progress: &dyn Progress,
 ) -> Result<AnalysisReport, AnalysisError> {
-    let experiments = results::discover(&options.results)?;
+    let mut experiments = results::discover(&options.results)?;
+    results::group_by(&mut experiments, &options.group_by)?;
     let settings = settings_of(&experiments);
     create_folder(&options.out)?;
     let pool = thread_pool(options.threads)?;

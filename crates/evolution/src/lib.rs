@@ -61,7 +61,7 @@ pub use error::EvolutionError;
 pub use operators::{RealVector, Representation, SbxPolynomial};
 pub use optimizer::{Candidate, Counters, Evaluation, Individual, Optimizer, Sense, Tell, Told};
 pub use optimizers::canonical_es::{CanonicalEs, CanonicalEsConfig};
-pub use optimizers::cma_es::{CmaEs, CmaEsConfig, CmaParameters};
+pub use optimizers::cma_es::{CmaEs, CmaEsConfig, CmaParameters, RestartStrategy};
 pub use optimizers::cma_termination::{CmaTermination, Criterion};
 pub use optimizers::ga::{GaConfig, GeneticAlgorithm};
 pub use optimizers::map_elites::{GridAxis, MapElites, MapElitesConfig};

@@ -112,6 +112,12 @@ fn errors_name_the_field_and_the_line() {
             "",
             "'optimizer.restart_increase'",
         ),
+        (
+            "kind = \"ga\"\npopulation_size = 10",
+            "kind = \"cma-es\"\nrestarts = 3\nrestart_strategy = \"tripop\"",
+            "",
+            "'optimizer.restart_strategy'",
+        ),
         // syntax error
         ("[stop]", "[stop", "line 18", ""),
     ];
@@ -121,6 +127,21 @@ fn errors_name_the_field_and_the_line() {
         assert!(e.contains(line), "expected {line} in: {e}");
         assert!(e.contains(field), "expected {field} in: {e}");
     }
+}
+
+#[test]
+fn bipop_restarts_are_read_and_written_only_when_set() {
+    let text = BASE.replace(
+        "kind = \"ga\"\npopulation_size = 10",
+        "kind = \"cma-es\"\nrestarts = 4\nrestart_strategy = \"bipop\"",
+    );
+    assert_ne!(text, BASE, "the base file has the GA table this test replaces");
+    let e = config::parse(&text, "demo.toml").unwrap();
+    let resolved = e.to_toml();
+    assert!(resolved.contains("restart_strategy = \"bipop\""), "{resolved}");
+    let plain = BASE.replace("kind = \"ga\"\npopulation_size = 10", "kind = \"cma-es\"");
+    let resolved = config::parse(&plain, "demo.toml").unwrap().to_toml();
+    assert!(!resolved.contains("restart_strategy"), "{resolved}");
 }
 
 #[test]

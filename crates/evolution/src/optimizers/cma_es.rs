@@ -70,6 +70,23 @@ pub struct CmaEsConfig {
     /// λ's factor at every restart (IPOP: 2).
     #[serde(default = "two")]
     pub restart_increase: f64,
+    /// How restarts choose λ and σ: IPOP (every restart a larger population) or BIPOP (Hansen
+    /// 2009: large-population restarts as IPOP's, interleaved with small-population ones
+    /// λ = ⌊λ_def·(½·λ_large/λ_def)^(u²)⌋, σ = σ0·10^(−2u'), u, u' uniform in [0, 1), run
+    /// whenever the small regime has used fewer evaluations than the large one).
+    #[serde(default)]
+    pub restart_strategy: RestartStrategy,
+}
+
+/// How CMA-ES restarts ([`CmaEsConfig::restart_strategy`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RestartStrategy {
+    /// Increasing population (Auger & Hansen 2005).
+    #[default]
+    Ipop,
+    /// Bi-population (Hansen 2009): large and small populations in turn, by budget.
+    Bipop,
 }
 
 fn two() -> f64 {
@@ -108,6 +125,7 @@ impl Default for CmaEsConfig {
             termination: CmaTermination::default(),
             restarts: 0,
             restart_increase: 2.0,
+            restart_strategy: RestartStrategy::Ipop,
         }
     }
 }
@@ -214,6 +232,21 @@ pub struct CmaEs {
     restarts_done: usize,
     #[serde(default)]
     restart_generation: u64,
+    /// BIPOP's bookkeeping: the default λ, the large regime's current λ, the evaluations spent
+    /// in each regime and whether the current descent is a small-population one (absent in older
+    /// checkpoints).
+    #[serde(default)]
+    regimes: Regimes,
+}
+
+/// Evaluations per BIPOP regime and the large regime's population.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+struct Regimes {
+    default_lambda: usize,
+    large_lambda: usize,
+    large_evaluations: u64,
+    small_evaluations: u64,
+    small: bool,
 }
 
 impl CmaEs {
@@ -269,7 +302,17 @@ impl CmaEs {
             monitor: Monitor::default(),
             restarts_done: 0,
             restart_generation: 0,
+            regimes: Regimes {
+                default_lambda: lambda,
+                large_lambda: lambda,
+                ..Regimes::default()
+            },
         })
+    }
+
+    /// Whether the current descent is a BIPOP small-population one.
+    pub fn in_small_regime(&self) -> bool {
+        self.regimes.small
     }
 
     /// IPOP restarts made so far.
@@ -277,14 +320,15 @@ impl CmaEs {
         self.restarts_done
     }
 
-    /// Starts again (IPOP): a new uniform mean (drawn from the run seed, the generation and the
-    /// restart's number), σ0, C = I, empty paths and histories, λ times `restart_increase`.
+    /// Starts again: a new uniform mean (drawn from the run seed, the generation and the
+    /// restart's number), C = I, empty paths and histories; IPOP (and BIPOP's large regime): σ0
+    /// and the large λ times `restart_increase`; BIPOP's small regime (when it has used fewer
+    /// evaluations than the large one): a λ between half the default and half the large one,
+    /// and a σ0 shrunk by up to 100.
     fn restart(&mut self) {
         self.restarts_done += 1;
         let n = self.mean.len();
         let generation = self.state.generation();
-        let grown = (self.lambda as f64 * self.config.restart_increase).round() as usize;
-        self.lambda = grown.clamp(self.lambda, MAX_LAMBDA);
         let mut rng = SeededRng::derive(
             self.state.seed(),
             generation,
@@ -292,7 +336,21 @@ impl CmaEs {
             Stream::Initialisation,
         );
         self.mean = rng.uniform_vec(n, self.config.init_min, self.config.init_max);
-        self.sigma = self.config.sigma0;
+        let r = &mut self.regimes;
+        let bipop = self.config.restart_strategy == RestartStrategy::Bipop;
+        r.small = bipop && r.small_evaluations < r.large_evaluations;
+        if r.small {
+            let (u, v) = (rng.uniform(), rng.uniform());
+            let ratio = 0.5 * r.large_lambda as f64 / r.default_lambda as f64;
+            let lambda = (r.default_lambda as f64 * ratio.powf(u * u)).floor() as usize;
+            self.lambda = lambda.clamp(2, MAX_LAMBDA);
+            self.sigma = self.config.sigma0 * 10f64.powf(-2.0 * v);
+        } else {
+            let grown = (r.large_lambda as f64 * self.config.restart_increase).round() as usize;
+            r.large_lambda = grown.clamp(r.large_lambda, MAX_LAMBDA);
+            self.lambda = r.large_lambda;
+            self.sigma = self.config.sigma0;
+        }
         self.covariance = identity(n);
         self.basis = identity(n);
         self.scales = vec![1.0; n];
@@ -470,6 +528,12 @@ impl Optimizer for CmaEs {
 impl<O> Tell<O> for CmaEs {
     fn tell(&mut self, results: Vec<Told<O>>) -> Result<(), EvolutionError> {
         let (batch, evaluations) = self.state.take_told(results, 1)?;
+        let spent = batch.len() as u64;
+        if self.regimes.small {
+            self.regimes.small_evaluations += spent;
+        } else {
+            self.regimes.large_evaluations += spent;
+        }
         let generation = self.state.generation();
         let sense = self.config.sense;
         self.last = self.state.born_all(&batch, evaluations, std::slice::from_ref(&sense));
@@ -755,6 +819,63 @@ mod tests {
                 first.evaluations, summary.evaluations
             );
             assert_sound(&cma, "ipop");
+        }
+    }
+
+    /// BIPOP on 10-D Rastrigin: after the first descent, small-population restarts (λ between
+    /// half the default and half the large one, smaller σ) run whenever their regime has used
+    /// fewer evaluations than the large one; the large regime doubles λ as IPOP does.
+    #[test]
+    fn bipop_interleaves_small_and_large_populations() {
+        let f = |c: &Candidate<Vec<f64>>| Evaluation::single(rastrigin(&c.genotype));
+        // λ and regime of every descent, the evaluations per regime, the best f
+        let descend = |seed: u64| {
+            let config = CmaEsConfig {
+                sense: Sense::Minimize,
+                init_min: -5.12,
+                init_max: 5.12,
+                sigma0: 2.0,
+                restarts: 6,
+                restart_strategy: RestartStrategy::Bipop,
+                ..CmaEsConfig::default()
+            };
+            let mut cma = CmaEs::new(config, 10, seed).unwrap();
+            let mut lambdas = vec![(cma.parameters().lambda, false)];
+            let mut evaluations = 0usize;
+            while cma.restarts() < 6 && evaluations < 1_000_000 {
+                let batch = Optimizer::ask(&mut cma);
+                evaluations += batch.len();
+                let told: Vec<Told> = batch
+                    .iter()
+                    .map(|c| Told {
+                        id: c.id,
+                        evaluation: f(c),
+                    })
+                    .collect();
+                Tell::tell(&mut cma, told).unwrap();
+                if cma.restarts() >= lambdas.len() {
+                    lambdas.push((cma.parameters().lambda, cma.in_small_regime()));
+                }
+            }
+            assert_sound(&cma, "bipop");
+            let r = &cma.regimes;
+            let best: f64 = cma.best().unwrap().fitness();
+            (lambdas, r.small_evaluations, r.large_evaluations, best)
+        };
+        for seed in 0..3 {
+            let (lambdas, small_evals, large_evals, best) = descend(seed);
+            assert_eq!(lambdas.len(), 7, "seed {seed}: six restarts");
+            let small: Vec<usize> = lambdas.iter().filter(|l| l.1).map(|l| l.0).collect();
+            let large: Vec<usize> = lambdas.iter().filter(|l| !l.1).map(|l| l.0).collect();
+            assert!(!small.is_empty(), "seed {seed}: {lambdas:?}");
+            assert!(
+                small.iter().all(|&l| (5..=large[large.len() - 1] / 2).contains(&l)),
+                "{lambdas:?}"
+            );
+            assert!(large.windows(2).all(|w| w[1] == 2 * w[0]), "{lambdas:?}");
+            eprintln!("seed {seed}: λ per descent {lambdas:?}, evaluations small {small_evals} large {large_evals}, best {best:.3e}");
+            let again = descend(seed);
+            assert_eq!((again.0, again.3.to_bits()), (lambdas, best.to_bits()), "deterministic");
         }
     }
 

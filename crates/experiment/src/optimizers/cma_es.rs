@@ -3,7 +3,7 @@
 use super::check::range;
 use super::{decode, single, AnyOptimizer, OptimizerConfig, OptimizerEntry, OptimizerKind};
 use serde::{Deserialize, Serialize};
-use vsrlab_evolution::{CmaEs, CmaEsConfig, CmaTermination, EvolutionError, Sense};
+use vsrlab_evolution::{CmaEs, CmaEsConfig, CmaTermination, EvolutionError, RestartStrategy, Sense};
 
 /// Parameters of CMA-ES.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -48,6 +48,9 @@ pub struct CmaParams {
     /// λ's factor at each restart (default 2).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub restart_increase: Option<f64>,
+    /// `"ipop"` (default) or `"bipop"` (large and small populations in turn).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub restart_strategy: Option<RestartStrategy>,
 }
 
 fn is_zero(n: &usize) -> bool {
@@ -75,6 +78,7 @@ impl Default for CmaParams {
             noeffectcoord: t.noeffectcoord,
             restarts: 0,
             restart_increase: None,
+            restart_strategy: None,
         }
     }
 }
@@ -162,6 +166,7 @@ impl OptimizerKind for CmaParams {
                 termination: self.termination_criteria(),
                 restarts: self.restarts,
                 restart_increase: self.increase(),
+                restart_strategy: self.restart_strategy.unwrap_or_default(),
             },
             dimension,
             seed,

@@ -337,6 +337,11 @@ impl CmaEs {
         );
         self.mean = rng.uniform_vec(n, self.config.init_min, self.config.init_max);
         let r = &mut self.regimes;
+        if r.large_lambda == 0 {
+            // a checkpoint written before BIPOP existed: its λ is the large regime's
+            r.large_lambda = self.lambda;
+            r.default_lambda = self.lambda;
+        }
         let bipop = self.config.restart_strategy == RestartStrategy::Bipop;
         r.small = bipop && r.small_evaluations < r.large_evaluations;
         if r.small {
@@ -877,6 +882,24 @@ mod tests {
             let again = descend(seed);
             assert_eq!((again.0, again.3.to_bits()), (lambdas, best.to_bits()), "deterministic");
         }
+    }
+
+    /// A checkpoint written before BIPOP (no `regimes`) still restarts IPOP-style with λ doubled.
+    #[test]
+    fn an_older_checkpoint_without_regimes_restarts_with_a_doubled_lambda() {
+        let config = CmaEsConfig {
+            sense: Sense::Minimize,
+            restarts: 1,
+            ..CmaEsConfig::default()
+        };
+        let cma = CmaEs::new(config, 4, 1).unwrap();
+        let mut value = serde_json::to_value(&cma).unwrap();
+        value.as_object_mut().unwrap().remove("regimes");
+        let mut old: CmaEs = serde_json::from_value(value).unwrap();
+        let lambda = old.parameters().lambda;
+        old.restart();
+        assert_eq!(old.parameters().lambda, 2 * lambda);
+        assert!(!old.in_small_regime());
     }
 
     /// On the 10-D sphere every run ends by a termination criterion, near f ≈ 1e-11 (pycma

@@ -115,7 +115,8 @@ impl Robot for PsaRobot {
     }
 
     fn assemble(&self, builder: &mut WorldBuilder, origin: Vec2, _seed: u64) -> Result<Box<dyn Agent>, EpisodeError> {
-        self.validate()?;
+        // the brain is built once, below (validate() would build it a second time)
+        self.validate_body()?;
         let p = &self.body.params;
         let centre = origin + Vec2::new(p.radius, p.radius);
         let psa = Psa::assemble(builder, p, centre, PSA_GROUP);

@@ -5,6 +5,7 @@
 
 mod analyze;
 mod bench;
+mod evaluate;
 mod inflate;
 mod label;
 mod modules;
@@ -36,6 +37,9 @@ enum Command {
     Bench(bench::BenchArgs),
     /// Run an evolutionary experiment described in a TOML file (docs/experiments.md).
     Run(run::RunArgs),
+    /// Fitness of given genotypes (rows of genes) on an experiment's robot and task, for
+    /// optimisers outside vsrlab; the same evaluations as `vsrlab run`.
+    Evaluate(evaluate::EvaluateArgs),
     /// Check experiment files: print each resolved configuration, its sizes and a time estimate.
     Validate(validate::ValidateArgs),
     /// Figures and a summary table from the output of `vsrlab run` (docs/analysis.md).
@@ -69,6 +73,7 @@ fn main() -> ExitCode {
         Command::Simulate(a) => simulate::run(a),
         Command::Bench(a) => bench::run(a),
         Command::Run(a) => run::run(a),
+        Command::Evaluate(a) => evaluate::run(a),
         Command::Validate(a) => validate::run(a),
         Command::Analyze(a) => analyze::run(a),
         Command::Label(a) => label::run(a),

@@ -54,7 +54,7 @@ pub mod rng;
 pub mod run;
 pub mod search_state;
 mod selection;
-mod serde_float;
+pub mod serde_float;
 pub mod test_functions;
 
 pub use error::EvolutionError;

@@ -13,7 +13,7 @@ use std::fmt;
 
 /// An `f64` with the lossless representation described in the module docs.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Lossless(pub f64);
+pub struct Lossless(pub f64);
 
 impl Serialize for Lossless {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
@@ -71,11 +71,12 @@ impl<'de> Deserialize<'de> for Lossless {
     }
 }
 
-/// `#[serde(with = "crate::serde_float::vec")]` for `Vec<f64>` fields.
-pub(crate) mod vec {
+/// `#[serde(with = "vsrlab_evolution::serde_float::vec")]` for `Vec<f64>` fields.
+pub mod vec {
     use super::*;
 
-    pub(crate) fn serialize<S: Serializer>(values: &[f64], serializer: S) -> Result<S::Ok, S::Error> {
+    /// Writes the values, non-finite ones as strings in human-readable formats.
+    pub fn serialize<S: Serializer>(values: &[f64], serializer: S) -> Result<S::Ok, S::Error> {
         let mut seq = serializer.serialize_seq(Some(values.len()))?;
         for &v in values {
             seq.serialize_element(&Lossless(v))?;
@@ -83,7 +84,8 @@ pub(crate) mod vec {
         seq.end()
     }
 
-    pub(crate) fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Vec<f64>, D::Error> {
+    /// Reads what [`serialize`] wrote.
+    pub fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Vec<f64>, D::Error> {
         let values: Vec<Lossless> = Vec::deserialize(deserializer)?;
         Ok(values.into_iter().map(|v| v.0).collect())
     }

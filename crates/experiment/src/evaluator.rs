@@ -9,6 +9,7 @@
 use crate::config::Experiment;
 use crate::features;
 use crate::optimizers::{Descriptor, Extract};
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::time::Instant;
@@ -38,14 +39,18 @@ pub struct Record {
     pub objectives: Option<Vec<f64>>,
 }
 
-/// What one evaluation produced.
-#[derive(Debug, Clone, PartialEq)]
+/// What one evaluation produced. Serialisable (non-finite values included), so that evaluations
+/// run on other machines (Ray workers) come back whole.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Evaluated {
     /// The fitness values; NaN (the optimizers' worst value) when the evaluation failed.
+    #[serde(with = "vsrlab_evolution::serde_float::vec")]
     pub objectives: Vec<f64>,
     /// MAP-Elites descriptor (empty when unused).
+    #[serde(with = "vsrlab_evolution::serde_float::vec")]
     pub descriptor: Vec<f64>,
     /// Speciation features (empty unless SE-s / SE-b).
+    #[serde(with = "vsrlab_evolution::serde_float::vec")]
     pub features: Vec<f64>,
     /// The record for snapshots.
     pub record: Record,
@@ -93,6 +98,20 @@ pub trait Evaluator<G>: Sync {
             seconds: 0.0,
         }
     }
+    /// Evaluates a batch, one candidate seed per genotype, in the batch's order. Default: every
+    /// genotype on the current rayon pool, each guarded against panics
+    /// ([`evaluate_guarded`]). Evaluators that send the work elsewhere (Ray workers) override
+    /// it; an error (the workers are gone) stops the run at its last checkpoint.
+    fn evaluate_batch(&self, genotypes: &[&G], seeds: &[u64]) -> Result<Vec<Evaluated>, String>
+    where
+        G: Sync,
+    {
+        Ok(genotypes
+            .par_iter()
+            .zip(seeds.par_iter())
+            .map(|(g, &seed)| evaluate_guarded(self, g, seed))
+            .collect())
+    }
     /// Saves the robot of a genotype to a file (the best of a run); a no-op by default.
     fn save_robot(&self, _genotype: &G, _path: &Path, _note: &str) -> Result<(), String> {
         Ok(())
@@ -111,6 +130,24 @@ pub trait Evaluator<G>: Sync {
     fn check(&self, _genotype: &G) -> Result<(), String> {
         Ok(())
     }
+}
+
+/// Evaluates a genotype, turning a panic inside the evaluation into a failed evaluation so that
+/// one bad genotype never ends a run.
+pub fn evaluate_guarded<G, E: Evaluator<G> + ?Sized>(evaluator: &E, genotype: &G, seed: u64) -> Evaluated {
+    let start = Instant::now();
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| evaluator.evaluate(genotype, seed))).unwrap_or_else(
+        |panic| {
+            let message = panic
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| panic.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown panic".to_string());
+            let mut failed = evaluator.failure(seed, format!("the evaluation panicked: {message}"));
+            failed.seconds = start.elapsed().as_secs_f64();
+            failed
+        },
+    )
 }
 
 /// Evaluates genotypes as robots on the experiment's task.

@@ -16,6 +16,8 @@
 //!   per-run memory estimate checked before a run starts.
 //! - [`validate`](mod@validate): what a file will do before it runs (resolved configuration,
 //!   sizes, a time estimate).
+//! - [`batch`]: many flat genotypes evaluated in one call, for optimisers outside vsrlab
+//!   (`vsrlab evaluate`, the Python package, Ray workers).
 //! - [`bench`](mod@bench): the simulation speed benchmark on the standard robots (`vsrlab bench`),
 //!   timed in CPU seconds ([`cpu_time`]).
 //!
@@ -38,6 +40,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod batch;
 pub mod bench;
 pub mod checkpoint;
 pub mod config;
@@ -52,6 +55,7 @@ pub mod output_lock;
 pub mod runner;
 pub mod validate;
 
+pub use batch::{BatchError, BatchEvaluator};
 pub use bench::{run_bench, BenchError, BenchOptions, BenchReport};
 pub use config::{ConfigError, Experiment};
 pub use evaluator::{Evaluated, Evaluator, Record, RobotEvaluator};

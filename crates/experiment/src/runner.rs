@@ -33,7 +33,6 @@ use crate::genotype::Genotype;
 use crate::memory::{MemoryEstimate, DEFAULT_MEMORY_LIMIT};
 use crate::optimizers::{AnyOptimizer, SearchOptimizer};
 use crate::output_lock::{OutputLock, LOCK_FILE};
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
@@ -599,12 +598,18 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
         let generation_start = Instant::now();
         let batch = optimizer.ask();
         let evaluation_start = Instant::now();
-        let results: Vec<Evaluated> = pool.install(|| {
-            batch
-                .par_iter()
-                .map(|c| evaluate_guarded(evaluator, &c.genotype, c.seed))
-                .collect()
-        });
+        let genotypes: Vec<&G> = batch.iter().map(|c| &c.genotype).collect();
+        let seeds: Vec<u64> = batch.iter().map(|c| c.seed).collect();
+        let results: Vec<Evaluated> = pool
+            .install(|| evaluator.evaluate_batch(&genotypes, &seeds))
+            .map_err(|e| RunError::Other(format!("evaluations: {e}")))?;
+        if results.len() != batch.len() {
+            return Err(RunError::Other(format!(
+                "evaluations: {} results for a batch of {}",
+                results.len(),
+                batch.len()
+            )));
+        }
         let evaluation_seconds = evaluation_start.elapsed().as_secs_f64();
         let batch_fitness: Vec<f64> = results.iter().map(|e| e.fitness()).collect();
         let sense = first_sense(&optimizer);
@@ -781,24 +786,6 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
     let _ = std::fs::remove_file(&checkpoint_path);
     observer.run_finished(&summary);
     Ok(Some(summary))
-}
-
-/// Evaluates a genotype, turning a panic inside the evaluation into a failed evaluation so that
-/// one bad genotype never ends a run.
-fn evaluate_guarded<G>(evaluator: &dyn Evaluator<G>, genotype: &G, seed: u64) -> Evaluated {
-    let start = Instant::now();
-    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| evaluator.evaluate(genotype, seed))).unwrap_or_else(
-        |panic| {
-            let message = panic
-                .downcast_ref::<&str>()
-                .map(|s| s.to_string())
-                .or_else(|| panic.downcast_ref::<String>().cloned())
-                .unwrap_or_else(|| "unknown panic".to_string());
-            let mut failed = evaluator.failure(seed, format!("the evaluation panicked: {message}"));
-            failed.seconds = start.elapsed().as_secs_f64();
-            failed
-        },
-    )
 }
 
 /// Removes the temporary files a killed process may have left mid-write (`.NAME.tmp-PID`, see

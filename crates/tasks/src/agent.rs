@@ -32,6 +32,24 @@ pub trait Agent: Send {
     /// One control step at time `t`, right after the physics step: sense, think, set the
     /// actuation for the next physics step (vsr-model.md §2.2).
     fn act(&mut self, world: &mut World, t: f64);
+    /// The first half of [`Agent::act`] for a controller outside the robot: reads the sensors at
+    /// time `t` into [`Agent::readings`]. Default: a body without sensors reads nothing.
+    fn sense(&mut self, _world: &World, _t: f64) {}
+    /// The sensor readings of the last [`Agent::sense`] (or [`Agent::act`]): what the brain sees.
+    fn readings(&self) -> &[f64] {
+        &[]
+    }
+    /// Number of values an outside controller gives [`Agent::actuate`] (the brain's outputs).
+    /// Default: one per actuator of the body.
+    fn action_count(&self) -> usize {
+        self.body().actuator_count()
+    }
+    /// The second half of [`Agent::act`] for a controller outside the robot: sets the actuation
+    /// from `actions` (one per [`Agent::action_count`], in [-1, 1]) in place of the brain's outputs.
+    /// Default: the values go to the body's actuators as they are.
+    fn actuate(&mut self, world: &mut World, actions: &[f64]) {
+        self.body().actuate(world, actions);
+    }
     /// Writes what does not change during the episode into a trace (grid cells, sensor layout).
     fn describe(&mut self, trace: &mut Trace);
     /// Appends this step's per-unit data (states, readings, actuations) to a trace.

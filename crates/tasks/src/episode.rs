@@ -4,7 +4,7 @@
 
 use crate::agent::{Agent, Robot};
 use crate::outcome::{DamageRecord, Outcome, Trace, TraceLevel};
-use crate::task::{fitness_values, Flow, Scene, StepView, Task};
+use crate::task::{fitness_values, Flow, Objective, Scene, StepView, Task, TaskEpisode};
 use vsrlab_physics::{PhysicsError, Vec2, World, WorldBuilder};
 
 /// Why an episode could not be run or completed.
@@ -37,62 +37,185 @@ pub fn run_observed(
     level: TraceLevel,
     observe: &mut dyn FnMut(f64, &dyn Agent),
 ) -> Result<Outcome, EpisodeError> {
-    task.validate()?;
-    let mut builder = WorldBuilder::new(task.physics().clone());
-    let scene = task.build_world(&mut builder, seed);
-    let origin = task.place(&scene, &robot.footprint());
-    let mut agent = robot.assemble(&mut builder, origin, seed)?;
-    let mut world = builder.build().map_err(|e| EpisodeError::Invalid(e.to_string()))?;
-    let mut episode = task.start();
-    let mut recorder = Recorder::new(level, task, &scene, agent.as_mut());
-    let dt = task.physics().dt;
-    let mut damage = task
-        .damage()
-        .map(|d| (d.at, d.mask(agent.body().actuator_count(), seed)));
-    let mut t = 0.0;
-    while t < task.duration() {
-        t += dt;
-        world
+    let mut episode = Episode::new(robot, task, seed, level)?;
+    while !episode.is_over() {
+        episode.step(None)?;
+        observe(episode.time(), episode.agent());
+    }
+    Ok(episode.finish())
+}
+
+/// One episode that advances a step at a time: the loop of [`run`], opened for controllers that
+/// live outside the robot (a Python policy, a Gymnasium environment). It owns its world, so it
+/// outlives the robot and task it was built from.
+pub struct Episode {
+    world: World,
+    agent: Box<dyn Agent>,
+    state: Box<dyn TaskEpisode>,
+    scene: Scene,
+    recorder: Recorder,
+    objectives: Vec<Objective>,
+    damage: Option<(f64, Vec<bool>)>,
+    dt: f64,
+    duration: f64,
+    t: f64,
+    center: Vec2,
+    stopped: bool,
+}
+
+impl Episode {
+    /// Builds the world, places the robot and reads its sensors once (time 0).
+    pub fn new(robot: &dyn Robot, task: &dyn Task, seed: u64, level: TraceLevel) -> Result<Episode, EpisodeError> {
+        task.validate()?;
+        let mut builder = WorldBuilder::new(task.physics().clone());
+        let scene = task.build_world(&mut builder, seed);
+        let origin = task.place(&scene, &robot.footprint());
+        let mut agent = robot.assemble(&mut builder, origin, seed)?;
+        let world = builder.build().map_err(|e| EpisodeError::Invalid(e.to_string()))?;
+        let recorder = Recorder::new(level, task, &scene, agent.as_mut());
+        let damage = task
+            .damage()
+            .map(|d| (d.at, d.mask(agent.body().actuator_count(), seed)));
+        let center = agent.body().center(&world);
+        Ok(Episode {
+            world,
+            agent,
+            state: task.start(),
+            scene,
+            recorder,
+            objectives: task.objectives().to_vec(),
+            damage,
+            dt: task.physics().dt,
+            duration: task.duration(),
+            t: 0.0,
+            center,
+            stopped: false,
+        })
+    }
+
+    /// One step: physics, then sense → control → actuate, with the robot's own brain when
+    /// `actions` is `None`; with `Some`, the actions set the actuation of the *next* physics step
+    /// and are applied first (the outside controller chose them from [`Episode::readings`]).
+    /// Returns whether the task stopped the episode.
+    pub fn step(&mut self, actions: Option<&[f64]>) -> Result<Flow, EpisodeError> {
+        if let Some(a) = actions {
+            if a.len() != self.agent.action_count() {
+                return Err(EpisodeError::Invalid(format!(
+                    "actions: {} values for a robot with {} actuators",
+                    a.len(),
+                    self.agent.action_count()
+                )));
+            }
+            self.agent.actuate(&mut self.world, a);
+        }
+        let dt = self.dt;
+        self.t += dt;
+        let t = self.t;
+        self.world
             .step()
             .map_err(|source| EpisodeError::Physics { time: t, source })?;
         // half a step of tolerance: t accumulates rounding errors
-        if damage.as_ref().is_some_and(|(at, _)| t >= at - 0.5 * dt) {
-            let (_, broken) = damage.take().expect("checked");
-            agent.break_actuators(&broken)?;
-            recorder.damaged(t, broken);
+        if self.damage.as_ref().is_some_and(|(at, _)| t >= at - 0.5 * dt) {
+            let (_, broken) = self.damage.take().expect("checked");
+            self.agent.break_actuators(&broken)?;
+            self.recorder.damaged(t, broken);
         }
-        agent.act(&mut world, t);
-        let center = agent.body().center(&world);
+        match actions {
+            None => self.agent.act(&mut self.world, t),
+            Some(_) => self.agent.sense(&self.world, t),
+        }
+        let center = self.agent.body().center(&self.world);
         if !center.is_finite() {
             return Err(EpisodeError::Physics {
                 time: t,
                 source: PhysicsError::NonFinite {
-                    step: world.step_count(),
+                    step: self.world.step_count(),
                     body: 0,
                 },
             });
         }
-        let flow = episode.observe(&StepView {
+        self.center = center;
+        let flow = self.state.observe(&StepView {
             t,
-            world: &world,
-            body: agent.body(),
+            world: &self.world,
+            body: self.agent.body(),
             center,
-            scene: &scene,
+            scene: &self.scene,
         });
-        recorder.record(t, center, &world, &scene, agent.as_ref());
-        observe(t, agent.as_ref());
+        self.recorder
+            .record(t, center, &self.world, &self.scene, self.agent.as_ref());
         if flow == Flow::Stop {
-            break;
+            self.stopped = true;
+        }
+        Ok(flow)
+    }
+
+    /// Whether the episode is over: the task stopped it, or its duration has passed.
+    pub fn is_over(&self) -> bool {
+        self.stopped || self.t >= self.duration
+    }
+
+    /// Whether the task stopped the episode before its duration (e.g. a robot that escaped).
+    pub fn stopped_by_task(&self) -> bool {
+        self.stopped
+    }
+
+    /// Simulated time (s).
+    pub fn time(&self) -> f64 {
+        self.t
+    }
+
+    /// The episode's length (s).
+    pub fn duration(&self) -> f64 {
+        self.duration
+    }
+
+    /// Simulated seconds per step.
+    pub fn dt(&self) -> f64 {
+        self.dt
+    }
+
+    /// The body's centre after the last step.
+    pub fn center(&self) -> Vec2 {
+        self.center
+    }
+
+    /// The robot in its world.
+    pub fn agent(&self) -> &dyn Agent {
+        self.agent.as_ref()
+    }
+
+    /// The world (for drawing).
+    pub fn world(&self) -> &World {
+        &self.world
+    }
+
+    /// The terrain, obstacles and objects of the task.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// Reads the sensors now (the first observation of an outside controller, before any step).
+    pub fn sense(&mut self) {
+        self.agent.sense(&self.world, self.t);
+    }
+
+    /// The task's metrics so far (distance, velocity, …).
+    pub fn metrics(&self) -> crate::Metrics {
+        self.state.metrics()
+    }
+
+    /// The outcome: metrics, fitness values, steps and the trace.
+    pub fn finish(self) -> Outcome {
+        let metrics = self.state.metrics();
+        Outcome {
+            fitness: fitness_values(&self.objectives, &metrics),
+            metrics,
+            steps: self.world.step_count(),
+            units: self.agent.body().actuator_count(),
+            trace: self.recorder.finish(),
         }
     }
-    let metrics = episode.metrics();
-    Ok(Outcome {
-        fitness: fitness_values(task.objectives(), &metrics),
-        metrics,
-        steps: world.step_count(),
-        units: agent.body().actuator_count(),
-        trace: recorder.finish(),
-    })
 }
 
 /// Accumulates the trace at the requested level.

@@ -176,14 +176,9 @@ impl PsaAgent {
     }
 }
 
-impl Agent for PsaAgent {
-    fn body(&self) -> &dyn Body {
-        &self.psa
-    }
-
-    fn act(&mut self, world: &mut World, t: f64) {
-        self.sensors.sense(&self.psa, world, &mut self.readings);
-        self.brain.control(t, &self.readings, &mut self.outputs);
+impl PsaAgent {
+    /// Maps the outputs to the body's actuation, notes what the trace shows, and actuates.
+    fn apply(&mut self, world: &mut World) {
         let p = self.psa.params();
         let n = p.masses;
         if p.spring_control {
@@ -198,6 +193,35 @@ impl Agent for PsaAgent {
             *flag = world.part_touching(m);
         }
         self.psa.actuate(world, &self.actuations);
+    }
+}
+
+impl Agent for PsaAgent {
+    fn body(&self) -> &dyn Body {
+        &self.psa
+    }
+
+    fn act(&mut self, world: &mut World, t: f64) {
+        self.sensors.sense(&self.psa, world, &mut self.readings);
+        self.brain.control(t, &self.readings, &mut self.outputs);
+        self.apply(world);
+    }
+
+    fn sense(&mut self, world: &World, _t: f64) {
+        self.sensors.sense(&self.psa, world, &mut self.readings);
+    }
+
+    fn readings(&self) -> &[f64] {
+        &self.readings
+    }
+
+    fn action_count(&self) -> usize {
+        self.outputs.len()
+    }
+
+    fn actuate(&mut self, world: &mut World, actions: &[f64]) {
+        self.outputs.copy_from_slice(actions);
+        self.apply(world);
     }
 
     fn describe(&mut self, trace: &mut Trace) {

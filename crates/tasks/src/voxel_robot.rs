@@ -81,23 +81,47 @@ impl VoxelAgent {
     }
 }
 
-impl Agent for VoxelAgent {
-    fn body(&self) -> &dyn Body {
-        &self.vsr
-    }
-
-    fn act(&mut self, world: &mut World, t: f64) {
-        for (i, s) in self.states.iter_mut().enumerate() {
-            *s = self.vsr.unit_state(world, i);
-        }
-        self.sensors.sense(world, &self.states, t, &mut self.readings);
-        self.brain.control(t, &self.readings, &mut self.actuations);
+impl VoxelAgent {
+    /// Applies the actuations (broken voxels get 0) to the body.
+    fn apply(&mut self, world: &mut World) {
         for (a, &broken) in self.actuations.iter_mut().zip(&self.broken) {
             if broken {
                 *a = 0.0;
             }
         }
         self.vsr.actuate(world, &self.actuations);
+    }
+}
+
+impl Agent for VoxelAgent {
+    fn body(&self) -> &dyn Body {
+        &self.vsr
+    }
+
+    fn act(&mut self, world: &mut World, t: f64) {
+        self.sense(world, t);
+        self.brain.control(t, &self.readings, &mut self.actuations);
+        self.apply(world);
+    }
+
+    fn sense(&mut self, world: &World, t: f64) {
+        for (i, s) in self.states.iter_mut().enumerate() {
+            *s = self.vsr.unit_state(world, i);
+        }
+        self.sensors.sense(world, &self.states, t, &mut self.readings);
+    }
+
+    fn readings(&self) -> &[f64] {
+        &self.readings
+    }
+
+    fn action_count(&self) -> usize {
+        self.actuations.len()
+    }
+
+    fn actuate(&mut self, world: &mut World, actions: &[f64]) {
+        self.actuations.copy_from_slice(actions);
+        self.apply(world);
     }
 
     fn break_actuators(&mut self, broken: &[bool]) -> Result<(), EpisodeError> {

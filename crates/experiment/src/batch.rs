@@ -71,7 +71,7 @@ impl BatchEvaluator {
         if width == 0 {
             return Err(BatchError("genotypes: this experiment has no genes".into()));
         }
-        if genes.len() % width != 0 {
+        if !genes.len().is_multiple_of(width) {
             return Err(BatchError(format!(
                 "genotypes: {} values are not rows of {width} genes",
                 genes.len()

@@ -200,6 +200,12 @@ impl Episode {
         self.agent.sense(&self.world, self.t);
     }
 
+    /// The trace so far (`None` for [`TraceLevel::None`]): what a frame of the episode is drawn
+    /// from.
+    pub fn trace(&self) -> Option<&Trace> {
+        (self.recorder.level != TraceLevel::None).then_some(&self.recorder.trace)
+    }
+
     /// The task's metrics so far (distance, velocity, …).
     pub fn metrics(&self) -> crate::Metrics {
         self.state.metrics()

@@ -1,0 +1,35 @@
+//! `vsrlab._native`: the Rust side of the Python package. Robots, tasks and episodes from the
+//! same strings and files as the CLI, batch evaluation with the GIL released, and experiment runs
+//! whose evaluations Python may send elsewhere (Ray). The Python modules in `python/vsrlab/`
+//! wrap it; docs/python.md is the user's guide.
+//!
+//! Every bad input from Python raises `ValueError` naming the argument or field; nothing here
+//! panics on user input.
+
+mod batch;
+mod episode;
+mod robot;
+mod run;
+
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+
+/// A `ValueError` with `message`.
+pub(crate) fn value_error(message: impl std::fmt::Display) -> PyErr {
+    PyValueError::new_err(message.to_string())
+}
+
+/// The extension module.
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_class::<robot::PyRobot>()?;
+    m.add_function(wrap_pyfunction!(robot::simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(robot::task_json, m)?)?;
+    m.add_class::<episode::PyEpisode>()?;
+    m.add_class::<episode::PyVectorEpisode>()?;
+    m.add_class::<batch::PyBatchEvaluator>()?;
+    m.add_function(wrap_pyfunction!(run::run, m)?)?;
+    m.add_function(wrap_pyfunction!(run::deterministic_files, m)?)?;
+    Ok(())
+}

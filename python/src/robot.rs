@@ -1,0 +1,191 @@
+//! Robots from short forms or robot files, and one episode's outcome (`vsrlab.simulate`).
+
+use crate::value_error;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::PathBuf;
+use vsrlab_tasks::files::{any_robot_from_json, load_any_robot, save_any_robot, AnyRobot};
+use vsrlab_tasks::short_forms::DEFAULT_SENSORS;
+use vsrlab_tasks::{episode, PsaRobot, RobotSpec, TaskSpec, TraceLevel};
+
+/// A robot: a body, its sensors and a brain, voxel-based or pressure-based; what a robot file
+/// holds. Immutable.
+#[pyclass(name = "Robot", module = "vsrlab", frozen)]
+#[derive(Clone)]
+pub struct PyRobot {
+    pub(crate) robot: AnyRobot,
+}
+
+#[pymethods]
+impl PyRobot {
+    /// A robot from the CLI's short forms: `body` a named shape, a text grid ("###/#.#") or
+    /// `psa[:small|medium|large]`; `brain` (default `phase`, `heads` for a PSA); `sensors` and
+    /// `preset` for voxel bodies.
+    #[new]
+    #[pyo3(signature = (body = "biped-4x3", brain = None, sensors = None, preset = "2021"))]
+    fn new(body: &str, brain: Option<&str>, sensors: Option<&str>, preset: &str) -> PyResult<Self> {
+        let robot = if PsaRobot::is_short_form(body) {
+            if sensors.is_some() {
+                return Err(value_error(
+                    "sensors: a PSA's sensors are fixed (docs/psa.md); leave sensors out",
+                ));
+            }
+            AnyRobot::Psa(PsaRobot::from_short_forms(body, brain.unwrap_or("heads")).map_err(value_error)?)
+        } else {
+            let spec = RobotSpec::from_short_forms(
+                body,
+                preset,
+                sensors.unwrap_or(DEFAULT_SENSORS),
+                brain.unwrap_or("phase"),
+            )
+            .map_err(|e| value_error(format!("{}: {}", e.part(), e.message())))?;
+            AnyRobot::Voxel(spec)
+        };
+        Ok(PyRobot { robot })
+    }
+
+    /// Reads a robot file (either kind).
+    #[staticmethod]
+    fn load(path: PathBuf) -> PyResult<Self> {
+        let robot = load_any_robot(&path).map_err(value_error)?;
+        Ok(PyRobot { robot })
+    }
+
+    /// A robot from a robot file's JSON text.
+    #[staticmethod]
+    fn from_json(text: &str) -> PyResult<Self> {
+        let robot = any_robot_from_json(text, "robot").map_err(value_error)?;
+        Ok(PyRobot { robot })
+    }
+
+    /// Writes the robot file (atomically), with an optional note.
+    #[pyo3(signature = (path, note = None))]
+    fn save(&self, path: PathBuf, note: Option<&str>) -> PyResult<()> {
+        save_any_robot(&path, &self.robot, note).map_err(value_error)
+    }
+
+    /// The robot file's JSON text.
+    #[pyo3(signature = (note = None))]
+    fn to_json(&self, note: Option<&str>) -> String {
+        self.robot.to_json(note)
+    }
+
+    /// `"voxel"` or `"psa"`.
+    #[getter]
+    fn kind(&self) -> &'static str {
+        match self.robot {
+            AnyRobot::Voxel(_) => "voxel",
+            AnyRobot::Psa(_) => "psa",
+        }
+    }
+
+    /// The brain's kind (`phase`, `mlp`, `heads`, …).
+    #[getter]
+    fn brain(&self) -> String {
+        self.robot.brain().kind().to_string()
+    }
+
+    /// The body as rows of `#` and `.` (voxel robots), `None` for a PSA.
+    #[getter]
+    fn body(&self) -> Option<String> {
+        self.robot.as_robot().grid().map(|g| g.to_rows().join("/"))
+    }
+
+    fn __repr__(&self) -> String {
+        match &self.robot {
+            AnyRobot::Voxel(r) => format!(
+                "Robot(body={:?}, brain={:?}, sensors={:?}, preset={:?})",
+                r.body.to_rows().join("/"),
+                r.brain.kind(),
+                r.sensors.to_string(),
+                r.preset.to_string()
+            ),
+            AnyRobot::Psa(r) => format!(
+                "Robot(psa with {} masses, brain={:?})",
+                r.body.params.masses,
+                r.brain.kind()
+            ),
+        }
+    }
+}
+
+/// A task from a short form (`locomotion:hilly-1-10`, `jump`, `escape`, `carrier`) or an
+/// experiment file (`.toml`), with `duration` (s) when given.
+pub(crate) fn task_spec(task: &str, duration: Option<f64>) -> PyResult<TaskSpec> {
+    let spec = if task.ends_with(".toml") || std::path::Path::new(task).is_dir() {
+        let path = std::path::Path::new(task);
+        let file = if path.is_dir() {
+            path.join("experiment.toml")
+        } else {
+            path.to_path_buf()
+        };
+        vsrlab_experiment::config::load(&file)
+            .map_err(|e| value_error(format!("task: {e}")))?
+            .task
+            .spec
+    } else {
+        TaskSpec::parse(task).map_err(|e| value_error(format!("task: {e}")))?
+    };
+    let spec = match duration {
+        None => spec,
+        Some(d) => spec
+            .with_settings(&[("duration", serde_json::json!(d))])
+            .map_err(|e| value_error(format!("duration: {}", e.message)))?,
+    };
+    spec.task().validate().map_err(|e| value_error(format!("task: {e}")))?;
+    Ok(spec)
+}
+
+/// The task's settings as JSON (what `task` resolves to), for display and checks.
+#[pyfunction]
+#[pyo3(signature = (task, duration = None))]
+pub fn task_json(task: &str, duration: Option<f64>) -> PyResult<String> {
+    let spec = task_spec(task, duration)?;
+    serde_json::to_string(&spec).map_err(value_error)
+}
+
+/// Runs one episode of `robot` on `task` and returns its outcome: `fitness` (a list), the task's
+/// metrics (distance, velocity, …), `steps` and `units`. `video` writes a GIF/MP4/PNG like the
+/// CLI's `--video`. The GIL is released during the episode.
+#[pyfunction]
+#[pyo3(signature = (robot, task = "locomotion:flat", duration = None, seed = 0, video = None))]
+pub fn simulate<'py>(
+    py: Python<'py>,
+    robot: &PyRobot,
+    task: &str,
+    duration: Option<f64>,
+    seed: u64,
+    video: Option<PathBuf>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let spec = task_spec(task, duration.or(Some(30.0)))?;
+    let level = if video.is_some() {
+        TraceLevel::Full
+    } else {
+        TraceLevel::None
+    };
+    let any = robot.robot.clone();
+    let (outcome, written) = py
+        .detach(move || -> Result<_, String> {
+            let outcome = episode::run(any.as_robot(), spec.task(), seed, level).map_err(|e| e.to_string())?;
+            let mut written = None;
+            if let (Some(path), Some(trace)) = (&video, &outcome.trace) {
+                let info = vsrlab_render::save_video(trace, &vsrlab_render::RenderOptions::default(), path)
+                    .map_err(|e| format!("video: {e}"))?;
+                written = Some(info.frames);
+            }
+            Ok((outcome, written))
+        })
+        .map_err(value_error)?;
+    let out = PyDict::new(py);
+    out.set_item("fitness", outcome.fitness.clone())?;
+    for (name, value) in &outcome.metrics {
+        out.set_item(name, value)?;
+    }
+    out.set_item("steps", outcome.steps)?;
+    out.set_item("units", outcome.units)?;
+    out.set_item("seed", seed)?;
+    if let Some(frames) = written {
+        out.set_item("video_frames", frames)?;
+    }
+    Ok(out)
+}

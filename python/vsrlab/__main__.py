@@ -1,0 +1,38 @@
+"""``python -m vsrlab run CONFIG --out DIR [--ray ADDRESS] [--resume]``: an experiment from Python,
+its evaluations optionally on a Ray cluster (docs/cluster.md). Every other command is the
+``vsrlab`` binary's."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+from . import run
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m vsrlab")
+    commands = parser.add_subparsers(dest="command", required=True)
+    r = commands.add_parser("run", help="run an experiment file, optionally on a Ray cluster")
+    r.add_argument("config", help="experiment file (TOML)")
+    r.add_argument("--out", required=True, help="output folder")
+    r.add_argument("--ray", metavar="ADDRESS", help="'auto', 'local' or HOST:PORT of a Ray cluster")
+    r.add_argument("--resume", action="store_true", help="continue from the checkpoints")
+    r.add_argument("--threads", type=int, default=0, help="local worker threads (0: every core)")
+    r.add_argument("--quiet", action="store_true", help="no progress lines")
+    args = parser.parse_args(argv)
+    try:
+        summaries = run(
+            args.config, args.out, resume=args.resume, threads=args.threads, ray=args.ray, verbose=not args.quiet
+        )
+    except ValueError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 1
+    for s in summaries:
+        print(json.dumps({k: s[k] for k in ("run", "evaluations", "best_fitness", "stop_reason") if k in s}))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,150 @@
+"""Evaluations on a Ray cluster: the route from a laptop to a cluster (docs/cluster.md).
+
+:class:`RayEvaluator` keeps one actor per node, each holding the experiment's evaluator built from
+the experiment file's text and evaluating on every CPU Ray gives it (rayon threads in Rust). The
+runner (``vsrlab.run(config, out, ray=...)``) hands it every batch; it splits the batch into
+chunks, sends them to the actors and joins the answers in order. Each evaluation is a pure
+function of (genotype, seed), so the results are the same bit for bit as a local run.
+
+A worker that dies mid-batch: Ray restarts its actor (``max_restarts=-1``) and the chunk it was
+evaluating is sent again, to the next actor; nothing is lost. A batch that cannot be finished
+(every attempt failed, or ``timeout`` passed) stops the run with an error at its last
+checkpoint, and ``resume=True`` continues it.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from typing import Any, Callable, Optional
+
+import numpy as np
+
+from ._native import BatchEvaluator
+
+
+class _Worker:
+    """A Ray actor: the experiment's evaluator on one node."""
+
+    def __init__(self, config_text: str, origin: str, threads: int):
+        self.evaluator = BatchEvaluator(config_text, origin, threads)
+
+    def ready(self) -> int:
+        return os.getpid()
+
+    def evaluate(self, genotypes: np.ndarray, seeds: np.ndarray) -> str:
+        return self.evaluator.evaluations(np.ascontiguousarray(genotypes), np.ascontiguousarray(seeds))
+
+
+class RayEvaluator:
+    """Sends batches of evaluations to Ray actors, one per node (or ``actors`` of
+    ``cpus_per_actor`` CPUs each).
+
+    ``address``: ``"auto"`` (a cluster started with ``ray start``), ``"local"`` (start one on this
+    machine) or ``"HOST:PORT"``. ``chunks_per_actor`` splits a batch finer for load balance;
+    ``attempts`` is how many times one chunk may be sent before the batch fails; ``on_submit``
+    (tests) is called with this evaluator after each batch is sent.
+    """
+
+    def __init__(
+        self,
+        config_text: str,
+        address: str = "auto",
+        origin: str = "config",
+        actors: Optional[int] = None,
+        cpus_per_actor: Optional[int] = None,
+        chunks_per_actor: int = 2,
+        attempts: int = 5,
+        timeout: float = 3600.0,
+        on_submit: Optional[Callable[["RayEvaluator"], Any]] = None,
+    ):
+        import ray
+        from ray.util.scheduling_strategies import NodeAffinitySchedulingStrategy
+
+        # a local check first: a bad file fails here, with its field named, not on a worker
+        self.genes = BatchEvaluator(config_text, origin, 1).genotype_length
+        self._ray = ray
+        self._connected = False
+        if not ray.is_initialized():
+            if address == "local":
+                ray.init(include_dashboard=False, logging_level="warning")
+            else:
+                ray.init(address=address, logging_level="warning")
+            self._connected = True
+        self.chunks_per_actor = max(1, int(chunks_per_actor))
+        self.attempts = max(1, int(attempts))
+        self.timeout = float(timeout)
+        self.on_submit = on_submit
+        self.batches = 0
+        self.resubmitted = 0
+        remote = ray.remote(_Worker).options(max_restarts=-1, max_task_retries=0)
+        nodes = [n for n in ray.nodes() if n.get("Alive") and n.get("Resources", {}).get("CPU", 0) >= 1]
+        if not nodes:
+            raise RuntimeError("ray: the cluster has no node with a CPU")
+        self.actors = []
+        if actors is None:
+            for node in nodes:
+                cpus = int(cpus_per_actor or node["Resources"]["CPU"])
+                strategy = NodeAffinitySchedulingStrategy(node_id=node["NodeID"], soft=True)
+                self.actors.append(
+                    remote.options(num_cpus=cpus, scheduling_strategy=strategy).remote(config_text, origin, cpus)
+                )
+        else:
+            cpus = int(cpus_per_actor or 1)
+            for _ in range(int(actors)):
+                self.actors.append(remote.options(num_cpus=cpus).remote(config_text, origin, cpus))
+        #: each actor's worker process id, as it started (tests kill one)
+        self.pids = ray.get([a.ready.remote() for a in self.actors], timeout=self.timeout)
+
+    def __call__(self, genotypes: np.ndarray, seeds: np.ndarray) -> str:
+        ray = self._ray
+        exceptions = (ray.exceptions.RayActorError, ray.exceptions.WorkerCrashedError)
+        rows = genotypes.shape[0]
+        parts = min(rows, len(self.actors) * self.chunks_per_actor)
+        bounds = np.linspace(0, rows, parts + 1).astype(int)
+        chunks = [(int(a), int(b)) for a, b in zip(bounds[:-1], bounds[1:]) if b > a]
+        results: list = [None] * len(chunks)
+        tries = [0] * len(chunks)
+        pending = {}
+
+        def submit(i: int, actor: int) -> None:
+            a, b = chunks[i]
+            tries[i] += 1
+            ref = self.actors[actor % len(self.actors)].evaluate.remote(genotypes[a:b], seeds[a:b])
+            pending[ref] = (i, actor)
+
+        for i in range(len(chunks)):
+            submit(i, i)
+        self.batches += 1
+        if self.on_submit is not None:
+            self.on_submit(self)
+        deadline = time.monotonic() + self.timeout
+        while pending:
+            left = deadline - time.monotonic()
+            if left <= 0:
+                raise RuntimeError(f"ray: a batch took longer than {self.timeout} s")
+            done, _ = ray.wait(list(pending), num_returns=1, timeout=left)
+            for ref in done:
+                i, actor = pending.pop(ref)
+                try:
+                    results[i] = ray.get(ref)
+                except exceptions as e:
+                    if tries[i] >= self.attempts:
+                        raise RuntimeError(f"ray: rows {chunks[i]} failed {tries[i]} times: {e}") from e
+                    self.resubmitted += 1
+                    submit(i, actor + 1)
+        # each part is the JSON list of its chunk's evaluations: join them in order
+        inner = [r.strip()[1:-1] for r in results]
+        return "[" + ",".join(p for p in inner if p) + "]"
+
+    def close(self) -> None:
+        """Ends the actors (and the connection, when this evaluator made it)."""
+        for a in self.actors:
+            try:
+                self._ray.kill(a)
+            except Exception:  # an actor already gone
+                pass
+        self.actors = []
+        if self._connected:
+            self._ray.shutdown()
+            self._connected = False

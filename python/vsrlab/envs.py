@@ -1,0 +1,186 @@
+"""Gymnasium environments: a vsrlab robot stepped by your policy.
+
+Observation: the robot's sensor readings (a ``Box`` of float64); action: one actuation in
+[-1, 1] per actuator (voxel, or PSA spring/pressure output), applied for the next physics step;
+reward: the step's Δx of the body's centre; ``terminated`` when the task stops the episode (a PSA
+that escaped its cage), ``truncated`` when its duration is over. ``render_mode="rgb_array"``
+draws frames like the CLI's videos.
+
+Registered ids (``gymnasium.make`` and ``gymnasium.make_vec``):
+``vsrlab/Locomotion-v0`` (``terrain=``), ``vsrlab/Jump-v0``, ``vsrlab/Escape-v0`` and
+``vsrlab/Carrier-v0`` (pressure-based soft agents by default).
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any, Optional
+
+import gymnasium
+import numpy as np
+from gymnasium import spaces
+from gymnasium.vector.utils import batch_space
+
+from ._native import Episode, Robot, VectorEpisode
+
+# the robot's own brain is never called: the policy gives the actions
+_IDLE_BRAIN = "constant:0"
+
+
+def _make_robot(body: str, robot: Optional[str], sensors: Optional[str], preset: str) -> Robot:
+    if robot is not None:
+        return Robot.load(os.fspath(robot))
+    if body.startswith("psa"):
+        return Robot(body, brain=_IDLE_BRAIN)
+    return Robot(body, brain=_IDLE_BRAIN, sensors=sensors, preset=preset)
+
+
+def _spaces(observations: int, actions: int) -> tuple[spaces.Box, spaces.Box]:
+    obs = spaces.Box(-np.inf, np.inf, shape=(observations,), dtype=np.float64)
+    act = spaces.Box(-1.0, 1.0, shape=(actions,), dtype=np.float64)
+    return obs, act
+
+
+def _actions(action: Any, shape: tuple) -> np.ndarray:
+    a = np.asarray(action, dtype=np.float64)
+    if a.shape != shape:
+        raise ValueError(f"action: shape {shape} expected, got {a.shape}")
+    if not np.isfinite(a).all():
+        raise ValueError("action: values must be finite (in [-1, 1])")
+    return np.ascontiguousarray(np.clip(a, -1.0, 1.0))
+
+
+class SoftRobotEnv(gymnasium.Env):
+    """One robot on one task. ``body`` is a CLI body short form (``biped-4x3``, ``worm-10x4``,
+    ``"###/#.#"``, ``psa:small``) or ``robot`` a robot file; ``task`` a task short form."""
+
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 60}
+
+    def __init__(
+        self,
+        body: str = "biped-4x3",
+        task: str = "locomotion:flat",
+        duration: float = 30.0,
+        sensors: Optional[str] = None,
+        preset: str = "2021",
+        robot: Optional[str] = None,
+        render_mode: Optional[str] = None,
+    ):
+        if render_mode not in (None, "rgb_array"):
+            raise ValueError(f"render_mode: None or 'rgb_array', got {render_mode!r}")
+        self.render_mode = render_mode
+        self.robot = _make_robot(body, robot, sensors, preset)
+        self.task = task
+        self._episode = Episode(self.robot, task, float(duration), 0, render_mode == "rgb_array")
+        self.observation_space, self.action_space = _spaces(
+            self._episode.observation_size, self._episode.action_size
+        )
+
+    def reset(self, *, seed: Optional[int] = None, options: Optional[dict] = None):
+        super().reset(seed=seed)
+        episode_seed = int(self.np_random.integers(0, 2**63 - 1))
+        obs = self._episode.reset(episode_seed)
+        return obs, {"time": 0.0}
+
+    def step(self, action):
+        obs, reward, terminated, truncated = self._episode.step(_actions(action, self.action_space.shape))
+        return obs, float(reward), bool(terminated), bool(truncated), {"time": self._episode.time}
+
+    def render(self):
+        if self.render_mode == "rgb_array":
+            return self._episode.render()
+        return None
+
+    def metrics(self) -> dict:
+        """The task's metrics so far (distance, velocity, …), as the CLI reports them."""
+        return self._episode.metrics()
+
+
+class SoftRobotVectorEnv(gymnasium.vector.VectorEnv):
+    """``num_envs`` copies of :class:`SoftRobotEnv` stepped together in Rust threads, one call per
+    step; an episode that ended is reset at the next step (next-step autoreset)."""
+
+    metadata = {"render_modes": [], "autoreset_mode": gymnasium.vector.AutoresetMode.NEXT_STEP}
+
+    def __init__(
+        self,
+        num_envs: int = 8,
+        body: str = "biped-4x3",
+        task: str = "locomotion:flat",
+        duration: float = 30.0,
+        sensors: Optional[str] = None,
+        preset: str = "2021",
+        robot: Optional[str] = None,
+        render_mode: Optional[str] = None,
+    ):
+        if render_mode is not None:
+            raise ValueError("render_mode: the vectorised environment does not render; use SoftRobotEnv")
+        self.num_envs = int(num_envs)
+        self.robot = _make_robot(body, robot, sensors, preset)
+        self._episodes = VectorEpisode(self.robot, self.num_envs, task, float(duration), 0)
+        self.single_observation_space, self.single_action_space = _spaces(
+            self._episodes.observation_size, self._episodes.action_size
+        )
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
+
+    def reset(self, *, seed: Optional[int] = None, options: Optional[dict] = None):
+        super().reset(seed=seed)
+        base = int(self.np_random.integers(0, 2**62))
+        return self._episodes.reset(base), {}
+
+    def step(self, actions):
+        obs, rewards, terminated, truncated = self._episodes.step(_actions(actions, self.action_space.shape))
+        return obs, rewards, terminated, truncated, {}
+
+
+def _task_env(task: str, default_body: str):
+    class TaskEnv(SoftRobotEnv):
+        def __init__(self, body: str = default_body, **kwargs: Any):
+            super().__init__(body=body, task=kwargs.pop("task", task), **kwargs)
+
+    class TaskVectorEnv(SoftRobotVectorEnv):
+        def __init__(self, num_envs: int = 8, body: str = default_body, **kwargs: Any):
+            super().__init__(num_envs=num_envs, body=body, task=kwargs.pop("task", task), **kwargs)
+
+    return TaskEnv, TaskVectorEnv
+
+
+class LocomotionEnv(SoftRobotEnv):
+    """Locomotion on ``terrain`` (``flat``, ``hilly-H-W[-SEED]``, ``steppy-H-W[-SEED]``,
+    ``uphill-DEG``, ``downhill-DEG``, ``psa-hilly-H-W[-SEED]``)."""
+
+    def __init__(self, body: str = "biped-4x3", terrain: str = "flat", **kwargs: Any):
+        super().__init__(body=body, task=f"locomotion:{terrain}", **kwargs)
+
+
+class LocomotionVectorEnv(SoftRobotVectorEnv):
+    """The vectorised :class:`LocomotionEnv`."""
+
+    def __init__(self, num_envs: int = 8, body: str = "biped-4x3", terrain: str = "flat", **kwargs: Any):
+        super().__init__(num_envs=num_envs, body=body, task=f"locomotion:{terrain}", **kwargs)
+
+
+JumpEnv, JumpVectorEnv = _task_env("jump", "biped-4x3")
+EscapeEnv, EscapeVectorEnv = _task_env("escape", "psa")
+CarrierEnv, CarrierVectorEnv = _task_env("carrier", "psa")
+
+#: Every registered id and its environment classes.
+ENVIRONMENTS = {
+    "vsrlab/Locomotion-v0": ("LocomotionEnv", "LocomotionVectorEnv"),
+    "vsrlab/Jump-v0": ("JumpEnv", "JumpVectorEnv"),
+    "vsrlab/Escape-v0": ("EscapeEnv", "EscapeVectorEnv"),
+    "vsrlab/Carrier-v0": ("CarrierEnv", "CarrierVectorEnv"),
+}
+
+
+def register_all() -> None:
+    """Registers the environments with Gymnasium (done on ``import vsrlab``)."""
+    for env_id, (single, vector) in ENVIRONMENTS.items():
+        if env_id in gymnasium.registry:
+            continue
+        gymnasium.register(
+            id=env_id,
+            entry_point=f"vsrlab.envs:{single}",
+            vector_entry_point=f"vsrlab.envs:{vector}",
+        )

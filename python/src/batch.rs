@@ -1,9 +1,11 @@
 //! Many genotypes evaluated in one call (`vsrlab.evaluate_batch`, Ray workers).
 
+use crate::robot::PyRobot;
 use crate::value_error;
 use numpy::{PyArray1, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use vsrlab_experiment::BatchEvaluator;
+use vsrlab_tasks::files::any_robot_from_json;
 
 /// The evaluator of an experiment: genotypes (rows of genes) → fitness, exactly as `vsrlab run`
 /// and `vsrlab evaluate` compute it for the same genotype and seed.
@@ -93,6 +95,27 @@ impl PyBatchEvaluator {
             .detach(|| self.pool.install(|| self.batch.evaluate(genes, seeds)))
             .map_err(value_error)?;
         serde_json::to_string(&evaluated).map_err(value_error)
+    }
+
+    /// The robot a genotype stands for (to simulate, render or save the best one).
+    fn robot(&self, genotype: Vec<f64>) -> PyResult<PyRobot> {
+        if let Some(i) = genotype.iter().position(|g| !g.is_finite()) {
+            return Err(value_error(format!(
+                "genotype: gene {i} is {} (genes must be finite)",
+                genotype[i]
+            )));
+        }
+        let robot = self
+            .batch
+            .experiment()
+            .representation
+            .any_robot(&genotype)
+            .map_err(|e| value_error(format!("genotype: {e}")))?;
+        let text = robot
+            .robot_file(None)
+            .ok_or_else(|| value_error("genotype: this robot kind has no robot file"))?;
+        let robot = any_robot_from_json(&text, "genotype").map_err(value_error)?;
+        Ok(PyRobot { robot })
     }
 
     /// The records of every row (fitness, distance, velocity, body, error), as a list of dicts'

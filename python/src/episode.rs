@@ -119,7 +119,7 @@ impl PyEpisode {
     #[new]
     #[pyo3(signature = (robot, task = "locomotion:flat", duration = None, seed = 0, render = false))]
     fn new(robot: &PyRobot, task: &str, duration: Option<f64>, seed: u64, render: bool) -> PyResult<Self> {
-        let spec = task_spec(task, duration.or(Some(30.0)))?;
+        let spec = task_spec(task, duration)?;
         let level = if render { TraceLevel::Full } else { TraceLevel::None };
         let env = Env::new(robot.robot.clone(), spec, seed, level).map_err(value_error)?;
         let observation_size = env.episode.agent().readings().len();
@@ -232,7 +232,7 @@ impl PyVectorEpisode {
         if count == 0 {
             return Err(value_error("count: at least one episode"));
         }
-        let spec = task_spec(task, duration.or(Some(30.0)))?;
+        let spec = task_spec(task, duration)?;
         let envs = (0..count as u64)
             .map(|i| Env::new(robot.robot.clone(), spec.clone(), seed + i, TraceLevel::None))
             .collect::<Result<Vec<_>, _>>()

@@ -8,6 +8,9 @@ use vsrlab_tasks::files::{any_robot_from_json, load_any_robot, save_any_robot, A
 use vsrlab_tasks::short_forms::DEFAULT_SENSORS;
 use vsrlab_tasks::{episode, PsaRobot, RobotSpec, TaskSpec, TraceLevel};
 
+/// Episode length of a task short form when no duration is given (the CLI's default).
+const DEFAULT_DURATION: f64 = 30.0;
+
 /// A robot: a body, its sensors and a brain, voxel-based or pressure-based; what a robot file
 /// holds. Immutable.
 #[pyclass(name = "Robot", module = "vsrlab", frozen)]
@@ -109,10 +112,17 @@ impl PyRobot {
     }
 }
 
-/// A task from a short form (`locomotion:hilly-1-10`, `jump`, `escape`, `carrier`) or an
-/// experiment file (`.toml`), with `duration` (s) when given.
+/// A task from a short form (`locomotion:hilly-1-10`, `jump`, `escape`, `carrier`; 30 s unless
+/// `duration` says otherwise) or an experiment file (`.toml`, or a `vsrlab run` output folder;
+/// its own duration unless `duration` is given).
 pub(crate) fn task_spec(task: &str, duration: Option<f64>) -> PyResult<TaskSpec> {
-    let spec = if task.ends_with(".toml") || std::path::Path::new(task).is_dir() {
+    let from_file = task.ends_with(".toml") || std::path::Path::new(task).is_dir();
+    let duration = if from_file {
+        duration
+    } else {
+        duration.or(Some(DEFAULT_DURATION))
+    };
+    let spec = if from_file {
         let path = std::path::Path::new(task);
         let file = if path.is_dir() {
             path.join("experiment.toml")
@@ -157,7 +167,7 @@ pub fn simulate<'py>(
     seed: u64,
     video: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let spec = task_spec(task, duration.or(Some(30.0)))?;
+    let spec = task_spec(task, duration)?;
     let level = if video.is_some() {
         TraceLevel::Full
     } else {

@@ -114,3 +114,16 @@ def test_non_finite_genes_and_bad_configs_are_refused(root, tmp_path):
         vsrlab.evaluate_batch(tmp_path / "missing.toml", g)
     with pytest.raises(ValueError, match="population_size"):
         vsrlab.evaluate_batch(HILLY.replace('kind = "ga"', 'kind = "ga"\npopulation_size = "many"'), g)
+
+
+def test_the_robot_of_a_genotype_replays_its_fitness_on_the_experiments_task(root, tmp_path):
+    config = root / "experiments/quickstart.toml"
+    g = np.random.default_rng(9).uniform(-1, 1, (4, vsrlab.genotype_length(config)))
+    fitness = vsrlab.evaluate_batch(config, g)
+    for row, f in zip(g, fitness):
+        robot = vsrlab.robot_of(config, row)
+        assert vsrlab.simulate(robot, task=str(config))["fitness"] == [f]
+    robot.save(tmp_path / "r.json")
+    assert vsrlab.simulate(str(tmp_path / "r.json"), task=str(config))["fitness"] == [fitness[-1]]
+    with pytest.raises(ValueError, match="^genotype: one genotype"):
+        vsrlab.robot_of(config, g)

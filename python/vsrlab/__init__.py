@@ -33,7 +33,9 @@ __all__ = [
     "config_text",
     "evaluate_batch",
     "genotype_length",
+    "evaluate_records",
     "load_robot",
+    "robot_of",
     "run",
     "simulate",
 ]
@@ -155,6 +157,15 @@ def evaluate_batch(
     evaluator = _evaluator(config, threads)
     g = _genotype_matrix(genotypes, evaluator.genotype_length)
     return evaluator.fitness(g, _seed_array(seeds, g.shape[0]))
+
+
+def robot_of(config: Union[PathLike, str], genotype: Any) -> Robot:
+    """The robot a genotype stands for in an experiment (to simulate, render or save it)."""
+    evaluator = _evaluator(config, 0)
+    g = _genotype_matrix(genotype, evaluator.genotype_length)
+    if g.shape[0] != 1:
+        raise ValueError(f"genotype: one genotype is needed, got {g.shape[0]} rows")
+    return evaluator.robot(list(map(float, g[0])))
 
 
 def evaluate_records(config: Union[PathLike, str], genotypes: Any, seeds: Optional[Sequence[int]] = None) -> list:

@@ -77,7 +77,7 @@ class RayEvaluator:
         self.on_submit = on_submit
         self.batches = 0
         self.resubmitted = 0
-        remote = ray.remote(_Worker).options(max_restarts=-1, max_task_retries=0)
+        remote = ray.remote(max_restarts=-1, max_task_retries=0)(_Worker)
         nodes = [n for n in ray.nodes() if n.get("Alive") and n.get("Resources", {}).get("CPU", 0) >= 1]
         if not nodes:
             raise RuntimeError("ray: the cluster has no node with a CPU")

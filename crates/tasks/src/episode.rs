@@ -95,7 +95,7 @@ impl Episode {
 
     /// One step: physics, then sense → control → actuate, with the robot's own brain when
     /// `actions` is `None`; with `Some`, the actions set the actuation of the *next* physics step
-    /// and are applied first (the outside controller chose them from [`Episode::readings`]).
+    /// and are applied first (the outside controller chose them from the agent's [`Agent::readings`]).
     /// Returns whether the task stopped the episode.
     pub fn step(&mut self, actions: Option<&[f64]>) -> Result<Flow, EpisodeError> {
         if let Some(a) = actions {

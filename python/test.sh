@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# The Python half of the test suite (the README's test command runs it after `cargo test`):
+# a virtual environment at .venv with python/requirements-test.txt, the extension built into it
+# with maturin in the dev profile (optimised, and shared with `cargo test`'s build, so only the
+# extension itself compiles here), the CLI it is compared with built in the same profile, then
+# pytest. pytest's exit code 5 (no tests collected) is a failure:
+# it means the suite went missing, not that it passed.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+if [ ! -x .venv/bin/python ]; then
+  python3 -m venv .venv
+fi
+.venv/bin/python -m pip install --quiet --disable-pip-version-check -r python/requirements-test.txt
+cargo build --locked --quiet -p vsrlab-cli
+.venv/bin/maturin develop --locked --quiet -m python/Cargo.toml
+set +e
+VSRLAB_BIN="$PWD/target/debug/vsrlab" .venv/bin/python -m pytest python/tests -q "$@"
+status=$?
+set -e
+if [ "$status" -eq 5 ]; then
+  echo "python/test.sh: pytest collected no tests: the Python suite is missing" >&2
+  exit 1
+fi
+exit "$status"

@@ -1,0 +1,97 @@
+"""Evaluations on a Ray cluster started on loopback (a head and one more worker node, one CPU
+each): a run whose worker is killed mid-batch ends with the same files as the local run."""
+
+import os
+import signal
+import socket
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import ray
+
+import vsrlab
+from vsrlab import _native
+
+CONFIG = """
+name = "ray-small"
+runs = 1
+seed = 5
+[representation]
+body = "biped-4x3"
+sensors = "uniform-vxy+a+t-0"
+brain = { kind = "distributed-mlp", layout = "homogeneous", signals = 1, hidden = [] }
+[task]
+terrain = "flat"
+duration = 3.0
+fitness = "velocity"
+[optimizer]
+kind = "ga"
+population_size = 16
+offspring_size = 16
+[stop]
+evaluations = 112
+"""
+
+RAY = str(Path(sys.executable).parent / "ray")
+# loopback tests only: Ray 2.60's token authentication off for head, worker and this driver
+ENV = dict(os.environ, RAY_AUTH_MODE="disabled", RAY_USAGE_STATS_ENABLED="0")
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def _ray(*args: str) -> None:
+    done = subprocess.run([RAY, *args], env=ENV, capture_output=True, text=True, timeout=180)
+    assert done.returncode == 0, done.stdout + done.stderr
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    port = _free_port()
+    os.environ.update(RAY_AUTH_MODE="disabled", RAY_USAGE_STATS_ENABLED="0")
+    _ray("start", "--head", f"--port={port}", "--node-ip-address=127.0.0.1", "--num-cpus=1",
+         "--include-dashboard=false", "--disable-usage-stats")
+    try:
+        _ray("start", f"--address=127.0.0.1:{port}", "--node-ip-address=127.0.0.1", "--num-cpus=1")
+        yield f"127.0.0.1:{port}"
+    finally:
+        subprocess.run([RAY, "stop", "--force"], env=ENV, capture_output=True, timeout=180)
+
+
+def test_a_run_whose_worker_dies_mid_batch_ends_like_the_local_run(cluster, tmp_path):
+    config = tmp_path / "ray.toml"
+    config.write_text(CONFIG)
+    local = vsrlab.run(config, tmp_path / "local")
+    seen = {}
+
+    def kill_second_actor(evaluator):
+        seen["actors"] = len(evaluator.actors)
+        seen["nodes"] = sum(1 for n in ray.nodes() if n["Alive"])
+        if evaluator.batches == 3:
+            # the second node's actor process, while it holds its part of the batch
+            os.kill(evaluator.pids[1], signal.SIGKILL)
+            seen["killed"] = evaluator.pids[1]
+        seen["resubmitted"] = evaluator.resubmitted
+
+    remote = vsrlab.run(config, tmp_path / "ray", ray=cluster, on_submit=kill_second_actor)
+    assert seen["nodes"] == 2 and seen["actors"] == 2
+    assert "killed" in seen and seen["resubmitted"] >= 1, seen
+    assert [s["best_fitness"] for s in remote] == [s["best_fitness"] for s in local]
+    assert remote[0]["evaluations"] == local[0]["evaluations"] == 112
+    ours = dict(_native.deterministic_files(str(tmp_path / "ray")))
+    theirs = dict(_native.deterministic_files(str(tmp_path / "local")))
+    assert sorted(ours) == sorted(theirs) and len(ours) >= 3
+    for name in ours:
+        assert ours[name] == theirs[name], name
+
+
+def test_a_bad_experiment_fails_before_any_worker_starts(cluster, tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text(CONFIG.replace("population_size = 16", 'population_size = "many"'))
+    with pytest.raises(ValueError, match="population_size"):
+        vsrlab.run(bad, tmp_path / "out", ray=cluster)

@@ -32,8 +32,10 @@ def _csv(genotypes: np.ndarray) -> str:
     return "\n".join(",".join(repr(float(v)) for v in row) for row in genotypes) + "\n"
 
 
-def test_a_thousand_genotypes_match_vsrlab_evaluate_exactly(root, vsrlab_bin):
-    config = root / "experiments/quickstart.toml"
+def test_a_thousand_genotypes_match_vsrlab_evaluate_exactly(root, vsrlab_bin, tmp_path):
+    # the quickstart with 2 s episodes, to keep the suite short
+    config = tmp_path / "quickstart-2s.toml"
+    config.write_text((root / "experiments/quickstart.toml").read_text().replace("duration = 10.0", "duration = 2.0"))
     n = vsrlab.genotype_length(config)
     genotypes = np.random.default_rng(7).uniform(-1, 1, (1000, n))
     ours = vsrlab.evaluate_batch(config, genotypes)

@@ -39,5 +39,5 @@ def test_the_readmes_python_lines_run(root, monkeypatch):
     scope: dict = {}
     for line in lines:
         exec(line, scope)
-    assert scope["fitness"].shape == (1000,)
+    assert scope["fitness"].shape == (200,)
     assert scope["env"].action_space.shape == (12,)

@@ -95,3 +95,22 @@ def test_a_bad_experiment_fails_before_any_worker_starts(cluster, tmp_path):
     bad.write_text(CONFIG.replace("population_size = 16", 'population_size = "many"'))
     with pytest.raises(ValueError, match="population_size"):
         vsrlab.run(bad, tmp_path / "out", ray=cluster)
+
+
+def test_a_batch_that_fails_stops_at_the_checkpoint_and_resume_on_ray_finishes_it(cluster, tmp_path):
+    config = tmp_path / "ray.toml"
+    config.write_text(CONFIG)
+    local = vsrlab.run(config, tmp_path / "local")
+
+    def fail_at_the_fourth_batch(evaluator):
+        if evaluator.batches == 4:
+            raise RuntimeError("the cluster went away")
+
+    with pytest.raises(ValueError, match="the cluster went away"):
+        vsrlab.run(config, tmp_path / "ray", ray=cluster, on_submit=fail_at_the_fourth_batch)
+    assert (tmp_path / "ray" / "experiment.toml").is_file()
+    resumed = vsrlab.run(config, tmp_path / "ray", ray=cluster, resume=True)
+    assert [s["best_fitness"] for s in resumed] == [s["best_fitness"] for s in local]
+    ours = dict(_native.deterministic_files(str(tmp_path / "ray")))
+    theirs = dict(_native.deterministic_files(str(tmp_path / "local")))
+    assert ours == theirs

@@ -6,7 +6,7 @@
 
 use super::candidates::{candidates, Candidate};
 use super::classes::{check_classes, nearest_class, THESIS_BEHAVIOURS, THESIS_SHAPES};
-use super::label_page::{manifest_csv, page, PageRobot};
+use super::label_page::{manifest_csv, page, Evidence, PageRobot};
 use super::thread_pool;
 use crate::diversity::{propose_behaviour, propose_shape};
 use crate::error::AnalysisError;
@@ -270,6 +270,13 @@ impl PageRobotMaker<'_> {
             seed: c.row.seed,
             candidate: i,
             proposal,
+            evidence: Evidence {
+                airborne: f.airborne,
+                turns: f.turns,
+                displacement: f.displacement,
+                occurrences: f.gait.occurrences,
+                purity: f.gait.purity,
+            },
         })
     }
 }

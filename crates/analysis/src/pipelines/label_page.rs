@@ -31,6 +31,23 @@ pub(crate) struct PageRobot {
     pub candidate: usize,
     /// Suggested (morphology, behaviour) classes.
     pub proposal: (String, String),
+    /// What the behaviour proposal was made from, for the manifest.
+    pub evidence: Evidence,
+}
+
+/// The features behind a behaviour proposal ([`crate::diversity::propose_behaviour`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct Evidence {
+    /// Fraction of steps with the whole body off the ground.
+    pub airborne: f64,
+    /// Net rotation, in turns.
+    pub turns: f64,
+    /// Net x displacement of the centre, in voxel sides.
+    pub displacement: f64,
+    /// Occurrences of the main footprint n-gram.
+    pub occurrences: usize,
+    /// Purity of its intervals.
+    pub purity: f64,
 }
 
 impl PageRobot {
@@ -50,12 +67,12 @@ impl PageRobot {
 
 /// `manifest.csv`: every robot on the page with its origin, descriptors and suggestions.
 pub(crate) fn manifest_csv(robots: &[PageRobot], pool: &[Candidate]) -> String {
-    let mut s = String::from("id,robot,video,terrain,duration,transient,seed,setting,run,evaluations,index,velocity,voxels,elongation,compactness,proposed_shape,proposed_behaviour\n");
+    let mut s = String::from("id,robot,video,terrain,duration,transient,seed,setting,run,evaluations,index,velocity,voxels,elongation,compactness,proposed_shape,proposed_behaviour,airborne,turns,displacement_sides,gait_occurrences,gait_purity\n");
     for e in robots {
         let c = &pool[e.candidate];
         let _ = writeln!(
             s,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{:.4},{:.4},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{:.4},{:.4},{},{},{:.3},{:.3},{:.3},{},{:.3}",
             e.id,
             e.robot,
             e.video,
@@ -72,7 +89,12 @@ pub(crate) fn manifest_csv(robots: &[PageRobot], pool: &[Candidate]) -> String {
             c.descriptors.elongation,
             c.descriptors.compactness,
             e.proposal.0,
-            e.proposal.1
+            e.proposal.1,
+            e.evidence.airborne,
+            e.evidence.turns,
+            e.evidence.displacement,
+            e.evidence.occurrences,
+            e.evidence.purity
         );
     }
     s

@@ -38,6 +38,18 @@ impl PyBatchEvaluator {
             .map_err(|_| value_error("seeds: a contiguous uint64 array is needed"))?;
         Ok((genes, seeds))
     }
+
+    /// Every evaluation of the rows, in full, with the GIL released.
+    fn evaluate_all(
+        &self,
+        py: Python<'_>,
+        genotypes: &PyReadonlyArray2<'_, f64>,
+        seeds: &PyReadonlyArray1<'_, u64>,
+    ) -> PyResult<Vec<vsrlab_experiment::Evaluated>> {
+        let (genes, seeds) = self.arrays(genotypes, seeds)?;
+        py.detach(|| self.pool.install(|| self.batch.evaluate(genes, seeds)))
+            .map_err(value_error)
+    }
 }
 
 #[pymethods]
@@ -90,10 +102,7 @@ impl PyBatchEvaluator {
         genotypes: PyReadonlyArray2<'_, f64>,
         seeds: PyReadonlyArray1<'_, u64>,
     ) -> PyResult<String> {
-        let (genes, seeds) = self.arrays(&genotypes, &seeds)?;
-        let evaluated = py
-            .detach(|| self.pool.install(|| self.batch.evaluate(genes, seeds)))
-            .map_err(value_error)?;
+        let evaluated = self.evaluate_all(py, &genotypes, &seeds)?;
         serde_json::to_string(&evaluated).map_err(value_error)
     }
 
@@ -126,10 +135,7 @@ impl PyBatchEvaluator {
         genotypes: PyReadonlyArray2<'_, f64>,
         seeds: PyReadonlyArray1<'_, u64>,
     ) -> PyResult<String> {
-        let (genes, seeds) = self.arrays(&genotypes, &seeds)?;
-        let evaluated = py
-            .detach(|| self.pool.install(|| self.batch.evaluate(genes, seeds)))
-            .map_err(value_error)?;
+        let evaluated = self.evaluate_all(py, &genotypes, &seeds)?;
         let records: Vec<_> = evaluated.into_iter().map(|e| e.record).collect();
         serde_json::to_string(&records).map_err(value_error)
     }

@@ -123,16 +123,8 @@ pub(crate) fn task_spec(task: &str, duration: Option<f64>) -> PyResult<TaskSpec>
         duration.or(Some(DEFAULT_DURATION))
     };
     let spec = if from_file {
-        let path = std::path::Path::new(task);
-        let file = if path.is_dir() {
-            path.join("experiment.toml")
-        } else {
-            path.to_path_buf()
-        };
-        vsrlab_experiment::config::load(&file)
+        vsrlab_experiment::config::load_task(std::path::Path::new(task))
             .map_err(|e| value_error(format!("task: {e}")))?
-            .task
-            .spec
     } else {
         TaskSpec::parse(task).map_err(|e| value_error(format!("task: {e}")))?
     };

@@ -98,14 +98,7 @@ pub fn task_from_args(
 
 /// The task of an experiment file (or of the `experiment.toml` in a results folder).
 fn task_of_experiment(path: &std::path::Path) -> Result<TaskSpec, String> {
-    let file = if path.is_dir() {
-        path.join("experiment.toml")
-    } else {
-        path.to_path_buf()
-    };
-    vsrlab_experiment::config::load(&file)
-        .map(|e| e.task.spec)
-        .map_err(|e| format!("--task-of: {e}"))
+    vsrlab_experiment::config::load_task(path).map_err(|e| format!("--task-of: {e}"))
 }
 
 /// `spec` with the episode settings given on the command line.

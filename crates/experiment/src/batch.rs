@@ -9,7 +9,6 @@
 
 use crate::config::{self, Experiment};
 use crate::evaluator::{Evaluated, Evaluator, RobotEvaluator};
-use rayon::prelude::*;
 
 /// Evaluates flat genotypes (the rows of a matrix) on an experiment's robot and task.
 #[derive(Debug, Clone)]
@@ -105,14 +104,9 @@ impl BatchEvaluator {
     }
 
     /// The first fitness value of every row (NaN for an evaluation that failed), on the current
-    /// rayon pool.
+    /// rayon pool: [`BatchEvaluator::evaluate`]'s, without the rest.
     pub fn fitness(&self, genes: &[f64], seeds: &[u64]) -> Result<Vec<f64>, BatchError> {
-        self.check(genes, seeds)?;
-        Ok(genes
-            .par_chunks(self.genes)
-            .zip(seeds.par_iter())
-            .map(|(g, &seed)| crate::evaluator::evaluate_guarded(&self.evaluator, &g.to_vec(), seed).fitness())
-            .collect())
+        Ok(self.evaluate(genes, seeds)?.iter().map(Evaluated::fitness).collect())
     }
 }
 

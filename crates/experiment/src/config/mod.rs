@@ -284,6 +284,17 @@ pub fn load(path: &std::path::Path) -> Result<Experiment, ConfigError> {
     Ok(experiment)
 }
 
+/// The task of an experiment file, or of the `experiment.toml` in a `vsrlab run` output folder:
+/// what replays on "that experiment's task" read (the CLI's `--task-of`, Python's `task=`).
+pub fn load_task(path: &std::path::Path) -> Result<vsrlab_tasks::TaskSpec, ConfigError> {
+    let file = if path.is_dir() {
+        path.join("experiment.toml")
+    } else {
+        path.to_path_buf()
+    };
+    load(&file).map(|e| e.task.spec)
+}
+
 /// Reads an experiment file that may hold a `[sweep]`: its experiments, one per setting (one
 /// when there is no sweep, exactly as [`load`] gives it).
 pub fn load_all(path: &std::path::Path) -> Result<Vec<Experiment>, ConfigError> {

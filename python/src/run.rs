@@ -56,6 +56,10 @@ impl Evaluator<Vec<f64>> for Remote {
         self.local.save_robot(genotype, path, note)
     }
 
+    fn save_replay(&self, genotype: &Vec<f64>, path: &Path, title: &str) -> Result<(), String> {
+        self.local.save_replay(genotype, path, title)
+    }
+
     fn genotype_columns(&self) -> &'static [&'static str] {
         Evaluator::<Vec<f64>>::genotype_columns(&self.local)
     }

@@ -30,6 +30,8 @@ pub const TIMINGS_FILE: &str = "timings.csv";
 pub const SNAPSHOTS_DIR: &str = "snapshots";
 /// The best robot of a run (a robot file).
 pub const BEST_ROBOT_FILE: &str = "best.robot.json";
+/// The best robot's episode as a replay file for the browser viewer (`vsrlab view`).
+pub const BEST_REPLAY_FILE: &str = "best.replay.json";
 /// Optimizer and run state of an unfinished run.
 pub const CHECKPOINT_FILE: &str = "checkpoint.json";
 /// Name prefix of run folders (`run-00`).
@@ -142,6 +144,11 @@ impl RunFiles {
     /// `run-NN/best.robot.json`.
     pub fn best_robot(&self) -> PathBuf {
         self.dir.join(BEST_ROBOT_FILE)
+    }
+
+    /// `run-NN/best.replay.json`.
+    pub fn best_replay(&self) -> PathBuf {
+        self.dir.join(BEST_REPLAY_FILE)
     }
 
     /// `run-NN/summary.json`.

@@ -71,8 +71,19 @@ impl LabelArgs {
     }
 }
 
-/// Draws a labelling video: no sensors, no lidar.
+/// Draws a labelling video (no sensors, no lidar) at `videos/r-NNNN.gif`, and writes the same
+/// episode as `replays/r-NNNN.replay.json` for `vsrlab view` (docs/viewer.md).
 fn write_video(trace: &Trace, spec: &VideoSpec, path: &Path) -> Result<(), BoxError> {
+    if let (Some(videos), Some(stem)) = (path.parent(), path.file_stem()) {
+        let replays = videos.parent().unwrap_or(Path::new(".")).join("replays");
+        std::fs::create_dir_all(&replays)?;
+        let replay = replays.join(format!("{}.replay.json", stem.to_string_lossy()));
+        let options = vsrlab_render::replay::ReplayOptions {
+            title: stem.to_string_lossy().to_string(),
+            ..Default::default()
+        };
+        vsrlab_render::replay::save_replay(trace, &options, &replay)?;
+    }
     let options = RenderOptions {
         width: spec.width,
         height: spec.height,
@@ -93,8 +104,9 @@ pub fn run(args: LabelArgs) -> Result<(), String> {
     }
     let results: Vec<String> = options.results.iter().map(|p| p.display().to_string()).collect();
     println!(
-        "open {} in a browser, pick a class per robot and save labels.csv into {}; then run\n  vsrlab analyze {} --labels {}",
+        "open {} in a browser, pick a class per robot and save labels.csv into {}\n(to play, scrub and compare the robots side by side: vsrlab view {}); then run\n  vsrlab analyze {} --labels {}",
         report.index.display(),
+        options.out.display(),
         options.out.display(),
         results.join(" "),
         options.out.join("labels.csv").display()

@@ -16,6 +16,7 @@ mod replay_setup;
 mod run;
 mod simulate;
 mod validate;
+mod view;
 
 use clap::{CommandFactory, Parser, Subcommand};
 use std::process::ExitCode;
@@ -32,7 +33,7 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Run one episode and print its outcome (optionally render a video).
-    Simulate(simulate::SimulateArgs),
+    Simulate(Box<simulate::SimulateArgs>),
     /// Measure simulation speed on the standard robots, single-threaded and on every core.
     Bench(bench::BenchArgs),
     /// Run an evolutionary experiment described in a TOML file (docs/experiments.md).
@@ -60,6 +61,8 @@ enum Command {
     Transferability(modules::TransferabilityArgs),
     /// The PSA inflation protocol: φ and pressure per step for each size (docs/psa.md).
     Inflate(inflate::InflateArgs),
+    /// Watch replays in the browser: serves the viewer page on 127.0.0.1 (docs/viewer.md).
+    View(view::ViewArgs),
     /// Print a shell completion script, e.g. `vsrlab completions bash > ~/.local/share/bash-completion/completions/vsrlab`.
     Completions {
         /// The shell: bash, zsh, fish, elvish or powershell.
@@ -70,7 +73,7 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Simulate(a) => simulate::run(a),
+        Command::Simulate(a) => simulate::run(*a),
         Command::Bench(a) => bench::run(a),
         Command::Run(a) => run::run(a),
         Command::Evaluate(a) => evaluate::run(a),
@@ -83,6 +86,7 @@ fn main() -> ExitCode {
         Command::Reassemble(a) => modules::run_reassemble(a),
         Command::Transferability(a) => modules::run_transferability(a),
         Command::Inflate(a) => inflate::run(a),
+        Command::View(a) => view::run(a),
         Command::Completions { shell } => {
             clap_complete::generate(shell, &mut Cli::command(), "vsrlab", &mut std::io::stdout());
             Ok(())

@@ -54,6 +54,21 @@ pub struct SimulateArgs {
     /// at that time with that probability, drawn from the seed; a broken voxel stops actuating).
     #[arg(long)]
     pub damage: Option<String>,
+    /// Start position: the robot's bounding-box left edge (locomotion and carrier tasks; default
+    /// 11, the original's).
+    #[arg(long)]
+    pub initial_x: Option<f64>,
+    /// Run N episodes from starts shifted right by k·--shift (k = ±1 … ±N/2) on every core and
+    /// print the distribution of --metric (median, quartiles, mean, sd, range) and the time the
+    /// trajectories from 0 and --shift part by 1e-3 (docs/fidelity.md), instead of one episode.
+    #[arg(long, conflicts_with_all = ["video", "replay", "save_robot"])]
+    pub ensemble: Option<usize>,
+    /// Step between the ensemble's starts.
+    #[arg(long, default_value_t = 1e-6)]
+    pub shift: f64,
+    /// The metric the ensemble summarises.
+    #[arg(long, default_value = "velocity")]
+    pub metric: String,
     /// Seed of the episode (random terrains, sensor noise).
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
@@ -76,6 +91,12 @@ pub struct SimulateArgs {
     /// (voxel colours); or all, or none.
     #[arg(long, default_value = "ticks,sensors,lidar,attention,graph,overlay,legend")]
     pub draw: String,
+    /// Write a replay file (JSON) for the browser viewer: `vsrlab view FILE` (docs/viewer.md).
+    #[arg(long)]
+    pub replay: Option<PathBuf>,
+    /// Frames per second kept in the replay file (the viewer interpolates between them).
+    #[arg(long, default_value_t = 30.0)]
+    pub replay_fps: f64,
     /// Replay a robot file (JSON) instead of --body/--sensors/--brain/--preset.
     #[arg(long, conflicts_with_all = ["body", "sensors", "brain", "preset"])]
     pub robot: Option<PathBuf>,
@@ -94,6 +115,95 @@ pub fn task_from_args(
 ) -> Result<TaskSpec, String> {
     let spec = TaskSpec::parse(task).map_err(|e| format!("--task: {e}"))?;
     with_episode_settings(spec, Some(duration), transient, substeps, damage)
+}
+
+/// `spec` starting with the robot's left edge at `x`, when given.
+fn with_initial_x(spec: TaskSpec, x: Option<f64>) -> Result<TaskSpec, String> {
+    match x {
+        None => Ok(spec),
+        Some(x) if !x.is_finite() => Err(format!("--initial-x: must be a finite number, got {x}")),
+        Some(x) => spec.with_settings(&[("initial_x", json!(x))]).map_err(|e| {
+            if e.path == "initial_x" {
+                format!("--initial-x: a {} task has no start position to set", spec.kind())
+            } else {
+                format!("--initial-x: {}", e.message)
+            }
+        }),
+    }
+}
+
+/// Runs `--ensemble N`: the distribution of `--metric` over N shifted starts, and the time two
+/// starts `--shift` apart part by 1e-3 (docs/fidelity.md).
+fn run_ensemble(
+    a: &SimulateArgs,
+    n: usize,
+    robot: &AnyRobot,
+    task: &TaskSpec,
+    names: (&str, &str),
+) -> Result<(), String> {
+    use vsrlab_tasks::ensemble;
+    if n < 2 {
+        return Err(format!("--ensemble: at least 2 starts, got {n}"));
+    }
+    if !(a.shift.is_finite() && a.shift > 0.0) {
+        return Err(format!("--shift: must be a positive number, got {}", a.shift));
+    }
+    const TOLERANCE: f64 = 1e-3;
+    let start = Instant::now();
+    let shifts = ensemble::shifts(n, a.shift);
+    let values = ensemble::run_shifted(robot.as_robot(), task, &shifts, a.seed, &a.metric)
+        .map_err(|e| format!("--ensemble: {e}"))?;
+    if values.iter().all(|v| v.is_nan()) {
+        return Err(format!(
+            "--metric: a {} task does not report '{}'",
+            task.kind(),
+            a.metric
+        ));
+    }
+    let summary = ensemble::Summary::of(&values)
+        .ok_or_else(|| format!("--ensemble: some episodes gave a non-finite {}", a.metric))?;
+    let parting = ensemble::parting_time(robot.as_robot(), task, a.shift, TOLERANCE, a.seed)
+        .map_err(|e| format!("--ensemble: {e}"))?;
+    let wall = start.elapsed().as_secs_f64();
+    if a.json {
+        let v = json!({
+            "body": names.0, "task": names.1, "seed": a.seed, "metric": a.metric,
+            "shift": a.shift, "shifts": shifts, "values": values, "summary": summary,
+            "parting_tolerance": TOLERANCE, "parting_time": parting, "wall_seconds": wall,
+        });
+        println!("{}", serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?);
+        return Ok(());
+    }
+    let s = summary;
+    println!("body      {}", names.0);
+    println!(
+        "task      {} for {} s (seed {})",
+        names.1,
+        task.task().duration(),
+        a.seed
+    );
+    println!(
+        "ensemble  {n} starts shifted by k·{:e} (k = ±1 … ±{}{})",
+        a.shift,
+        n / 2,
+        if n % 2 == 1 { ", and 0" } else { "" }
+    );
+    println!(
+        "{:<9} median {:.4}   IQR [{:.4}, {:.4}]   mean {:.4}   sd {:.4}   min {:.4}   max {:.4}",
+        a.metric, s.median, s.q1, s.q3, s.mean, s.sd, s.min, s.max
+    );
+    match parting {
+        Some(t) => println!(
+            "parting   starts {:e} apart differ by more than {TOLERANCE:e} in centre x after {t:.3} s",
+            a.shift
+        ),
+        None => println!(
+            "parting   starts {:e} apart never differ by more than {TOLERANCE:e} in centre x",
+            a.shift
+        ),
+    }
+    println!("wall      {wall:.2} s");
+    Ok(())
 }
 
 /// The task of an experiment file (or of the `experiment.toml` in a results folder).
@@ -197,12 +307,16 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
             a.damage.as_deref(),
         )?,
     };
+    let task = with_initial_x(task, a.initial_x)?;
     let duration = task.task().duration();
     let task_name = match &a.task_of {
         Some(path) => format!("{} of {}", task.kind(), path.display()),
         None => a.task.clone(),
     };
-    let level = if a.video.is_some() {
+    if let Some(n) = a.ensemble {
+        return run_ensemble(&a, n, &robot, &task, (&body_name, &task_name));
+    }
+    let level = if a.video.is_some() || a.replay.is_some() {
         TraceLevel::Full
     } else {
         TraceLevel::None
@@ -218,6 +332,21 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         let info = vsrlab_render::save_video(trace, &options, path).map_err(|e| e.to_string())?;
         video_note = Some(format!("{} ({} frames)", path.display(), info.frames));
     }
+    let mut replay_note = None;
+    if let (Some(path), Some(trace)) = (&a.replay, &outcome.trace) {
+        let options = vsrlab_render::replay::ReplayOptions {
+            fps: a.replay_fps,
+            title: format!("{body_name}, {task_name}, seed {}", a.seed),
+            ..Default::default()
+        };
+        let bytes = vsrlab_render::replay::save_replay(trace, &options, path).map_err(|e| format!("--replay: {e}"))?;
+        replay_note = Some(format!(
+            "{} ({:.0} kB; vsrlab view {})",
+            path.display(),
+            bytes as f64 / 1e3,
+            path.display()
+        ));
+    }
     let transient = a.transient.unwrap_or(0.0);
     if a.json {
         let mut v = json!({
@@ -226,6 +355,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
             "seed": a.seed, "duration": duration, "transient": transient,
             "steps": outcome.steps, "voxels": outcome.units, "wall_seconds": wall,
             "video": a.video.as_ref().map(|p| p.display().to_string()),
+            "replay": a.replay.as_ref().map(|p| p.display().to_string()),
         });
         for (name, value) in &outcome.metrics {
             if v.get(name).is_none() {
@@ -267,6 +397,9 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         );
         if let Some(v) = video_note {
             println!("video     {v}");
+        }
+        if let Some(r) = replay_note {
+            println!("replay    {r}");
         }
     }
     Ok(())

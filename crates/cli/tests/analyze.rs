@@ -92,6 +92,11 @@ fn label_then_analyze_two_settings() {
         "160",
     ]);
     assert!(lab.join("index.html").is_file() && lab.join("videos/r-0001.gif").is_file());
+    let replay = std::fs::read_to_string(lab.join("replays/r-0001.replay.json")).unwrap();
+    assert!(
+        replay.starts_with("{\"format\":\"vsrlab-replay\""),
+        "the viewer's replay of each video"
+    );
     let labels = lab.join("labels.csv");
     assert_eq!(std::fs::read_to_string(&labels).unwrap().lines().count(), 13);
 

@@ -2,10 +2,12 @@
 //! `vsrlab …` line and the quick start's `cargo run … --` line, in order, in a scratch folder
 //! holding the repository's `examples/` and `experiments/quickstart.toml`. Only the quickstart's
 //! evaluation budget is cut (8 000 → 80) to keep the suite short; the commands themselves are
-//! untouched, so the run → replay pair is checked verbatim.
+//! untouched, so the run → replay pair is checked verbatim. `vsrlab view`, a server, is started,
+//! must print its URL, and is stopped with Ctrl-C (SIGINT), which must end it with status 0.
 
+use std::io::{BufRead, BufReader, Read};
 use std::path::Path;
-use std::process::Command;
+use std::process::{Command, Stdio};
 
 const VSRLAB: &str = env!("CARGO_BIN_EXE_vsrlab");
 /// How the quick start calls the binary before it is installed.
@@ -63,6 +65,33 @@ fn readme_commands(readme: &str) -> Vec<Vec<String>> {
     commands
 }
 
+/// Starts a `vsrlab view` command, waits for its URL, stops it with SIGINT; its output.
+fn run_viewer(args: &[String], work: &Path) -> String {
+    let mut child = Command::new(VSRLAB)
+        .args(args)
+        .current_dir(work)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdout = BufReader::new(child.stdout.take().unwrap());
+    let mut line = String::new();
+    stdout.read_line(&mut line).unwrap();
+    let pid = child.id().to_string();
+    Command::new("kill").args(["-INT", &pid]).status().unwrap();
+    let status = child.wait().unwrap();
+    let mut rest = String::new();
+    stdout.read_to_string(&mut rest).unwrap();
+    let mut errors = String::new();
+    child.stderr.take().unwrap().read_to_string(&mut errors).unwrap();
+    assert!(
+        status.success() && line.contains("http://127.0.0.1:"),
+        "vsrlab {} failed: {line}{rest}{errors}",
+        args.join(" ")
+    );
+    line + &rest
+}
+
 fn copy_dir(from: &Path, to: &Path) {
     std::fs::create_dir_all(to).unwrap();
     for entry in std::fs::read_dir(from).unwrap() {
@@ -97,6 +126,10 @@ fn the_readme_commands_run_as_written() {
             eprintln!("skipped (no ffmpeg): vsrlab {}", args.join(" "));
             continue;
         }
+        if args[0] == "view" {
+            run_viewer(args, work);
+            continue;
+        }
         let out = Command::new(VSRLAB).args(args).current_dir(work).output().unwrap();
         assert!(
             out.status.success(),
@@ -111,6 +144,7 @@ fn the_readme_commands_run_as_written() {
         }
     }
     assert!(work.join("biped.gif").is_file() && work.join("walk.gif").is_file());
+    assert!(commands.iter().any(|c| c[0] == "view"), "the README shows the viewer");
 }
 
 #[test]

@@ -116,6 +116,11 @@ pub trait Evaluator<G>: Sync {
     fn save_robot(&self, _genotype: &G, _path: &Path, _note: &str) -> Result<(), String> {
         Ok(())
     }
+    /// Saves the episode of a genotype's robot as a replay file for the browser viewer (the best
+    /// of a run); a no-op by default.
+    fn save_replay(&self, _genotype: &G, _path: &Path, _title: &str) -> Result<(), String> {
+        Ok(())
+    }
     /// Names of the per-genotype statistics logged for the best genotype of every generation
     /// (`best_<name>` columns of `generations.csv`); none by default.
     fn genotype_columns(&self) -> &'static [&'static str] {
@@ -308,5 +313,26 @@ impl<G, M: Mapper<G>> Evaluator<G> for RobotEvaluator<M> {
             .robot_file(Some(note))
             .ok_or_else(|| "this kind of robot has no robot file".to_string())?;
         vsrlab_tasks::files::write_atomic(path, text.as_bytes()).map_err(|e| format!("{}: {e}", path.display()))
+    }
+
+    /// The episode with the experiment's episode seed (what `vsrlab simulate --robot
+    /// best.robot.json --task-of OUT --seed <episode seed>` shows).
+    fn save_replay(&self, genotype: &G, path: &Path, title: &str) -> Result<(), String> {
+        let (outcome, _) = evaluate_traced(
+            &self.mapper,
+            genotype,
+            self.task.task(),
+            self.episode_seed,
+            TraceLevel::Full,
+        )
+        .map_err(|e| e.to_string())?;
+        let trace = outcome
+            .trace
+            .ok_or_else(|| "the episode recorded no trace".to_string())?;
+        let options = vsrlab_render::replay::ReplayOptions {
+            title: title.to_string(),
+            ..Default::default()
+        };
+        vsrlab_render::replay::save_replay(&trace, &options, path).map(drop)
     }
 }

@@ -753,6 +753,14 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
             if let Ok(bytes) = std::fs::read(files.best_robot()) {
                 manifest.insert(BEST_ROBOT_FILE.to_string(), content_hash(&bytes));
             }
+            let title = format!(
+                "{} run {run}: best, fitness {}",
+                plan.name.as_deref().unwrap_or("experiment"),
+                best.fitness()
+            );
+            evaluator
+                .save_replay(&best.genotype, &files.best_replay(), &title)
+                .map_err(|e| RunError::Other(format!("best replay of run {run}: {e}")))?;
         }
     }
     let wall_seconds = wall(&session_start);

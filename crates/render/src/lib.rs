@@ -26,7 +26,9 @@ mod graph;
 mod mp4_out;
 mod overlay;
 mod palette;
+pub mod replay;
 mod text;
+pub mod viewer;
 
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};

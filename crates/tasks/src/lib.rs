@@ -16,6 +16,7 @@
 pub mod agent;
 pub mod carrier;
 pub mod damage;
+pub mod ensemble;
 pub mod episode;
 pub mod escape;
 pub mod files;

@@ -1,0 +1,201 @@
+//! `vsrlab view`: the browser replay viewer on 127.0.0.1 (docs/viewer.md). The server and the
+//! page are `vsrlab_render::viewer`; this file finds the replays (files, robot files simulated on
+//! demand, results and labelling folders) and runs the server until Ctrl-C.
+
+use clap::Args;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use vsrlab_analysis::run_folder::{BEST_REPLAY_FILE, BEST_ROBOT_FILE, EXPERIMENT_FILE};
+use vsrlab_render::replay::{Replay, ReplayOptions};
+use vsrlab_render::viewer::{self, ReplaySource, Viewer, ViewerEntry};
+use vsrlab_tasks::files::load_any_robot;
+use vsrlab_tasks::{episode, TaskSpec, TraceLevel};
+
+/// Suffix of replay files.
+const REPLAY_SUFFIX: &str = ".replay.json";
+/// How deep folders are searched for replays and robots.
+const MAX_DEPTH: usize = 4;
+/// Replays shown when the page opens, at most.
+const MAX_SHOWN: usize = 4;
+
+/// Arguments of `vsrlab view`.
+#[derive(Args, Debug)]
+pub struct ViewArgs {
+    /// Replay files (`vsrlab simulate --replay`), robot files (simulated when first shown), or
+    /// folders: a `vsrlab run` output (every run's best robot), a `vsrlab label` folder, or any
+    /// folder holding replay files.
+    #[arg(required = true)]
+    pub paths: Vec<PathBuf>,
+    /// Port on 127.0.0.1 (0: any free port).
+    #[arg(long, default_value_t = 8765)]
+    pub port: u16,
+}
+
+/// The task a robot file found under `dir` is shown on: the nearest experiment's, else 30 s on
+/// flat ground.
+fn task_near(path: &Path) -> Result<TaskSpec, String> {
+    for dir in path.ancestors().skip(1) {
+        if dir.join(EXPERIMENT_FILE).is_file() {
+            return vsrlab_experiment::config::load_task(dir).map_err(|e| e.to_string());
+        }
+    }
+    crate::simulate::task_from_args("locomotion:flat", 30.0, None, None, None)
+}
+
+/// A replay made by simulating a robot file (checked now, simulated when first shown).
+fn robot_entry(path: &Path, name: String, shown: bool) -> Result<ViewerEntry, String> {
+    let robot = load_any_robot(path).map_err(|e| e.to_string())?;
+    let task = task_near(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let title = format!("{} on {}", path.display(), task.kind());
+    let make = move || -> Result<Vec<u8>, String> {
+        let outcome = episode::run(robot.as_robot(), task.task(), 0, TraceLevel::Full).map_err(|e| e.to_string())?;
+        let trace = outcome.trace.ok_or("the episode recorded no trace")?;
+        let options = ReplayOptions {
+            title: title.clone(),
+            ..ReplayOptions::default()
+        };
+        Ok(Replay::from_trace(&trace, &options)
+            .map_err(|e| e.to_string())?
+            .to_json()
+            .into_bytes())
+    };
+    Ok(ViewerEntry {
+        name,
+        source: ReplaySource::Make(Box::new(make)),
+        shown,
+    })
+}
+
+/// Replay files, and best robots without a replay, under `dir` (sorted, `depth` levels down).
+fn collect(dir: &Path, depth: usize, found: &mut Vec<PathBuf>) -> Result<(), String> {
+    let mut items: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map_err(|e| format!("{}: {e}", dir.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .collect();
+    items.sort();
+    for path in items {
+        let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("");
+        if path.is_dir() {
+            if depth > 0 {
+                collect(&path, depth - 1, found)?;
+            }
+        } else if name.ends_with(REPLAY_SUFFIX)
+            || (name == BEST_ROBOT_FILE && !path.with_file_name(BEST_REPLAY_FILE).is_file())
+        {
+            found.push(path);
+        }
+    }
+    Ok(())
+}
+
+/// The name a file under a given folder is listed by: its path inside the folder, without the
+/// `best.*.json` or `.replay.json` ending.
+fn short_name(root: &Path, path: &Path) -> String {
+    let inside = path.strip_prefix(root).unwrap_or(path).to_string_lossy().to_string();
+    let trimmed = [BEST_REPLAY_FILE, BEST_ROBOT_FILE, REPLAY_SUFFIX]
+        .iter()
+        .find_map(|end| inside.strip_suffix(end))
+        .unwrap_or(&inside)
+        .trim_end_matches('/');
+    match (trimmed.is_empty(), root.as_os_str().is_empty()) {
+        (false, _) => trimmed.to_string(),
+        (true, false) => root.display().to_string(),
+        (true, true) => path.display().to_string(),
+    }
+}
+
+/// The viewer's entries for the command-line paths.
+fn entries(paths: &[PathBuf]) -> Result<Vec<ViewerEntry>, String> {
+    let mut out = Vec::new();
+    for path in paths {
+        if path.is_dir() {
+            let mut found = Vec::new();
+            collect(path, MAX_DEPTH, &mut found)?;
+            if found.is_empty() {
+                return Err(format!(
+                    "{}: no replay files ({REPLAY_SUFFIX}) or best robots ({BEST_ROBOT_FILE}) in this folder",
+                    path.display()
+                ));
+            }
+            for (i, file) in found.iter().enumerate() {
+                out.push(entry(file, short_name(path, file), i == 0)?);
+            }
+        } else if path.is_file() {
+            let parent = path.parent().unwrap_or(Path::new(""));
+            out.push(entry(path, short_name(parent, path), true)?);
+        } else {
+            return Err(format!("{}: no such file or folder", path.display()));
+        }
+    }
+    let mut names = std::collections::BTreeMap::<String, usize>::new();
+    for e in &mut out {
+        let seen = names.entry(e.name.clone()).or_default();
+        *seen += 1;
+        if *seen > 1 {
+            e.name = format!("{} ({seen})", e.name);
+        }
+    }
+    let mut shown = 0;
+    for e in &mut out {
+        e.shown &= shown < MAX_SHOWN;
+        shown += usize::from(e.shown);
+    }
+    Ok(out)
+}
+
+fn entry(path: &Path, name: String, shown: bool) -> Result<ViewerEntry, String> {
+    if path.to_string_lossy().ends_with(REPLAY_SUFFIX) {
+        Ok(ViewerEntry {
+            name,
+            source: ReplaySource::File(path.to_path_buf()),
+            shown,
+        })
+    } else {
+        robot_entry(path, name, shown)
+    }
+}
+
+/// Runs `vsrlab view`.
+pub fn run(args: ViewArgs) -> Result<(), String> {
+    let entries = entries(&args.paths)?;
+    let count = entries.len();
+    let listener = viewer::bind(args.port).map_err(|e| {
+        if e.kind() == std::io::ErrorKind::AddrInUse {
+            format!(
+                "--port: port {} on 127.0.0.1 is in use; pass another, or --port 0 for any free one",
+                args.port
+            )
+        } else {
+            format!("--port: cannot listen on 127.0.0.1:{}: {e}", args.port)
+        }
+    })?;
+    let address = listener.local_addr().map_err(|e| e.to_string())?;
+    let stop = Arc::new(AtomicBool::new(false));
+    {
+        let stop = stop.clone();
+        ctrlc::set_handler(move || stop.store(true, Ordering::SeqCst)).map_err(|e| e.to_string())?;
+    }
+    println!("vsrlab viewer: http://{address}/ ({count} replays; Ctrl-C stops it)");
+    use std::io::Write as _;
+    let _ = std::io::stdout().flush();
+    viewer::serve(listener, Arc::new(Viewer::new(entries)), &stop).map_err(|e| e.to_string())?;
+    println!("viewer stopped");
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn listed_names_drop_the_folder_and_the_file_ending() {
+        let name = |root: &str, path: &str| short_name(Path::new(root), Path::new(path));
+        assert_eq!(name("out", "out/run-03/best.replay.json"), "run-03");
+        assert_eq!(name("out", "out/ch3/run-00/best.robot.json"), "ch3/run-00");
+        assert_eq!(name("/tmp/x", "/tmp/x/walk.replay.json"), "walk");
+        assert_eq!(name("out/run-00", "out/run-00/best.replay.json"), "out/run-00");
+        assert_eq!(name("", "best.replay.json"), "best.replay.json");
+        assert_eq!(name("examples", "examples/biped.robot.json"), "biped.robot.json");
+    }
+}

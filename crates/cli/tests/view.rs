@@ -1,0 +1,125 @@
+//! `vsrlab run` writes each run's best replay; `vsrlab view` lists a results folder's runs,
+//! simulates a best robot without a replay on demand (the same episode), serves on loopback and
+//! stops on Ctrl-C. The page itself is tested in a browser by web-test/run.sh.
+
+mod common;
+use common::{ok, vsrlab};
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::TcpStream;
+use std::process::{Command, Stdio};
+
+const VSRLAB: &str = env!("CARGO_BIN_EXE_vsrlab");
+
+const EXPERIMENT: &str = r#"
+runs = 2
+seed = 3
+
+[representation]
+body = "biped-4x3"
+sensors = "uniform-vxy+a+t-0"
+brain = { kind = "distributed-mlp", layout = "homogeneous", signals = 1, hidden = [] }
+
+[task]
+duration = 4.0
+
+[optimizer]
+kind = "ga"
+population_size = 6
+offspring_size = 6
+
+[stop]
+generations = 2
+"#;
+
+/// `GET path` on the viewer: status line and body.
+fn get(address: &str, path: &str) -> (String, String) {
+    let mut s = TcpStream::connect(address).unwrap();
+    write!(s, "GET {path} HTTP/1.1\r\nHost: {address}\r\n\r\n").unwrap();
+    let mut text = String::new();
+    s.read_to_string(&mut text).unwrap();
+    let (head, body) = text.split_once("\r\n\r\n").unwrap();
+    (head.lines().next().unwrap().to_string(), body.to_string())
+}
+
+fn json(text: &str) -> serde_json::Value {
+    serde_json::from_str(text).unwrap()
+}
+
+#[test]
+fn runs_write_best_replays_and_view_serves_a_results_folder_until_ctrl_c() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("exp.toml");
+    std::fs::write(&file, EXPERIMENT).unwrap();
+    let out = dir.path().join("out");
+    let (success, text) = vsrlab(&["run", file.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert!(success, "{text}");
+    let written = json(&std::fs::read_to_string(out.join("run-01/best.replay.json")).unwrap());
+    assert_eq!(written["format"], "vsrlab-replay");
+    assert_eq!(written["frames"], 121, "4 s at 30 frames per second");
+    assert!(written["title"].as_str().unwrap().contains("run 1"));
+    // Without its replay, the best robot is simulated when the page asks for it.
+    std::fs::remove_file(out.join("run-01/best.replay.json")).unwrap();
+
+    let mut child = Command::new(VSRLAB)
+        .args(["view", out.to_str().unwrap(), "--port", "0"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdout = BufReader::new(child.stdout.take().unwrap());
+    let mut line = String::new();
+    stdout.read_line(&mut line).unwrap();
+    let address = line
+        .split("http://")
+        .nth(1)
+        .and_then(|rest| rest.split('/').next())
+        .unwrap_or_else(|| panic!("no URL in {line:?}"))
+        .to_string();
+    assert!(address.starts_with("127.0.0.1:"), "{line}");
+    assert!(line.contains("2 replays"), "{line}");
+
+    let list = json(&get(&address, "/api/replays").1);
+    assert_eq!(list[0]["name"], "run-00");
+    assert_eq!(list[0]["shown"], true);
+    assert_eq!(list[1]["name"], "run-01");
+    assert_eq!(list[1]["shown"], false);
+    let made = json(&get(&address, list[1]["url"].as_str().unwrap()).1);
+    assert_eq!(
+        made["channels"], written["channels"],
+        "the same episode as the run's own replay"
+    );
+    let (status, page) = get(&address, "/");
+    assert!(status.contains("200") && page.contains("viewer.js"), "{status}");
+    assert!(get(&address, "/../exp.toml").0.contains("404"));
+
+    let pid = child.id().to_string();
+    assert!(Command::new("kill").args(["-INT", &pid]).status().unwrap().success());
+    let status = child.wait().unwrap();
+    let mut rest = String::new();
+    stdout.read_to_string(&mut rest).unwrap();
+    assert!(status.success(), "{status:?}");
+    assert!(rest.contains("viewer stopped"), "{rest}");
+}
+
+#[test]
+fn view_names_what_is_wrong_with_its_arguments() {
+    let dir = tempfile::tempdir().unwrap();
+    let (success, text) = vsrlab(&["view", dir.path().join("nothing.replay.json").to_str().unwrap()]);
+    assert!(!success);
+    assert!(text.contains("no such file or folder"), "{text}");
+    let (success, text) = vsrlab(&["view", dir.path().to_str().unwrap()]);
+    assert!(!success);
+    assert!(text.contains("no replay files"), "{text}");
+    let robot = dir.path().join("bad.robot.json");
+    std::fs::write(&robot, "{\"format\": 1}").unwrap();
+    let (success, text) = vsrlab(&["view", robot.to_str().unwrap()]);
+    assert!(!success);
+    assert!(text.contains("bad.robot.json"), "{text}");
+    let busy = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let port = busy.local_addr().unwrap().port().to_string();
+    let replay = dir.path().join("a.replay.json");
+    ok(&["simulate", "--duration", "1", "--replay", replay.to_str().unwrap()]);
+    let (success, text) = vsrlab(&["view", replay.to_str().unwrap(), "--port", &port]);
+    assert!(!success);
+    assert!(text.contains("--port") && text.contains("in use"), "{text}");
+}

@@ -1,0 +1,446 @@
+//! Replay files: an episode's [`Trace`] as compact JSON for the browser viewer (docs/viewer.md).
+//!
+//! JSON, not a binary format, because the page reads it with `JSON.parse` and no decoder, a
+//! researcher can open it in any tool, and the compression that matters is done before the text:
+//! every per-frame quantity is a [`Channel`] of integers, quantised (positions to a fixed fraction
+//! of a voxel side) and delta-coded along time, so a coordinate that moves a little between two
+//! frames costs two or three characters. A 30 s biped replay at 30 frames per second is about
+//! 0.4 MB.
+
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use vsrlab_physics::Vec2;
+use vsrlab_tasks::Trace;
+
+/// The `format` field of every replay file.
+pub const FORMAT: &str = "vsrlab-replay";
+/// The current version of the replay format.
+pub const VERSION: u32 = 1;
+
+/// How a trace becomes a replay.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReplayOptions {
+    /// Frames per second kept from the trace (steps are picked at a fixed stride; the viewer
+    /// interpolates between frames while playing).
+    pub fps: f64,
+    /// Position resolution as a fraction of the body's part size (a voxel side).
+    pub quantum_per_side: f64,
+    /// Title shown by the viewer.
+    pub title: String,
+}
+
+impl Default for ReplayOptions {
+    fn default() -> Self {
+        ReplayOptions {
+            fps: 30.0,
+            quantum_per_side: 1.0 / 500.0,
+            title: String::new(),
+        }
+    }
+}
+
+/// Errors of replay encoding.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum ReplayError {
+    /// The trace holds no recorded step.
+    #[error("the episode recorded no step (was it simulated with a full trace?)")]
+    Empty,
+    /// A bad option.
+    #[error("{0}")]
+    Option(String),
+}
+
+/// A replay file's content (docs/viewer.md has the field-by-field description).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Replay {
+    /// Always [`FORMAT`].
+    pub format: String,
+    /// Format version, [`VERSION`].
+    pub version: u32,
+    /// What is shown (robot file, body, task).
+    pub title: String,
+    /// Number of frames.
+    pub frames: usize,
+    /// Simulated time of the first frame (s).
+    pub t0: f64,
+    /// Simulated time between two frames (s).
+    pub frame_dt: f64,
+    /// The simulator's time step (s).
+    pub step_dt: f64,
+    /// Size of the body's parts (a voxel side), world units.
+    pub side: f64,
+    /// World units per integer of the position channels.
+    pub quantum: f64,
+    /// The static world.
+    pub world: World,
+    /// What does not change in the body.
+    pub body: Body,
+    /// Per-frame quantities by name (see [`Channel`]).
+    pub channels: BTreeMap<String, Channel>,
+    /// The units that break, and when (damage); absent without damage.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damage: Option<Damage>,
+    /// A graph brain's neurons and edges; absent for other brains.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub graph: Option<Graph>,
+}
+
+/// The static world: ground, obstacles, the radii of loose balls.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct World {
+    /// Terrain polyline, left to right.
+    pub terrain: Vec<[f64; 2]>,
+    /// Static polygons besides the ground (a cage).
+    pub obstacles: Vec<Vec<[f64; 2]>>,
+    /// Radius of each loose ball (channels `ball_xy`, `ball_angle`).
+    pub balls: Vec<f64>,
+}
+
+/// What does not change in the body.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Body {
+    /// Grid cell (column, row from the bottom) of each voxel; empty for bodies that are not grids.
+    pub cells: Vec<[usize; 2]>,
+    /// Corner count of each outline polygon (channel `outline`).
+    pub corners: Vec<usize>,
+    /// Sensor readings of each voxel (channel `readings`).
+    pub readings_per_unit: Vec<usize>,
+    /// The lidar rays (channel `lidar`).
+    pub rays: Vec<Ray>,
+    /// Side of each unit's attention matrix (channel `attention`), 0 without one.
+    pub attention_side: usize,
+}
+
+/// A lidar ray: the voxel it starts from, its direction relative to the voxel, its range.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Ray {
+    /// Voxel index.
+    pub unit: usize,
+    /// Direction relative to the voxel's angle (radians).
+    pub angle: f64,
+    /// Maximum distance.
+    pub range: f64,
+}
+
+/// Units broken from `time` on.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Damage {
+    /// Simulated time (s).
+    pub time: f64,
+    /// One flag per unit.
+    pub broken: Vec<bool>,
+}
+
+/// A graph brain's structure: each neuron's unit and kind (0 sensing, 1 hidden, 2 actuator), and
+/// its edges (source, target, weight).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Graph {
+    /// `[unit, kind]` of each neuron.
+    pub neurons: Vec<[usize; 2]>,
+    /// `[source, target, weight]` of each edge.
+    pub edges: Vec<(usize, usize, f32)>,
+}
+
+/// A quantity with `per_frame` values per frame, stored as integers: value `i` of frame `k` is
+/// `scale` times the sum of `data[j·per_frame + i]` for j = 0…k (frame 0 absolute, then
+/// differences from the previous frame).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Channel {
+    /// Values per frame.
+    pub per_frame: usize,
+    /// Value of one integer step.
+    pub scale: f64,
+    /// Delta-coded integers, frame-major.
+    pub data: Vec<i64>,
+}
+
+impl Channel {
+    /// Quantises and delta-codes `values` (frame-major, `per_frame` each); non-finite values
+    /// become `fallback`.
+    fn encode(values: &[f64], per_frame: usize, scale: f64, fallback: f64) -> Channel {
+        let mut data = Vec::with_capacity(values.len());
+        let mut previous = vec![0i64; per_frame];
+        for (j, &v) in values.iter().enumerate() {
+            let v = if v.is_finite() { v } else { fallback };
+            let q = (v / scale).round() as i64;
+            let slot = &mut previous[j % per_frame];
+            data.push(q - *slot);
+            *slot = q;
+        }
+        Channel { per_frame, scale, data }
+    }
+
+    /// The decoded values, frame-major (for tests and tools; the page decodes the same way).
+    pub fn decode(&self) -> Vec<f64> {
+        let mut sums = vec![0i64; self.per_frame.max(1)];
+        self.data
+            .iter()
+            .enumerate()
+            .map(|(j, &d)| {
+                let slot = &mut sums[j % self.per_frame.max(1)];
+                *slot += d;
+                *slot as f64 * self.scale
+            })
+            .collect()
+    }
+}
+
+/// The recorded steps kept as frames: every `stride`-th.
+fn strided_steps(trace: &Trace, fps: f64) -> (Vec<usize>, usize) {
+    let dt = if trace.dt > 0.0 { trace.dt } else { 1.0 / 60.0 };
+    let stride = ((1.0 / (fps * dt)).round() as usize).max(1);
+    ((0..trace.len()).step_by(stride).collect(), stride)
+}
+
+/// Values of a step-major array with `per_step` entries per step, at the kept steps.
+fn pick<T: Copy>(values: &[T], per_step: usize, steps: &[usize], to_f64: impl Fn(T) -> f64) -> Vec<f64> {
+    let mut out = Vec::with_capacity(steps.len() * per_step);
+    for &k in steps {
+        match values.get(k * per_step..(k + 1) * per_step) {
+            Some(row) => out.extend(row.iter().map(|&v| to_f64(v))),
+            None => out.extend(std::iter::repeat_n(f64::NAN, per_step)),
+        }
+    }
+    out
+}
+
+fn point(p: Vec2) -> [f64; 2] {
+    [p.x, p.y]
+}
+
+impl Replay {
+    /// The replay of a recorded episode.
+    pub fn from_trace(trace: &Trace, options: &ReplayOptions) -> Result<Replay, ReplayError> {
+        if !(options.fps.is_finite() && options.fps > 0.0) {
+            return Err(ReplayError::Option(format!(
+                "replay frame rate must be a positive number, got {}",
+                options.fps
+            )));
+        }
+        if !(options.quantum_per_side.is_finite() && options.quantum_per_side > 0.0) {
+            return Err(ReplayError::Option(format!(
+                "replay resolution must be a positive number, got {}",
+                options.quantum_per_side
+            )));
+        }
+        if trace.is_empty() {
+            return Err(ReplayError::Empty);
+        }
+        let (steps, stride) = strided_steps(trace, options.fps);
+        let side = crate::camera::side(trace);
+        let quantum = side * options.quantum_per_side;
+        let mut channels = BTreeMap::new();
+        let mut add = |name: &str, values: Vec<f64>, per_frame: usize, scale: f64, fallback: f64| {
+            if per_frame > 0 && !values.is_empty() {
+                channels.insert(name.to_string(), Channel::encode(&values, per_frame, scale, fallback));
+            }
+        };
+        let corners = trace.corners_per_step();
+        let outline = pick(&trace.outlines, corners, &steps, |p| p.x)
+            .into_iter()
+            .zip(pick(&trace.outlines, corners, &steps, |p| p.y))
+            .flat_map(|(x, y)| [x, y])
+            .collect();
+        add("outline", outline, 2 * corners, quantum, 0.0);
+        let centers = steps
+            .iter()
+            .flat_map(|&k| trace.centers.get(k).map_or([f64::NAN; 2], |&c| point(c)))
+            .collect();
+        add("center", centers, 2, quantum, 0.0);
+        let units = trace.voxels();
+        add(
+            "area_ratio",
+            pick(&trace.area_ratios, units, &steps, |v| v),
+            units,
+            1e-3,
+            1.0,
+        );
+        add(
+            "actuation",
+            pick(&trace.actuations, units, &steps, |v| v),
+            units,
+            1e-3,
+            0.0,
+        );
+        add(
+            "touch",
+            pick(&trace.touching, units, &steps, |b| f64::from(u8::from(b))),
+            units,
+            1.0,
+            0.0,
+        );
+        if !trace.rays.is_empty() {
+            add("angle", pick(&trace.angles, units, &steps, |v| v), units, 1e-3, 0.0);
+            let rays = trace.rays.len();
+            add(
+                "lidar",
+                pick(&trace.ray_distances, rays, &steps, f64::from),
+                rays,
+                1e-2,
+                0.0,
+            );
+        }
+        let readings: usize = trace.readings_per_voxel.iter().sum();
+        add(
+            "readings",
+            pick(&trace.readings, readings, &steps, f64::from),
+            readings,
+            1e-2,
+            0.0,
+        );
+        let attention = units * trace.attention_side * trace.attention_side;
+        add(
+            "attention",
+            pick(&trace.attention, attention, &steps, f64::from),
+            attention,
+            1e-2,
+            0.0,
+        );
+        let neurons = trace.graph_neurons.len();
+        add(
+            "graph_outputs",
+            pick(&trace.graph_outputs, neurons, &steps, f64::from),
+            neurons,
+            1e-3,
+            0.0,
+        );
+        if trace.pressures.iter().any(|&p| p != 0.0) {
+            add("pressure", pick(&trace.pressures, 1, &steps, f64::from), 1, 1e-3, 0.0);
+        }
+        let balls = trace.object_radii.len();
+        let ball_xy = pick(&trace.objects, balls, &steps, |o| o.0.x)
+            .into_iter()
+            .zip(pick(&trace.objects, balls, &steps, |o| o.0.y))
+            .flat_map(|(x, y)| [x, y])
+            .collect();
+        add("ball_xy", ball_xy, 2 * balls, quantum, 0.0);
+        add(
+            "ball_angle",
+            pick(&trace.objects, balls, &steps, |o| o.1),
+            balls,
+            1e-3,
+            0.0,
+        );
+        let dt = if trace.dt > 0.0 { trace.dt } else { 1.0 / 60.0 };
+        Ok(Replay {
+            format: FORMAT.to_string(),
+            version: VERSION,
+            title: options.title.clone(),
+            frames: steps.len(),
+            t0: trace.times[0],
+            frame_dt: dt * stride as f64,
+            step_dt: dt,
+            side,
+            quantum,
+            world: World {
+                terrain: trace.terrain.iter().map(|&p| point(p)).collect(),
+                obstacles: trace
+                    .obstacles
+                    .iter()
+                    .map(|o| o.iter().map(|&p| point(p)).collect())
+                    .collect(),
+                balls: trace.object_radii.clone(),
+            },
+            body: Body {
+                cells: trace.cells.iter().map(|&(c, r)| [c, r]).collect(),
+                corners: trace.outline_corners.clone(),
+                readings_per_unit: trace.readings_per_voxel.clone(),
+                rays: trace
+                    .rays
+                    .iter()
+                    .map(|r| Ray {
+                        unit: r.voxel,
+                        angle: r.relative_angle,
+                        range: r.range,
+                    })
+                    .collect(),
+                attention_side: trace.attention_side,
+            },
+            channels,
+            damage: trace.damage.as_ref().map(|d| Damage {
+                time: d.time,
+                broken: d.broken.clone(),
+            }),
+            graph: (neurons > 0).then(|| Graph {
+                neurons: trace.graph_neurons.iter().map(|&(u, k)| [u, usize::from(k)]).collect(),
+                edges: trace.graph_edges.clone(),
+            }),
+        })
+    }
+
+    /// The replay as compact JSON text.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).expect("replays serialise")
+    }
+}
+
+/// Writes the replay of `trace` to `path` atomically (temporary file, then rename); returns its
+/// size in bytes.
+pub fn save_replay(trace: &Trace, options: &ReplayOptions, path: &std::path::Path) -> Result<u64, String> {
+    let replay = Replay::from_trace(trace, options).map_err(|e| e.to_string())?;
+    let text = replay.to_json();
+    vsrlab_tasks::files::write_atomic(path, text.as_bytes()).map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(text.len() as u64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testutil::moving_square;
+
+    #[test]
+    fn channels_decode_to_the_quantised_values() {
+        let values = [0.0, 1.0, 0.5, 1.25, 0.75, f64::NAN];
+        let c = Channel::encode(&values, 2, 0.25, 9.0);
+        assert_eq!(c.data, vec![0, 4, 2, 1, 1, 31]);
+        assert_eq!(c.decode(), vec![0.0, 1.0, 0.5, 1.25, 0.75, 9.0]);
+    }
+
+    #[test]
+    fn a_moving_square_keeps_its_positions_within_the_quantum() {
+        let trace = moving_square(61, 3.0);
+        let options = ReplayOptions {
+            fps: 60.0,
+            ..ReplayOptions::default()
+        };
+        let replay = Replay::from_trace(&trace, &options).unwrap();
+        assert_eq!(replay.frames, trace.len());
+        let outline = replay.channels["outline"].decode();
+        let corners = trace.corners_per_step();
+        for k in 0..trace.len() {
+            for (i, p) in trace.outlines[k * corners..(k + 1) * corners].iter().enumerate() {
+                let j = (k * corners + i) * 2;
+                assert!((outline[j] - p.x).abs() <= replay.quantum / 2.0 + 1e-12);
+                assert!((outline[j + 1] - p.y).abs() <= replay.quantum / 2.0 + 1e-12);
+            }
+        }
+    }
+
+    #[test]
+    fn frames_are_picked_at_the_requested_rate() {
+        let trace = moving_square(61, 3.0);
+        let replay = Replay::from_trace(&trace, &ReplayOptions::default()).unwrap();
+        assert!((replay.frame_dt - 2.0 * trace.dt).abs() < 1e-12, "{}", replay.frame_dt);
+        assert_eq!(replay.frames, trace.len().div_ceil(2));
+        let text = replay.to_json();
+        let back: Replay = serde_json::from_str(&text).unwrap();
+        assert_eq!(back, replay);
+    }
+
+    #[test]
+    fn empty_traces_and_bad_options_are_refused() {
+        assert_eq!(
+            Replay::from_trace(&Trace::default(), &ReplayOptions::default()),
+            Err(ReplayError::Empty)
+        );
+        let bad = ReplayOptions {
+            fps: 0.0,
+            ..ReplayOptions::default()
+        };
+        let trace = moving_square(61, 3.0);
+        assert!(Replay::from_trace(&trace, &bad)
+            .unwrap_err()
+            .to_string()
+            .contains("frame rate"));
+    }
+}

@@ -1,0 +1,262 @@
+//! The replay viewer's web server: serves the page (shipped in the binary) and a fixed list of
+//! replays on the loopback interface (docs/viewer.md).
+//!
+//! Only the page's three files and `/replay/<index>` of the listed replays are served: no URL is
+//! ever turned into a file-system path, so nothing outside them can be read. One thread per
+//! connection, one request per connection; replays are produced on first request (read from a
+//! file, or simulated) and kept.
+
+use std::collections::HashMap;
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::{Ipv4Addr, SocketAddr, TcpListener, TcpStream};
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
+
+/// The page.
+pub const INDEX_HTML: &str = include_str!("../web/index.html");
+/// The page's script.
+pub const VIEWER_JS: &str = include_str!("../web/viewer.js");
+/// The page's style sheet.
+pub const VIEWER_CSS: &str = include_str!("../web/viewer.css");
+
+/// Longest request head read (bytes).
+const MAX_REQUEST: u64 = 16 * 1024;
+
+/// Makes a replay's JSON text on demand (e.g. by simulating a robot file).
+pub type ReplayMaker = Box<dyn Fn() -> Result<Vec<u8>, String> + Send + Sync>;
+
+/// A replay's bytes, or why it could not be made; made once and shared.
+type Made = Arc<Result<Vec<u8>, String>>;
+
+/// Where a listed replay comes from.
+pub enum ReplaySource {
+    /// A replay file, read when first asked for.
+    File(PathBuf),
+    /// Made when first asked for.
+    Make(ReplayMaker),
+}
+
+/// One replay the viewer lists.
+pub struct ViewerEntry {
+    /// Name shown in the list.
+    pub name: String,
+    /// Where the replay comes from.
+    pub source: ReplaySource,
+    /// Whether the page shows it when it opens.
+    pub shown: bool,
+}
+
+/// The served page and replays.
+pub struct Viewer {
+    entries: Vec<ViewerEntry>,
+    cache: Mutex<HashMap<usize, Made>>,
+}
+
+/// An HTTP response: status, content type, body.
+struct Response {
+    status: &'static str,
+    content_type: &'static str,
+    body: Arc<Vec<u8>>,
+}
+
+impl Response {
+    fn ok(content_type: &'static str, body: Vec<u8>) -> Response {
+        Response {
+            status: "200 OK",
+            content_type,
+            body: Arc::new(body),
+        }
+    }
+    fn text(status: &'static str, message: String) -> Response {
+        Response {
+            status,
+            content_type: "text/plain; charset=utf-8",
+            body: Arc::new(message.into_bytes()),
+        }
+    }
+}
+
+impl Viewer {
+    /// A viewer of these replays.
+    pub fn new(entries: Vec<ViewerEntry>) -> Viewer {
+        Viewer {
+            entries,
+            cache: Mutex::new(HashMap::new()),
+        }
+    }
+
+    /// The list the page reads: `[{"name", "url", "shown"}]`.
+    fn listing(&self) -> Vec<u8> {
+        let list: Vec<serde_json::Value> = self
+            .entries
+            .iter()
+            .enumerate()
+            .map(|(i, e)| serde_json::json!({"name": e.name, "url": format!("/replay/{i}"), "shown": e.shown}))
+            .collect();
+        serde_json::to_vec(&list).expect("listings serialise")
+    }
+
+    /// Replay `index`'s bytes, made once.
+    fn replay(&self, index: usize) -> Option<Made> {
+        let entry = self.entries.get(index)?;
+        if let Some(done) = self.cache.lock().ok()?.get(&index) {
+            return Some(done.clone());
+        }
+        let made = match &entry.source {
+            ReplaySource::File(path) => std::fs::read(path).map_err(|e| format!("{}: {e}", path.display())),
+            ReplaySource::Make(make) => make(),
+        };
+        let made = Arc::new(made);
+        self.cache.lock().ok()?.insert(index, made.clone());
+        Some(made)
+    }
+
+    /// The response to `GET path`.
+    fn respond(&self, path: &str) -> Response {
+        let path = path.split(['?', '#']).next().unwrap_or("");
+        match path {
+            "/" | "/index.html" => Response::ok("text/html; charset=utf-8", INDEX_HTML.as_bytes().to_vec()),
+            "/viewer.js" => Response::ok("text/javascript; charset=utf-8", VIEWER_JS.as_bytes().to_vec()),
+            "/viewer.css" => Response::ok("text/css; charset=utf-8", VIEWER_CSS.as_bytes().to_vec()),
+            "/api/replays" => Response::ok("application/json", self.listing()),
+            _ => match path.strip_prefix("/replay/").and_then(|i| i.parse::<usize>().ok()) {
+                Some(i) => match self.replay(i) {
+                    Some(made) => match made.as_ref() {
+                        Ok(bytes) => Response {
+                            status: "200 OK",
+                            content_type: "application/json",
+                            body: Arc::new(bytes.clone()),
+                        },
+                        Err(e) => Response::text("500 Internal Server Error", e.clone()),
+                    },
+                    None => Response::text("404 Not Found", format!("no replay {i}")),
+                },
+                None => Response::text(
+                    "404 Not Found",
+                    "not found: this server only serves the viewer and its listed replays".to_string(),
+                ),
+            },
+        }
+    }
+
+    /// Answers one request on `stream`.
+    fn handle(&self, stream: TcpStream) -> std::io::Result<()> {
+        stream.set_read_timeout(Some(Duration::from_secs(10)))?;
+        let mut reader = BufReader::new(stream.try_clone()?.take(MAX_REQUEST));
+        let mut request_line = String::new();
+        reader.read_line(&mut request_line)?;
+        loop {
+            let mut header = String::new();
+            if reader.read_line(&mut header)? == 0 || header == "\r\n" || header == "\n" {
+                break;
+            }
+        }
+        let mut parts = request_line.split_whitespace();
+        let (method, target) = (parts.next().unwrap_or(""), parts.next().unwrap_or(""));
+        let response = match method {
+            "GET" | "HEAD" => self.respond(target),
+            _ => Response::text("405 Method Not Allowed", "only GET and HEAD".to_string()),
+        };
+        let mut out = stream;
+        write!(
+            out,
+            "HTTP/1.1 {}\r\nContent-Type: {}\r\nContent-Length: {}\r\nCache-Control: no-store\r\nX-Content-Type-Options: nosniff\r\nConnection: close\r\n\r\n",
+            response.status,
+            response.content_type,
+            response.body.len()
+        )?;
+        if method != "HEAD" {
+            out.write_all(&response.body)?;
+        }
+        out.flush()
+    }
+}
+
+/// Binds the viewer's port on 127.0.0.1 (0: any free port).
+pub fn bind(port: u16) -> std::io::Result<TcpListener> {
+    TcpListener::bind(SocketAddr::from((Ipv4Addr::LOCALHOST, port)))
+}
+
+/// Serves `viewer` on `listener` until `stop` is set (checked every 50 ms).
+pub fn serve(listener: TcpListener, viewer: Arc<Viewer>, stop: &AtomicBool) -> std::io::Result<()> {
+    listener.set_nonblocking(true)?;
+    while !stop.load(Ordering::SeqCst) {
+        match listener.accept() {
+            Ok((stream, _)) => {
+                stream.set_nonblocking(false)?;
+                let viewer = viewer.clone();
+                std::thread::spawn(move || {
+                    let _ = viewer.handle(stream);
+                });
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => std::thread::sleep(Duration::from_millis(50)),
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn get(addr: SocketAddr, target: &str) -> (String, String) {
+        let mut s = TcpStream::connect(addr).unwrap();
+        write!(s, "GET {target} HTTP/1.1\r\nHost: x\r\n\r\n").unwrap();
+        let mut text = String::new();
+        s.read_to_string(&mut text).unwrap();
+        let (head, body) = text.split_once("\r\n\r\n").unwrap();
+        (head.lines().next().unwrap().to_string(), body.to_string())
+    }
+
+    #[test]
+    fn serves_the_page_and_replays_and_nothing_else() {
+        let entries = vec![
+            ViewerEntry {
+                name: "made".into(),
+                source: ReplaySource::Make(Box::new(|| Ok(b"{\"format\":\"vsrlab-replay\"}".to_vec()))),
+                shown: true,
+            },
+            ViewerEntry {
+                name: "broken".into(),
+                source: ReplaySource::Make(Box::new(|| Err("cannot simulate".into()))),
+                shown: false,
+            },
+        ];
+        let listener = bind(0).unwrap();
+        let addr = listener.local_addr().unwrap();
+        assert!(addr.ip().is_loopback());
+        let viewer = Arc::new(Viewer::new(entries));
+        let stop = Arc::new(AtomicBool::new(false));
+        let server = {
+            let stop = stop.clone();
+            std::thread::spawn(move || serve(listener, viewer, &stop))
+        };
+        let (status, body) = get(addr, "/");
+        assert!(status.contains("200"), "{status}");
+        assert!(body.contains("<canvas") || body.contains("viewer.js"));
+        let (status, body) = get(addr, "/api/replays");
+        assert!(status.contains("200"));
+        assert!(
+            body.contains("\"/replay/1\"") && body.contains("\"shown\":false"),
+            "{body}"
+        );
+        assert_eq!(get(addr, "/replay/0").1, "{\"format\":\"vsrlab-replay\"}");
+        let (status, body) = get(addr, "/replay/1");
+        assert!(status.contains("500") && body.contains("cannot simulate"));
+        for outside in [
+            "/replay/2",
+            "/../Cargo.toml",
+            "/replay/../../etc/passwd",
+            "/%2e%2e/etc/passwd",
+            "/src/lib.rs",
+        ] {
+            assert!(get(addr, outside).0.contains("404"), "{outside}");
+        }
+        stop.store(true, Ordering::SeqCst);
+        server.join().unwrap().unwrap();
+    }
+}

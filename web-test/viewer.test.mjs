@@ -1,0 +1,203 @@
+// Browser test of `vsrlab view` (docs/viewer.md): Playwright drives Debian's chromium, headless.
+// It writes replays with `vsrlab simulate --replay`, serves them, plays, scrubs, toggles overlays,
+// clicks a voxel and checks the drawn pixels; screenshots go to $VIEWER_SCREENSHOTS (default
+// web-test/screenshots) to be looked at. Run by web-test/run.sh.
+import { chromium } from "playwright-core";
+import { spawn, execFileSync } from "node:child_process";
+import { mkdtempSync, writeFileSync, statSync, mkdirSync, readFileSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { join, dirname } from "node:path";
+import { fileURLToPath } from "node:url";
+import assert from "node:assert/strict";
+
+const root = join(dirname(fileURLToPath(import.meta.url)), "..");
+const bin = process.env.VSRLAB_BIN || join(root, "target/debug/vsrlab");
+const browserPath = process.env.CHROMIUM || "/usr/bin/chromium";
+const shots = process.env.VIEWER_SCREENSHOTS || join(root, "web-test/screenshots");
+mkdirSync(shots, { recursive: true });
+const work = mkdtempSync(join(tmpdir(), "vsrlab-viewer-"));
+const results = [];
+
+function check(name, cond, detail) {
+  results.push(`${cond ? "ok  " : "FAIL"} ${name}${detail ? `: ${detail}` : ""}`);
+  console.log(results[results.length - 1]);
+  assert.ok(cond, `${name}: ${detail}`);
+}
+
+function vsrlab(...args) {
+  return execFileSync(bin, args, { cwd: root, encoding: "utf8" });
+}
+
+// Replays: the shipped evolved biped (30 s), a 10×10 block (10 s), and two bad files.
+const walk = join(work, "walk.replay.json");
+const box = join(work, "box.replay.json");
+vsrlab("simulate", "--robot", "examples/biped-distributed.robot.json", "--duration", "30", "--replay", walk);
+vsrlab("simulate", "--body", Array(10).fill("##########").join("/"), "--duration", "10", "--replay", box);
+// Other kinds, listed but not shown at first: a PSA in its cage, a robot with lidar, a graph brain.
+const psa = join(work, "psa.replay.json");
+const sighted = join(work, "sighted.replay.json");
+vsrlab("simulate", "--body", "psa", "--task", "escape", "--duration", "5", "--replay", psa);
+vsrlab("simulate", "--sensors", "spinedTouchSighted-f-f-0", "--brain", "graph:10", "--task", "locomotion:hilly-1-10", "--duration", "5", "--replay", sighted);
+const walkBytes = statSync(walk).size;
+check("a 30 s biped replay is under 1 MB", walkBytes < 1e6, `${(walkBytes / 1e3).toFixed(0)} kB`);
+const broken = JSON.parse(readFileSync(walk, "utf8"));
+broken.channels.outline.data.pop();
+writeFileSync(join(work, "broken.replay.json"), JSON.stringify(broken));
+writeFileSync(join(work, "text.replay.json"), "this is not a replay");
+
+// The server.
+const server = spawn(bin, ["view", walk, box, join(work, "broken.replay.json"), join(work, "text.replay.json"), psa, sighted, "--port", "0"], { cwd: root });
+let serverOut = "";
+server.stdout.on("data", (d) => { serverOut += d; });
+server.stderr.on("data", (d) => { serverOut += d; });
+const url = await new Promise((resolve, reject) => {
+  const timer = setTimeout(() => reject(new Error(`no URL from vsrlab view: ${serverOut}`)), 15000);
+  const look = () => {
+    const m = serverOut.match(/http:\/\/127\.0\.0\.1:\d+\//);
+    if (m) { clearTimeout(timer); resolve(m[0]); } else setTimeout(look, 50);
+  };
+  look();
+});
+check("the server listens on 127.0.0.1 only", url.startsWith("http://127.0.0.1:"), url);
+for (const outside of ["../Cargo.toml", "replay/9", "crates/render/web/viewer.js", "..%2f..%2fetc/passwd"]) {
+  const r = await fetch(url + outside);
+  check(`the server refuses /${outside}`, r.status === 404, `status ${r.status}`);
+}
+
+const browser = await chromium.launch({
+  executablePath: browserPath,
+  args: ["--no-sandbox", "--disable-gpu", "--disable-background-networking", "--disable-component-update", "--disable-sync"],
+});
+const page = await browser.newPage({ viewport: { width: 1300, height: 1000 } });
+const consoleErrors = [];
+page.on("pageerror", (e) => consoleErrors.push(String(e)));
+await page.goto(url);
+await page.waitForFunction(() => window.viewer && window.viewer.ready, null, { timeout: 30000 });
+const panes = await page.locator(".pane").count();
+check("four panes, one per replay shown (four of six)", panes === 4, `${panes}`);
+const errors = await page.locator(".pane .error").allTextContents();
+check("a damaged replay gets a message naming the field", errors.some((t) => t.includes("channel 'outline'") && t.includes("expected")), JSON.stringify(errors));
+check("a file that is not JSON gets a message", errors.some((t) => t.includes("not JSON")), JSON.stringify(errors));
+
+// Pixels of the first pane's canvas: the centroid of voxel-coloured pixels, and raw data.
+async function robotPixels(index = 0) {
+  return page.evaluate((i) => {
+    const c = document.querySelectorAll(".pane canvas")[i];
+    const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+    let n = 0, sx = 0, sy = 0;
+    for (let p = 0; p < d.length; p += 4) {
+      const [r, g, b] = [d[p], d[p + 1], d[p + 2]];
+      if (b < 150 && Math.max(r, g) >= 200) { n++; sx += (p / 4) % c.width; sy += Math.floor(p / 4 / c.width); }
+    }
+    return { n, x: n ? sx / n : NaN, y: n ? sy / n : NaN, width: c.width, height: c.height, rect: c.getBoundingClientRect().toJSON() };
+  }, index);
+}
+async function canvasData(index = 0) {
+  return page.evaluate((i) => Array.from(document.querySelectorAll(".pane canvas")[i].getContext("2d").getImageData(0, 0, 600, 300).data), index);
+}
+const scrubTo = (t) => page.evaluate((t) => { const s = document.getElementById("scrub"); s.value = String(t); s.dispatchEvent(new Event("input")); }, t);
+
+// A fixed camera: the walking robot's drawn centre moves right from start to end.
+await page.uncheck("#follow");
+await scrubTo(0);
+const atStart = await robotPixels();
+await page.screenshot({ path: join(shots, "start-fixed-camera.png") });
+await page.keyboard.press("End");
+const atEnd = await robotPixels();
+await page.screenshot({ path: join(shots, "end-fixed-camera.png") });
+check("the robot is drawn at the start", atStart.n > 50, `${atStart.n} voxel pixels`);
+check("scrubbing to the end moves the drawn robot right", atEnd.x > atStart.x + 0.5 * atStart.width,
+  `centre x ${atStart.x.toFixed(0)} → ${atEnd.x.toFixed(0)} px of ${atStart.width}`);
+
+// Playing advances time with the wall clock.
+await page.check("#follow");
+await scrubTo(0);
+await page.click("#play");
+await page.waitForTimeout(1500);
+await page.click("#play");
+const played = await page.evaluate(() => window.viewer.state.time);
+check("play advances the time at 1×", played > 1.0 && played < 2.5, `${played.toFixed(2)} s after 1.5 s`);
+
+// Overlays: turning the area colours off changes the robot's pixels; turning them on restores them.
+await scrubTo(12);
+const withColours = await canvasData();
+await page.screenshot({ path: join(shots, "middle-follow.png") });
+await page.uncheck("#ov-colours");
+const without = await canvasData();
+await page.screenshot({ path: join(shots, "middle-no-colours.png") });
+let changed = 0;
+for (let i = 0; i < withColours.length; i += 4) if (withColours[i + 2] !== without[i + 2]) changed++;
+check("the area-colour toggle changes pixels", changed > 500, `${changed} pixels changed`);
+await page.check("#ov-colours");
+const back = await canvasData();
+check("toggling it back restores the frame", back.every((v, i) => v === withColours[i]), "");
+await page.uncheck("#ov-trail");
+const noTrail = await canvasData();
+let trailPixels = 0;
+for (let i = 0; i < back.length; i += 4) if (back[i] !== noTrail[i]) trailPixels++;
+check("the trail toggle changes pixels", trailPixels > 20, `${trailPixels} pixels`);
+await page.check("#ov-trail");
+
+// Clicking a voxel selects it and plots its actuation.
+const now = await robotPixels();
+await page.mouse.click(now.rect.x + now.x * now.rect.width / now.width, now.rect.y + now.y * now.rect.height / now.height);
+const selected = await page.evaluate(() => window.viewer.state.selected && window.viewer.state.selected.unit);
+check("clicking the robot selects a voxel", Number.isInteger(selected), `voxel ${selected}`);
+
+// The list removes panes: the two bad files go, the two replays stay side by side.
+await page.uncheck('input[data-name="broken"]');
+await page.uncheck('input[data-name="text"]');
+check("unchecking replays in the list removes their panes", (await page.locator(".pane").count()) === 2, "");
+
+// The other kinds draw without errors: membrane, cage, lidar rays.
+await page.check('input[data-name="psa"]');
+await page.check('input[data-name="sighted"]');
+await page.waitForFunction(() => window.viewer.state.panes.length === 4);
+await scrubTo(4);
+const paneColours = (i) => page.evaluate((i) => {
+    const c = document.querySelectorAll(".pane canvas")[i];
+    const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+    let red = 0, coloured = 0;
+    for (let p = 0; p < d.length; p += 4) {
+      if (d[p] > 200 && d[p + 1] < 110 && d[p + 2] < 110) red++;
+      if (Math.max(d[p], d[p + 1], d[p + 2]) - Math.min(d[p], d[p + 1], d[p + 2]) > 60) coloured++;
+    }
+    return { red, coloured };
+  }, i);
+for (const i of [2, 3]) {
+  const drawn = await paneColours(i);
+  check(`pane ${i + 1} (${i === 2 ? "PSA" : "lidar and graph brain"}) draws its body`, drawn.coloured > 200, JSON.stringify(drawn));
+}
+const withRays = await paneColours(3);
+await page.uncheck("#ov-lidar");
+const withoutRays = await paneColours(3);
+await page.check("#ov-lidar");
+check("the lidar toggle removes the red rays", withRays.red - withoutRays.red > 50, `${withRays.red} → ${withoutRays.red} red pixels`);
+await page.screenshot({ path: join(shots, "kinds.png") });
+await page.uncheck('input[data-name="psa"]');
+await page.uncheck('input[data-name="sighted"]');
+
+// Side by side: both replays follow the same clock.
+const times = await page.evaluate(() => window.viewer.state.panes.filter((p) => p.replay).map((p) => p.replay.duration));
+check("the 30 s and 10 s replays are side by side", times.length === 2 && Math.abs(times[0] - 30) < 0.05 && Math.abs(times[1] - 10) < 0.1, JSON.stringify(times));
+await page.screenshot({ path: join(shots, "viewer.png") });
+
+// Frame rate while playing both (the second is a 10×10 body): 3 s of playback.
+await scrubTo(0);
+await page.click("#play");
+await page.waitForTimeout(3000);
+await page.click("#play");
+const stats = await page.evaluate(() => ({ ...window.viewer.stats }));
+const fps = (stats.playedFrames - 1) / ((stats.playEnd - stats.playStart) / 1000);
+const drawMs = stats.drawMs / stats.drawn;
+console.log(`playback: ${fps.toFixed(1)} frames/s, draw ${drawMs.toFixed(2)} ms mean, ${stats.maxDrawMs.toFixed(1)} ms max per frame (biped + 10×10 block, ${stats.drawn} frames)`);
+check("playback keeps 60 fps with a 10×10 body on screen", fps >= 55, `${fps.toFixed(1)} fps`);
+check("no script errors on the page", consoleErrors.length === 0, consoleErrors.join("; "));
+await browser.close();
+
+// Ctrl-C stops the server cleanly.
+const exited = new Promise((resolve) => server.on("exit", (code, signal) => resolve({ code, signal })));
+server.kill("SIGINT");
+const exit = await Promise.race([exited, new Promise((r) => setTimeout(() => r({ code: "timeout" }), 5000))]);
+check("Ctrl-C stops vsrlab view with status 0", exit.code === 0 && serverOut.includes("viewer stopped"), JSON.stringify(exit));
+console.log(`${results.length} checks passed; screenshots in ${shots}`);

@@ -27,7 +27,7 @@ impl Robot for RobotSpec {
         let params = self.voxel_params();
         params.validate().map_err(EpisodeError::Invalid)?;
         let vsr = Vsr::assemble(builder, &self.body, &params, origin, ROBOT_GROUP);
-        let sensors = SensorSuite::new(&self.sensors, &self.body, seed)
+        let sensors = SensorSuite::for_preset(&self.sensors, &self.body, seed, self.preset)
             .map_err(|e| EpisodeError::Invalid(format!("robot.sensors: {e}")))?;
         let per_voxel: Vec<usize> = (0..self.body.voxel_count())
             .map(|v| sensors.readings_per_voxel(v))

@@ -127,3 +127,32 @@ fn phase_gaits_walk_and_are_reported_beside_the_original() {
         );
     }
 }
+
+/// vsr-model.md §9.1: the lidar on voxel (3, 1) of a biped (east side, 5 rays) looks along the
+/// centres of 5 bins in v1.10.0 (preset 2021) and along the side's ends in HEAD (2022); a robot's
+/// episode records the directions its preset's sensors use.
+#[test]
+fn lidar_directions_follow_the_preset() {
+    use std::f64::consts::PI;
+    use vsrlab_body::sensors::SensorConfig;
+    for (preset, expected) in [
+        (Preset::Y2021, [-PI / 5.0, -PI / 10.0, 0.0, PI / 10.0, PI / 5.0]),
+        (Preset::Y2022, [-PI / 4.0, -PI / 8.0, 0.0, PI / 8.0, PI / 4.0]),
+    ] {
+        let mut r = robot("biped-4x3", preset, phase());
+        r.sensors = SensorConfig::parse("spinedTouchSighted-f-f-0").unwrap();
+        let o = episode::run(&r, &task("flat", 0.1), 0, TraceLevel::Full).unwrap();
+        let trace = o.trace.unwrap();
+        let v31 = trace.cells.iter().position(|&c| c == (3, 1)).unwrap();
+        let angles: Vec<f64> = trace
+            .rays
+            .iter()
+            .filter(|ray| ray.voxel == v31)
+            .map(|ray| ray.relative_angle)
+            .collect();
+        assert_eq!(angles.len(), 5, "{preset}");
+        for (a, e) in angles.iter().zip(expected) {
+            assert!((a - e).abs() < 1e-12, "{preset}: {angles:?}");
+        }
+    }
+}

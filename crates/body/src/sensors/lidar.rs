@@ -3,9 +3,11 @@
 //!
 //! The side is chosen once, from the voxel's relative grid position (x, y in [0, 1]): north if
 //! y > x and y > 1 − x; west if x ≤ y ≤ 1 − x; south if y < x and y < 1 − x; east otherwise. Each
-//! side spans a quarter turn (E [−π/4, π/4], N [π/4, 3π/4], W [3π/4, 5π/4], S [5π/4, 7π/4]) and
-//! n ≥ 2 rays are spread evenly over it, both ends included. Directions are relative to the voxel's
-//! angle, so the fan turns with the voxel.
+//! side spans a quarter turn (E [−π/4, π/4], N [π/4, 3π/4], W [3π/4, 5π/4], S [5π/4, 7π/4]). How
+//! n ≥ 2 rays spread over it depends on the simulator version ([`RayLayout`], vsr-model.md §9.1):
+//! 2D-VSR-Sim HEAD (preset 2022) includes both ends (5 rays on E: −π/4, −π/8, 0, π/8, π/4);
+//! v1.10.0 (preset 2021) points each ray at the centre of one of n equal bins (−π/5, −π/10, 0,
+//! π/10, π/5). Directions are relative to the voxel's angle, so the fan turns with the voxel.
 //!
 //! **Quirk kept from the original:** a lidar with a single ray points at half the side's angular
 //! width, π/4 relative to the voxel, whatever the side, and not at the side's centre. So `l1` on a
@@ -63,13 +65,38 @@ impl Side {
     }
 
     /// Directions of `rays` rays on this side (relative to the voxel), with the one-ray quirk.
-    pub(crate) fn ray_directions(self, rays: usize) -> Vec<f64> {
+    pub(crate) fn ray_directions(self, rays: usize, layout: RayLayout) -> Vec<f64> {
         let (start, end) = self.span();
         if rays == 1 {
             return vec![(end - start) / 2.0];
         }
-        let step = (end - start) / (rays - 1) as f64;
-        (0..rays).map(|i| start + step * i as f64).collect()
+        match layout {
+            RayLayout::Ends => {
+                let step = (end - start) / (rays - 1) as f64;
+                (0..rays).map(|i| start + step * i as f64).collect()
+            }
+            RayLayout::Bins => {
+                let step = (end - start) / rays as f64;
+                (0..rays).map(|i| start + step * (i as f64 + 0.5)).collect()
+            }
+        }
+    }
+}
+
+/// How n ≥ 2 lidar rays spread over their side's quarter turn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RayLayout {
+    /// Evenly, both ends included (2D-VSR-Sim HEAD, preset 2022).
+    #[default]
+    Ends,
+    /// At the centres of n equal bins (2D-VSR-Sim v1.10.0, preset 2021).
+    Bins,
+}
+
+impl RayLayout {
+    fn is_ends(&self) -> bool {
+        *self == RayLayout::Ends
     }
 }
 
@@ -85,10 +112,10 @@ pub(crate) struct Lidar {
 
 impl Lidar {
     /// A lidar of `rays` rays of length `range` for a voxel at relative grid position `rel`.
-    pub(crate) fn new(range: f64, rays: usize, rel: (f64, f64)) -> Lidar {
+    pub(crate) fn new(range: f64, rays: usize, rel: (f64, f64), layout: RayLayout) -> Lidar {
         Lidar {
             range,
-            directions: Side::of(rel.0, rel.1).ray_directions(rays),
+            directions: Side::of(rel.0, rel.1).ray_directions(rays, layout),
             last: vec![range; rays],
         }
     }
@@ -125,7 +152,8 @@ impl Lidar {
     }
 }
 
-/// Description of a lidar (`{"kind": "lidar", "range": 10.0, "rays": 5}`).
+/// Description of a lidar (`{"kind": "lidar", "range": 10.0, "rays": 5}`, optionally
+/// `"layout": "bins"`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LidarSpec {
@@ -133,6 +161,9 @@ pub struct LidarSpec {
     pub range: f64,
     /// Number of rays (1 to [`MAX_RAYS`]).
     pub rays: usize,
+    /// How the rays spread over the side (default: both ends included).
+    #[serde(default, skip_serializing_if = "RayLayout::is_ends")]
+    pub layout: RayLayout,
 }
 
 impl SensorKind for LidarSpec {
@@ -154,7 +185,7 @@ impl SensorKind for LidarSpec {
     }
 
     fn build(&self, site: Site) -> Node {
-        Node::Lidar(Lidar::new(self.range, self.rays, site.rel))
+        Node::Lidar(Lidar::new(self.range, self.rays, site.rel, self.layout))
     }
 }
 
@@ -185,20 +216,33 @@ mod tests {
 
     #[test]
     fn rays_cover_the_side_with_both_ends() {
-        let r = Side::East.ray_directions(5);
+        let r = Side::East.ray_directions(5, RayLayout::Ends);
         assert_eq!(r.len(), 5);
         assert!(
             close(r[0], -FRAC_PI_4) && close(r[2], 0.0) && close(r[4], FRAC_PI_4),
             "{r:?}"
         );
-        let s = Side::South.ray_directions(3);
+        let s = Side::South.ray_directions(3, RayLayout::Ends);
         assert!(close(s[0], 5.0 * FRAC_PI_4) && close(s[1], 3.0 * FRAC_PI_2) && close(s[2], 7.0 * FRAC_PI_4));
+    }
+
+    /// v1.10.0's five rays on the east side (vsr-model.md §9.1): −π/5, −π/10, 0, π/10, π/5.
+    #[test]
+    fn binned_rays_point_at_the_bin_centres() {
+        use std::f64::consts::PI;
+        let r = Side::East.ray_directions(5, RayLayout::Bins);
+        let expected = [-PI / 5.0, -PI / 10.0, 0.0, PI / 10.0, PI / 5.0];
+        assert!(r.iter().zip(expected).all(|(a, b)| close(*a, b)), "{r:?}");
+        let n = Side::North.ray_directions(2, RayLayout::Bins);
+        assert!(close(n[0], 3.0 * PI / 8.0) && close(n[1], 5.0 * PI / 8.0), "{n:?}");
     }
 
     #[test]
     fn one_ray_keeps_the_quirk() {
         for side in [Side::North, Side::East, Side::South, Side::West] {
-            assert_eq!(side.ray_directions(1), vec![FRAC_PI_4], "{side:?}");
+            for layout in [RayLayout::Ends, RayLayout::Bins] {
+                assert_eq!(side.ray_directions(1, layout), vec![FRAC_PI_4], "{side:?}");
+            }
         }
     }
 
@@ -209,7 +253,7 @@ mod tests {
         b.add_static_polygon(Polygon::rect(Vec2::new(0.0, -5.0), 100.0, 5.0), 1.0, 0.0);
         let world = b.build().unwrap();
         // a bottom voxel (south side) 4 above the ground: rays at 225°, 270°, 315°
-        let mut lidar = Lidar::new(10.0, 3, (0.5, 0.0));
+        let mut lidar = Lidar::new(10.0, 3, (0.5, 0.0), RayLayout::Ends);
         let mut state = still_state();
         state.center = Vec2::new(0.0, 4.0);
         let mut out = [0.0; 3];

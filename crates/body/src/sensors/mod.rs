@@ -50,7 +50,7 @@ mod wrapper;
 
 pub use average::AverageSpec;
 pub use constant::{Axis, ConstantPositionSpec};
-pub use lidar::{LidarSpec, MAX_RAYS};
+pub use lidar::{LidarSpec, RayLayout, MAX_RAYS};
 pub use named::{NamedSensor, NAMED_SENSORS, SENSOR_NAMES};
 pub use noise::NoisySpec;
 pub use normalization::NormalizationSpec;
@@ -169,6 +169,17 @@ impl SensorSuite {
         dt: f64,
     ) -> Result<SensorSuite, SensorError> {
         SensorSuite::from_specs(config.specs(body)?, body, seed, dt)
+    }
+
+    /// As [`SensorSuite::new`], with the named sensors built as `preset`'s simulator builds them
+    /// ([`SensorSpec::named_in`]).
+    pub fn for_preset(
+        config: &SensorConfig,
+        body: &Morphology,
+        seed: u64,
+        preset: crate::Preset,
+    ) -> Result<SensorSuite, SensorError> {
+        SensorSuite::from_specs(config.specs_in(body, preset)?, body, seed, DEFAULT_TIME_STEP)
     }
 
     /// Builds explicit sensor trees: `specs[v]` lists the sensors of voxel v (grid order).

@@ -12,22 +12,27 @@
 //! | `cpg` | Normalization(Cpg) |
 //! | `l5`, `l3`, `l1` | Normalization(Lidar(range 10, 5 / 3 / 1 rays)) (`l3`: 2D-VSR-Sim 07f9395, the Hebbian study) |
 //!
-//! Soft normalisations here do not clip (thesis era). `ax`…`axy` use `Trend` (2D-VSR-Sim since
-//! 2021-08; earlier versions used a one-step `Derivative`), and the lidars are normalised (since
-//! 2021-08; raw before).
+//! Two things depend on the simulator version, so each named sensor is built for a preset
+//! ([`SensorSpec::named_in`], vsr-model.md §3.2 and §9.1): soft normalisations clip their value to
+//! [0, 1] before the tanh in 2022 (2D-VSR-Sim ≥ v1.11) and not in 2021 (≤ v1.10, the thesis
+//! era); lidar rays include the side's ends in 2022 and point at the centres of equal bins in 2021
+//! ([`RayLayout`]). `ax`…`axy` use `Trend` (2D-VSR-Sim since 2021-08; earlier versions used a
+//! one-step `Derivative`), and the lidars are normalised (since 2021-08; raw before).
 
 use super::constant::{Axis, ConstantPositionSpec};
-use super::lidar::LidarSpec;
+use super::lidar::{LidarSpec, RayLayout};
+use super::soft_normalization::SoftNormalizationSpec;
 use super::spec::SensorSpec;
 use super::velocity::{Axes, VelocitySpec};
+use crate::params::Preset;
 
 /// One named sensor: its name in placements and the sensor tree it stands for.
 #[derive(Debug, Clone, Copy)]
 pub struct NamedSensor {
     /// The name, as written in placement strings and per-voxel lists.
     pub name: &'static str,
-    /// Builds the sensor tree.
-    pub spec: fn() -> SensorSpec,
+    /// Builds the sensor tree as the simulator of a preset does.
+    pub spec: fn(Preset) -> SensorSpec,
 }
 
 /// Every named sensor, in the order used by `uniformAll` (the original's sorted key order). A new
@@ -35,67 +40,67 @@ pub struct NamedSensor {
 pub const NAMED_SENSORS: &[NamedSensor] = &[
     NamedSensor {
         name: "a",
-        spec: || SensorSpec::AreaRatio.soft_normalized(),
+        spec: |p| SensorSpec::AreaRatio.soft_normalized_in(p),
     },
     NamedSensor {
         name: "ax",
-        spec: || velocity(4.0, Axes::X).trend(0.5).soft_normalized(),
+        spec: |p| velocity(4.0, Axes::X).trend(0.5).soft_normalized_in(p),
     },
     NamedSensor {
         name: "axy",
-        spec: || velocity(4.0, Axes::Xy).trend(0.5).soft_normalized(),
+        spec: |p| velocity(4.0, Axes::Xy).trend(0.5).soft_normalized_in(p),
     },
     NamedSensor {
         name: "ay",
-        spec: || velocity(4.0, Axes::Y).trend(0.5).soft_normalized(),
+        spec: |p| velocity(4.0, Axes::Y).trend(0.5).soft_normalized_in(p),
     },
     NamedSensor {
         name: "cpg",
-        spec: || SensorSpec::Cpg.normalized(),
+        spec: |_| SensorSpec::Cpg.normalized(),
     },
     NamedSensor {
         name: "l1",
-        spec: || lidar(1).normalized(),
+        spec: |p| lidar(1, p).normalized(),
     },
     NamedSensor {
         name: "l3",
-        spec: || lidar(3).normalized(),
+        spec: |p| lidar(3, p).normalized(),
     },
     NamedSensor {
         name: "l5",
-        spec: || lidar(5).normalized(),
+        spec: |p| lidar(5, p).normalized(),
     },
     NamedSensor {
         name: "m",
-        spec: || SensorSpec::Malfunction,
+        spec: |_| SensorSpec::Malfunction,
     },
     NamedSensor {
         name: "px",
-        spec: || SensorSpec::ConstantPosition(ConstantPositionSpec { axis: Axis::X }),
+        spec: |_| SensorSpec::ConstantPosition(ConstantPositionSpec { axis: Axis::X }),
     },
     NamedSensor {
         name: "py",
-        spec: || SensorSpec::ConstantPosition(ConstantPositionSpec { axis: Axis::Y }),
+        spec: |_| SensorSpec::ConstantPosition(ConstantPositionSpec { axis: Axis::Y }),
     },
     NamedSensor {
         name: "r",
-        spec: || SensorSpec::Angle.soft_normalized(),
+        spec: |p| SensorSpec::Angle.soft_normalized_in(p),
     },
     NamedSensor {
         name: "t",
-        spec: || SensorSpec::Touch.averaged(0.25),
+        spec: |_| SensorSpec::Touch.averaged(0.25),
     },
     NamedSensor {
         name: "vx",
-        spec: || velocity(8.0, Axes::X).averaged(0.5).soft_normalized(),
+        spec: |p| velocity(8.0, Axes::X).averaged(0.5).soft_normalized_in(p),
     },
     NamedSensor {
         name: "vxy",
-        spec: || velocity(8.0, Axes::Xy).averaged(0.5).soft_normalized(),
+        spec: |p| velocity(8.0, Axes::Xy).averaged(0.5).soft_normalized_in(p),
     },
     NamedSensor {
         name: "vy",
-        spec: || velocity(8.0, Axes::Y).averaged(0.5).soft_normalized(),
+        spec: |p| velocity(8.0, Axes::Y).averaged(0.5).soft_normalized_in(p),
     },
 ];
 
@@ -119,18 +124,41 @@ fn velocity(vmax: f64, axes: Axes) -> SensorSpec {
     })
 }
 
-/// A lidar of range 10.
-fn lidar(rays: usize) -> SensorSpec {
-    SensorSpec::Lidar(LidarSpec { range: 10.0, rays })
+/// A lidar of range 10, its rays spread as in `preset`'s simulator.
+fn lidar(rays: usize, preset: Preset) -> SensorSpec {
+    let layout = match preset {
+        Preset::Y2021 => RayLayout::Bins,
+        Preset::Y2022 => RayLayout::Ends,
+    };
+    SensorSpec::Lidar(LidarSpec {
+        range: 10.0,
+        rays,
+        layout,
+    })
 }
 
 impl SensorSpec {
-    /// The named sensor `name` (see [`NAMED_SENSORS`]), or `None` if there is no such name.
+    /// The named sensor `name` (see [`NAMED_SENSORS`]) of the default preset (2021), or `None` if
+    /// there is no such name.
     pub fn named(name: &str) -> Option<SensorSpec> {
+        SensorSpec::named_in(name, Preset::default())
+    }
+
+    /// The named sensor `name` as the simulator of `preset` builds it, or `None` if there is no
+    /// such name.
+    pub fn named_in(name: &str, preset: Preset) -> Option<SensorSpec> {
         NAMED_SENSORS
             .iter()
             .find(|named| named.name == name)
-            .map(|named| (named.spec)())
+            .map(|named| (named.spec)(preset))
+    }
+
+    /// Soft normalisation as in `preset`'s simulator: clipped first in 2022, not in 2021.
+    fn soft_normalized_in(self, preset: Preset) -> SensorSpec {
+        SensorSpec::SoftNormalization(SoftNormalizationSpec {
+            clip: preset == Preset::Y2022,
+            inner: Box::new(self),
+        })
     }
 }
 
@@ -151,6 +179,36 @@ mod tests {
         let mut sorted = SENSOR_NAMES;
         sorted.sort_unstable();
         assert_eq!(sorted, SENSOR_NAMES);
+    }
+
+    /// vsr-model.md §3.2 and §9.1: 2022 soft normalisations clip first, 2021 ones do not; 2021
+    /// lidars point at bin centres, 2022 ones include the ends. Sensors without either are equal.
+    #[test]
+    fn the_preset_decides_clipping_and_ray_layout() {
+        let clip = |name: &str, preset| match SensorSpec::named_in(name, preset) {
+            Some(SensorSpec::SoftNormalization(s)) => s.clip,
+            other => panic!("{other:?}"),
+        };
+        assert!(!clip("a", Preset::Y2021) && clip("a", Preset::Y2022));
+        assert!(!clip("vxy", Preset::Y2021) && clip("vxy", Preset::Y2022));
+        let layout = |preset| match SensorSpec::named_in("l5", preset) {
+            Some(SensorSpec::Normalization(n)) => match *n.inner {
+                SensorSpec::Lidar(l) => l.layout,
+                other => panic!("{other:?}"),
+            },
+            other => panic!("{other:?}"),
+        };
+        assert_eq!(
+            (layout(Preset::Y2021), layout(Preset::Y2022)),
+            (RayLayout::Bins, RayLayout::Ends)
+        );
+        assert_eq!(SensorSpec::named("l5"), SensorSpec::named_in("l5", Preset::Y2021));
+        for name in ["t", "cpg", "px", "m"] {
+            assert_eq!(
+                SensorSpec::named_in(name, Preset::Y2021),
+                SensorSpec::named_in(name, Preset::Y2022)
+            );
+        }
     }
 
     #[test]

@@ -34,6 +34,7 @@ use super::named::SENSOR_NAMES;
 use super::spec::SensorSpec;
 use super::SensorError;
 use crate::morphology::Morphology;
+use crate::params::Preset;
 use serde::de::{self, SeqAccess, Visitor};
 use serde::ser::SerializeSeq;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -181,8 +182,14 @@ impl SensorConfig {
         }
     }
 
-    /// The sensors of each voxel of `body`, in grid order.
+    /// The sensors of each voxel of `body`, in grid order, as the default preset (2021) builds them.
     pub fn specs(&self, body: &Morphology) -> Result<Vec<Vec<SensorSpec>>, SensorError> {
+        self.specs_in(body, Preset::default())
+    }
+
+    /// The sensors of each voxel of `body`, in grid order, as `preset`'s simulator builds them
+    /// (soft-normalisation clipping and lidar ray layout differ: [`SensorSpec::named_in`]).
+    pub fn specs_in(&self, body: &Morphology, preset: Preset) -> Result<Vec<Vec<SensorSpec>>, SensorError> {
         let cells: Vec<(usize, usize)> = body.voxels().collect();
         let named_lists = |lists: Vec<Vec<&str>>, sigma: f64| -> Result<Vec<Vec<SensorSpec>>, SensorError> {
             lists
@@ -192,7 +199,7 @@ impl SensorConfig {
                     names
                         .iter()
                         .map(|n| {
-                            let spec = SensorSpec::named(n).ok_or_else(|| SensorError::UnknownSensor {
+                            let spec = SensorSpec::named_in(n, preset).ok_or_else(|| SensorError::UnknownSensor {
                                 voxel: Some(v),
                                 name: n.to_string(),
                             })?;

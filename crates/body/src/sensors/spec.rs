@@ -139,7 +139,7 @@ impl SensorSpec {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sensors::Axes;
+    use crate::sensors::{Axes, RayLayout};
     use std::f64::consts::PI;
 
     #[test]
@@ -155,7 +155,11 @@ mod tests {
         assert_eq!(v.clone().averaged(0.5).domains(), vec![(-4.0, 4.0); 2]);
         assert_eq!(v.clone().trend(0.5).soft_normalized().domains(), vec![(0.0, 1.0); 2]);
         assert_eq!(v.noisy(0.1).domains(), vec![(-4.0, 4.0); 2]);
-        let lidar = SensorSpec::Lidar(LidarSpec { range: 10.0, rays: 5 });
+        let lidar = SensorSpec::Lidar(LidarSpec {
+            range: 10.0,
+            rays: 5,
+            layout: RayLayout::Ends,
+        });
         assert_eq!((lidar.dimension(), lidar.domains()[4]), (5, (0.0, 10.0)));
         assert_eq!(SensorSpec::Angle.domains(), vec![(-PI, PI)]);
         assert_eq!(SensorSpec::AreaRatio.domains(), vec![(0.5, 1.5)]);
@@ -166,9 +170,13 @@ mod tests {
     fn validation_names_the_bad_parameter() {
         let e = SensorSpec::Touch.averaged(-1.0).validate().unwrap_err();
         assert!(e.contains("window") && e.contains("-1"), "{e}");
-        let e = SensorSpec::Lidar(LidarSpec { range: 10.0, rays: 0 })
-            .validate()
-            .unwrap_err();
+        let e = SensorSpec::Lidar(LidarSpec {
+            range: 10.0,
+            rays: 0,
+            layout: RayLayout::Ends,
+        })
+        .validate()
+        .unwrap_err();
         assert!(e.contains("rays"), "{e}");
         let e = SensorSpec::AreaRatio
             .noisy(f64::NAN)
@@ -215,7 +223,7 @@ mod tests {
             ),
             (
                 "l5",
-                r#"{"kind":"normalization","inner":{"kind":"lidar","range":10.0,"rays":5}}"#,
+                r#"{"kind":"normalization","inner":{"kind":"lidar","range":10.0,"rays":5,"layout":"bins"}}"#,
             ),
             ("px", r#"{"kind":"constant-position","axis":"x"}"#),
             ("m", r#"{"kind":"malfunction"}"#),
@@ -224,6 +232,12 @@ mod tests {
             let spec = SensorSpec::named(name).unwrap();
             assert_eq!(serde_json::to_string(&spec).unwrap(), json, "{name}");
         }
+        let head = SensorSpec::named_in("l5", crate::Preset::Y2022).unwrap();
+        assert_eq!(
+            serde_json::to_string(&head).unwrap(),
+            r#"{"kind":"normalization","inner":{"kind":"lidar","range":10.0,"rays":5}}"#,
+            "the default layout is left out"
+        );
         let noisy = SensorSpec::Touch.trend(0.5).noisy(0.1);
         assert_eq!(
             serde_json::to_string(&noisy).unwrap(),

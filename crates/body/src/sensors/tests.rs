@@ -127,9 +127,22 @@ fn lidar_rays_report_directions_and_last_distances() {
     let mut scene = Scene::new("worm-3x1", 0.0);
     let body = scene.body.clone();
     let specs = vec![
-        vec![SensorSpec::Lidar(LidarSpec { range: 10.0, rays: 3 })],
-        vec![SensorSpec::Lidar(LidarSpec { range: 10.0, rays: 1 })],
-        vec![SensorSpec::Lidar(LidarSpec { range: 10.0, rays: 5 }).normalized()],
+        vec![SensorSpec::Lidar(LidarSpec {
+            range: 10.0,
+            rays: 3,
+            layout: RayLayout::Ends,
+        })],
+        vec![SensorSpec::Lidar(LidarSpec {
+            range: 10.0,
+            rays: 1,
+            layout: RayLayout::Ends,
+        })],
+        vec![SensorSpec::Lidar(LidarSpec {
+            range: 10.0,
+            rays: 5,
+            layout: RayLayout::Ends,
+        })
+        .normalized()],
     ];
     let mut suite = SensorSuite::from_specs(specs, &body, 0, DEFAULT_TIME_STEP).unwrap();
     let before = suite.lidar_rays(0);

@@ -45,19 +45,24 @@ broken.channels.outline.data.pop();
 writeFileSync(join(work, "broken.replay.json"), JSON.stringify(broken));
 writeFileSync(join(work, "text.replay.json"), "this is not a replay");
 
-// The server.
-const server = spawn(bin, ["view", walk, box, join(work, "broken.replay.json"), join(work, "text.replay.json"), psa, sighted, "--port", "0"], { cwd: root });
-let serverOut = "";
-server.stdout.on("data", (d) => { serverOut += d; });
-server.stderr.on("data", (d) => { serverOut += d; });
-const url = await new Promise((resolve, reject) => {
-  const timer = setTimeout(() => reject(new Error(`no URL from vsrlab view: ${serverOut}`)), 15000);
-  const look = () => {
-    const m = serverOut.match(/http:\/\/127\.0\.0\.1:\d+\//);
-    if (m) { clearTimeout(timer); resolve(m[0]); } else setTimeout(look, 50);
-  };
-  look();
-});
+// Starts `vsrlab view args…`; resolves to the server process, its output so far and its URL.
+function startViewer(args) {
+  const proc = spawn(bin, ["view", ...args, "--port", "0"], { cwd: root });
+  const out = { text: "" };
+  proc.stdout.on("data", (d) => { out.text += d; });
+  proc.stderr.on("data", (d) => { out.text += d; });
+  return new Promise((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error(`no URL from vsrlab view: ${out.text}`)), 15000);
+    const look = () => {
+      const m = out.text.match(/http:\/\/127\.0\.0\.1:\d+\//);
+      if (m) { clearTimeout(timer); resolve({ proc, out, url: m[0] }); } else setTimeout(look, 50);
+    };
+    look();
+  });
+}
+
+const viewer = await startViewer([walk, box, join(work, "broken.replay.json"), join(work, "text.replay.json"), psa, sighted]);
+const { proc: server, out: serverOutput, url } = viewer;
 check("the server listens on 127.0.0.1 only", url.startsWith("http://127.0.0.1:"), url);
 for (const outside of ["../Cargo.toml", "replay/9", "crates/render/web/viewer.js", "..%2f..%2fetc/passwd"]) {
   const r = await fetch(url + outside);
@@ -193,11 +198,41 @@ const drawMs = stats.drawMs / stats.drawn;
 console.log(`playback: ${fps.toFixed(1)} frames/s, draw ${drawMs.toFixed(2)} ms mean, ${stats.maxDrawMs.toFixed(1)} ms max per frame (biped + 10×10 block, ${stats.drawn} frames)`);
 check("playback keeps 60 fps with a 10×10 body on screen", fps >= 55, `${fps.toFixed(1)} fps`);
 check("no script errors on the page", consoleErrors.length === 0, consoleErrors.join("; "));
+// Labelling: a `vsrlab label` folder in the viewer offers the classes beside each replay and saves
+// labels.csv as the labelling page does.
+writeFileSync(join(work, "tiny.toml"), [
+  "runs = 1", "seed = 3", "[representation]", 'body = "biped-4x3"', 'sensors = "uniform-vxy+a+t-0"',
+  'brain = { kind = "distributed-mlp", layout = "homogeneous", signals = 1, hidden = [] }',
+  "[task]", "duration = 3.0", "[optimizer]", 'kind = "ga"', "population_size = 8", "offspring_size = 8",
+  "[stop]", "generations = 2",
+].join("\n") + "\n");
+vsrlab("run", join(work, "tiny.toml"), "--out", join(work, "tiny"));
+vsrlab("label", join(work, "tiny"), "--out", join(work, "lab"), "--count", "4", "--width", "100");
+const lab = await startViewer([join(work, "lab")]);
+const labPage = await browser.newPage({ viewport: { width: 1300, height: 1000 } });
+labPage.on("pageerror", (e) => consoleErrors.push(String(e)));
+await labPage.goto(lab.url);
+await labPage.waitForFunction(() => window.viewer && window.viewer.ready, null, { timeout: 30000 });
+const selects = await labPage.locator(".pane select").count();
+check("a labelling folder shows the class choices beside each replay", selects === 8, `${selects} choices in ${await labPage.locator(".pane").count()} panes`);
+const first = labPage.locator(".pane").first();
+const firstId = (await first.locator("h2").textContent()).trim();
+await first.locator('select[data-kind="shape"]').selectOption("limbed");
+await first.locator('select[data-kind="behaviour"]').selectOption("walking");
+const progress = await labPage.locator("#label-progress").textContent();
+check("the progress counts the labelled robot", progress.startsWith("1 / 4"), progress);
+await labPage.screenshot({ path: join(shots, "labelling.png") });
+const [download] = await Promise.all([labPage.waitForEvent("download"), labPage.click("#save-labels")]);
+const csv = readFileSync(await download.path(), "utf8").trim().split("\n");
+check("labels.csv has the labelling page's columns", csv[0] === "robot,terrain,duration,transient,seed,shape,behaviour,id", csv[0]);
+const row = csv.find((l) => l.endsWith(`,${firstId}`)) || "";
+check("labels.csv holds the choice for the robot", row.includes(",limbed,walking,") && csv.length === 5, row);
+lab.proc.kill("SIGINT");
 await browser.close();
 
 // Ctrl-C stops the server cleanly.
 const exited = new Promise((resolve) => server.on("exit", (code, signal) => resolve({ code, signal })));
 server.kill("SIGINT");
 const exit = await Promise.race([exited, new Promise((r) => setTimeout(() => r({ code: "timeout" }), 5000))]);
-check("Ctrl-C stops vsrlab view with status 0", exit.code === 0 && serverOut.includes("viewer stopped"), JSON.stringify(exit));
+check("Ctrl-C stops vsrlab view with status 0", exit.code === 0 && serverOutput.text.includes("viewer stopped"), JSON.stringify(exit));
 console.log(`${results.length} checks passed; screenshots in ${shots}`);

@@ -104,7 +104,7 @@ pub fn run(args: LabelArgs) -> Result<(), String> {
     }
     let results: Vec<String> = options.results.iter().map(|p| p.display().to_string()).collect();
     println!(
-        "open {} in a browser, pick a class per robot and save labels.csv into {}\n(to play, scrub and compare the robots side by side: vsrlab view {}); then run\n  vsrlab analyze {} --labels {}",
+        "open {} in a browser, pick a class per robot and save labels.csv into {}\n(or label them in the replay viewer: vsrlab view {}); then run\n  vsrlab analyze {} --labels {}",
         report.index.display(),
         options.out.display(),
         options.out.display(),

@@ -6,6 +6,7 @@ use clap::Args;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
+use vsrlab_analysis::pipelines::LABELLING_FILE;
 use vsrlab_analysis::run_folder::{BEST_REPLAY_FILE, BEST_ROBOT_FILE, EXPERIMENT_FILE};
 use vsrlab_render::replay::{Replay, ReplayOptions};
 use vsrlab_render::viewer::{self, ReplaySource, Viewer, ViewerEntry};
@@ -23,8 +24,8 @@ const MAX_SHOWN: usize = 4;
 #[derive(Args, Debug)]
 pub struct ViewArgs {
     /// Replay files (`vsrlab simulate --replay`), robot files (simulated when first shown), or
-    /// folders: a `vsrlab run` output (every run's best robot), a `vsrlab label` folder, or any
-    /// folder holding replay files.
+    /// folders: a `vsrlab run` output (every run's best robot), a `vsrlab label` folder (its robots
+    /// with the labelling choices and "Save labels.csv"), or any folder holding replay files.
     #[arg(required = true)]
     pub paths: Vec<PathBuf>,
     /// Port on 127.0.0.1 (0: any free port).
@@ -105,11 +106,43 @@ fn short_name(root: &Path, path: &Path) -> String {
     }
 }
 
+/// The labelling data of a `vsrlab label` folder, if `dir` is one.
+fn labelling_of(dir: &Path) -> Option<Vec<u8>> {
+    std::fs::read(dir.join(LABELLING_FILE)).ok()
+}
+
+/// A labelling folder's replays, in page order, named by the robots' ids (the page pairs them
+/// with the labelling choices by that name).
+fn labelling_entries(dir: &Path, data: &[u8]) -> Result<Vec<ViewerEntry>, String> {
+    let file = dir.join(LABELLING_FILE);
+    let data: serde_json::Value =
+        serde_json::from_slice(data).map_err(|e| format!("{}: not JSON: {e}", file.display()))?;
+    let items = data["items"]
+        .as_array()
+        .ok_or_else(|| format!("{}: no 'items' list", file.display()))?;
+    items
+        .iter()
+        .enumerate()
+        .map(|(i, item)| {
+            let id = item["id"]
+                .as_str()
+                .ok_or_else(|| format!("{}: items[{i}] has no 'id'", file.display()))?;
+            Ok(ViewerEntry {
+                name: id.to_string(),
+                source: ReplaySource::File(dir.join("replays").join(format!("{id}{REPLAY_SUFFIX}"))),
+                shown: i < MAX_SHOWN,
+            })
+        })
+        .collect()
+}
+
 /// The viewer's entries for the command-line paths.
 fn entries(paths: &[PathBuf]) -> Result<Vec<ViewerEntry>, String> {
     let mut out = Vec::new();
     for path in paths {
-        if path.is_dir() {
+        if let Some(data) = path.is_dir().then(|| labelling_of(path)).flatten() {
+            out.extend(labelling_entries(path, &data)?);
+        } else if path.is_dir() {
             let mut found = Vec::new();
             collect(path, MAX_DEPTH, &mut found)?;
             if found.is_empty() {
@@ -159,6 +192,10 @@ fn entry(path: &Path, name: String, shown: bool) -> Result<ViewerEntry, String> 
 /// Runs `vsrlab view`.
 pub fn run(args: ViewArgs) -> Result<(), String> {
     let entries = entries(&args.paths)?;
+    let labelling = match args.paths.as_slice() {
+        [one] if one.is_dir() => labelling_of(one),
+        _ => None,
+    };
     let count = entries.len();
     let listener = viewer::bind(args.port).map_err(|e| {
         if e.kind() == std::io::ErrorKind::AddrInUse {
@@ -179,7 +216,12 @@ pub fn run(args: ViewArgs) -> Result<(), String> {
     println!("vsrlab viewer: http://{address}/ ({count} replays; Ctrl-C stops it)");
     use std::io::Write as _;
     let _ = std::io::stdout().flush();
-    viewer::serve(listener, Arc::new(Viewer::new(entries)), &stop).map_err(|e| e.to_string())?;
+    let mut viewer = Viewer::new(entries);
+    if let Some(data) = labelling {
+        println!("labelling: pick a morphology and a behaviour beside each robot, then \"Save labels.csv\" into the labelling folder");
+        viewer = viewer.with_labelling(data);
+    }
+    viewer::serve(listener, Arc::new(viewer), &stop).map_err(|e| e.to_string())?;
     println!("viewer stopped");
     Ok(())
 }

@@ -5,9 +5,10 @@
 //! untouched, so the run → replay pair is checked verbatim. `vsrlab view`, a server, is started,
 //! must print its URL, and is stopped with Ctrl-C (SIGINT), which must end it with status 0.
 
-use std::io::{BufRead, BufReader, Read};
+mod common;
+
 use std::path::Path;
-use std::process::{Command, Stdio};
+use std::process::Command;
 
 const VSRLAB: &str = env!("CARGO_BIN_EXE_vsrlab");
 /// How the quick start calls the binary before it is installed.
@@ -65,31 +66,17 @@ fn readme_commands(readme: &str) -> Vec<Vec<String>> {
     commands
 }
 
-/// Starts a `vsrlab view` command, waits for its URL, stops it with SIGINT; its output.
-fn run_viewer(args: &[String], work: &Path) -> String {
-    let mut child = Command::new(VSRLAB)
-        .args(args)
-        .current_dir(work)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut stdout = BufReader::new(child.stdout.take().unwrap());
-    let mut line = String::new();
-    stdout.read_line(&mut line).unwrap();
-    let pid = child.id().to_string();
-    Command::new("kill").args(["-INT", &pid]).status().unwrap();
-    let status = child.wait().unwrap();
-    let mut rest = String::new();
-    stdout.read_to_string(&mut rest).unwrap();
-    let mut errors = String::new();
-    child.stderr.take().unwrap().read_to_string(&mut errors).unwrap();
+/// Starts a `vsrlab view` command, waits for its URL, stops it with SIGINT.
+fn run_viewer(args: &[String], work: &Path) {
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let viewer = common::start_viewer(&args, work);
+    let line = viewer.first_line.clone();
+    let (stopped, rest) = viewer.interrupt();
     assert!(
-        status.success() && line.contains("http://127.0.0.1:"),
-        "vsrlab {} failed: {line}{rest}{errors}",
+        stopped && line.contains("http://127.0.0.1:"),
+        "vsrlab {} failed: {line}{rest}",
         args.join(" ")
     );
-    line + &rest
 }
 
 fn copy_dir(from: &Path, to: &Path) {

@@ -4,11 +4,8 @@
 
 mod common;
 use common::{ok, vsrlab};
-use std::io::{BufRead, BufReader, Read, Write};
+use std::io::{Read, Write};
 use std::net::TcpStream;
-use std::process::{Command, Stdio};
-
-const VSRLAB: &str = env!("CARGO_BIN_EXE_vsrlab");
 
 const EXPERIMENT: &str = r#"
 runs = 2
@@ -60,23 +57,10 @@ fn runs_write_best_replays_and_view_serves_a_results_folder_until_ctrl_c() {
     // Without its replay, the best robot is simulated when the page asks for it.
     std::fs::remove_file(out.join("run-01/best.replay.json")).unwrap();
 
-    let mut child = Command::new(VSRLAB)
-        .args(["view", out.to_str().unwrap(), "--port", "0"])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut stdout = BufReader::new(child.stdout.take().unwrap());
-    let mut line = String::new();
-    stdout.read_line(&mut line).unwrap();
-    let address = line
-        .split("http://")
-        .nth(1)
-        .and_then(|rest| rest.split('/').next())
-        .unwrap_or_else(|| panic!("no URL in {line:?}"))
-        .to_string();
-    assert!(address.starts_with("127.0.0.1:"), "{line}");
-    assert!(line.contains("2 replays"), "{line}");
+    let viewer = common::start_viewer(&["view", out.to_str().unwrap(), "--port", "0"], dir.path());
+    let address = viewer.address();
+    assert!(address.starts_with("127.0.0.1:"), "{}", viewer.first_line);
+    assert!(viewer.first_line.contains("2 replays"), "{}", viewer.first_line);
 
     let list = json(&get(&address, "/api/replays").1);
     assert_eq!(list[0]["name"], "run-00");
@@ -92,12 +76,8 @@ fn runs_write_best_replays_and_view_serves_a_results_folder_until_ctrl_c() {
     assert!(status.contains("200") && page.contains("viewer.js"), "{status}");
     assert!(get(&address, "/../exp.toml").0.contains("404"));
 
-    let pid = child.id().to_string();
-    assert!(Command::new("kill").args(["-INT", &pid]).status().unwrap().success());
-    let status = child.wait().unwrap();
-    let mut rest = String::new();
-    stdout.read_to_string(&mut rest).unwrap();
-    assert!(status.success(), "{status:?}");
+    let (stopped, rest) = viewer.interrupt();
+    assert!(stopped, "{rest}");
     assert!(rest.contains("viewer stopped"), "{rest}");
 }
 

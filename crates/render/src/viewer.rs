@@ -52,6 +52,7 @@ pub struct ViewerEntry {
 pub struct Viewer {
     entries: Vec<ViewerEntry>,
     cache: Mutex<HashMap<usize, Made>>,
+    labelling: Option<Vec<u8>>,
 }
 
 /// An HTTP response: status, content type, body.
@@ -84,7 +85,16 @@ impl Viewer {
         Viewer {
             entries,
             cache: Mutex::new(HashMap::new()),
+            labelling: None,
         }
+    }
+
+    /// The same viewer, also serving a `vsrlab label` folder's `labelling.json` (robots and
+    /// classes) at `/api/labelling`, so that the page offers the labelling choices beside each
+    /// replay whose name is a robot's id.
+    pub fn with_labelling(mut self, labelling: Vec<u8>) -> Viewer {
+        self.labelling = Some(labelling);
+        self
     }
 
     /// The list the page reads: `[{"name", "url", "shown"}]`.
@@ -121,6 +131,10 @@ impl Viewer {
             "/viewer.js" => Response::ok("text/javascript; charset=utf-8", VIEWER_JS.as_bytes().to_vec()),
             "/viewer.css" => Response::ok("text/css; charset=utf-8", VIEWER_CSS.as_bytes().to_vec()),
             "/api/replays" => Response::ok("application/json", self.listing()),
+            "/api/labelling" => match &self.labelling {
+                Some(bytes) => Response::ok("application/json", bytes.clone()),
+                None => Response::text("404 Not Found", "not a labelling folder".to_string()),
+            },
             _ => match path.strip_prefix("/replay/").and_then(|i| i.parse::<usize>().ok()) {
                 Some(i) => match self.replay(i) {
                     Some(made) => match made.as_ref() {

@@ -151,6 +151,93 @@ function derive(r) {
   }
 }
 
+// ---------------------------------------------------------------- labelling (a `vsrlab label` folder)
+
+// The robots and classes of a labelling folder, and the choices made so far (kept in this browser).
+const labelling = { data: null, byId: {}, choices: {}, key: "" };
+
+async function loadLabelling() {
+  try {
+    const response = await fetch("api/labelling");
+    if (!response.ok) return;
+    labelling.data = await response.json();
+  } catch (e) {
+    return;
+  }
+  const items = labelling.data.items || [];
+  for (const it of items) labelling.byId[it.id] = it;
+  labelling.key = `vsrlab-viewer-labels-${items.length}:${location.host}`;
+  labelling.choices = JSON.parse(localStorage.getItem(labelling.key) || "{}");
+  if (labelling.data.prefill && Object.keys(labelling.choices).length === 0) {
+    for (const it of items) labelling.choices[it.id] = { shape: it.proposal[0], behaviour: it.proposal[1] };
+  }
+  const save = document.createElement("button");
+  save.id = "save-labels";
+  save.textContent = "Save labels.csv";
+  save.addEventListener("click", saveLabels);
+  const progress = document.createElement("span");
+  progress.id = "label-progress";
+  document.querySelector("header").append(save, progress);
+  labelProgress();
+}
+
+function labelProgress() {
+  const items = labelling.data.items || [];
+  const done = items.filter((it) => (labelling.choices[it.id] || {}).shape && (labelling.choices[it.id] || {}).behaviour).length;
+  document.getElementById("label-progress").textContent = `${done} / ${items.length} labelled`;
+}
+
+// The morphology and behaviour choices under a pane whose replay is a labelled robot.
+function labelBar(it) {
+  const bar = document.createElement("div");
+  bar.className = "labels";
+  for (const [kind, classes, title] of [["shape", labelling.data.shapes, "morphology"], ["behaviour", labelling.data.behaviours, "behaviour"]]) {
+    const label = document.createElement("label");
+    const select = document.createElement("select");
+    select.dataset.kind = kind;
+    select.append(new Option("—", ""));
+    for (const c of classes) select.append(new Option(c, c));
+    select.value = (labelling.choices[it.id] || {})[kind] || "";
+    select.addEventListener("change", () => {
+      labelling.choices[it.id] = Object.assign({}, labelling.choices[it.id], { [kind]: select.value });
+      localStorage.setItem(labelling.key, JSON.stringify(labelling.choices));
+      labelProgress();
+    });
+    label.append(`${title} `, select);
+    bar.append(label);
+  }
+  const v = it.velocity == null ? "–" : it.velocity.toFixed(2);
+  const hint = document.createElement("span");
+  hint.className = "hint";
+  hint.textContent = `suggested: ${it.proposal[0]} / ${it.proposal[1]} · ${it.setting} run ${it.run} · velocity ${v} · voxels ${it.voxels}`;
+  bar.append(hint);
+  return bar;
+}
+
+function csvField(s) {
+  s = String(s);
+  return /[",\n]/.test(s) ? `"${s.replace(/"/g, '""')}"` : s;
+}
+
+// labels.csv as `vsrlab label`'s page writes it (robot paths relative to the labelling folder).
+function labelsCsv() {
+  const lines = ["robot,terrain,duration,transient,seed,shape,behaviour,id"];
+  for (const it of labelling.data.items) {
+    const c = labelling.choices[it.id] || {};
+    lines.push([it.robot, it.terrain, it.duration, it.transient, it.seed, c.shape || "", c.behaviour || "", it.id].map(csvField).join(","));
+  }
+  return lines.join("\n") + "\n";
+}
+
+function saveLabels() {
+  const a = document.createElement("a");
+  a.href = URL.createObjectURL(new Blob([labelsCsv()], { type: "text/csv" }));
+  a.download = "labels.csv";
+  document.body.appendChild(a);
+  a.click();
+  a.remove();
+}
+
 // ---------------------------------------------------------------- panes
 
 function addPane(replay, error, name) {
@@ -160,6 +247,7 @@ function addPane(replay, error, name) {
   el.style.setProperty("--pane-colour", pane.colour);
   const title = document.createElement("h2");
   title.textContent = replay ? replay.title : name;
+  title.title = title.textContent;
   el.appendChild(title);
   if (replay) {
     const canvas = document.createElement("canvas");
@@ -174,6 +262,7 @@ function addPane(replay, error, name) {
     p.textContent = `Cannot show this replay.\n${error}`;
     el.appendChild(p);
   }
+  if (replay && labelling.byId[name]) el.appendChild(labelBar(labelling.byId[name]));
   pane.el = el;
   document.getElementById("panes").appendChild(el);
   state.panes.push(pane);
@@ -625,6 +714,7 @@ async function start() {
   });
   window.addEventListener("resize", () => { state.chartsDirty = true; draw(); });
   requestAnimationFrame(loop);
+  await loadLabelling();
   let list = [];
   try {
     const response = await fetch("api/replays");

@@ -6,7 +6,7 @@
 
 use super::candidates::{candidates, Candidate};
 use super::classes::{check_classes, nearest_class, THESIS_BEHAVIOURS, THESIS_SHAPES};
-use super::label_page::{manifest_csv, page, Evidence, PageRobot};
+use super::label_page::{manifest_csv, page, page_data, Evidence, PageRobot};
 use super::thread_pool;
 use crate::diversity::{propose_behaviour, propose_shape};
 use crate::error::AnalysisError;
@@ -187,7 +187,10 @@ fn draw_sample(
     Ok((pool, picked))
 }
 
-/// Writes `manifest.csv`, `index.html` and, with `auto`, `labels.csv`; returns the paths of
+/// The labelling data (robots, classes) for the replay viewer, in a `vsrlab label` folder.
+pub const LABELLING_FILE: &str = "labelling.json";
+
+/// Writes `manifest.csv`, `labelling.json`, `index.html` and, with `auto`, `labels.csv`; returns the paths of
 /// the page and of the labels.
 fn write_page(
     options: &LabelOptions,
@@ -195,13 +198,15 @@ fn write_page(
     pool: &[Candidate],
 ) -> Result<(PathBuf, Option<PathBuf>), AnalysisError> {
     write_output(&options.out.join("manifest.csv"), manifest_csv(robots, pool).as_bytes())?;
-    let html = page(
+    let data = page_data(
         robots,
         pool,
         &options.shape_classes,
         &options.behaviour_classes,
         options.prefill,
     );
+    write_output(&options.out.join(LABELLING_FILE), data.to_string().as_bytes())?;
+    let html = page(&data);
     let index = options.out.join("index.html");
     write_output(&index, html.as_bytes())?;
     if !options.auto {

@@ -100,15 +100,16 @@ pub(crate) fn manifest_csv(robots: &[PageRobot], pool: &[Candidate]) -> String {
     s
 }
 
-/// `index.html`: the page with the robots' data, the classes and whether to pre-select the
-/// suggestions.
-pub(crate) fn page(
+/// The robots' data, the classes and whether to pre-select the suggestions: embedded in
+/// `index.html` and written as `labelling.json` for the replay viewer (`vsrlab view`), which
+/// offers the same choices beside each robot's replay.
+pub(crate) fn page_data(
     robots: &[PageRobot],
     pool: &[Candidate],
     shapes: &[String],
     behaviours: &[String],
     prefill: bool,
-) -> String {
+) -> serde_json::Value {
     let items: Vec<serde_json::Value> = robots
         .iter()
         .map(|e| {
@@ -123,12 +124,17 @@ pub(crate) fn page(
             })
         })
         .collect();
-    let data = serde_json::json!({ "items": items, "shapes": shapes, "behaviours": behaviours, "prefill": prefill });
+    serde_json::json!({ "items": items, "shapes": shapes, "behaviours": behaviours, "prefill": prefill })
+}
+
+/// `index.html`: the page with [`page_data`] embedded.
+pub(crate) fn page(data: &serde_json::Value) -> String {
+    let count = data["items"].as_array().map_or(0, Vec::len);
     // "</" cannot appear inside the script element.
-    let data = data.to_string().replace("</", "<\\/");
-    let key = serde_json::Value::from(format!("vsrlab-labels-{}", robots.len())).to_string();
-    PAGE.replace("/*DATA*/null", &data)
-        .replace("{{TITLE}}", &format!("vsrlab labelling: {} robots", robots.len()))
+    let text = data.to_string().replace("</", "<\\/");
+    let key = serde_json::Value::from(format!("vsrlab-labels-{count}")).to_string();
+    PAGE.replace("/*DATA*/null", &text)
+        .replace("{{TITLE}}", &format!("vsrlab labelling: {count} robots"))
         .replace("{{KEY}}", &key)
 }
 
@@ -138,13 +144,13 @@ mod tests {
 
     #[test]
     fn page_embeds_data_safely() {
-        let html = page(
+        let html = page(&page_data(
             &[],
             &[],
             &["a</script>".into(), "b".into()],
             &["c".into(), "d".into()],
             true,
-        );
+        ));
         assert!(html.starts_with("<!doctype html>"));
         assert!(html.contains("vsrlab labelling: 0 robots"));
         assert!(html.contains(r#"const KEY = "vsrlab-labels-0""#));

@@ -26,7 +26,7 @@ mod summary_page;
 pub use analyze::{analyze, AnalysisReport, AnalyzeOptions, FigureNote};
 pub use classes::{parse_classes, THESIS_BEHAVIOURS, THESIS_SHAPES};
 pub use inflation::{inflation, InflationOptions, InflationReport, InflationSummary};
-pub use label::{label, LabelOptions, LabelReport, VideoSpec, VideoWriter};
+pub use label::{label, LabelOptions, LabelReport, VideoSpec, VideoWriter, LABELLING_FILE};
 pub use modules::{modules, ModulesOptions, ModulesReport};
 pub use plasticity::{plasticity, PlasticityOptions, PlasticityReport};
 pub use reassemble::{

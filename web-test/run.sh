@@ -18,7 +18,7 @@ if [ ! -x "$CHROMIUM" ]; then
   fi
 fi
 if ! command -v node >/dev/null; then
-  echo "web-test/run.sh: needs Node.js 18 or later and npm (sudo apt-get install nodejs npm)" >&2
+  echo "web-test/run.sh: needs Node.js 20 or later and npm (sudo apt-get install nodejs npm)" >&2
   exit 1
 fi
 (cd web-test && npm ci --no-audit --no-fund --silent)

@@ -136,13 +136,17 @@ fn labelling_entries(dir: &Path, data: &[u8]) -> Result<Vec<ViewerEntry>, String
         .collect()
 }
 
-/// The viewer's entries for the command-line paths.
-fn entries(paths: &[PathBuf]) -> Result<Vec<ViewerEntry>, String> {
+/// The viewer's entries for the command-line paths, and the labelling data when the paths are
+/// one labelling folder.
+fn entries(paths: &[PathBuf]) -> Result<(Vec<ViewerEntry>, Option<Vec<u8>>), String> {
+    if let [one] = paths {
+        if let Some(data) = one.is_dir().then(|| labelling_of(one)).flatten() {
+            return Ok((labelling_entries(one, &data)?, Some(data)));
+        }
+    }
     let mut out = Vec::new();
     for path in paths {
-        if let Some(data) = path.is_dir().then(|| labelling_of(path)).flatten() {
-            out.extend(labelling_entries(path, &data)?);
-        } else if path.is_dir() {
+        if path.is_dir() {
             let mut found = Vec::new();
             collect(path, MAX_DEPTH, &mut found)?;
             if found.is_empty() {
@@ -174,7 +178,7 @@ fn entries(paths: &[PathBuf]) -> Result<Vec<ViewerEntry>, String> {
         e.shown &= shown < MAX_SHOWN;
         shown += usize::from(e.shown);
     }
-    Ok(out)
+    Ok((out, None))
 }
 
 fn entry(path: &Path, name: String, shown: bool) -> Result<ViewerEntry, String> {
@@ -191,11 +195,7 @@ fn entry(path: &Path, name: String, shown: bool) -> Result<ViewerEntry, String> 
 
 /// Runs `vsrlab view`.
 pub fn run(args: ViewArgs) -> Result<(), String> {
-    let entries = entries(&args.paths)?;
-    let labelling = match args.paths.as_slice() {
-        [one] if one.is_dir() => labelling_of(one),
-        _ => None,
-    };
+    let (entries, labelling) = entries(&args.paths)?;
     let count = entries.len();
     let listener = viewer::bind(args.port).map_err(|e| {
         if e.kind() == std::io::ErrorKind::AddrInUse {

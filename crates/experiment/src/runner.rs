@@ -10,6 +10,7 @@
 //! OUT/run-00/timings.csv         one row per generation: wall-clock columns
 //! OUT/run-00/snapshots/evaluations-0001000.jsonl   the population, every N evaluations
 //! OUT/run-00/best.robot.json     the best robot (a robot file)
+//! OUT/run-00/best.replay.json    its episode for the browser viewer (`vsrlab view`)
 //! OUT/run-00/summary.json        the run's result, timings and overhead (written at its end)
 //! OUT/run-00/checkpoint.json     optimizer + run state (while the run is unfinished)
 //! OUT/.vsrlab.lock               held by the process writing the folder

@@ -192,16 +192,38 @@ fn strided_steps(trace: &Trace, fps: f64) -> (Vec<usize>, usize) {
     ((0..trace.len()).step_by(stride).collect(), stride)
 }
 
-/// Values of a step-major array with `per_step` entries per step, at the kept steps.
-fn pick<T: Copy>(values: &[T], per_step: usize, steps: &[usize], to_f64: impl Fn(T) -> f64) -> Vec<f64> {
-    let mut out = Vec::with_capacity(steps.len() * per_step);
-    for &k in steps {
-        match values.get(k * per_step..(k + 1) * per_step) {
-            Some(row) => out.extend(row.iter().map(|&v| to_f64(v))),
-            None => out.extend(std::iter::repeat_n(f64::NAN, per_step)),
+/// The channels of a replay being built: each from a step-major trace array, at the kept steps.
+struct Channels<'a> {
+    steps: &'a [usize],
+    map: BTreeMap<String, Channel>,
+}
+
+impl Channels<'_> {
+    /// Adds channel `name` from `values` (`per_step` entries per recorded step), each entry
+    /// giving `W` numbers through `to`; rows the trace lacks become `fallback`. Nothing is added
+    /// for an empty array.
+    fn add<T: Copy, const W: usize>(
+        &mut self,
+        name: &str,
+        values: &[T],
+        per_step: usize,
+        (scale, fallback): (f64, f64),
+        to: impl Fn(T) -> [f64; W],
+    ) {
+        let per_frame = per_step * W;
+        if per_frame == 0 || values.is_empty() {
+            return;
         }
+        let mut out = Vec::with_capacity(self.steps.len() * per_frame);
+        for &k in self.steps {
+            match values.get(k * per_step..(k + 1) * per_step) {
+                Some(row) => out.extend(row.iter().flat_map(|&v| to(v))),
+                None => out.extend(std::iter::repeat_n(f64::NAN, per_frame)),
+            }
+        }
+        self.map
+            .insert(name.to_string(), Channel::encode(&out, per_frame, scale, fallback));
     }
-    out
 }
 
 fn point(p: Vec2) -> [f64; 2] {
@@ -229,98 +251,38 @@ impl Replay {
         let (steps, stride) = strided_steps(trace, options.fps);
         let side = crate::camera::side(trace);
         let quantum = side * options.quantum_per_side;
-        let mut channels = BTreeMap::new();
-        let mut add = |name: &str, values: Vec<f64>, per_frame: usize, scale: f64, fallback: f64| {
-            if per_frame > 0 && !values.is_empty() {
-                channels.insert(name.to_string(), Channel::encode(&values, per_frame, scale, fallback));
-            }
+        let mut c = Channels {
+            steps: &steps,
+            map: BTreeMap::new(),
         };
-        let corners = trace.corners_per_step();
-        let outline = pick(&trace.outlines, corners, &steps, |p| p.x)
-            .into_iter()
-            .zip(pick(&trace.outlines, corners, &steps, |p| p.y))
-            .flat_map(|(x, y)| [x, y])
-            .collect();
-        add("outline", outline, 2 * corners, quantum, 0.0);
-        let centers = steps
-            .iter()
-            .flat_map(|&k| trace.centers.get(k).map_or([f64::NAN; 2], |&c| point(c)))
-            .collect();
-        add("center", centers, 2, quantum, 0.0);
+        let (position, fine, coarse) = ((quantum, 0.0), (1e-3, 0.0), (1e-2, 0.0));
+        c.add("outline", &trace.outlines, trace.corners_per_step(), position, point);
+        c.add("center", &trace.centers, 1, position, point);
         let units = trace.voxels();
-        add(
-            "area_ratio",
-            pick(&trace.area_ratios, units, &steps, |v| v),
-            units,
-            1e-3,
-            1.0,
-        );
-        add(
-            "actuation",
-            pick(&trace.actuations, units, &steps, |v| v),
-            units,
-            1e-3,
-            0.0,
-        );
-        add(
-            "touch",
-            pick(&trace.touching, units, &steps, |b| f64::from(u8::from(b))),
-            units,
-            1.0,
-            0.0,
-        );
+        c.add("area_ratio", &trace.area_ratios, units, (1e-3, 1.0), |v| [v]);
+        c.add("actuation", &trace.actuations, units, fine, |v| [v]);
+        c.add("touch", &trace.touching, units, (1.0, 0.0), |b| {
+            [f64::from(u8::from(b))]
+        });
         if !trace.rays.is_empty() {
-            add("angle", pick(&trace.angles, units, &steps, |v| v), units, 1e-3, 0.0);
-            let rays = trace.rays.len();
-            add(
-                "lidar",
-                pick(&trace.ray_distances, rays, &steps, f64::from),
-                rays,
-                1e-2,
-                0.0,
-            );
+            c.add("angle", &trace.angles, units, fine, |v| [v]);
+            c.add("lidar", &trace.ray_distances, trace.rays.len(), coarse, |v| {
+                [f64::from(v)]
+            });
         }
         let readings: usize = trace.readings_per_voxel.iter().sum();
-        add(
-            "readings",
-            pick(&trace.readings, readings, &steps, f64::from),
-            readings,
-            1e-2,
-            0.0,
-        );
+        c.add("readings", &trace.readings, readings, coarse, |v| [f64::from(v)]);
         let attention = units * trace.attention_side * trace.attention_side;
-        add(
-            "attention",
-            pick(&trace.attention, attention, &steps, f64::from),
-            attention,
-            1e-2,
-            0.0,
-        );
+        c.add("attention", &trace.attention, attention, coarse, |v| [f64::from(v)]);
         let neurons = trace.graph_neurons.len();
-        add(
-            "graph_outputs",
-            pick(&trace.graph_outputs, neurons, &steps, f64::from),
-            neurons,
-            1e-3,
-            0.0,
-        );
+        c.add("graph_outputs", &trace.graph_outputs, neurons, fine, |v| [f64::from(v)]);
         if trace.pressures.iter().any(|&p| p != 0.0) {
-            add("pressure", pick(&trace.pressures, 1, &steps, f64::from), 1, 1e-3, 0.0);
+            c.add("pressure", &trace.pressures, 1, fine, |v| [f64::from(v)]);
         }
         let balls = trace.object_radii.len();
-        let ball_xy = pick(&trace.objects, balls, &steps, |o| o.0.x)
-            .into_iter()
-            .zip(pick(&trace.objects, balls, &steps, |o| o.0.y))
-            .flat_map(|(x, y)| [x, y])
-            .collect();
-        add("ball_xy", ball_xy, 2 * balls, quantum, 0.0);
-        add(
-            "ball_angle",
-            pick(&trace.objects, balls, &steps, |o| o.1),
-            balls,
-            1e-3,
-            0.0,
-        );
+        c.add("ball_xy", &trace.objects, balls, position, |o| point(o.0));
+        c.add("ball_angle", &trace.objects, balls, fine, |o| [o.1]);
+        let channels = c.map;
         let dt = if trace.dt > 0.0 { trace.dt } else { 1.0 / 60.0 };
         Ok(Replay {
             format: FORMAT.to_string(),

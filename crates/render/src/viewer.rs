@@ -27,8 +27,8 @@ const MAX_REQUEST: u64 = 16 * 1024;
 /// Makes a replay's JSON text on demand (e.g. by simulating a robot file).
 pub type ReplayMaker = Box<dyn Fn() -> Result<Vec<u8>, String> + Send + Sync>;
 
-/// A replay's bytes, or why it could not be made; made once and shared.
-type Made = Arc<Result<Vec<u8>, String>>;
+/// A replay's bytes, or why it could not be made; made once and shared by every request.
+type Made = Result<Arc<Vec<u8>>, String>;
 
 /// Where a listed replay comes from.
 pub enum ReplaySource {
@@ -117,8 +117,8 @@ impl Viewer {
         let made = match &entry.source {
             ReplaySource::File(path) => std::fs::read(path).map_err(|e| format!("{}: {e}", path.display())),
             ReplaySource::Make(make) => make(),
-        };
-        let made = Arc::new(made);
+        }
+        .map(Arc::new);
         self.cache.lock().ok()?.insert(index, made.clone());
         Some(made)
     }
@@ -137,14 +137,12 @@ impl Viewer {
             },
             _ => match path.strip_prefix("/replay/").and_then(|i| i.parse::<usize>().ok()) {
                 Some(i) => match self.replay(i) {
-                    Some(made) => match made.as_ref() {
-                        Ok(bytes) => Response {
-                            status: "200 OK",
-                            content_type: "application/json",
-                            body: Arc::new(bytes.clone()),
-                        },
-                        Err(e) => Response::text("500 Internal Server Error", e.clone()),
+                    Some(Ok(bytes)) => Response {
+                        status: "200 OK",
+                        content_type: "application/json",
+                        body: bytes,
                     },
+                    Some(Err(e)) => Response::text("500 Internal Server Error", e),
                     None => Response::text("404 Not Found", format!("no replay {i}")),
                 },
                 None => Response::text(

@@ -1,10 +1,12 @@
 //! The fidelity tables of docs/fidelity.md, side by side with the original simulator's ensembles
 //! (vsr-model.md §9.1): phase-gait velocities over 30 starts shifted by k·10⁻⁶ (k = ±1 … ±15),
 //! the time two starts 10⁻⁶ apart take to part by 10⁻³, and the biped's sensor readings at step
-//! 300. Usage: `cargo run --release -p vsrlab-cli --example fidelity [-- N]` (N starts, default 30).
+//! 300. Usage: `cargo run --release -p vsrlab-cli --example fidelity [-- N] [--solver S]` (N starts,
+//! default 30; S = soft-substeps or sequential-impulses, default the task's default).
 use vsrlab_body::sensors::SensorConfig;
 use vsrlab_body::{Morphology, Preset};
 use vsrlab_brain::BrainSpec;
+use vsrlab_physics::{ContactPositionMass, Solver};
 use vsrlab_tasks::ensemble::{self, Summary};
 use vsrlab_tasks::{episode, Locomotion, RobotSpec, TaskSpec, TraceLevel};
 
@@ -65,8 +67,16 @@ fn robot(body: &str, preset: Preset) -> RobotSpec {
     }
 }
 
-fn task() -> TaskSpec {
-    TaskSpec::Locomotion(Locomotion::default())
+/// Flat locomotion for 30 s, stepped by `solver`; the sequential-impulse solver weighs contact
+/// position corrections as the preset's dyn4j version does.
+fn task(preset: Preset, solver: Solver) -> TaskSpec {
+    let mut l = Locomotion::default();
+    l.physics.solver = solver;
+    l.physics.contact_position_mass = match preset {
+        Preset::Y2021 => ContactPositionMass::Unit,
+        _ => ContactPositionMass::Actual,
+    };
+    TaskSpec::Locomotion(l)
 }
 
 fn fmt(s: &Summary) -> String {
@@ -76,12 +86,19 @@ fn fmt(s: &Summary) -> String {
     )
 }
 
-fn velocities(n: usize) {
+fn velocities(n: usize, solver: Solver) {
     println!("| preset | body | side | mean v | sd v | median v | IQR v | min … max v | median in the original's IQR | IQRs overlap |");
     println!("|---|---|---|---:|---:|---:|---|---|---|---|");
     for r in &REFERENCES {
         let robot = robot(r.body, r.preset);
-        let values = ensemble::run_shifted(&robot, &task(), &ensemble::shifts(n, 1e-6), 0, "velocity").unwrap();
+        let values = ensemble::run_shifted(
+            &robot,
+            &task(r.preset, solver),
+            &ensemble::shifts(n, 1e-6),
+            0,
+            "velocity",
+        )
+        .unwrap();
         let s = Summary::of(&values).unwrap();
         let [mean, sd, median, q1, q3, min, max] = r.v;
         let inside = s.median >= q1 && s.median <= q3;
@@ -101,12 +118,12 @@ fn velocities(n: usize) {
     }
 }
 
-fn parting() {
+fn parting(solver: Solver) {
     println!("| preset | body | original (s) | vsrlab (s) |");
     println!("|---|---|---:|---:|");
     for r in &REFERENCES {
         let robot = robot(r.body, r.preset);
-        let ours = ensemble::parting_time(&robot, &task(), 1e-6, 1e-3, 0).unwrap();
+        let ours = ensemble::parting_time(&robot, &task(r.preset, solver), 1e-6, 1e-3, 0).unwrap();
         let show = |t: Option<f64>| t.map_or("—".to_string(), |t| format!("{t:.3}"));
         println!("| {} | {} | {} | {} |", r.preset, r.body, show(r.parting), show(ours));
     }
@@ -118,7 +135,7 @@ fn mean_sd(values: &[f64]) -> String {
     format!("{:.4} ± {:.4}", s.mean, s.sd)
 }
 
-fn readings(n: usize) {
+fn readings(n: usize, solver: Solver) {
     println!("| quantity | 2021 original | 2021 vsrlab | 2022 original | 2022 vsrlab |");
     println!("|---|---|---|---|---|");
     let originals = [
@@ -142,7 +159,7 @@ fn readings(n: usize) {
         let mut rows: Vec<Vec<f64>> = vec![Vec::new(); 5];
         let mut lidar: Vec<Vec<f64>> = vec![Vec::new(); 5];
         for shift in ensemble::shifts(n, 1e-6) {
-            let t = ensemble::shifted_task(&task(), shift).unwrap();
+            let t = ensemble::shifted_task(&task(preset, solver), shift).unwrap();
             let trace = episode::run(&robot, t.task(), 0, TraceLevel::Full)
                 .unwrap()
                 .trace
@@ -187,11 +204,37 @@ fn readings(n: usize) {
 }
 
 fn main() {
-    let n: usize = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(30);
-    println!("Phase-gait velocity over {n} starts shifted by k·1e-6 (flat, 30 s):\n");
-    velocities(n);
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut n = 30;
+    let mut solver = Solver::default();
+    let mut i = 0;
+    while i < args.len() {
+        if args[i] == "--solver" {
+            let name = args.get(i + 1).map(String::as_str).unwrap_or("");
+            solver = match name {
+                "soft-substeps" => Solver::SoftSubsteps,
+                "sequential-impulses" => Solver::SequentialImpulses,
+                _ => {
+                    eprintln!("--solver: expected soft-substeps or sequential-impulses, got '{name}'");
+                    std::process::exit(2);
+                }
+            };
+            i += 2;
+        } else {
+            n = match args[i].parse() {
+                Ok(n) => n,
+                Err(_) => {
+                    eprintln!("expected the number of starts or --solver, got '{}'", args[i]);
+                    std::process::exit(2);
+                }
+            };
+            i += 1;
+        }
+    }
+    println!("Solver: {solver:?}. Phase-gait velocity over {n} starts shifted by k·1e-6 (flat, 30 s):\n");
+    velocities(n, solver);
     println!("\nTime until the centre x of two starts 1e-6 apart differ by more than 1e-3:\n");
-    parting();
+    parting(solver);
     println!("\nbiped-4x3 at step 300 (t = 5 s), mean ± sd over the {n} starts:\n");
-    readings(n);
+    readings(n, solver);
 }

@@ -5,12 +5,30 @@ mod common;
 use common::*;
 use vsrlab_body::Preset;
 use vsrlab_brain::{BrainSpec, ConstantSpec};
-use vsrlab_tasks::{episode, TraceLevel};
+use vsrlab_physics::{ContactPositionMass, Solver};
+use vsrlab_tasks::{episode, Locomotion, TraceLevel};
+
+/// Flat ground for `duration` s, stepped by `solver` (the sequential-impulse solver weighing its
+/// contact position pass as the preset's dyn4j version does).
+fn solver_task(preset: Preset, solver: Solver, duration: f64) -> Locomotion {
+    let mut t = task("flat", duration);
+    t.physics.solver = solver;
+    t.physics.contact_position_mass = match preset {
+        Preset::Y2021 => ContactPositionMass::Unit,
+        _ => ContactPositionMass::Actual,
+    };
+    t
+}
 
 /// Mean area ratio at the last step and (min, max) over the last 2 s, plus centre y at the end and
 /// the lowest voxel corner at the first step.
 fn calibrate(body: &str, preset: Preset, brain: BrainSpec) -> (f64, f64, f64, f64, f64, u64) {
-    let o = episode::run(&robot(body, preset, brain), &task("flat", 5.0), 0, TraceLevel::Full).unwrap();
+    calibrate_with(body, preset, brain, Solver::SoftSubsteps)
+}
+
+fn calibrate_with(body: &str, preset: Preset, brain: BrainSpec, solver: Solver) -> (f64, f64, f64, f64, f64, u64) {
+    let t = solver_task(preset, solver, 5.0);
+    let o = episode::run(&robot(body, preset, brain), &t, 0, TraceLevel::Full).unwrap();
     let tr = o.trace.unwrap();
     let n = tr.voxels();
     let mean = |k: usize| tr.area_ratios[k * n..(k + 1) * n].iter().sum::<f64>() / n as f64;
@@ -65,27 +83,36 @@ const REFERENCES: [Reference; 4] = [
 
 #[test]
 fn constant_and_sine_actuation_match_reference_area_ratios() {
+    calibration_matches(Solver::SoftSubsteps);
+}
+
+#[test]
+fn the_sequential_impulse_solver_matches_the_reference_area_ratios_too() {
+    calibration_matches(Solver::SequentialImpulses);
+}
+
+fn calibration_matches(solver: Solver) {
     for (body, preset, a0, a_pos, a_neg, sine_range, rest_y) in REFERENCES {
-        let what = |s: &str| format!("{body} preset {preset} {s}");
+        let what = |s: &str| format!("{body} preset {preset} ({solver:?}) {s}");
         let (a, _, _, y, first_min_y, steps) =
-            calibrate(body, preset, BrainSpec::Constant(ConstantSpec { value: 0.0 }));
+            calibrate_with(body, preset, BrainSpec::Constant(ConstantSpec { value: 0.0 }), solver);
         assert_eq!(steps, 301, "5 s at 1/60 s is 301 steps, as in the original");
         within(a, a0, 0.01, &what("f = 0 area"));
         // rest height and first-step fall within 2 %
         within(y, rest_y, 0.02 * rest_y, &what("centre y at rest"));
         let fall = 6.0 - first_min_y;
         within(fall, 6.0 - 5.9973, 0.02 * (6.0 - 5.9973), &what("first-step fall"));
-        let a_plus = calibrate(body, preset, BrainSpec::Constant(ConstantSpec { value: 1.0 })).0;
-        let a_minus = calibrate(body, preset, BrainSpec::Constant(ConstantSpec { value: -1.0 })).0;
+        let a_plus = calibrate_with(body, preset, BrainSpec::Constant(ConstantSpec { value: 1.0 }), solver).0;
+        let a_minus = calibrate_with(body, preset, BrainSpec::Constant(ConstantSpec { value: -1.0 }), solver).0;
         within(a_plus, a_pos, 0.01, &what("f = +1 area"));
         within(a_minus, a_neg, 0.01, &what("f = -1 area"));
         println!(
-            "{body} {preset}: f=0 {a:.4} (ref {a0}), f=+1 {a_plus:.4} (ref {a_pos}), f=-1 {a_minus:.4} (ref {a_neg}), \
+            "{body} {preset} {solver:?}: f=0 {a:.4} (ref {a0}), f=+1 {a_plus:.4} (ref {a_pos}), f=-1 {a_minus:.4} (ref {a_neg}), \
              rest y {y:.4} (ref {rest_y}), first-step min y {first_min_y:.4} (ref 5.9973)"
         );
         if let Some((lo_ref, hi_ref)) = sine_range {
-            let (_, lo, hi, ..) = calibrate(body, preset, sine());
-            println!("{body} {preset}: 1 Hz sine [{lo:.4}, {hi:.4}] (ref [{lo_ref}, {hi_ref}])");
+            let (_, lo, hi, ..) = calibrate_with(body, preset, sine(), solver);
+            println!("{body} {preset} {solver:?}: 1 Hz sine [{lo:.4}, {hi:.4}] (ref [{lo_ref}, {hi_ref}])");
             within(lo, lo_ref, 0.01, &what("1 Hz sine min area"));
             within(hi, hi_ref, 0.01, &what("1 Hz sine max area"));
         }

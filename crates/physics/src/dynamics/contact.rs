@@ -42,6 +42,10 @@ pub(crate) struct ContactConstraint {
     pub restitution: f64,
     pub points: [ContactPoint; 2],
     pub count: usize,
+    /// The manifold's point ids (see [`crate::geometry::collide::ManifoldPoint::id`]).
+    pub ids: [u32; 2],
+    /// Which pair of shapes touches (static polygons included), to recognise it next step.
+    pub key: u64,
 }
 
 impl ContactConstraint {
@@ -86,6 +90,7 @@ impl ContactConstraint {
             let kt = ma + mb + ia * rta * rta + ib * rtb * rtb;
             let va = bodies.state[ai].vel + Vec2::cross_scalar_left(bodies.state[ai].omega, ra);
             let vb = bodies.state[bi].vel + Vec2::cross_scalar_left(bodies.state[bi].omega, rb);
+            c.ids[i] = mp.id;
             c.points[i] = ContactPoint {
                 local_a: bodies.state[ai].rot.apply_inv(ra),
                 local_b: bodies.state[bi].rot.apply_inv(rb),

@@ -10,6 +10,7 @@ pub(crate) mod contact;
 pub(crate) mod contact_batch;
 pub mod pressure;
 pub(crate) mod rope;
+pub(crate) mod sequential;
 pub mod settings;
 pub(crate) mod simd;
 pub(crate) mod soft;

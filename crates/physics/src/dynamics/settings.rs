@@ -15,6 +15,31 @@ pub enum SpringMassModel {
     ReducedMass,
 }
 
+/// Which constraint solver steps the world.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Solver {
+    /// vsrlab's own solver: welded parts merged into rigid bodies, soft contacts with a speculative
+    /// margin, `substeps` sub-steps per step. Fast; matches the original's calibration figures.
+    #[default]
+    SoftSubsteps,
+    /// dyn4j's pipeline (the engine of 2D-VSR-Sim): every part its own body, welds as rigid joints,
+    /// contacts only between overlapping shapes, sequential impulses with warm starting
+    /// (`velocity_iterations`), then a position pass (`position_iterations`, Baumgarte, slop).
+    SequentialImpulses,
+}
+
+/// How dyn4j's position pass over contacts weighs the two bodies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum ContactPositionMass {
+    /// Every dynamic body counts as mass 1 and inertia I/m (dyn4j 3.3.0, preset 2021).
+    #[default]
+    Unit,
+    /// The bodies' own masses and inertias (dyn4j 4.x, preset 2022).
+    Actual,
+}
+
 /// Settings shared by the whole world. Units are the world's nominal units (length, mass, s).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -47,6 +72,24 @@ pub struct WorldSettings {
     pub speculative_distance: f64,
     /// Gap (length) under which a shape counts as touching another.
     pub touch_tolerance: f64,
+    /// Which solver steps the world; the fields below apply to `sequential-impulses` only.
+    pub solver: Solver,
+    /// Velocity iterations per step (joints, then contacts, each iteration).
+    pub velocity_iterations: u32,
+    /// Most position iterations per step (stops early once every constraint is within tolerance).
+    pub position_iterations: u32,
+    /// Whether contact and joint impulses of the last step start this step's solve.
+    pub warm_starting: bool,
+    /// Fraction of the contact overlap the position pass removes per iteration.
+    pub baumgarte: f64,
+    /// Overlap (length) that contacts keep (dyn4j's linear tolerance).
+    pub linear_slop: f64,
+    /// Angle (radians) within which a weld counts as solved.
+    pub angular_slop: f64,
+    /// Largest position correction (length) of one contact or rope per iteration.
+    pub max_linear_correction: f64,
+    /// How the contact position pass weighs bodies.
+    pub contact_position_mass: ContactPositionMass,
 }
 
 impl Default for WorldSettings {
@@ -65,6 +108,15 @@ impl Default for WorldSettings {
             restitution_threshold: 1.0,
             speculative_distance: 0.1,
             touch_tolerance: 0.005,
+            solver: Solver::SoftSubsteps,
+            velocity_iterations: 10,
+            position_iterations: 10,
+            warm_starting: true,
+            baumgarte: 0.2,
+            linear_slop: 0.005,
+            angular_slop: 2f64.to_radians(),
+            max_linear_correction: 0.2,
+            contact_position_mass: ContactPositionMass::Unit,
         }
     }
 }
@@ -79,6 +131,8 @@ impl WorldSettings {
             ("contact_hertz", self.contact_hertz),
             ("contact_damping_ratio", self.contact_damping_ratio),
             ("contact_push_max", self.contact_push_max),
+            ("baumgarte", self.baumgarte),
+            ("max_linear_correction", self.max_linear_correction),
         ];
         for (name, v) in positive {
             if !(v.is_finite() && v > 0.0) {
@@ -90,6 +144,8 @@ impl WorldSettings {
             ("speculative_distance", self.speculative_distance),
             ("substep_travel", self.substep_travel),
             ("touch_tolerance", self.touch_tolerance),
+            ("linear_slop", self.linear_slop),
+            ("angular_slop", self.angular_slop),
         ];
         for (name, v) in non_negative {
             if !(v.is_finite() && v >= 0.0) {
@@ -101,6 +157,18 @@ impl WorldSettings {
         }
         if self.iterations == 0 || self.iterations > 64 {
             return Err(format!("iterations must be in 1..=64, got {}", self.iterations));
+        }
+        if self.velocity_iterations == 0 || self.velocity_iterations > 1000 {
+            return Err(format!(
+                "velocity_iterations must be in 1..=1000, got {}",
+                self.velocity_iterations
+            ));
+        }
+        if self.position_iterations > 1000 {
+            return Err(format!(
+                "position_iterations must be in 0..=1000, got {}",
+                self.position_iterations
+            ));
         }
         if !self.gravity.is_finite() {
             return Err("gravity must be finite".into());

@@ -6,7 +6,8 @@ use super::contact::{apply_restitution, ContactConstraint, ContactPass, ContactS
 use super::contact_batch::ContactBatches;
 use super::pressure::PressureRing;
 use super::rope::{rope_batches, solve_ropes, Rope, RopeBatch};
-use super::settings::WorldSettings;
+use super::sequential::{self, Rope as SequentialRope, SequentialSolver, Spring as SequentialSpring, Weld};
+use super::settings::{Solver, WorldSettings};
 use super::soft::Softness;
 use super::spring::{Spring, SpringModel, SpringSet};
 use crate::geometry::aabb::Aabb;
@@ -165,6 +166,11 @@ pub struct World {
     sap: SweepAndPrune,
     step_count: u64,
     time: f64,
+    /// The joints and contacts of the sequential-impulse solver, when the world uses it.
+    sequential: Option<SequentialSolver>,
+    /// Whether `contacts` hold the present positions' contacts (the sequential-impulse solver
+    /// detects them at the end of each step, for the next one).
+    contacts_fresh: bool,
 }
 
 /// A permutation of constraints (given as body pairs) grouped by greedy colour, and the range of
@@ -232,7 +238,10 @@ impl World {
     pub(crate) fn from_builder(b: WorldBuilder) -> World {
         let n = b.parts.len();
         let mut parent: Vec<usize> = (0..n).collect();
-        for &(x, y) in &b.welds {
+        // the sequential-impulse solver keeps every part a body of its own, joined by weld joints
+        let merge_welds = b.settings.solver == Solver::SoftSubsteps;
+        let mut sequential = (!merge_welds).then(SequentialSolver::default);
+        for &(x, y) in b.welds.iter().filter(|_| merge_welds) {
             let (rx, ry) = (find(&mut parent, x.0 as usize), find(&mut parent, y.0 as usize));
             if rx != ry {
                 parent[rx.max(ry)] = rx.min(ry);
@@ -339,6 +348,20 @@ impl World {
             let (ma, mb) = (props[pa].0, props[pb].0);
             let world_a = b.parts[pa].position + s.anchor_a;
             let world_b = b.parts[pb].position + s.anchor_b;
+            if let Some(si) = &mut sequential {
+                spring_slot.push(si.joints.springs.len() as u32);
+                si.joints.springs.push(SequentialSpring::new(
+                    ba,
+                    bb,
+                    world_a - bodies.state[ba as usize].pos,
+                    world_b - bodies.state[bb as usize].pos,
+                    s.rest_length,
+                    s.frequency,
+                    s.damping_ratio,
+                    s.mass_model,
+                ));
+                continue;
+            }
             spring_slot.push(springs.len() as u32);
             springs.push(Spring {
                 a: ba,
@@ -379,6 +402,19 @@ impl World {
                 rope_slot.push(NONE);
                 continue;
             }
+            let world_a = b.parts[pa].position + r.anchor_a;
+            let world_b = b.parts[pb].position + r.anchor_b;
+            if let Some(si) = &mut sequential {
+                rope_slot.push(si.joints.ropes.len() as u32);
+                si.joints.ropes.push(SequentialRope::new(
+                    ba,
+                    bb,
+                    world_a - bodies.state[ba as usize].pos,
+                    world_b - bodies.state[bb as usize].pos,
+                    r.min_length,
+                ));
+                continue;
+            }
             rope_slot.push(ropes.len() as u32);
             ropes.push(Rope {
                 a: ba,
@@ -390,6 +426,22 @@ impl World {
                 active: true,
             });
         }
+        if let Some(si) = &mut sequential {
+            // welded parts never collide; the weld's anchor is the first part's centre of mass
+            // (2D-VSR-Sim's, vsr-model.md §1.8)
+            for &(x, y) in &b.welds {
+                excluded.push((x.0, y.0));
+                let (ba, bb) = (part_body[x.0 as usize], part_body[y.0 as usize]);
+                let anchor = bodies.state[ba as usize].pos;
+                si.joints.welds.push(Weld::new(
+                    ba,
+                    bb,
+                    Vec2::ZERO,
+                    anchor - bodies.state[bb as usize].pos,
+                    0.0,
+                ));
+            }
+        }
         let excluded = ExcludedPairs::new(n, excluded);
         // order constraints so that neighbours in the solver loop touch different bodies: the
         // result is the same Gauss–Seidel sweep, but the CPU can overlap independent constraints
@@ -397,13 +449,18 @@ impl World {
         let springs: Vec<Spring> = order.iter().map(|&i| springs[i]).collect();
         let spring_models: Vec<SpringModel> = order.iter().map(|&i| spring_models[i]).collect();
         let (springs, batch_slot) = SpringSet::new(&springs, &spring_models, &ranges, &bodies);
-        remap_slots(&mut spring_slot, &order);
-        for s in spring_slot.iter_mut().filter(|s| **s != NONE) {
-            *s = batch_slot[*s as usize];
+        // (the sequential-impulse solver's slots index its own lists, which keep their order)
+        if sequential.is_none() {
+            remap_slots(&mut spring_slot, &order);
+            for s in spring_slot.iter_mut().filter(|s| **s != NONE) {
+                *s = batch_slot[*s as usize];
+            }
         }
         let (order, rope_ranges) = color_order(&ropes.iter().map(|r| (r.a, r.b)).collect::<Vec<_>>());
         let ropes: Vec<Rope> = order.iter().map(|&i| ropes[i].clone()).collect();
-        remap_slots(&mut rope_slot, &order);
+        if sequential.is_none() {
+            remap_slots(&mut rope_slot, &order);
+        }
         let mut shapes = shapes;
         shapes.sort_by_key(|s| s.body);
         let mut body_shapes = vec![(0u32, 0u32); bodies.len()];
@@ -470,6 +527,8 @@ impl World {
             contact_batches: ContactBatches::default(),
             step_count: 0,
             time: 0.0,
+            sequential,
+            contacts_fresh: false,
         }
     }
 
@@ -500,6 +559,9 @@ impl World {
 
     /// Advances the world by one time step `dt`.
     pub fn step(&mut self) -> Result<(), PhysicsError> {
+        if self.sequential.is_some() {
+            return self.step_sequential();
+        }
         self.apply_pressure();
         self.integrate_velocities();
         self.detect_contacts();
@@ -519,11 +581,42 @@ impl World {
         self.check_finite()
     }
 
+    /// One step of the sequential-impulse solver (dyn4j's order, see [`sequential`]).
+    fn step_sequential(&mut self) -> Result<(), PhysicsError> {
+        self.apply_pressure();
+        if !self.contacts_fresh {
+            self.detect_sequential_contacts();
+        }
+        self.integrate_velocities();
+        let params = sequential::Params::of(&self.settings);
+        if let Some(si) = &mut self.sequential {
+            si.solve(&mut self.bodies, &params);
+        }
+        self.detect_sequential_contacts();
+        self.update_touching();
+        self.step_count += 1;
+        self.time += self.settings.dt;
+        self.check_finite()
+    }
+
+    /// Detects the contacts of the present positions and hands them to the sequential solver.
+    fn detect_sequential_contacts(&mut self) {
+        self.detect_contacts();
+        if let Some(si) = &mut self.sequential {
+            si.contacts
+                .collect(&self.contacts, &self.bodies, self.settings.warm_starting);
+        }
+        self.contacts_fresh = true;
+    }
+
     /// Adds every pressure ring's forces, from the positions at the start of the step.
     fn apply_pressure(&mut self) {
-        let springs = &self.springs;
+        let (springs, sequential) = (&self.springs, &self.sequential);
         for ring in &self.rings {
-            ring.apply(&mut self.bodies, |slot| springs.rest(slot));
+            ring.apply(&mut self.bodies, |slot| match sequential {
+                Some(si) => si.joints.springs[slot as usize].rest,
+                None => springs.rest(slot),
+            });
         }
     }
 
@@ -549,14 +642,20 @@ impl World {
         self.contacts.clear();
         // speculative margin of each shape: the base gap plus how far its body may travel this
         // step, so fast bodies meet contacts before they overlap (no tunnelling or deep overlaps)
-        let base = self.settings.speculative_distance;
+        // the sequential-impulse solver (like dyn4j) only knows shapes that overlap
+        let speculative = self.settings.solver == Solver::SoftSubsteps;
+        let base = if speculative {
+            self.settings.speculative_distance
+        } else {
+            0.0
+        };
         let dt = self.settings.dt;
         for (k, s) in self.shapes.iter().enumerate() {
             let st = &self.bodies.state[s.body as usize];
             let poly = &mut self.world_polys[k];
             poly.set_transformed(&s.local, st.rot, st.pos);
             let reach = s.radius * st.omega.abs() + st.vel.length();
-            self.margins[k] = 0.5 * base + reach * dt;
+            self.margins[k] = if speculative { 0.5 * base + reach * dt } else { 0.0 };
             self.aabbs[k] = Aabb::of_points(poly.verts()).inflated(self.margins[k] + poly.radius);
         }
         for (b, &(lo, hi)) in self.body_shapes.iter().enumerate().skip(1) {
@@ -593,7 +692,8 @@ impl World {
             for k in lo as usize..hi as usize {
                 let s = &shapes[k];
                 let bb = aabbs[k].inflated(0.5 * base);
-                for st in &statics[static_index.candidates(bb.min.x, bb.max.x)] {
+                let range = static_index.candidates(bb.min.x, bb.max.x);
+                for (static_id, st) in range.clone().zip(&statics[range]) {
                     if !bb.overlaps(&st.aabb) {
                         continue;
                     }
@@ -602,16 +702,10 @@ impl World {
                     if m.count > 0 {
                         let friction = (st.friction * s.friction).sqrt();
                         let restitution = st.restitution.max(s.restitution);
-                        contacts.push(ContactConstraint::new(
-                            bodies,
-                            &m,
-                            NONE,
-                            k as u32,
-                            0,
-                            s.body,
-                            friction,
-                            restitution,
-                        ));
+                        let mut c =
+                            ContactConstraint::new(bodies, &m, NONE, k as u32, 0, s.body, friction, restitution);
+                        c.key = static_contact_key(static_id, k);
+                        contacts.push(c);
                     }
                 }
             }
@@ -649,7 +743,7 @@ impl World {
                         if m.count > 0 {
                             let friction = (si.friction * sj.friction).sqrt();
                             let restitution = si.restitution.max(sj.restitution);
-                            contacts.push(ContactConstraint::new(
+                            let mut c = ContactConstraint::new(
                                 bodies,
                                 &m,
                                 i as u32,
@@ -658,7 +752,9 @@ impl World {
                                 sj.body,
                                 friction,
                                 restitution,
-                            ));
+                            );
+                            c.key = ((i as u64) << 32) | j as u64;
+                            contacts.push(c);
                         }
                     }
                 }
@@ -824,19 +920,27 @@ impl World {
         for s in &mut self.bodies.state[1..] {
             s.pos += delta;
         }
+        self.contacts_fresh = false;
     }
     /// Sets a spring's rest length (takes effect at the next step).
     #[inline]
     pub fn set_spring_rest_length(&mut self, h: SpringHandle, rest: f64) {
         let slot = self.spring_slot[h.0 as usize];
-        if slot != NONE {
-            self.springs.set_rest(slot, rest);
+        if slot == NONE {
+            return;
+        }
+        match &mut self.sequential {
+            Some(si) => si.joints.springs[slot as usize].rest = rest,
+            None => self.springs.set_rest(slot, rest),
         }
     }
     /// A spring's current rest length (`None` when its two parts were welded together).
     pub fn spring_rest_length(&self, h: SpringHandle) -> Option<f64> {
         let slot = self.spring_slot[h.0 as usize];
-        (slot != NONE).then(|| self.springs.rest(slot))
+        (slot != NONE).then(|| match &self.sequential {
+            Some(si) => si.joints.springs[slot as usize].rest,
+            None => self.springs.rest(slot),
+        })
     }
     /// Sets a pressure ring's pressure (acts from the next step on).
     pub fn set_ring_pressure(&mut self, h: RingHandle, pressure: f64) {
@@ -887,6 +991,12 @@ impl World {
     pub fn total_mass(&self) -> f64 {
         self.bodies.mass[1..].iter().sum()
     }
+}
+
+/// The key of a contact between static polygon `static_id` and dynamic shape `shape`: distinct
+/// from every shape–shape key (whose high half is a shape index, far below 2³¹).
+fn static_contact_key(static_id: usize, shape: usize) -> u64 {
+    (1 << 63) | ((static_id as u64) << 32) | shape as u64
 }
 
 /// The shapes of one body (by index within the body) whose boxes reach a given box, in order.

@@ -10,6 +10,24 @@ pub struct ManifoldPoint {
     pub point: Vec2,
     /// Signed distance along the normal (negative when overlapping).
     pub separation: f64,
+    /// Which features made the point (reference edge, incident edge, incident vertex, which shape
+    /// was the reference), so that a point can be recognised in the next step; 0 for circles.
+    pub id: u32,
+}
+
+impl ManifoldPoint {
+    /// Whether the second shape's edge was the reference edge (the first shape's vertex clipped).
+    pub fn flipped(&self) -> bool {
+        self.id & FLIPPED != 0
+    }
+}
+
+/// Bit of [`ManifoldPoint::id`] set when the second shape holds the reference edge.
+const FLIPPED: u32 = 1 << 24;
+
+/// The id of a clipped point: edges and vertex in the low bytes, offset by one so that 0 stays free.
+fn point_id(ref_edge: usize, inc_edge: usize, vertex: usize, flip: bool) -> u32 {
+    1 + ref_edge as u32 + ((inc_edge as u32) << 8) + ((vertex as u32) << 16) + if flip { FLIPPED } else { 0 }
 }
 
 /// Up to two contact points sharing one normal, which points from the first shape to the second.
@@ -90,11 +108,13 @@ pub fn collide_polygons(a: &Polygon, b: &Polygon, margin: f64) -> Manifold {
         return out;
     }
     let normal = if flip { -n_ref } else { n_ref };
-    for p in [p1, p2] {
+    for (k, p) in [p1, p2].into_iter().enumerate() {
         let separation = n_ref.dot(p - r1);
         if separation <= margin {
             let point = p - n_ref * (0.5 * separation);
-            out.points[out.count] = ManifoldPoint { point, separation };
+            let vertex = (inc_edge + k) % incident.count;
+            let id = point_id(ref_edge, inc_edge, vertex, flip);
+            out.points[out.count] = ManifoldPoint { point, separation, id };
             out.count += 1;
         }
     }
@@ -129,6 +149,7 @@ fn collide_with_circle(a: &Polygon, b: &Polygon, margin: f64) -> Manifold {
     out.points[0] = ManifoldPoint {
         point: point_on_a + normal * (0.5 * separation),
         separation,
+        id: 0,
     };
     out.count = 1;
     out

@@ -1,0 +1,127 @@
+//! Behaviour of the sequential-impulse solver on small scenes with known answers.
+
+use crate::dynamics::settings::{Solver, WorldSettings};
+use crate::{PartDesc, Polygon, SpringDesc, Vec2, World, WorldBuilder};
+
+fn settings() -> WorldSettings {
+    WorldSettings {
+        solver: Solver::SequentialImpulses,
+        ..WorldSettings::default()
+    }
+}
+
+/// Ground: a static box whose top is at y = 5.
+fn with_ground(b: &mut WorldBuilder) {
+    let ground = Polygon::rect(Vec2::new(0.0, -20.0), 50.0, 25.0);
+    b.add_static_polygon(ground, 0.2, 0.0);
+}
+
+fn square(centre: Vec2, side: f64) -> PartDesc {
+    PartDesc::new(centre, Polygon::square(Vec2::ZERO, side))
+        .density(0.25)
+        .friction(10.0)
+        .restitution(0.1)
+        .damping(0.1, 0.1)
+}
+
+fn run(world: &mut World, steps: usize) {
+    for _ in 0..steps {
+        world.step().expect("finite");
+    }
+}
+
+#[test]
+fn a_free_square_falls_one_step_of_gravity() {
+    let mut b = WorldBuilder::new(settings());
+    let h = b.add_part(square(Vec2::new(0.0, 10.0), 1.2));
+    let mut w = b.build().unwrap();
+    w.step().unwrap();
+    let dt = 1.0 / 60.0;
+    // v = g·dt (damped once), then x += v·dt
+    let expected = 10.0 - 9.8 * dt * (1.0 - 0.1 * dt) * dt;
+    assert!((w.part_position(h).y - expected).abs() < 1e-12);
+}
+
+#[test]
+fn a_square_comes_to_rest_on_the_ground_overlapping_by_about_the_slop() {
+    let mut b = WorldBuilder::new(settings());
+    with_ground(&mut b);
+    let h = b.add_part(square(Vec2::new(0.0, 6.0), 1.2));
+    let mut w = b.build().unwrap();
+    run(&mut w, 180);
+    let bottom = w.part_position(h).y - 0.6;
+    let overlap = 5.0 - bottom;
+    assert!(overlap > 0.0 && overlap < 3.0 * 0.005, "overlap {overlap}");
+    assert!(w.part_velocity(h).length() < 0.05, "{:?}", w.part_velocity(h));
+    assert!(w.part_touching(h));
+}
+
+#[test]
+fn welded_squares_stay_together_through_a_landing() {
+    let mut b = WorldBuilder::new(settings());
+    with_ground(&mut b);
+    let l = b.add_part(square(Vec2::new(0.0, 8.0), 1.2));
+    let r = b.add_part(square(Vec2::new(1.2, 8.5), 1.2));
+    b.weld(l, r);
+    let mut w = b.build().unwrap();
+    assert!(!w.same_body(l, r), "welded parts stay bodies of their own");
+    let start = w.part_position(r) - w.part_position(l);
+    for _ in 0..240 {
+        w.step().unwrap();
+        let gap = (w.part_position(r) - w.part_position(l)) - rotated(start, w.part_angle(l));
+        assert!(gap.length() < 0.02, "weld gap {gap:?} at t = {}", w.time());
+        assert!((w.part_angle(r) - w.part_angle(l)).abs() < 0.02);
+    }
+    assert!(w.part_touching(l) || w.part_touching(r));
+}
+
+fn rotated(v: Vec2, angle: f64) -> Vec2 {
+    crate::Rot::new(angle).apply(v)
+}
+
+#[test]
+fn a_stretched_spring_pulls_its_parts_back_to_rest_length() {
+    let mut b = WorldBuilder::new(WorldSettings {
+        gravity: Vec2::ZERO,
+        ..settings()
+    });
+    let a = b.add_part(square(Vec2::new(0.0, 0.0), 1.0));
+    let c = b.add_part(square(Vec2::new(3.0, 0.0), 1.0));
+    b.add_spring(SpringDesc {
+        part_a: a,
+        part_b: c,
+        anchor_a: Vec2::ZERO,
+        anchor_b: Vec2::ZERO,
+        rest_length: 2.0,
+        frequency: 8.0,
+        damping_ratio: 0.3,
+        mass_model: crate::SpringMassModel::EffectiveMass,
+        collide_connected: false,
+    });
+    let mut w = b.build().unwrap();
+    run(&mut w, 300);
+    let d = (w.part_position(c) - w.part_position(a)).length();
+    assert!((d - 2.0).abs() < 1e-3, "distance {d}");
+}
+
+#[test]
+fn the_same_world_stepped_twice_gives_the_same_bits() {
+    let make = || {
+        let mut b = WorldBuilder::new(settings());
+        with_ground(&mut b);
+        let parts: Vec<_> = (0..4)
+            .map(|i| b.add_part(square(Vec2::new(1.25 * i as f64, 6.0 + 0.3 * i as f64), 1.2)))
+            .collect();
+        b.weld(parts[0], parts[1]);
+        b.weld(parts[2], parts[3]);
+        (b.build().unwrap(), parts)
+    };
+    let (mut w1, p1) = make();
+    let (mut w2, p2) = make();
+    run(&mut w1, 200);
+    run(&mut w2, 200);
+    for (a, b) in p1.iter().zip(&p2) {
+        assert_eq!(w1.part_position(*a), w2.part_position(*b));
+        assert_eq!(w1.part_angle(*a), w2.part_angle(*b));
+    }
+}

@@ -6,7 +6,10 @@ use crate::params::VoxelParams;
 use crate::voxel::{
     actuated_rest_length, corner_offset, rest_range, spring_layout, SpringKind, NE, NW, SE, SPRINGS_PER_VOXEL, SW,
 };
-use vsrlab_physics::{PartDesc, PartHandle, Polygon, RopeDesc, SpringDesc, SpringHandle, Vec2, World, WorldBuilder};
+use vsrlab_physics::{
+    Dyn4jVersion, PartDesc, PartHandle, Polygon, RopeDesc, Solver, SpringDesc, SpringHandle, SpringMassModel, Vec2,
+    World, WorldBuilder,
+};
 
 /// One voxel of an assembled robot.
 #[derive(Debug, Clone)]
@@ -78,6 +81,14 @@ impl Vsr {
         origin: Vec2,
         group: u32,
     ) -> Vsr {
+        // the spring model is what tells the two dyn4j versions of the presets apart
+        builder.made_for(match params.spring_mass_model {
+            SpringMassModel::EffectiveMass => Dyn4jVersion::V3_3_0,
+            SpringMassModel::ReducedMass => Dyn4jVersion::V4_2_1,
+        });
+        // the sequential-impulse solver visits joints in the order they were added, so then they
+        // are added in 2D-VSR-Sim's order (vsr-model.md §1.3, §1.8); the soft solver keeps its own
+        let dyn4j_order = builder.settings().solver == Solver::SequentialImpulses;
         let l = params.side_length;
         let m = params.corner_side();
         let density = params.voxel_mass / 4.0 / (m * m);
@@ -97,8 +108,10 @@ impl Vsr {
                     .group(group, params.self_collision);
                 builder.add_part(desc)
             });
-            for s in &layout {
-                springs.push(builder.add_spring(SpringDesc {
+            let mut handles = [None; SPRINGS_PER_VOXEL];
+            for k in spring_order(dyn4j_order) {
+                let s = &layout[k];
+                handles[k] = Some(builder.add_spring(SpringDesc {
                     part_a: corners[s.corner_a],
                     anchor_a: s.anchor_a,
                     part_b: corners[s.corner_b],
@@ -110,6 +123,7 @@ impl Vsr {
                     collide_connected: params.same_voxel_collision,
                 }));
             }
+            springs.extend(handles.into_iter().flatten());
             if params.ropes {
                 for i in 0..4 {
                     builder.add_rope(RopeDesc {
@@ -122,18 +136,19 @@ impl Vsr {
                     });
                 }
             }
-            if x > 0 && morphology.has(x - 1, y) {
-                let left = &voxels[index[y * w + x - 1]] as &Voxel;
-                builder.weld(corners[NW], left.corners[NE]);
-                builder.weld(corners[SW], left.corners[SE]);
-            }
-            if y > 0 && morphology.has(x, y - 1) {
-                let below = &voxels[index[(y - 1) * w + x]] as &Voxel;
-                builder.weld(corners[SW], below.corners[NW]);
-                builder.weld(corners[SE], below.corners[NE]);
-            }
             index[y * w + x] = voxels.len();
             voxels.push(Voxel { cell: (x, y), corners });
+            if !dyn4j_order {
+                weld_neighbours(builder, morphology, &voxels, &index, (x, y));
+            }
+        }
+        if dyn4j_order {
+            // 2D-VSR-Sim welds after every voxel joined the world, column by column
+            for x in 0..w {
+                for y in (0..h).filter(|&y| morphology.has(x, y)) {
+                    weld_neighbours(builder, morphology, &voxels, &index, (x, y));
+                }
+            }
         }
         let kinds = layout.map(|s| s.kind);
         let ranges = [
@@ -261,6 +276,35 @@ impl Body for Vsr {
         for i in 0..self.voxels.len() {
             out.extend_from_slice(&self.voxel_polygon(world, i));
         }
+    }
+}
+
+/// Layout indices of a voxel's springs in the order they are added: the layout's own, or
+/// 2D-VSR-Sim's (inner side springs, outer side springs, crossing, central).
+fn spring_order(dyn4j_order: bool) -> impl Iterator<Item = usize> {
+    let (first, second) = if dyn4j_order { (4..8, 0..4) } else { (0..4, 4..8) };
+    first.chain(second).chain(8..SPRINGS_PER_VOXEL)
+}
+
+/// Welds voxel `cell` to its left neighbour (NW–NE, SW–SE), then to the one below (SW–NW, SE–NE).
+fn weld_neighbours(
+    builder: &mut WorldBuilder,
+    morphology: &Morphology,
+    voxels: &[Voxel],
+    index: &[usize],
+    (x, y): (usize, usize),
+) {
+    let w = morphology.width();
+    let corners = voxels[index[y * w + x]].corners;
+    if x > 0 && morphology.has(x - 1, y) {
+        let left = &voxels[index[y * w + x - 1]];
+        builder.weld(corners[NW], left.corners[NE]);
+        builder.weld(corners[SW], left.corners[SE]);
+    }
+    if y > 0 && morphology.has(x, y - 1) {
+        let below = &voxels[index[(y - 1) * w + x]];
+        builder.weld(corners[SW], below.corners[NW]);
+        builder.weld(corners[SE], below.corners[NE]);
     }
 }
 

@@ -6,7 +6,7 @@
 use vsrlab_body::sensors::SensorConfig;
 use vsrlab_body::{Morphology, Preset};
 use vsrlab_brain::BrainSpec;
-use vsrlab_physics::{ContactPositionMass, Solver};
+use vsrlab_physics::Solver;
 use vsrlab_tasks::ensemble::{self, Summary};
 use vsrlab_tasks::{episode, Locomotion, RobotSpec, TaskSpec, TraceLevel};
 
@@ -67,15 +67,11 @@ fn robot(body: &str, preset: Preset) -> RobotSpec {
     }
 }
 
-/// Flat locomotion for 30 s, stepped by `solver`; the sequential-impulse solver weighs contact
-/// position corrections as the preset's dyn4j version does.
-fn task(preset: Preset, solver: Solver) -> TaskSpec {
+/// Flat locomotion for 30 s, stepped by `solver` (the sequential-impulse solver follows the
+/// preset's dyn4j version).
+fn task(solver: Solver) -> TaskSpec {
     let mut l = Locomotion::default();
     l.physics.solver = solver;
-    l.physics.contact_position_mass = match preset {
-        Preset::Y2021 => ContactPositionMass::Unit,
-        _ => ContactPositionMass::Actual,
-    };
     TaskSpec::Locomotion(l)
 }
 
@@ -91,14 +87,7 @@ fn velocities(n: usize, solver: Solver) {
     println!("|---|---|---|---:|---:|---:|---|---|---|---|");
     for r in &REFERENCES {
         let robot = robot(r.body, r.preset);
-        let values = ensemble::run_shifted(
-            &robot,
-            &task(r.preset, solver),
-            &ensemble::shifts(n, 1e-6),
-            0,
-            "velocity",
-        )
-        .unwrap();
+        let values = ensemble::run_shifted(&robot, &task(solver), &ensemble::shifts(n, 1e-6), 0, "velocity").unwrap();
         let s = Summary::of(&values).unwrap();
         let [mean, sd, median, q1, q3, min, max] = r.v;
         let inside = s.median >= q1 && s.median <= q3;
@@ -123,7 +112,7 @@ fn parting(solver: Solver) {
     println!("|---|---|---:|---:|");
     for r in &REFERENCES {
         let robot = robot(r.body, r.preset);
-        let ours = ensemble::parting_time(&robot, &task(r.preset, solver), 1e-6, 1e-3, 0).unwrap();
+        let ours = ensemble::parting_time(&robot, &task(solver), 1e-6, 1e-3, 0).unwrap();
         let show = |t: Option<f64>| t.map_or("—".to_string(), |t| format!("{t:.3}"));
         println!("| {} | {} | {} | {} |", r.preset, r.body, show(r.parting), show(ours));
     }
@@ -159,7 +148,7 @@ fn readings(n: usize, solver: Solver) {
         let mut rows: Vec<Vec<f64>> = vec![Vec::new(); 5];
         let mut lidar: Vec<Vec<f64>> = vec![Vec::new(); 5];
         for shift in ensemble::shifts(n, 1e-6) {
-            let t = ensemble::shifted_task(&task(preset, solver), shift).unwrap();
+            let t = ensemble::shifted_task(&task(solver), shift).unwrap();
             let trace = episode::run(&robot, t.task(), 0, TraceLevel::Full)
                 .unwrap()
                 .trace

@@ -4,6 +4,7 @@
 use crate::simulate::robot_option_error;
 use clap::Args;
 use vsrlab_experiment::bench::{run_bench, BenchError, BenchOptions, BenchReport};
+use vsrlab_physics::Solver;
 use vsrlab_tasks::short_forms::DEFAULT_SENSORS;
 
 /// Arguments of `vsrlab bench`.
@@ -27,6 +28,9 @@ pub struct BenchArgs {
     /// Physics sub-steps per step (default: the engine's default).
     #[arg(long)]
     pub substeps: Option<u32>,
+    /// Physics solver: soft-substeps or sequential-impulses (default: the engine's default).
+    #[arg(long)]
+    pub solver: Option<String>,
     /// Brain of every robot (as `vsrlab simulate --brain`; parameterised brains get random
     /// weights), to measure what a brain costs per step.
     #[arg(long, default_value = "phase")]
@@ -45,24 +49,35 @@ pub struct BenchArgs {
 
 impl BenchArgs {
     /// The library's options for these arguments.
-    fn options(&self) -> BenchOptions {
-        BenchOptions {
+    fn options(&self) -> Result<BenchOptions, String> {
+        let solver = match self.solver.as_deref() {
+            None => None,
+            Some("soft-substeps") => Some(Solver::SoftSubsteps),
+            Some("sequential-impulses") => Some(Solver::SequentialImpulses),
+            Some(other) => {
+                return Err(format!(
+                    "--solver: expected soft-substeps or sequential-impulses, got '{other}'"
+                ))
+            }
+        };
+        Ok(BenchOptions {
             duration: self.duration,
             min_cpu_seconds: self.min_seconds,
             threads: self.threads,
             preset: self.preset.clone(),
             robots: self.robots.as_ref().map(|s| s.split(',').map(String::from).collect()),
             substeps: self.substeps,
+            solver,
             brain: self.brain.clone(),
             sensors: self.sensors.clone(),
             parallel: !self.single_only,
-        }
+        })
     }
 }
 
 /// Runs `vsrlab bench`.
 pub fn run(a: BenchArgs) -> Result<(), String> {
-    let report = run_bench(&a.options()).map_err(|e| match e {
+    let report = run_bench(&a.options()?).map_err(|e| match e {
         BenchError::Robot(e) => robot_option_error(&e),
         BenchError::Option(message) => format!("--{message}"),
         other => other.to_string(),

@@ -78,6 +78,10 @@ pub struct SimulateArgs {
     /// Physics sub-steps per step (default: the engine's default).
     #[arg(long)]
     pub substeps: Option<u32>,
+    /// Physics solver: soft-substeps (vsrlab's, fast) or sequential-impulses (dyn4j's pipeline,
+    /// as 2D-VSR-Sim; docs/physics.md). Default: the task's.
+    #[arg(long)]
+    pub solver: Option<String>,
     /// Print the outcome as JSON.
     #[arg(long)]
     pub json: bool,
@@ -105,16 +109,23 @@ pub struct SimulateArgs {
     pub save_robot: Option<PathBuf>,
 }
 
+/// Physics settings given on the command line (`--substeps`, `--solver`).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct PhysicsOptions<'a> {
+    pub substeps: Option<u32>,
+    pub solver: Option<&'a str>,
+}
+
 /// The task of `--task`, with the episode settings of the other options.
 pub fn task_from_args(
     task: &str,
     duration: f64,
     transient: Option<f64>,
-    substeps: Option<u32>,
+    physics: PhysicsOptions,
     damage: Option<&str>,
 ) -> Result<TaskSpec, String> {
     let spec = TaskSpec::parse(task).map_err(|e| format!("--task: {e}"))?;
-    with_episode_settings(spec, Some(duration), transient, substeps, damage)
+    with_episode_settings(spec, Some(duration), transient, physics, damage)
 }
 
 /// `spec` starting with the robot's left edge at `x`, when given.
@@ -216,7 +227,7 @@ fn with_episode_settings(
     spec: TaskSpec,
     duration: Option<f64>,
     transient: Option<f64>,
-    substeps: Option<u32>,
+    physics: PhysicsOptions,
     damage: Option<&str>,
 ) -> Result<TaskSpec, String> {
     let mut settings = Vec::new();
@@ -226,8 +237,11 @@ fn with_episode_settings(
     if let Some(t) = transient {
         settings.push(("transient", json!(t)));
     }
-    if let Some(n) = substeps {
+    if let Some(n) = physics.substeps {
         settings.push(("physics.substeps", json!(n)));
+    }
+    if let Some(name) = physics.solver {
+        settings.push(("physics.solver", json!(name)));
     }
     if let Some(d) = damage {
         settings.push(("damage", damage_value(d).map_err(|e| format!("--damage: {e}"))?));
@@ -235,6 +249,7 @@ fn with_episode_settings(
     let spec = spec.with_settings(&settings).map_err(|e| {
         let option = match e.path.as_str() {
             "physics.substeps" => "substeps",
+            "physics.solver" => "solver",
             other => other,
         };
         format!("--{option}: {}", e.message)
@@ -291,19 +306,23 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         Some(path) => path.display().to_string(),
         None => a.body.clone(),
     };
+    let physics = PhysicsOptions {
+        substeps: a.substeps,
+        solver: a.solver.as_deref(),
+    };
     let task = match &a.task_of {
         Some(path) => with_episode_settings(
             task_of_experiment(path)?,
             a.duration,
             a.transient,
-            a.substeps,
+            physics,
             a.damage.as_deref(),
         )?,
         None => task_from_args(
             &a.task,
             a.duration.unwrap_or(DEFAULT_DURATION),
             a.transient,
-            a.substeps,
+            physics,
             a.damage.as_deref(),
         )?,
     };

@@ -44,6 +44,8 @@ pub struct BenchOptions {
     pub robots: Option<Vec<String>>,
     /// Physics sub-steps per step; `None`: the engine's default.
     pub substeps: Option<u32>,
+    /// Physics solver; `None`: the engine's default.
+    pub solver: Option<vsrlab_physics::Solver>,
     /// Brain of every voxel robot (parameterised brains get seeded random parameters; PSAs
     /// always get `heads`).
     pub brain: String,
@@ -62,6 +64,7 @@ impl Default for BenchOptions {
             preset: "2021".into(),
             robots: None,
             substeps: None,
+            solver: None,
             brain: "phase".into(),
             sensors: DEFAULT_SENSORS.into(),
             parallel: true,
@@ -292,6 +295,9 @@ impl<'a> Case<'a> {
         };
         if let Some(n) = options.substeps {
             task.physics.substeps = n;
+        }
+        if let Some(solver) = options.solver {
+            task.physics.solver = solver;
         }
         Ok(Case {
             name,

@@ -25,7 +25,7 @@ mod math;
 pub use dynamics::{
     builder::{PartDesc, PressureRingDesc, RopeDesc, SpringDesc, WorldBuilder},
     pressure::EdgeLength,
-    settings::{ContactPositionMass, Solver, SpringMassModel, WorldSettings},
+    settings::{Dyn4jVersion, Solver, SpringMassModel, WorldSettings},
     world::{PartHandle, RingHandle, RopeHandle, SpringHandle, World},
 };
 pub use geometry::shape::Polygon;

@@ -5,18 +5,14 @@ mod common;
 use common::*;
 use vsrlab_body::Preset;
 use vsrlab_brain::{BrainSpec, ConstantSpec};
-use vsrlab_physics::{ContactPositionMass, Solver};
+use vsrlab_physics::Solver;
 use vsrlab_tasks::{episode, Locomotion, TraceLevel};
 
-/// Flat ground for `duration` s, stepped by `solver` (the sequential-impulse solver weighing its
-/// contact position pass as the preset's dyn4j version does).
-fn solver_task(preset: Preset, solver: Solver, duration: f64) -> Locomotion {
+/// Flat ground for `duration` s, stepped by `solver` (the sequential-impulse solver follows the
+/// preset's dyn4j version).
+fn solver_task(solver: Solver, duration: f64) -> Locomotion {
     let mut t = task("flat", duration);
     t.physics.solver = solver;
-    t.physics.contact_position_mass = match preset {
-        Preset::Y2021 => ContactPositionMass::Unit,
-        _ => ContactPositionMass::Actual,
-    };
     t
 }
 
@@ -27,7 +23,7 @@ fn calibrate(body: &str, preset: Preset, brain: BrainSpec) -> (f64, f64, f64, f6
 }
 
 fn calibrate_with(body: &str, preset: Preset, brain: BrainSpec, solver: Solver) -> (f64, f64, f64, f64, f64, u64) {
-    let t = solver_task(preset, solver, 5.0);
+    let t = solver_task(solver, 5.0);
     let o = episode::run(&robot(body, preset, brain), &t, 0, TraceLevel::Full).unwrap();
     let tr = o.trace.unwrap();
     let n = tr.voxels();

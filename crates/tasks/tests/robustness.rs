@@ -9,6 +9,7 @@ use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use vsrlab_body::{Morphology, Preset};
 use vsrlab_brain::{BrainSpec, PhaseSpec, RandomSpec};
+use vsrlab_physics::Solver;
 use vsrlab_tasks::{episode, EpisodeError, TraceLevel};
 
 /// Sane area-ratio bounds (see docs/physics.md): the actuation range is [0.775, 1.225]; impacts and
@@ -60,7 +61,7 @@ fn random_brain(rng: &mut ChaCha8Rng) -> BrainSpec {
 }
 
 /// Runs one random case: the area-ratio range over the episode, or a description of what failed.
-fn run_case(i: usize, only: Option<usize>) -> Result<(f64, f64), String> {
+fn run_case(i: usize, only: Option<usize>, solver: Solver) -> Result<(f64, f64), String> {
     let mut rng = ChaCha8Rng::seed_from_u64(i as u64);
     let body = random_body(&mut rng);
     let brain = random_brain(&mut rng);
@@ -76,9 +77,10 @@ fn run_case(i: usize, only: Option<usize>) -> Result<(f64, f64), String> {
     if let Some(n) = std::env::var("ROBUSTNESS_SUBSTEPS").ok().and_then(|v| v.parse().ok()) {
         tk.physics.substeps = n;
     }
+    tk.physics.solver = solver;
     let describe = || {
         format!(
-            "case {i} ({terrain}, preset {preset}, body {}, brain {})",
+            "case {i} ({terrain}, preset {preset}, {solver:?}, body {}, brain {})",
             body.to_rows().join("/"),
             serde_json::to_string(&r.brain).unwrap()
         )
@@ -110,13 +112,27 @@ fn run_case(i: usize, only: Option<usize>) -> Result<(f64, f64), String> {
 /// rope-less 2022 preset: docs/physics.md, "Known limitations"). Failures are printed.
 #[test]
 fn a_thousand_random_bodies_stay_finite_and_sane_on_every_terrain() {
-    let cases = 1000;
+    random_bodies_stay_finite_and_sane(1000, Solver::SoftSubsteps);
+}
+
+/// The same under the sequential-impulse solver (dyn4j's pipeline), on fewer cases: it is slower.
+/// ROBUSTNESS_SEQUENTIAL_CASES=n runs more.
+#[test]
+fn random_bodies_stay_finite_and_sane_under_sequential_impulses() {
+    let cases = std::env::var("ROBUSTNESS_SEQUENTIAL_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(120);
+    random_bodies_stay_finite_and_sane(cases, Solver::SequentialImpulses);
+}
+
+fn random_bodies_stay_finite_and_sane(cases: usize, solver: Solver) {
     // ROBUSTNESS_CASE=i replays a single case (for debugging a failure)
     let only: Option<usize> = std::env::var("ROBUSTNESS_CASE").ok().and_then(|v| v.parse().ok());
     let results: Vec<Result<(f64, f64), String>> = (0..cases)
         .into_par_iter()
         .filter(|i| only.is_none_or(|o| o == *i))
-        .map(|i| run_case(i, only))
+        .map(|i| run_case(i, only, solver))
         .collect();
     let failures: Vec<&String> = results.iter().filter_map(|r| r.as_ref().err()).collect();
     for f in &failures {
@@ -136,7 +152,7 @@ fn a_thousand_random_bodies_stay_finite_and_sane_on_every_terrain() {
     let lo = ok.iter().map(|w| w.0).fold(f64::INFINITY, f64::min);
     let hi = ok.iter().map(|w| w.1).fold(f64::NEG_INFINITY, f64::max);
     println!(
-        "{} random bodies: {} within [{}, {}] (observed [{lo:.3}, {hi:.3}]), {} outside",
+        "{solver:?}: {} random bodies: {} within [{}, {}] (observed [{lo:.3}, {hi:.3}]), {} outside",
         results.len(),
         ok.len(),
         AREA_BOUNDS.0,

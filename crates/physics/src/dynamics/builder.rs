@@ -4,7 +4,7 @@
 //! exactly rigid and costs nothing per step. Handles to the original parts stay valid.
 
 use super::pressure::EdgeLength;
-use super::settings::{SpringMassModel, WorldSettings};
+use super::settings::{Dyn4jVersion, SpringMassModel, WorldSettings};
 use super::world::{PartHandle, RingHandle, RopeHandle, SpringHandle, World};
 use crate::geometry::shape::Polygon;
 use crate::math::Vec2;
@@ -159,6 +159,17 @@ pub struct WorldBuilder {
     pub(crate) statics: Vec<StaticDesc>,
     pub(crate) rings: Vec<PressureRingDesc>,
     pub(crate) excluded: Vec<(PartHandle, PartHandle)>,
+    /// Every spring, rope and weld in the order they were added (the sequential-impulse solver
+    /// visits joints in this order, as dyn4j visits them in the order they joined its world).
+    pub(crate) joint_order: Vec<JointRef>,
+}
+
+/// A joint of the builder by kind and index in its kind's list.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum JointRef {
+    Spring(u32),
+    Rope(u32),
+    Weld(u32),
 }
 
 impl WorldBuilder {
@@ -176,15 +187,18 @@ impl WorldBuilder {
     }
     /// Welds two parts rigidly together (they become one rigid body and never collide).
     pub fn weld(&mut self, a: PartHandle, b: PartHandle) {
+        self.joint_order.push(JointRef::Weld(self.welds.len() as u32));
         self.welds.push((a, b));
     }
     /// Adds a soft distance constraint.
     pub fn add_spring(&mut self, spring: SpringDesc) -> SpringHandle {
+        self.joint_order.push(JointRef::Spring(self.springs.len() as u32));
         self.springs.push(spring);
         SpringHandle(self.springs.len() as u32 - 1)
     }
     /// Adds a minimum-distance rope.
     pub fn add_rope(&mut self, rope: RopeDesc) -> RopeHandle {
+        self.joint_order.push(JointRef::Rope(self.ropes.len() as u32));
         self.ropes.push(rope);
         RopeHandle(self.ropes.len() as u32 - 1)
     }
@@ -204,6 +218,13 @@ impl WorldBuilder {
     /// Prevents two parts from ever colliding.
     pub fn exclude_collision(&mut self, a: PartHandle, b: PartHandle) {
         self.excluded.push((a, b));
+    }
+    /// Records which dyn4j the parts being added were made for (a voxel preset's engine); the
+    /// sequential-impulse solver follows it unless the settings name a version.
+    pub fn made_for(&mut self, version: Dyn4jVersion) {
+        if self.settings.dyn4j.is_none() {
+            self.settings.dyn4j = Some(version);
+        }
     }
     /// The settings the world will run with.
     pub fn settings(&self) -> &WorldSettings {

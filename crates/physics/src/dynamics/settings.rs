@@ -29,15 +29,17 @@ pub enum Solver {
     SequentialImpulses,
 }
 
-/// How dyn4j's position pass over contacts weighs the two bodies.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "kebab-case")]
-pub enum ContactPositionMass {
-    /// Every dynamic body counts as mass 1 and inertia I/m (dyn4j 3.3.0, preset 2021).
-    #[default]
-    Unit,
-    /// The bodies' own masses and inertias (dyn4j 4.x, preset 2022).
-    Actual,
+/// Which dyn4j the sequential-impulse solver follows where the two versions behind 2D-VSR-Sim
+/// differ: the contact position pass's masses, continuous collision detection and its distance
+/// routine (docs/physics.md).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Dyn4jVersion {
+    /// dyn4j 3.3.0 (2D-VSR-Sim up to v1.10.0, preset 2021).
+    #[serde(rename = "3.3.0")]
+    V3_3_0,
+    /// dyn4j 4.2.1 (2D-VSR-Sim HEAD, preset 2022).
+    #[serde(rename = "4.2.1")]
+    V4_2_1,
 }
 
 /// Settings shared by the whole world. Units are the world's nominal units (length, mass, s).
@@ -88,8 +90,13 @@ pub struct WorldSettings {
     pub angular_slop: f64,
     /// Largest position correction (length) of one contact or rope per iteration.
     pub max_linear_correction: f64,
-    /// How the contact position pass weighs bodies.
-    pub contact_position_mass: ContactPositionMass,
+    /// Which dyn4j to follow; unset, the version the world's bodies were made for
+    /// ([`crate::WorldBuilder::made_for`]), or 3.3.0 when none says.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dyn4j: Option<Dyn4jVersion>,
+    /// Whether bodies that would pass into static geometry within a step are stopped at the time
+    /// of impact (dyn4j's continuous collision detection, mode ALL).
+    pub continuous_collision: bool,
 }
 
 impl Default for WorldSettings {
@@ -116,7 +123,8 @@ impl Default for WorldSettings {
             linear_slop: 0.005,
             angular_slop: 2f64.to_radians(),
             max_linear_correction: 0.2,
-            contact_position_mass: ContactPositionMass::Unit,
+            dyn4j: None,
+            continuous_collision: true,
         }
     }
 }

@@ -1,17 +1,17 @@
 //! The world: simulated state, the step pipeline and queries.
 
 use super::broad_phase::{ExcludedPairs, StaticIndex, SweepAndPrune};
-use super::builder::WorldBuilder;
+use super::builder::{JointRef, WorldBuilder};
 use super::contact::{apply_restitution, ContactConstraint, ContactPass, ContactSchedule};
 use super::contact_batch::ContactBatches;
 use super::pressure::PressureRing;
 use super::rope::{rope_batches, solve_ropes, Rope, RopeBatch};
-use super::sequential::{self, Rope as SequentialRope, SequentialSolver, Spring as SequentialSpring, Weld};
+use super::sequential::{self, Joint, Rope as SequentialRope, SequentialSolver, Spring as SequentialSpring, Weld};
 use super::settings::{Solver, WorldSettings};
 use super::soft::Softness;
 use super::spring::{Spring, SpringModel, SpringSet};
 use crate::geometry::aabb::Aabb;
-use crate::geometry::collide::collide_polygons;
+use crate::geometry::collide::{collide_polygons, Manifold};
 use crate::geometry::raycast::ray_cast_polygon;
 use crate::geometry::shape::Polygon;
 use crate::math::{Rot, Vec2};
@@ -167,7 +167,7 @@ pub struct World {
     step_count: u64,
     time: f64,
     /// The joints and contacts of the sequential-impulse solver, when the world uses it.
-    sequential: Option<SequentialSolver>,
+    pub(crate) sequential: Option<SequentialSolver>,
     /// Whether `contacts` hold the present positions' contacts (the sequential-impulse solver
     /// detects them at the end of each step, for the next one).
     contacts_fresh: bool,
@@ -482,6 +482,36 @@ impl World {
             })
             .collect();
         let n_bodies = bodies.len();
+        if let Some(si) = &mut sequential {
+            let joints: Vec<(Joint, u32, u32)> = b
+                .joint_order
+                .iter()
+                .filter_map(|j| {
+                    let (joint, a, c) = match *j {
+                        JointRef::Spring(i) => {
+                            let slot = spring_slot[i as usize];
+                            let s = si.joints.springs.get(slot as usize)?;
+                            (Joint::Spring(slot), s.a, s.b)
+                        }
+                        JointRef::Rope(i) => {
+                            let slot = rope_slot[i as usize];
+                            let r = si.joints.ropes.get(slot as usize)?;
+                            (Joint::Rope(slot), r.a, r.b)
+                        }
+                        JointRef::Weld(i) => {
+                            let w = &si.joints.welds[i as usize];
+                            (Joint::Weld(i), w.a, w.b)
+                        }
+                    };
+                    Some((joint, a, c))
+                })
+                .collect();
+            let counts = [si.joints.springs.len(), si.joints.ropes.len(), si.joints.welds.len()];
+            si.island = sequential::Island::new(n_bodies, &joints, counts);
+            let polygons: Vec<Polygon> = statics.iter().map(|s| s.polygon).collect();
+            let locals: Vec<(u32, Polygon)> = shapes.iter().map(|s| (s.body, s.local)).collect();
+            si.ccd = sequential::Ccd::new(&polygons, &locals, n_bodies);
+        }
         World {
             settings: b.settings,
             bodies,
@@ -587,10 +617,13 @@ impl World {
         if !self.contacts_fresh {
             self.detect_sequential_contacts();
         }
+        if let Some(si) = &mut self.sequential {
+            si.ccd.remember_start(&self.bodies);
+        }
         self.integrate_velocities();
         let params = sequential::Params::of(&self.settings);
         if let Some(si) = &mut self.sequential {
-            si.solve(&mut self.bodies, &params);
+            si.solve(&mut self.bodies, &self.contacts, static_of_key, &params);
         }
         self.detect_sequential_contacts();
         self.update_touching();
@@ -699,7 +732,7 @@ impl World {
                     }
                     // static is A so that the normal points from the ground into the body
                     let m = collide_polygons(&st.polygon, &world_polys[k], 0.5 * base + margins[k]);
-                    if m.count > 0 {
+                    if m.count > 0 && (speculative || overlapping(&m)) {
                         let friction = (st.friction * s.friction).sqrt();
                         let restitution = st.restitution.max(s.restitution);
                         let mut c =
@@ -740,7 +773,7 @@ impl World {
                         let (si, sj) = (&shapes[i], &shapes[j]);
                         let margin = margins[i] + margins[j];
                         let m = collide_polygons(&world_polys[i], &world_polys[j], margin);
-                        if m.count > 0 {
+                        if m.count > 0 && (speculative || overlapping(&m)) {
                             let friction = (si.friction * sj.friction).sqrt();
                             let restitution = si.restitution.max(sj.restitution);
                             let mut c = ContactConstraint::new(
@@ -993,10 +1026,21 @@ impl World {
     }
 }
 
+/// Whether a manifold has a point of actual overlap: dyn4j makes no contact of shapes that only
+/// touch (depth 0), which the sequential-impulse solver follows.
+fn overlapping(m: &Manifold) -> bool {
+    m.points[..m.count].iter().any(|p| p.separation < 0.0)
+}
+
 /// The key of a contact between static polygon `static_id` and dynamic shape `shape`: distinct
 /// from every shape–shape key (whose high half is a shape index, far below 2³¹).
 fn static_contact_key(static_id: usize, shape: usize) -> u64 {
     (1 << 63) | ((static_id as u64) << 32) | shape as u64
+}
+
+/// The static polygon of a key made by [`static_contact_key`].
+fn static_of_key(key: u64) -> u32 {
+    ((key >> 32) & 0x7fff_ffff) as u32
 }
 
 /// The shapes of one body (by index within the body) whose boxes reach a given box, in order.

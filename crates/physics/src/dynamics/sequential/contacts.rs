@@ -200,8 +200,14 @@ impl Contacts {
 
     /// Arms, effective masses, restitution targets and the two-point block from the positions
     /// and velocities at the start of the solve, then the carried-over impulses applied again.
-    pub fn initialize(&mut self, bodies: &mut Bodies, p: &Params) {
-        for c in &mut self.current {
+    /// Bodies (a, b) of each contact, in detection order.
+    pub fn pairs(&self) -> impl Iterator<Item = (u32, u32)> + Clone + '_ {
+        self.current.iter().map(|c| (c.a, c.b))
+    }
+
+    pub fn initialize(&mut self, bodies: &mut Bodies, p: &Params, order: &[u32]) {
+        for &k in order {
+            let c = &mut self.current[k as usize];
             let (sa, sb) = (&bodies.state[c.a as usize], &bodies.state[c.b as usize]);
             let (n, t) = (c.normal, c.normal.perp());
             let mass_along = |ra: Vec2, rb: Vec2, axis: Vec2| {
@@ -249,8 +255,9 @@ impl Contacts {
 
     /// One velocity sweep: friction at each point (bounded by μ times its normal impulse), then
     /// the normal impulses.
-    pub fn solve_velocities(&mut self, bodies: &mut Bodies) {
-        for c in &mut self.current {
+    pub fn solve_velocities(&mut self, bodies: &mut Bodies, order: &[u32]) {
+        for &k in order {
+            let c = &mut self.current[k as usize];
             let (a, b) = (c.a as usize, c.b as usize);
             let t = c.normal.perp();
             for q in &mut c.points[..c.count] {
@@ -277,9 +284,10 @@ impl Contacts {
     /// One position sweep: each point's remaining overlap beyond `linear_slop`, times
     /// `baumgarte` and at most `max_linear_correction`, pushed apart along the normal. True when
     /// no point overlaps by more than three times the slop.
-    pub fn solve_positions(&mut self, bodies: &mut Bodies, p: &Params) -> bool {
+    pub fn solve_positions(&mut self, bodies: &mut Bodies, p: &Params, order: &[u32]) -> bool {
         let mut min_separation: f64 = 0.0;
-        for c in &mut self.current {
+        for &k in order {
+            let c = &mut self.current[k as usize];
             let (a, b) = (c.a as usize, c.b as usize);
             let n = c.normal;
             let weight = |i: usize| {

@@ -2,7 +2,8 @@
 //! each initialised once per step, swept in the velocity iterations and (ropes, welds) corrected
 //! in the position iterations, as dyn4j's DistanceJoint, RopeJoint and WeldJoint are.
 
-use super::{angle_of, point_velocity, rotate, rotate_about, Params};
+use super::island::Joint;
+use super::{angle_of, point_velocity, rotate, rotate_about, wrap_angle, Params};
 use crate::dynamics::settings::SpringMassModel;
 use crate::dynamics::world::{Bodies, BodyState};
 use crate::math::Vec2;
@@ -320,18 +321,6 @@ impl Weld {
     }
 }
 
-/// An angle brought into [−π, π] by one turn, as dyn4j does.
-fn wrap_angle(mut r: f64) -> f64 {
-    use std::f64::consts::{PI, TAU};
-    if r < -PI {
-        r += TAU;
-    }
-    if r > PI {
-        r -= TAU;
-    }
-    r
-}
-
 /// The weld's effective-mass matrix (point constraint in x, y, angle constraint in z).
 fn weld_matrix(a: &BodyState, b: &BodyState, ra: Vec2, rb: Vec2) -> [[f64; 3]; 3] {
     let (ma, mb, ia, ib) = (a.inv_mass, b.inv_mass, a.inv_inertia, b.inv_inertia);
@@ -376,7 +365,7 @@ fn solve3(k: &[[f64; 3]; 3], r: [f64; 3]) -> [f64; 3] {
     ]
 }
 
-/// Every joint of a world, solved springs first, then ropes, then welds.
+/// Every joint of a world, solved in the order of the step's island walk.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Joints {
     pub springs: Vec<Spring>,
@@ -385,38 +374,35 @@ pub(crate) struct Joints {
 }
 
 impl Joints {
-    pub fn initialize(&mut self, bodies: &mut Bodies, p: &Params) {
-        for s in &mut self.springs {
-            s.initialize(bodies, p);
-        }
-        for r in &mut self.ropes {
-            r.initialize(bodies, p);
-        }
-        for w in &mut self.welds {
-            w.initialize(bodies, p);
+    pub fn initialize(&mut self, bodies: &mut Bodies, p: &Params, order: &[Joint]) {
+        for &j in order {
+            match j {
+                Joint::Spring(i) => self.springs[i as usize].initialize(bodies, p),
+                Joint::Rope(i) => self.ropes[i as usize].initialize(bodies, p),
+                Joint::Weld(i) => self.welds[i as usize].initialize(bodies, p),
+            }
         }
     }
 
-    pub fn solve_velocities(&mut self, bodies: &mut Bodies) {
-        for s in &mut self.springs {
-            s.solve_velocity(bodies);
-        }
-        for r in &mut self.ropes {
-            r.solve_velocity(bodies);
-        }
-        for w in &mut self.welds {
-            w.solve_velocity(bodies);
+    pub fn solve_velocities(&mut self, bodies: &mut Bodies, order: &[Joint]) {
+        for &j in order {
+            match j {
+                Joint::Spring(i) => self.springs[i as usize].solve_velocity(bodies),
+                Joint::Rope(i) => self.ropes[i as usize].solve_velocity(bodies),
+                Joint::Weld(i) => self.welds[i as usize].solve_velocity(bodies),
+            }
         }
     }
 
     /// One position sweep over ropes and welds (springs have none); true when all are solved.
-    pub fn solve_positions(&mut self, bodies: &mut Bodies, p: &Params) -> bool {
+    pub fn solve_positions(&mut self, bodies: &mut Bodies, p: &Params, order: &[Joint]) -> bool {
         let mut done = true;
-        for r in &mut self.ropes {
-            done &= r.solve_position(bodies, p);
-        }
-        for w in &mut self.welds {
-            done &= w.solve_position(bodies, p);
+        for &j in order {
+            match j {
+                Joint::Spring(_) => {}
+                Joint::Rope(i) => done &= self.ropes[i as usize].solve_position(bodies, p),
+                Joint::Weld(i) => done &= self.welds[i as usize].solve_position(bodies, p),
+            }
         }
         done
     }
@@ -439,6 +425,7 @@ mod tests {
 
     #[test]
     fn angles_wrap_by_one_turn() {
+        use super::super::wrap_angle;
         assert!((wrap_angle(3.5) - (3.5 - std::f64::consts::TAU)).abs() < 1e-15);
         assert!((wrap_angle(-3.5) - (-3.5 + std::f64::consts::TAU)).abs() < 1e-15);
         assert_eq!(wrap_angle(1.0), 1.0);

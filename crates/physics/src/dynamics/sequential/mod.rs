@@ -10,13 +10,19 @@
 //! Written from dyn4j's documented algorithm (sequential impulses in the style of Box2D), not
 //! ported from its code; where dyn4j has a quirk that changes motion, the quirk is kept and named.
 
+mod ccd;
 mod contacts;
+mod distance;
+mod island;
 mod joints;
 
+pub(crate) use ccd::Ccd;
 pub(crate) use contacts::Contacts;
+pub(crate) use island::{Island, Joint};
 pub(crate) use joints::{Joints, Rope, Spring, Weld};
 
-use super::settings::{ContactPositionMass, WorldSettings};
+use super::contact::ContactConstraint;
+use super::settings::{Dyn4jVersion, WorldSettings};
 use super::world::{Bodies, BodyState};
 use crate::math::{Rot, Vec2};
 
@@ -36,10 +42,13 @@ pub(crate) struct Params {
     pub restitution_threshold: f64,
     /// dyn4j 3.3.0's contact position pass treats every dynamic body as mass 1.
     pub unit_position_mass: bool,
+    pub version: Dyn4jVersion,
+    pub continuous_collision: bool,
 }
 
 impl Params {
     pub fn of(s: &WorldSettings) -> Params {
+        let version = s.dyn4j.unwrap_or(Dyn4jVersion::V3_3_0);
         Params {
             dt: s.dt,
             velocity_iterations: s.velocity_iterations,
@@ -52,7 +61,9 @@ impl Params {
             max_translation: s.max_translation,
             max_rotation: s.max_rotation,
             restitution_threshold: s.restitution_threshold,
-            unit_position_mass: s.contact_position_mass == ContactPositionMass::Unit,
+            unit_position_mass: version == Dyn4jVersion::V3_3_0,
+            version,
+            continuous_collision: s.continuous_collision,
         }
     }
 }
@@ -62,25 +73,41 @@ impl Params {
 pub(crate) struct SequentialSolver {
     pub joints: Joints,
     pub contacts: Contacts,
+    pub ccd: Ccd,
+    pub island: Island,
 }
 
 impl SequentialSolver {
-    /// Solves velocities, integrates positions and corrects them: everything of a step between
-    /// integrating forces and detecting the next step's contacts.
-    pub fn solve(&mut self, bodies: &mut Bodies, p: &Params) {
-        self.contacts.initialize(bodies, p);
-        self.joints.initialize(bodies, p);
+    /// Solves velocities, integrates positions, corrects them and stops bodies at their time of
+    /// impact with static geometry: everything of a step between integrating forces and detecting
+    /// the next step's contacts. `detected` are the contacts the step solves (`static_of` maps a
+    /// static contact's key to its polygon).
+    pub fn solve(
+        &mut self,
+        bodies: &mut Bodies,
+        detected: &[ContactConstraint],
+        static_of: fn(u64) -> u32,
+        p: &Params,
+    ) {
+        self.island
+            .walk(self.contacts.pairs(), p.version == Dyn4jVersion::V4_2_1);
+        let (joints, contacts) = (&self.island.joints, &self.island.contacts);
+        self.contacts.initialize(bodies, p, contacts);
+        self.joints.initialize(bodies, p, joints);
         for _ in 0..p.velocity_iterations {
-            self.joints.solve_velocities(bodies);
-            self.contacts.solve_velocities(bodies);
+            self.joints.solve_velocities(bodies, joints);
+            self.contacts.solve_velocities(bodies, contacts);
         }
         integrate_positions(bodies, p);
         for _ in 0..p.position_iterations {
-            let contacts_done = self.contacts.solve_positions(bodies, p);
-            let joints_done = self.joints.solve_positions(bodies, p);
+            let contacts_done = self.contacts.solve_positions(bodies, p, contacts);
+            let joints_done = self.joints.solve_positions(bodies, p, joints);
             if contacts_done && joints_done {
                 break;
             }
+        }
+        if p.continuous_collision {
+            self.ccd.solve(bodies, detected, static_of, p);
         }
     }
 }
@@ -131,6 +158,18 @@ fn rotate_about(b: &mut BodyState, angle: f64, pivot: Vec2) {
 #[inline]
 fn point_velocity(b: &BodyState, r: Vec2) -> Vec2 {
     b.vel + Vec2::cross_scalar_left(b.omega, r)
+}
+
+/// An angle brought into [−π, π] by one turn, as dyn4j does.
+fn wrap_angle(mut r: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    if r < -PI {
+        r += TAU;
+    }
+    if r > PI {
+        r -= TAU;
+    }
+    r
 }
 
 /// The body's angle in (−π, π], as dyn4j reads it off its rotation matrix.

@@ -66,13 +66,40 @@ fn welded_squares_stay_together_through_a_landing() {
     let mut w = b.build().unwrap();
     assert!(!w.same_body(l, r), "welded parts stay bodies of their own");
     let start = w.part_position(r) - w.part_position(l);
+    let gap = |w: &World| (w.part_position(r) - w.part_position(l)) - rotated(start, w.part_angle(l));
+    let mut largest: f64 = 0.0;
     for _ in 0..240 {
         w.step().unwrap();
-        let gap = (w.part_position(r) - w.part_position(l)) - rotated(start, w.part_angle(l));
-        assert!(gap.length() < 0.02, "weld gap {gap:?} at t = {}", w.time());
-        assert!((w.part_angle(r) - w.part_angle(l)).abs() < 0.02);
+        // continuous collision stops one part at its time of impact and not its partner, as
+        // dyn4j does; the weld pulls them together again in the next steps
+        largest = largest.max(gap(&w).length());
+        assert!((w.part_angle(r) - w.part_angle(l)).abs() < 0.05);
     }
+    assert!(largest < 0.2, "largest weld gap {largest}");
+    assert!(gap(&w).length() < 0.01, "weld gap at rest {:?}", gap(&w));
     assert!(w.part_touching(l) || w.part_touching(r));
+}
+
+#[test]
+fn continuous_collision_stops_a_fast_square_at_the_ground() {
+    for continuous_collision in [true, false] {
+        let mut b = WorldBuilder::new(WorldSettings {
+            continuous_collision,
+            ..settings()
+        });
+        b.add_static_polygon(Polygon::rect(Vec2::new(0.0, 4.9), 50.0, 0.1), 0.2, 0.0);
+        let h = b.add_part(square(Vec2::new(0.0, 7.0), 0.3));
+        let mut w = b.build().unwrap();
+        // 110 units/s: 1.8 per step, far more than the ground is thick (0.2)
+        w.apply_force(h, Vec2::new(0.0, -110.0 * 0.0225 * 60.0));
+        run(&mut w, 6);
+        let y = w.part_position(h).y;
+        if continuous_collision {
+            assert!(y > 4.9, "stopped on the ground: y = {y}");
+        } else {
+            assert!(y < 4.8, "without it the square passes through: y = {y}");
+        }
+    }
 }
 
 fn rotated(v: Vec2, angle: f64) -> Vec2 {

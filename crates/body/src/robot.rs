@@ -280,10 +280,11 @@ impl Body for Vsr {
 }
 
 /// Layout indices of a voxel's springs in the order they are added: the layout's own, or
-/// 2D-VSR-Sim's (inner side springs, outer side springs, crossing, central).
+/// 2D-VSR-Sim's (inner side springs, outer side springs, crossing — on the bottom side the pair
+/// the other way round —, central).
 fn spring_order(dyn4j_order: bool) -> impl Iterator<Item = usize> {
-    let (first, second) = if dyn4j_order { (4..8, 0..4) } else { (0..4, 4..8) };
-    first.chain(second).chain(8..SPRINGS_PER_VOXEL)
+    const DYN4J: [usize; SPRINGS_PER_VOXEL] = [4, 5, 6, 7, 0, 1, 2, 3, 8, 9, 10, 11, 13, 12, 14, 15, 16, 17];
+    (0..SPRINGS_PER_VOXEL).map(move |k| if dyn4j_order { DYN4J[k] } else { k })
 }
 
 /// Welds voxel `cell` to its left neighbour (NW–NE, SW–SE), then to the one below (SW–NW, SE–NE).

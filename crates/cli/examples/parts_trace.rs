@@ -6,7 +6,7 @@
 //! BRAIN is a `vsrlab simulate --brain` short form (`phase`, `constant:1`, …). Flat ground, the
 //! robot's left edge at x = 11 + SHIFT. Rows: step, grid x, grid y (0 = bottom row), corner
 //! (0 NW, 1 NE, 2 SE, 3 SW), centre x, centre y, angle, vx, vy, angular velocity; step 0 is the
-//! placement, before the first step.
+//! placement, before the first step. `--velocity-iterations N` overrides the solver's sweeps.
 use std::io::Write;
 use vsrlab_physics::{PartHandle, Solver};
 use vsrlab_tasks::episode::Episode;
@@ -15,7 +15,10 @@ use vsrlab_tasks::{ensemble, Locomotion, RobotSpec, TaskSpec, TraceLevel};
 fn main() -> Result<(), String> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     if args.len() < 7 {
-        return Err("usage: parts_trace BODY PRESET SOLVER STEPS SHIFT BRAIN OUT.csv [--no-ccd]".into());
+        return Err(
+            "usage: parts_trace BODY PRESET SOLVER STEPS SHIFT BRAIN OUT.csv [--no-ccd] [--velocity-iterations N]"
+                .into(),
+        );
     }
     let robot = RobotSpec::from_short_forms(&args[0], &args[1], "empty", &args[5]).map_err(|e| e.to_string())?;
     let mut task = Locomotion::default();
@@ -29,6 +32,10 @@ fn main() -> Result<(), String> {
         }
     };
     task.physics.continuous_collision = !args.iter().any(|a| a == "--no-ccd");
+    if let Some(n) = args.iter().position(|a| a == "--velocity-iterations") {
+        let value = args.get(n + 1).and_then(|v| v.parse().ok());
+        task.physics.velocity_iterations = value.ok_or("--velocity-iterations: expected a count")?;
+    }
     let steps: usize = args[3]
         .parse()
         .map_err(|_| format!("STEPS: not a count: '{}'", args[3]))?;

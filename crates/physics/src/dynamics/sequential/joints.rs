@@ -244,7 +244,9 @@ pub(crate) struct Weld {
     pub reference_angle: f64,
     ra: Vec2,
     rb: Vec2,
-    k: [[f64; 3]; 3],
+    /// The inverse of the weld's effective-mass matrix at the start of the step (the velocity
+    /// sweeps solve with the same matrix every time).
+    inv_k: [[f64; 3]; 3],
     impulse: [f64; 3],
 }
 
@@ -258,7 +260,7 @@ impl Weld {
             reference_angle,
             ra: Vec2::ZERO,
             rb: Vec2::ZERO,
-            k: [[0.0; 3]; 3],
+            inv_k: [[0.0; 3]; 3],
             impulse: [0.0; 3],
         }
     }
@@ -268,7 +270,7 @@ impl Weld {
         let (sa, sb) = (&bodies.state[a], &bodies.state[b]);
         self.ra = sa.rot.apply(self.local_a);
         self.rb = sb.rot.apply(self.local_b);
-        self.k = weld_matrix(sa, sb, self.ra, self.rb);
+        self.inv_k = block_inverse(&weld_matrix(sa, sb, self.ra, self.rb));
         if p.warm_starting {
             self.apply(bodies, self.impulse);
         } else {
@@ -292,7 +294,8 @@ impl Weld {
     fn solve_velocity(&mut self, bodies: &mut Bodies) {
         let (sa, sb) = (&bodies.state[self.a as usize], &bodies.state[self.b as usize]);
         let rel = point_velocity(sa, self.ra) - point_velocity(sb, self.rb);
-        let imp = block_solve(&self.k, [-rel.x, -rel.y, -(sa.omega - sb.omega)]);
+        let rhs = [-rel.x, -rel.y, -(sa.omega - sb.omega)];
+        let imp = [0, 1, 2].map(|i| self.inv_k[i][0] * rhs[0] + self.inv_k[i][1] * rhs[1] + self.inv_k[i][2] * rhs[2]);
         for (acc, d) in self.impulse.iter_mut().zip(imp) {
             *acc += d;
         }
@@ -347,6 +350,12 @@ fn block_solve(k: &[[f64; 3]; 3], rhs: [f64; 3]) -> [f64; 3] {
             0.0,
         ]
     }
+}
+
+/// The matrix that [`block_solve`] applies: K⁻¹, or the inverse of its point block when K₂₂ = 0.
+fn block_inverse(k: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    let columns = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]].map(|e| block_solve(k, e));
+    [0, 1, 2].map(|i| [columns[0][i], columns[1][i], columns[2][i]])
 }
 
 /// Cramer's rule for a 3×3 system (0 where the matrix is singular).
@@ -421,6 +430,23 @@ mod tests {
         for i in 0..3 {
             assert!((got[i] - x[i]).abs() < 1e-12, "{got:?} vs {x:?}");
         }
+    }
+
+    #[test]
+    fn the_block_inverse_solves_like_the_block_solve() {
+        let k = [[4.0, 1.0, 0.5], [1.0, 3.0, 0.25], [0.5, 0.25, 2.0]];
+        let inv = block_inverse(&k);
+        let r = [0.3, -1.2, 2.5];
+        let x = block_solve(&k, r);
+        for i in 0..3 {
+            let y = inv[i][0] * r[0] + inv[i][1] * r[1] + inv[i][2] * r[2];
+            assert!((y - x[i]).abs() < 1e-12);
+        }
+        let flat = [[2.0, 0.5, 0.0], [0.5, 1.0, 0.0], [0.0, 0.0, 0.0]];
+        let inv = block_inverse(&flat);
+        assert_eq!(inv[2], [0.0, 0.0, 0.0]);
+        let x = block_solve(&flat, r);
+        assert!((inv[0][0] * r[0] + inv[0][1] * r[1] - x[0]).abs() < 1e-12);
     }
 
     #[test]

@@ -1026,10 +1026,14 @@ impl World {
     }
 }
 
-/// Whether a manifold has a point of actual overlap: dyn4j makes no contact of shapes that only
-/// touch (depth 0), which the sequential-impulse solver follows.
+/// Overlap below which shapes only touch, for the sequential-impulse solver: dyn4j makes no
+/// contact of shapes that touch (depth 0), and its intersection test cannot tell an overlap of a
+/// few rounding errors (coordinates up to ~10³, so ~10⁻¹³) from touching.
+const TOUCHING_OVERLAP: f64 = 1e-12;
+
+/// Whether a manifold has a point of actual overlap (see [`TOUCHING_OVERLAP`]).
 fn overlapping(m: &Manifold) -> bool {
-    m.points[..m.count].iter().any(|p| p.separation < 0.0)
+    m.points[..m.count].iter().any(|p| p.separation < -TOUCHING_OVERLAP)
 }
 
 /// The key of a contact between static polygon `static_id` and dynamic shape `shape`: distinct

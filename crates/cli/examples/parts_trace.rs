@@ -6,7 +6,8 @@
 //! BRAIN is a `vsrlab simulate --brain` short form (`phase`, `constant:1`, …). Flat ground, the
 //! robot's left edge at x = 11 + SHIFT. Rows: step, grid x, grid y (0 = bottom row), corner
 //! (0 NW, 1 NE, 2 SE, 3 SW), centre x, centre y, angle, vx, vy, angular velocity; step 0 is the
-//! placement, before the first step. `--velocity-iterations N` overrides the solver's sweeps.
+//! placement, before the first step. `--velocity-iterations N` overrides the solver's sweeps;
+//! `--contacts` prints the number of contacts after each step to standard error.
 use std::io::Write;
 use vsrlab_physics::{PartHandle, Solver};
 use vsrlab_tasks::episode::Episode;
@@ -16,7 +17,7 @@ fn main() -> Result<(), String> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     if args.len() < 7 {
         return Err(
-            "usage: parts_trace BODY PRESET SOLVER STEPS SHIFT BRAIN OUT.csv [--no-ccd] [--velocity-iterations N]"
+            "usage: parts_trace BODY PRESET SOLVER STEPS SHIFT BRAIN OUT.csv [--no-ccd] [--velocity-iterations N] [--contacts]"
                 .into(),
         );
     }
@@ -67,10 +68,14 @@ fn main() -> Result<(), String> {
         }
         Ok(())
     };
+    let print_contacts = args.iter().any(|a| a == "--contacts");
     write(0, &episode).map_err(|e| e.to_string())?;
     for step in 1..=steps {
         episode.step(None).map_err(|e| e.to_string())?;
         write(step, &episode).map_err(|e| e.to_string())?;
+        if print_contacts {
+            eprintln!("step {step}: {} contacts", episode.world().contact_count());
+        }
     }
     Ok(())
 }

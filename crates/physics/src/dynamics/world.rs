@@ -11,7 +11,7 @@ use super::settings::{Solver, WorldSettings};
 use super::soft::Softness;
 use super::spring::{Spring, SpringModel, SpringSet};
 use crate::geometry::aabb::Aabb;
-use crate::geometry::collide::{collide_polygons, Manifold};
+use crate::geometry::collide::{collide_polygons_preferring, Manifold, PREFER_FIRST_SHAPE};
 use crate::geometry::raycast::ray_cast_polygon;
 use crate::geometry::shape::Polygon;
 use crate::math::{Rot, Vec2};
@@ -677,6 +677,7 @@ impl World {
         // step, so fast bodies meet contacts before they overlap (no tunnelling or deep overlaps)
         // the sequential-impulse solver (like dyn4j) only knows shapes that overlap
         let speculative = self.settings.solver == Solver::SoftSubsteps;
+        let prefer = if speculative { PREFER_FIRST_SHAPE } else { 0.0 };
         let base = if speculative {
             self.settings.speculative_distance
         } else {
@@ -731,7 +732,7 @@ impl World {
                         continue;
                     }
                     // static is A so that the normal points from the ground into the body
-                    let m = collide_polygons(&st.polygon, &world_polys[k], 0.5 * base + margins[k]);
+                    let m = collide_polygons_preferring(&st.polygon, &world_polys[k], 0.5 * base + margins[k], prefer);
                     if m.count > 0 && (speculative || overlapping(&m)) {
                         let friction = (st.friction * s.friction).sqrt();
                         let restitution = st.restitution.max(s.restitution);
@@ -772,7 +773,7 @@ impl World {
                         }
                         let (si, sj) = (&shapes[i], &shapes[j]);
                         let margin = margins[i] + margins[j];
-                        let m = collide_polygons(&world_polys[i], &world_polys[j], margin);
+                        let m = collide_polygons_preferring(&world_polys[i], &world_polys[j], margin, prefer);
                         if m.count > 0 && (speculative || overlapping(&m)) {
                             let friction = (si.friction * sj.friction).sqrt();
                             let restitution = si.restitution.max(sj.restitution);

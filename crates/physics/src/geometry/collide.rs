@@ -63,8 +63,19 @@ fn max_separation(a: &Polygon, b: &Polygon) -> (f64, usize) {
     (best, best_edge)
 }
 
+/// How much better B's separating axis must be for B to give the reference edge: a little (the
+/// soft solver, which avoids flip-flopping between near-equal axes) or not at all (the
+/// sequential-impulse solver, as dyn4j takes the axis of least penetration).
+pub const PREFER_FIRST_SHAPE: f64 = 0.1 * 0.005;
+
 /// Computes the contact manifold of two world-space polygons, keeping points closer than `margin`.
 pub fn collide_polygons(a: &Polygon, b: &Polygon, margin: f64) -> Manifold {
+    collide_polygons_preferring(a, b, margin, PREFER_FIRST_SHAPE)
+}
+
+/// [`collide_polygons`], where B's axis must separate more than A's by `prefer_first` to give
+/// the reference edge.
+pub fn collide_polygons_preferring(a: &Polygon, b: &Polygon, margin: f64, prefer_first: f64) -> Manifold {
     if a.is_circle() || b.is_circle() {
         return collide_with_circle(a, b, margin);
     }
@@ -77,8 +88,7 @@ pub fn collide_polygons(a: &Polygon, b: &Polygon, margin: f64) -> Manifold {
     if sep_b > margin {
         return out;
     }
-    // prefer A as reference unless B's axis is clearly better (avoids flip-flopping)
-    let (reference, incident, ref_edge, flip) = if sep_b > sep_a + 0.1 * 0.005 {
+    let (reference, incident, ref_edge, flip) = if sep_b > sep_a + prefer_first {
         (b, a, edge_b, true)
     } else {
         (a, b, edge_a, false)

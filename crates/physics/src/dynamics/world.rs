@@ -7,7 +7,7 @@ use super::contact_batch::ContactBatches;
 use super::pressure::PressureRing;
 use super::rope::{rope_batches, solve_ropes, Rope, RopeBatch};
 use super::sequential::{self, Joint, Rope as SequentialRope, SequentialSolver, Spring as SequentialSpring, Weld};
-use super::settings::{Solver, WorldSettings};
+use super::settings::{Dyn4jVersion, Solver, WorldSettings};
 use super::soft::Softness;
 use super::spring::{Spring, SpringModel, SpringSet};
 use crate::geometry::aabb::Aabb;
@@ -636,8 +636,9 @@ impl World {
     fn detect_sequential_contacts(&mut self) {
         self.detect_contacts();
         if let Some(si) = &mut self.sequential {
+            let oldest_first = self.settings.dyn4j == Some(Dyn4jVersion::V4_2_1);
             si.contacts
-                .collect(&self.contacts, &self.bodies, self.settings.warm_starting);
+                .collect(&self.contacts, &self.bodies, self.settings.warm_starting, oldest_first);
         }
         self.contacts_fresh = true;
     }

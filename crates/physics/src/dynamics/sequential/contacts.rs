@@ -40,6 +40,9 @@ struct Point {
 #[derive(Debug, Clone, Copy, Default)]
 struct Contact {
     key: u64,
+    /// When this pair of shapes came into contact (a sequence number; kept while they stay in
+    /// contact from step to step).
+    first_seen: u64,
     a: u32,
     b: u32,
     normal: Vec2,
@@ -175,12 +178,22 @@ pub(crate) struct Contacts {
     previous: Vec<Contact>,
     /// (key, index into `previous`), sorted by key.
     previous_keys: Vec<(u64, u32)>,
+    /// The next `first_seen` number.
+    next_seen: u64,
 }
 
 impl Contacts {
     /// Turns the detected manifolds into contacts, carrying over the impulses of the points found
-    /// again (same two shapes, same features).
-    pub fn collect(&mut self, detected: &[ContactConstraint], bodies: &Bodies, warm_starting: bool) {
+    /// again (same two shapes, same features). With `oldest_first`, contacts are listed in the order
+    /// their pairs came into contact (dyn4j 4.x keeps its collision pairs in insertion order), else
+    /// in detection order.
+    pub fn collect(
+        &mut self,
+        detected: &[ContactConstraint],
+        bodies: &Bodies,
+        warm_starting: bool,
+        oldest_first: bool,
+    ) {
         std::mem::swap(&mut self.current, &mut self.previous);
         self.previous_keys.clear();
         self.previous_keys
@@ -189,22 +202,31 @@ impl Contacts {
         self.current.clear();
         for d in detected {
             let mut c = Contact::from_detected(d, bodies);
-            if warm_starting {
-                if let Ok(k) = self.previous_keys.binary_search_by_key(&c.key, |e| e.0) {
-                    c.carry_over(&self.previous[self.previous_keys[k].1 as usize]);
+            if let Ok(k) = self.previous_keys.binary_search_by_key(&c.key, |e| e.0) {
+                let old = &self.previous[self.previous_keys[k].1 as usize];
+                c.first_seen = old.first_seen;
+                if warm_starting {
+                    c.carry_over(old);
                 }
+            } else {
+                c.first_seen = self.next_seen;
+                self.next_seen += 1;
             }
             self.current.push(c);
         }
+        if oldest_first {
+            // first_seen numbers are distinct, so the unstable sort is deterministic
+            self.current.sort_unstable_by_key(|c| c.first_seen);
+        }
     }
 
-    /// Arms, effective masses, restitution targets and the two-point block from the positions
-    /// and velocities at the start of the solve, then the carried-over impulses applied again.
-    /// Bodies (a, b) of each contact, in detection order.
+    /// Bodies (a, b) of each contact, in the order they are listed.
     pub fn pairs(&self) -> impl Iterator<Item = (u32, u32)> + Clone + '_ {
         self.current.iter().map(|c| (c.a, c.b))
     }
 
+    /// Arms, effective masses, restitution targets and the two-point block from the positions
+    /// and velocities at the start of the solve, then the carried-over impulses applied again.
     pub fn initialize(&mut self, bodies: &mut Bodies, p: &Params, order: &[u32]) {
         for &k in order {
             let c = &mut self.current[k as usize];

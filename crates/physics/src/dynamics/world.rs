@@ -11,7 +11,7 @@ use super::settings::{Dyn4jVersion, Solver, WorldSettings};
 use super::soft::Softness;
 use super::spring::{Spring, SpringModel, SpringSet};
 use crate::geometry::aabb::Aabb;
-use crate::geometry::collide::{collide_polygons_preferring, Manifold, PREFER_FIRST_SHAPE};
+use crate::geometry::collide::{collide_polygons, collide_polygons_dyn4j, Manifold};
 use crate::geometry::raycast::ray_cast_polygon;
 use crate::geometry::shape::Polygon;
 use crate::math::{Rot, Vec2};
@@ -678,7 +678,11 @@ impl World {
         // step, so fast bodies meet contacts before they overlap (no tunnelling or deep overlaps)
         // the sequential-impulse solver (like dyn4j) only knows shapes that overlap
         let speculative = self.settings.solver == Solver::SoftSubsteps;
-        let prefer = if speculative { PREFER_FIRST_SHAPE } else { 0.0 };
+        let collide = if speculative {
+            collide_polygons
+        } else {
+            collide_polygons_dyn4j
+        };
         let base = if speculative {
             self.settings.speculative_distance
         } else {
@@ -733,7 +737,7 @@ impl World {
                         continue;
                     }
                     // static is A so that the normal points from the ground into the body
-                    let m = collide_polygons_preferring(&st.polygon, &world_polys[k], 0.5 * base + margins[k], prefer);
+                    let m = collide(&st.polygon, &world_polys[k], 0.5 * base + margins[k]);
                     if m.count > 0 && (speculative || overlapping(&m)) {
                         let friction = (st.friction * s.friction).sqrt();
                         let restitution = st.restitution.max(s.restitution);
@@ -774,7 +778,7 @@ impl World {
                         }
                         let (si, sj) = (&shapes[i], &shapes[j]);
                         let margin = margins[i] + margins[j];
-                        let m = collide_polygons_preferring(&world_polys[i], &world_polys[j], margin, prefer);
+                        let m = collide(&world_polys[i], &world_polys[j], margin);
                         if m.count > 0 && (speculative || overlapping(&m)) {
                             let friction = (si.friction * sj.friction).sqrt();
                             let restitution = si.restitution.max(sj.restitution);

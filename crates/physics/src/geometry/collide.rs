@@ -63,19 +63,24 @@ fn max_separation(a: &Polygon, b: &Polygon) -> (f64, usize) {
     (best, best_edge)
 }
 
-/// How much better B's separating axis must be for B to give the reference edge: a little (the
-/// soft solver, which avoids flip-flopping between near-equal axes) or not at all (the
-/// sequential-impulse solver, as dyn4j takes the axis of least penetration).
-pub const PREFER_FIRST_SHAPE: f64 = 0.1 * 0.005;
+/// How much better B's separating axis must be for B to give the reference edge in
+/// [`collide_polygons`] (avoids flip-flopping between near-equal axes).
+const PREFER_FIRST_SHAPE: f64 = 0.1 * 0.005;
 
 /// Computes the contact manifold of two world-space polygons, keeping points closer than `margin`.
 pub fn collide_polygons(a: &Polygon, b: &Polygon, margin: f64) -> Manifold {
-    collide_polygons_preferring(a, b, margin, PREFER_FIRST_SHAPE)
+    collide_convex(a, b, margin, PREFER_FIRST_SHAPE, false)
 }
 
-/// [`collide_polygons`], where B's axis must separate more than A's by `prefer_first` to give
-/// the reference edge.
-pub fn collide_polygons_preferring(a: &Polygon, b: &Polygon, margin: f64, prefer_first: f64) -> Manifold {
+/// The manifold as dyn4j makes it: the reference edge on the axis of least penetration (its EPA
+/// normal), with no preference for either shape, and the incident edge clipped as dyn4j clips it,
+/// which lists the end points kept before a point where the edge was cut (that order decides the
+/// order in which the solver visits the points).
+pub fn collide_polygons_dyn4j(a: &Polygon, b: &Polygon, margin: f64) -> Manifold {
+    collide_convex(a, b, margin, 0.0, true)
+}
+
+fn collide_convex(a: &Polygon, b: &Polygon, margin: f64, prefer_first: f64, dyn4j_clipping: bool) -> Manifold {
     if a.is_circle() || b.is_circle() {
         return collide_with_circle(a, b, margin);
     }
@@ -108,6 +113,24 @@ pub fn collide_polygons_preferring(a: &Polygon, b: &Polygon, margin: f64, prefer
     let i2 = incident.vertices[(inc_edge + 1) % incident.count];
     let r1 = reference.vertices[ref_edge];
     let r2 = reference.vertices[(ref_edge + 1) % reference.count];
+    let normal = if flip { -n_ref } else { n_ref };
+    if dyn4j_clipping {
+        let ends = [(i1, inc_edge), (i2, (inc_edge + 1) % incident.count)];
+        let Some(points) = clip_as_dyn4j(ends, r1, r2) else {
+            return out;
+        };
+        for (p, vertex) in points {
+            let separation = n_ref.dot(p - r1);
+            if separation <= margin {
+                let point = p - n_ref * (0.5 * separation);
+                let id = point_id(ref_edge, inc_edge, vertex, flip);
+                out.points[out.count] = ManifoldPoint { point, separation, id };
+                out.count += 1;
+            }
+        }
+        out.normal = normal;
+        return out;
+    }
     let tangent = (r2 - r1).normalize_or_zero();
     // clip the incident segment to the slab [r1, r2] along the tangent
     let lower = tangent.dot(r1);
@@ -117,7 +140,6 @@ pub fn collide_polygons_preferring(a: &Polygon, b: &Polygon, margin: f64, prefer
     if !clip_segment(&mut p1, &mut p2, d1, d2, lower, upper) {
         return out;
     }
-    let normal = if flip { -n_ref } else { n_ref };
     for (k, p) in [p1, p2].into_iter().enumerate() {
         let separation = n_ref.dot(p - r1);
         if separation <= margin {
@@ -194,6 +216,44 @@ fn polygon_circle(poly: &Polygon, centre: Vec2, radius: f64) -> (Vec2, f64, Vec2
     face(poly.normals[edge])
 }
 
+/// The incident edge's ends (point, vertex index) clipped to the slab of the reference edge r1–r2,
+/// first at r1's side, then at r2's, each time listing the ends kept (in order) before the point
+/// where the edge was cut, which takes the index of the end cut off; `None` when fewer than two
+/// points remain.
+fn clip_as_dyn4j(ends: [(Vec2, usize); 2], r1: Vec2, r2: Vec2) -> Option<[(Vec2, usize); 2]> {
+    let (along, _) = {
+        let e = r2 - r1;
+        let length = e.length();
+        if length <= f64::EPSILON {
+            return None;
+        }
+        (e * (1.0 / length), length)
+    };
+    let first = clip_half_plane(ends, -along, -along.dot(r1))?;
+    clip_half_plane(first, along, along.dot(r2))
+}
+
+/// Segment v1–v2 clipped to the half-plane n·p ≤ offset, as dyn4j lists the result.
+fn clip_half_plane(ends: [(Vec2, usize); 2], n: Vec2, offset: f64) -> Option<[(Vec2, usize); 2]> {
+    let [v1, v2] = ends;
+    let (d1, d2) = (n.dot(v1.0) - offset, n.dot(v2.0) - offset);
+    let mut out = [(Vec2::ZERO, 0); 2];
+    let mut k = 0;
+    for (v, d) in [(v1, d1), (v2, d2)] {
+        if d <= 0.0 {
+            out[k] = v;
+            k += 1;
+        }
+    }
+    if d1 * d2 < 0.0 && k < 2 {
+        let u = d1 / (d1 - d2);
+        let p = (v2.0 - v1.0) * u + v1.0;
+        out[k] = (p, if d1 > 0.0 { v1.1 } else { v2.1 });
+        k += 1;
+    }
+    (k == 2).then_some(out)
+}
+
 fn clip_segment(p1: &mut Vec2, p2: &mut Vec2, d1: f64, d2: f64, lower: f64, upper: f64) -> bool {
     let (a, b) = (*p1, *p2);
     let (lo_d, hi_d) = (d1.min(d2), d1.max(d2));
@@ -225,6 +285,33 @@ fn clip_segment(p1: &mut Vec2, p2: &mut Vec2, d1: f64, d2: f64, lower: f64, uppe
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A small box on a wide one, hanging over its left end: the incident (bottom) edge of the
+    /// small box is cut at the wide box's left side. dyn4j lists the end it keeps first, then the
+    /// cut point, which carries the index of the vertex cut off; the soft solver's clipping keeps
+    /// the edge's own order.
+    #[test]
+    fn dyn4j_clipping_lists_the_kept_end_before_the_cut_point() {
+        let wide = Polygon::rect(Vec2::new(0.0, -1.0), 2.0, 1.0);
+        let small = Polygon::rect(Vec2::new(-2.0, 0.45), 0.5, 0.5);
+        let soft = collide_polygons(&wide, &small, 0.0);
+        let exact = collide_polygons_dyn4j(&wide, &small, 0.0);
+        assert_eq!((soft.count, exact.count), (2, 2));
+        // the small box's bottom edge runs from vertex 0 (x = −2.5, cut to −2) to vertex 1 (−1.5)
+        assert!((soft.points[0].point.x + 2.0).abs() < 1e-12 && (soft.points[1].point.x + 1.5).abs() < 1e-12);
+        assert!((exact.points[0].point.x + 1.5).abs() < 1e-12 && (exact.points[1].point.x + 2.0).abs() < 1e-12);
+        let vertex = |id: u32| ((id - 1) >> 16) & 0xff;
+        assert_eq!(vertex(exact.points[0].id), 1);
+        assert_eq!(
+            vertex(exact.points[1].id),
+            0,
+            "the cut point keeps the index of the vertex cut off"
+        );
+        for m in [soft, exact] {
+            assert!((m.normal - Vec2::new(0.0, 1.0)).length() < 1e-12);
+            assert!(m.points[..2].iter().all(|p| (p.separation + 0.05).abs() < 1e-12));
+        }
+    }
 
     #[test]
     fn circle_on_box_touches_at_one_point_below_its_centre() {

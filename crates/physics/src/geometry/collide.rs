@@ -221,14 +221,12 @@ fn polygon_circle(poly: &Polygon, centre: Vec2, radius: f64) -> (Vec2, f64, Vec2
 /// where the edge was cut, which takes the index of the end cut off; `None` when fewer than two
 /// points remain.
 fn clip_as_dyn4j(ends: [(Vec2, usize); 2], r1: Vec2, r2: Vec2) -> Option<[(Vec2, usize); 2]> {
-    let (along, _) = {
-        let e = r2 - r1;
-        let length = e.length();
-        if length <= f64::EPSILON {
-            return None;
-        }
-        (e * (1.0 / length), length)
-    };
+    let edge = r2 - r1;
+    let length = edge.length();
+    if length <= f64::EPSILON {
+        return None;
+    }
+    let along = edge * (1.0 / length);
     let first = clip_half_plane(ends, -along, -along.dot(r1))?;
     clip_half_plane(first, along, along.dot(r2))
 }

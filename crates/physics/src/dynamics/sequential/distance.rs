@@ -144,15 +144,18 @@ fn separation(a: &Support, b: &Support, c: &Support, d: Vec2, version: Dyn4jVers
                 point2,
             }
         }
-        Dyn4jVersion::V4_2_1 => {
-            let (normal, distance) = normalized(point2 - point1);
-            Separation {
-                distance,
-                normal,
-                point1,
-                point2,
-            }
-        }
+        Dyn4jVersion::V4_2_1 => between(point1, point2),
+    }
+}
+
+/// 4.x's result: the distance and direction from `point1` to `point2`.
+fn between(point1: Vec2, point2: Vec2) -> Separation {
+    let (normal, distance) = normalized(point2 - point1);
+    Separation {
+        distance,
+        normal,
+        point1,
+        point2,
     }
 }
 
@@ -217,15 +220,7 @@ fn touching(a: &Support, b: &Support, d: Vec2, p: Vec2, version: Dyn4jVersion) -
             point1,
             point2,
         },
-        Dyn4jVersion::V4_2_1 => {
-            let (normal, distance) = normalized(point2 - point1);
-            Separation {
-                distance,
-                normal,
-                point1,
-                point2,
-            }
-        }
+        Dyn4jVersion::V4_2_1 => between(point1, point2),
     }
 }
 

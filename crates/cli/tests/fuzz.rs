@@ -400,12 +400,14 @@ fn malformed_command(rng: &mut ChaCha8Rng, results: &Path) -> (Vec<String>, Vec<
         "--transient",
         "--preset",
         "--substeps",
+        "--solver",
         "--robot",
         "run --threads",
         "run --max-memory-gib",
         "bench --robots",
         "bench --min-seconds",
         "bench --threads",
+        "bench --solver",
         "label --bins",
     ]
     .choose(rng)

@@ -200,14 +200,10 @@ fn main() {
     while i < args.len() {
         if args[i] == "--solver" {
             let name = args.get(i + 1).map(String::as_str).unwrap_or("");
-            solver = match name {
-                "soft-substeps" => Solver::SoftSubsteps,
-                "sequential-impulses" => Solver::SequentialImpulses,
-                _ => {
-                    eprintln!("--solver: expected soft-substeps or sequential-impulses, got '{name}'");
-                    std::process::exit(2);
-                }
-            };
+            solver = name.parse().unwrap_or_else(|e| {
+                eprintln!("--solver: {e}");
+                std::process::exit(2);
+            });
             i += 2;
         } else {
             n = match args[i].parse() {

@@ -23,15 +23,7 @@ fn main() -> Result<(), String> {
     }
     let robot = RobotSpec::from_short_forms(&args[0], &args[1], "empty", &args[5]).map_err(|e| e.to_string())?;
     let mut task = Locomotion::default();
-    task.physics.solver = match args[2].as_str() {
-        "soft-substeps" => Solver::SoftSubsteps,
-        "sequential-impulses" => Solver::SequentialImpulses,
-        other => {
-            return Err(format!(
-                "SOLVER: expected soft-substeps or sequential-impulses, got '{other}'"
-            ))
-        }
-    };
+    task.physics.solver = args[2].parse::<Solver>().map_err(|e| format!("SOLVER: {e}"))?;
     task.physics.continuous_collision = !args.iter().any(|a| a == "--no-ccd");
     if let Some(n) = args.iter().position(|a| a == "--velocity-iterations") {
         let value = args.get(n + 1).and_then(|v| v.parse().ok());

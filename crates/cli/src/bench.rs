@@ -52,13 +52,7 @@ impl BenchArgs {
     fn options(&self) -> Result<BenchOptions, String> {
         let solver = match self.solver.as_deref() {
             None => None,
-            Some("soft-substeps") => Some(Solver::SoftSubsteps),
-            Some("sequential-impulses") => Some(Solver::SequentialImpulses),
-            Some(other) => {
-                return Err(format!(
-                    "--solver: expected soft-substeps or sequential-impulses, got '{other}'"
-                ))
-            }
+            Some(name) => Some(name.parse::<Solver>().map_err(|e| format!("--solver: {e}"))?),
         };
         Ok(BenchOptions {
             duration: self.duration,

@@ -3,6 +3,19 @@
 use crate::math::Vec2;
 use serde::{Deserialize, Serialize};
 
+impl std::str::FromStr for Solver {
+    type Err = String;
+    /// Parses a solver's name as experiment files write it (`soft-substeps`,
+    /// `sequential-impulses`).
+    fn from_str(name: &str) -> Result<Solver, String> {
+        match name {
+            "soft-substeps" => Ok(Solver::SoftSubsteps),
+            "sequential-impulses" => Ok(Solver::SequentialImpulses),
+            _ => Err(format!("expected soft-substeps or sequential-impulses, got '{name}'")),
+        }
+    }
+}
+
 /// How a spring's stiffness k = M·ω² and damping c = 2·M·ζ·ω choose the mass M.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "kebab-case")]
@@ -130,6 +143,11 @@ impl Default for WorldSettings {
 }
 
 impl WorldSettings {
+    /// The dyn4j the sequential-impulse solver follows: the one named, or 3.3.0.
+    pub fn dyn4j_version(&self) -> Dyn4jVersion {
+        self.dyn4j.unwrap_or(Dyn4jVersion::V3_3_0)
+    }
+
     /// Checks that every field is in range; the error names the field.
     pub fn validate(&self) -> Result<(), String> {
         let positive = [

@@ -167,7 +167,7 @@ pub struct World {
     step_count: u64,
     time: f64,
     /// The joints and contacts of the sequential-impulse solver, when the world uses it.
-    pub(crate) sequential: Option<SequentialSolver>,
+    sequential: Option<SequentialSolver>,
     /// Whether `contacts` hold the present positions' contacts (the sequential-impulse solver
     /// detects them at the end of each step, for the next one).
     contacts_fresh: bool,
@@ -332,6 +332,8 @@ impl World {
         statics.sort_by(|x, y| x.aabb.min.x.total_cmp(&y.aabb.min.x));
         let static_aabbs: Vec<Aabb> = statics.iter().map(|s| s.aabb).collect();
         let mut excluded: Vec<(u32, u32)> = b.excluded.iter().map(|&(x, y)| (x.0, y.0)).collect();
+        // a world point relative to a body's centre of mass (bodies start unrotated)
+        let local = |world: Vec2, body: u32| world - bodies.state[body as usize].pos;
         let mut springs = Vec::new();
         let mut spring_models = Vec::new();
         let mut spring_slot = Vec::new();
@@ -353,8 +355,8 @@ impl World {
                 si.joints.springs.push(SequentialSpring::new(
                     ba,
                     bb,
-                    world_a - bodies.state[ba as usize].pos,
-                    world_b - bodies.state[bb as usize].pos,
+                    local(world_a, ba),
+                    local(world_b, bb),
                     s.rest_length,
                     s.frequency,
                     s.damping_ratio,
@@ -366,8 +368,8 @@ impl World {
             springs.push(Spring {
                 a: ba,
                 b: bb,
-                local_a: world_a - bodies.state[ba as usize].pos,
-                local_b: world_b - bodies.state[bb as usize].pos,
+                local_a: local(world_a, ba),
+                local_b: local(world_b, bb),
                 rest: s.rest_length,
             });
             let part_inv_inertia = |k: usize| {
@@ -409,8 +411,8 @@ impl World {
                 si.joints.ropes.push(SequentialRope::new(
                     ba,
                     bb,
-                    world_a - bodies.state[ba as usize].pos,
-                    world_b - bodies.state[bb as usize].pos,
+                    local(world_a, ba),
+                    local(world_b, bb),
                     r.min_length,
                 ));
                 continue;
@@ -419,8 +421,8 @@ impl World {
             ropes.push(Rope {
                 a: ba,
                 b: bb,
-                local_a: b.parts[pa].position + r.anchor_a - bodies.state[ba as usize].pos,
-                local_b: b.parts[pb].position + r.anchor_b - bodies.state[bb as usize].pos,
+                local_a: local(world_a, ba),
+                local_b: local(world_b, bb),
                 min_length: r.min_length,
                 impulse: 0.0,
                 active: true,
@@ -433,13 +435,9 @@ impl World {
                 excluded.push((x.0, y.0));
                 let (ba, bb) = (part_body[x.0 as usize], part_body[y.0 as usize]);
                 let anchor = bodies.state[ba as usize].pos;
-                si.joints.welds.push(Weld::new(
-                    ba,
-                    bb,
-                    Vec2::ZERO,
-                    anchor - bodies.state[bb as usize].pos,
-                    0.0,
-                ));
+                si.joints
+                    .welds
+                    .push(Weld::new(ba, bb, Vec2::ZERO, local(anchor, bb), 0.0));
             }
         }
         let excluded = ExcludedPairs::new(n, excluded);
@@ -636,7 +634,7 @@ impl World {
     fn detect_sequential_contacts(&mut self) {
         self.detect_contacts();
         if let Some(si) = &mut self.sequential {
-            let oldest_first = self.settings.dyn4j == Some(Dyn4jVersion::V4_2_1);
+            let oldest_first = self.settings.dyn4j_version() == Dyn4jVersion::V4_2_1;
             si.contacts
                 .collect(&self.contacts, &self.bodies, self.settings.warm_starting, oldest_first);
         }

@@ -33,8 +33,9 @@ const MAX_ITERATIONS: usize = 30;
 struct StaticShape {
     polygon: Polygon,
     centre: Vec2,
-    /// Distance from the centre to the farthest vertex.
-    radius: f64,
+    /// The box dyn4j 3.3.0 gives it: centre ± distance to the farthest vertex.
+    disc: Aabb,
+    /// Its tight box (dyn4j 4.x).
     aabb: Aabb,
 }
 
@@ -97,7 +98,7 @@ impl Ccd {
                 StaticShape {
                     polygon: *p,
                     centre,
-                    radius: farthest_vertex(p, centre),
+                    disc: Aabb::of_points(&[centre]).inflated(farthest_vertex(p, centre)),
                     aabb: Aabb::of_points(p.verts()),
                 }
             })
@@ -165,10 +166,10 @@ impl Ccd {
         let mut earliest: Option<(f64, Separation)> = None;
         for (k, st) in self.statics.iter().enumerate() {
             let box2 = match p.version {
-                Dyn4jVersion::V3_3_0 => Aabb::of_points(&[st.centre]).inflated(st.radius),
-                Dyn4jVersion::V4_2_1 => st.aabb,
+                Dyn4jVersion::V3_3_0 => &st.disc,
+                Dyn4jVersion::V4_2_1 => &st.aabb,
             };
-            if !swept.overlaps(&box2) || self.touching.binary_search(&(body as u32, k as u32)).is_ok() {
+            if !swept.overlaps(box2) || self.touching.binary_search(&(body as u32, k as u32)).is_ok() {
                 continue;
             }
             let (lo, hi) = self.body_shapes[body];

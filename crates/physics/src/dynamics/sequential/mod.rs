@@ -48,7 +48,7 @@ pub(crate) struct Params {
 
 impl Params {
     pub fn of(s: &WorldSettings) -> Params {
-        let version = s.dyn4j.unwrap_or(Dyn4jVersion::V3_3_0);
+        let version = s.dyn4j_version();
         Params {
             dt: s.dt,
             velocity_iterations: s.velocity_iterations,

@@ -118,21 +118,41 @@ fn parting(solver: Solver) {
     }
 }
 
-/// Mean ± sd over the shifted starts of a value read at step 300.
+/// Mean ± sd [min, max] over the shifted starts of a value read at step 300.
 fn mean_sd(values: &[f64]) -> String {
     let s = Summary::of(values).unwrap();
-    format!("{:.4} ± {:.4}", s.mean, s.sd)
+    format!("{:.5} ± {:.5} [{:.5}, {:.5}]", s.mean, s.sd, s.min, s.max)
 }
 
+/// The original's readings: the ensemble figures of vsr-model.md §9.1 where it gives them (2021
+/// area ratios and touch), else measured on the original run as an instrument over the same 30
+/// starts (docs/fidelity.md, 2026-11-26; §9.1 gives only the nominal run there, whose 2022 area
+/// ratios 1.03609 and 0.83365 it lists with the ensemble's sd).
 fn readings(n: usize, solver: Solver) {
     println!("| quantity | 2021 original | 2021 vsrlab | 2022 original | 2022 vsrlab |");
     println!("|---|---|---|---|---|");
     let originals = [
-        ("area ratio, voxel (0,0)", "1.04264 ± 0.01559", "1.03609 ± 0.00005"),
-        ("area ratio, voxel (3,2)", "0.80487 ± 0.01052", "0.83365 ± 0.0001"),
+        (
+            "area ratio, voxel (0,0)",
+            "1.04264 ± 0.01559 [0.96253, 1.05430]",
+            "1.03583 ± 0.00005 [1.03578, 1.03609]",
+        ),
+        (
+            "area ratio, voxel (3,2)",
+            "0.80487 ± 0.01052 [0.76300, 0.81174]",
+            "0.83354 ± 0.00011 [0.83325, 0.83368]",
+        ),
         ("touch (0.25 s average), voxel (0,0)", "0.542 ± 0.303", "0 (nominal)"),
-        ("angle (rad), voxel (0,0)", "0.0293 (nominal)", "−1.6012 (nominal)"),
-        ("angle (rad), voxel (3,2)", "−0.0837 (nominal)", "−1.7118 (nominal)"),
+        (
+            "angle (rad), voxel (0,0)",
+            "0.1328 ± 0.1909 [−0.3931, 0.4672]",
+            "−1.5527 ± 0.0300 [−1.5833, −1.4659]",
+        ),
+        (
+            "angle (rad), voxel (3,2)",
+            "0.1773 ± 0.1844 [−0.2044, 0.4890]",
+            "−1.6592 ± 0.0334 [−1.6982, −1.5660]",
+        ),
     ];
     let lidar_originals = [
         "[0.920, 0.989, 1, 1, 1] (means)",
@@ -220,6 +240,6 @@ fn main() {
     velocities(n, solver);
     println!("\nTime until the centre x of two starts 1e-6 apart differ by more than 1e-3:\n");
     parting(solver);
-    println!("\nbiped-4x3 at step 300 (t = 5 s), mean ± sd over the {n} starts:\n");
+    println!("\nbiped-4x3 at step 300 (t = 5 s), mean ± sd [min, max] over the {n} starts:\n");
     readings(n, solver);
 }

@@ -238,12 +238,15 @@ pub fn height_at(profile: &[Vec2], x: f64) -> Option<f64> {
     Some(a.y + (b.y - a.y) * t)
 }
 
-/// Adds one static quad per segment, down to 50 below the lowest point.
+/// Adds one static quad per segment, down to 50 below the lowest point. Its corners are listed
+/// as 2D-VSR-Sim lists them (top left, down, across, up), so that the top edge closes the
+/// polygon: dyn4j numbers contact points by edge, and the closing edge's number is the one that
+/// changes from step to step (vsr-model.md §2.1, docs/fidelity.md).
 pub fn add_ground(builder: &mut WorldBuilder, profile: &[Vec2]) {
     let base = profile.iter().map(|p| p.y).fold(f64::INFINITY, f64::min) - 50.0;
     for w in profile.windows(2) {
         let (a, b) = (w[0], w[1]);
-        let quad = [Vec2::new(a.x, base), Vec2::new(b.x, base), b, a];
+        let quad = [a, Vec2::new(a.x, base), Vec2::new(b.x, base), b];
         if let Some(poly) = Polygon::convex(&quad) {
             builder.add_static_polygon(poly, GROUND_FRICTION, 0.0);
         }
@@ -282,6 +285,23 @@ mod tests {
         assert_eq!(height_at(&p, 100.0), Some(5.0));
         assert_eq!(height_at(&p, 5.0), Some(52.5));
         assert_eq!(height_at(&p, 2500.0), None);
+    }
+
+    /// Each ground quad closes on its top edge (last corner to the first), as in 2D-VSR-Sim, so
+    /// that contact points on the ground are numbered (and warm started) as dyn4j numbers them.
+    #[test]
+    fn ground_quads_close_on_their_top_edge() {
+        let profile: Vec<Vec2> = "hilly-1-10".parse::<Terrain>().unwrap().profile(3);
+        let mut builder = WorldBuilder::new(vsrlab_physics::WorldSettings::default());
+        add_ground(&mut builder, &profile);
+        let world = builder.build().unwrap();
+        let mut quads = 0;
+        for (poly, w) in world.static_polygons().zip(profile.windows(2)) {
+            let v = poly.verts();
+            assert_eq!((v[0], v[v.len() - 1]), (w[0], w[1]));
+            quads += 1;
+        }
+        assert_eq!(quads, profile.len() - 1);
     }
 
     #[test]

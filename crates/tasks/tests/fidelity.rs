@@ -222,7 +222,7 @@ fn the_sequential_impulse_solver_follows_the_original_voxel_step_by_step() {
 
 /// vsr-model.md §9.1, preset 2022, worm-6x2: the original's 30 shifted starts have median
 /// velocity 0.4749, IQR [0.4638, 0.4845]. Ten shifted starts under the sequential-impulse solver
-/// land there (measured with 30: median 0.4648, IQR [0.4617, 0.4727]); the soft solver's do not
+/// land there (measured with 30: median 0.4756, IQR [0.4604, 0.4894]); the soft solver's do not
 /// (0.126 from every start).
 #[test]
 fn sequential_impulses_reproduce_the_original_2022_worm_ensemble() {

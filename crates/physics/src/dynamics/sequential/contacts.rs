@@ -7,6 +7,7 @@
 
 use super::{point_velocity, rotate_about, Params};
 use crate::dynamics::contact::ContactConstraint;
+use crate::dynamics::settings::Dyn4jVersion;
 use crate::dynamics::world::Bodies;
 use crate::geometry::collide::ManifoldPoint;
 use crate::math::Vec2;
@@ -49,7 +50,10 @@ struct Contact {
     friction: f64,
     restitution: f64,
     points: [Point; 2],
+    /// Points found (kept for warm starting the next step).
     count: usize,
+    /// Points solved: `count`, or 1 when two points are nearly dependent.
+    solved: usize,
     /// Normal block K = [[k00, k01], [k01, k11]] and its inverse, for two points.
     k: [f64; 3],
     inv_k: [f64; 3],
@@ -66,6 +70,7 @@ impl Contact {
             friction: d.friction,
             restitution: d.restitution,
             count: d.count,
+            solved: d.count,
             ..Default::default()
         };
         for i in 0..d.count {
@@ -91,6 +96,28 @@ impl Contact {
             };
         }
         c
+    }
+
+    /// Two nearly dependent points: only the deeper is solved. dyn4j 3.3.0 keeps the deeper (the
+    /// second on a tie) and drops the other; 4.2.1 moves the deeper first (the first stays on a
+    /// tie) and keeps the other, unsolved, so that its impulse can still warm start a point found
+    /// again next step.
+    fn solve_deeper_only(&mut self, version: Dyn4jVersion) {
+        let [first, second] = [self.points[0].depth, self.points[1].depth];
+        match version {
+            Dyn4jVersion::V3_3_0 => {
+                if first <= second {
+                    self.points[0] = self.points[1];
+                }
+                self.count = 1;
+            }
+            Dyn4jVersion::V4_2_1 => {
+                if first < second {
+                    self.points.swap(0, 1);
+                }
+            }
+        }
+        self.solved = 1;
     }
 
     /// Takes over the impulses of the points that `old` had too.
@@ -226,12 +253,14 @@ impl Contacts {
     }
 
     /// Arms, effective masses, restitution targets and the two-point block from the positions
-    /// and velocities at the start of the solve, then the carried-over impulses applied again.
+    /// and velocities at the start of the solve, then (once all contacts are set up, as dyn4j
+    /// does) the carried-over impulses applied again.
     pub fn initialize(&mut self, bodies: &mut Bodies, p: &Params, order: &[u32]) {
         for &k in order {
             let c = &mut self.current[k as usize];
             let (sa, sb) = (&bodies.state[c.a as usize], &bodies.state[c.b as usize]);
-            let (n, t) = (c.normal, c.normal.perp());
+            let n = c.normal;
+            let t = n.perp();
             let mass_along = |ra: Vec2, rb: Vec2, axis: Vec2| {
                 let (rna, rnb) = (ra.cross(axis), rb.cross(axis));
                 1.0 / (sa.inv_mass + sb.inv_mass + sa.inv_inertia * rna * rna + sb.inv_inertia * rnb * rnb)
@@ -261,15 +290,15 @@ impl Contacts {
                     let inv = if det != 0.0 { 1.0 / det } else { 0.0 };
                     c.inv_k = [inv * k11, -inv * k01, inv * k00];
                 } else {
-                    // nearly dependent points: keep the deeper one
-                    if c.points[0].depth <= c.points[1].depth {
-                        c.points[0] = c.points[1];
-                    }
-                    c.count = 1;
+                    c.solve_deeper_only(p.version);
                 }
             }
-            for q in &c.points[..c.count] {
-                let impulse = n * q.jn + t * q.jt;
+        }
+        for &k in order {
+            let c = &self.current[k as usize];
+            let t = c.normal.perp();
+            for q in &c.points[..c.solved] {
+                let impulse = c.normal * q.jn + t * q.jt;
                 bodies.apply_impulse_pair(c.a as usize, c.b as usize, q.ra, q.rb, impulse);
             }
         }
@@ -282,7 +311,7 @@ impl Contacts {
             let c = &mut self.current[k as usize];
             let (a, b) = (c.a as usize, c.b as usize);
             let t = c.normal.perp();
-            for q in &mut c.points[..c.count] {
+            for q in &mut c.points[..c.solved] {
                 let vt = t.dot(point_velocity(&bodies.state[b], q.rb) - point_velocity(&bodies.state[a], q.ra));
                 let limit = c.friction * q.jn;
                 let new = (q.jt - q.mass_t * vt).clamp(-limit, limit);
@@ -290,14 +319,14 @@ impl Contacts {
                 q.jt = new;
                 bodies.apply_impulse_pair(a, b, q.ra, q.rb, t * d);
             }
-            if c.count == 1 {
+            if c.solved == 1 {
                 let vn = c.normal_speed(bodies, 0);
                 let q = &mut c.points[0];
                 let new = (q.jn - q.mass_n * (vn - q.bounce)).max(0.0);
                 let d = new - q.jn;
                 q.jn = new;
                 bodies.apply_impulse_pair(a, b, q.ra, q.rb, c.normal * d);
-            } else if c.count == 2 {
+            } else if c.solved == 2 {
                 c.solve_normal_block(bodies);
             }
         }
@@ -321,7 +350,7 @@ impl Contacts {
                 }
             };
             let ((ma, ia), (mb, ib)) = (weight(a), weight(b));
-            for q in &mut c.points[..c.count] {
+            for q in &mut c.points[..c.solved] {
                 let (sa, sb) = (&bodies.state[a], &bodies.state[b]);
                 let (ra, rb) = (sa.rot.apply(q.local_a), sb.rot.apply(q.local_b));
                 let separation = n.dot((sb.pos + rb) - (sa.pos + ra)) - q.depth;
@@ -344,5 +373,112 @@ impl Contacts {
             }
         }
         min_separation >= -3.0 * p.linear_slop
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dynamics::settings::{Solver, WorldSettings};
+    use crate::dynamics::world::BodyState;
+    use crate::math::Rot;
+
+    fn params(version: Dyn4jVersion) -> Params {
+        Params::of(&WorldSettings {
+            solver: Solver::SequentialImpulses,
+            dyn4j: Some(version),
+            ..WorldSettings::default()
+        })
+    }
+
+    /// The static world (body 0) and unit bodies at `positions`, moving at `velocities`.
+    fn bodies(positions: &[Vec2], velocities: &[Vec2]) -> Bodies {
+        let mut b = Bodies::default();
+        let body = |pos, vel, inv| BodyState {
+            pos,
+            rot: Rot::IDENTITY,
+            vel,
+            omega: 0.0,
+            inv_mass: inv,
+            inv_inertia: inv,
+        };
+        b.state.push(body(Vec2::ZERO, Vec2::ZERO, 0.0));
+        b.mass.push(0.0);
+        for (&p, &v) in positions.iter().zip(velocities) {
+            b.state.push(body(p, v, 1.0));
+            b.mass.push(1.0);
+        }
+        b
+    }
+
+    /// A contact between bodies a and b with normal +y and one point per (x, y, depth, id).
+    fn contact(a: u32, b: u32, points: &[(f64, f64, f64, u32)]) -> Contact {
+        let mut c = Contact {
+            a,
+            b,
+            normal: Vec2::new(0.0, 1.0),
+            friction: 1.0,
+            restitution: 0.5,
+            count: points.len(),
+            solved: points.len(),
+            ..Default::default()
+        };
+        for (q, &(x, y, depth, id)) in c.points.iter_mut().zip(points) {
+            *q = Point {
+                world: Vec2::new(x, y),
+                depth,
+                id,
+                ..Default::default()
+            };
+        }
+        c
+    }
+
+    /// Two nearly coincident points: 3.3.0 keeps the deeper only (the second on a tie); 4.2.1
+    /// solves the deeper (the first on a tie) and keeps the other for next step's warm start.
+    #[test]
+    fn nearly_dependent_points_keep_the_deeper_as_each_version_does() {
+        let kept = |version, d0: f64, d1: f64| {
+            let mut c = contact(1, 2, &[(0.0, 0.0, d0, 1), (1e-7, 0.0, d1, 2)]);
+            c.solve_deeper_only(version);
+            (c.solved, c.count, c.points[0].id)
+        };
+        assert_eq!(kept(Dyn4jVersion::V3_3_0, 0.2, 0.1), (1, 1, 1));
+        assert_eq!(kept(Dyn4jVersion::V3_3_0, 0.1, 0.2), (1, 1, 2));
+        assert_eq!(kept(Dyn4jVersion::V3_3_0, 0.1, 0.1), (1, 1, 2));
+        assert_eq!(kept(Dyn4jVersion::V4_2_1, 0.2, 0.1), (1, 2, 1));
+        assert_eq!(kept(Dyn4jVersion::V4_2_1, 0.1, 0.2), (1, 2, 2));
+        assert_eq!(kept(Dyn4jVersion::V4_2_1, 0.1, 0.1), (1, 2, 1));
+        // and through initialize: two points 10⁻⁷ apart make an ill-conditioned block
+        let mut b = bodies(&[Vec2::new(0.0, -0.5), Vec2::new(0.0, 0.5)], &[Vec2::ZERO; 2]);
+        let mut contacts = Contacts {
+            current: vec![contact(1, 2, &[(0.0, 0.0, 0.1, 1), (1e-7, 0.0, 0.2, 2)])],
+            ..Default::default()
+        };
+        contacts.initialize(&mut b, &params(Dyn4jVersion::V4_2_1), &[0]);
+        let c = &contacts.current[0];
+        assert_eq!((c.solved, c.count, c.points[0].id), (1, 2, 2));
+    }
+
+    /// dyn4j sets up every contact (restitution targets from the velocities at the start of the
+    /// solve) before it warm starts any: a warm-started neighbour must not change another contact's
+    /// bounce.
+    #[test]
+    fn restitution_targets_are_read_before_any_warm_start() {
+        // body 2 rests on body 1; body 3 falls onto body 2 at 2 (above the 1.0 threshold)
+        let positions = [Vec2::new(0.0, 0.0), Vec2::new(0.0, 1.0), Vec2::new(0.0, 2.0)];
+        let mut b = bodies(&positions, &[Vec2::ZERO, Vec2::ZERO, Vec2::new(0.0, -2.0)]);
+        let mut below = contact(1, 2, &[(0.0, 0.5, 0.01, 1)]);
+        below.points[0].jn = 5.0;
+        let above = contact(2, 3, &[(0.0, 1.5, 0.01, 1)]);
+        let mut contacts = Contacts {
+            current: vec![below, above],
+            ..Default::default()
+        };
+        contacts.initialize(&mut b, &params(Dyn4jVersion::V4_2_1), &[0, 1]);
+        let bounce = contacts.current[1].points[0].bounce;
+        assert!((bounce - 0.5 * 2.0).abs() < 1e-12, "bounce {bounce}");
+        // the warm start itself was applied: body 2 was pushed up by 5
+        assert!((b.state[2].vel.y - 5.0).abs() < 1e-12);
     }
 }

@@ -2,16 +2,18 @@
 # The Python half of the test suite (the README's test command runs it after `cargo test`):
 # a virtual environment at .venv with python/requirements-test.txt, the extension built into it
 # with maturin in the dev profile (optimised, and shared with `cargo test`'s build, so only the
-# extension itself compiles here), the CLI it is compared with built in the same profile, then
-# pytest. pytest's exit code 5 (no tests collected) is a failure:
-# it means the suite went missing, not that it passed.
+# extension itself compiles here), the CLI it is compared with built in the same profile (with
+# --workspace, so that dependencies get the same features as in `cargo test --workspace` and
+# nothing compiles twice; `-p vsrlab-cli` alone would rebuild most of the tree), then pytest.
+# pytest's exit code 5 (no tests collected) is a failure: it means the suite went missing, not
+# that it passed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ ! -x .venv/bin/python ]; then
   python3 -m venv .venv
 fi
 .venv/bin/python -m pip install --quiet --disable-pip-version-check -r python/requirements-test.txt
-cargo build --locked --quiet -p vsrlab-cli
+cargo build --locked --quiet --workspace --bins
 .venv/bin/maturin develop --locked --quiet -m python/Cargo.toml
 set +e
 VSRLAB_BIN="$PWD/target/debug/vsrlab" .venv/bin/python -m pytest python/tests -q "$@"

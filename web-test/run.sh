@@ -2,8 +2,9 @@
 # The browser part of the test suite (the README's test command runs it after python/test.sh):
 # Debian's chromium (installed with apt-get when missing and running as root), playwright-core from
 # web-test/package-lock.json (never `npx playwright install`: it would download a browser), the CLI
-# in the dev profile (shared with `cargo test`), then web-test/viewer.test.mjs, which serves
-# replays with `vsrlab view`, drives the page headless and checks its pixels (docs/viewer.md).
+# in the dev profile (shared with `cargo test`; built with --workspace, as python/test.sh explains),
+# then web-test/viewer.test.mjs, which serves replays with `vsrlab view`, drives the page headless
+# and checks its pixels (docs/viewer.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 CHROMIUM="${CHROMIUM:-/usr/bin/chromium}"
@@ -22,5 +23,5 @@ if ! command -v node >/dev/null; then
   exit 1
 fi
 (cd web-test && npm ci --no-audit --no-fund --silent)
-cargo build --locked --quiet -p vsrlab-cli
+cargo build --locked --quiet --workspace --bins
 VSRLAB_BIN="$PWD/target/debug/vsrlab" CHROMIUM="$CHROMIUM" node web-test/viewer.test.mjs

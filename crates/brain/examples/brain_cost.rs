@@ -7,6 +7,7 @@
 
 use std::time::Instant;
 use vsrlab_body::Morphology;
+use vsrlab_brain::BrainShape;
 use vsrlab_brain::BrainSpec;
 
 fn main() {
@@ -49,9 +50,11 @@ fn main() {
     println!("{:<20} {:>10} {:>12}", "brain", "parameters", "ns/step");
     for form in brains {
         let spec = BrainSpec::parse(form)
-            .and_then(|s| s.with_random_parameters(1, &m, &rpv))
+            .and_then(|s| s.with_random_parameters(1, &BrainShape::grid(&m, &rpv)))
             .unwrap_or_else(|e| panic!("{form}: {e}"));
-        let mut brain = spec.build(&m, &rpv).unwrap_or_else(|e| panic!("{form}: {e}"));
+        let mut brain = spec
+            .build(&BrainShape::grid(&m, &rpv))
+            .unwrap_or_else(|e| panic!("{form}: {e}"));
         let mut actuations = vec![0.0; m.voxel_count()];
         let steps = 200_000;
         for k in 0..1000 {

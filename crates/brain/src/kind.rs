@@ -1,8 +1,7 @@
 //! [`BrainKind`]: the behaviour every kind of brain description provides.
 
-use crate::{BrainError, BrainSpec, Controller};
+use crate::{BrainError, BrainShape, BrainSpec, Controller};
 use std::fmt::Debug;
-use vsrlab_body::Morphology;
 
 /// One kind of brain, as described in configs and robot files: its fields, its parameter vector and
 /// how it builds its [`Controller`] for a body.
@@ -29,9 +28,9 @@ pub trait BrainKind: Debug + Send + Sync {
     /// Number of parameters this brain needs for a body whose voxels (voxel order) have these
     /// readings counts. Errors when the shape does not fit the body. Default: the inner brain's, or
     /// 0.
-    fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
+    fn parameter_count(&self, shape: &BrainShape) -> Result<usize, BrainError> {
         match self.inner() {
-            Some(inner) => inner.parameter_count(morphology, readings_per_voxel),
+            Some(inner) => inner.parameter_count(shape),
             None => Ok(0),
         }
     }
@@ -102,7 +101,7 @@ pub trait BrainKind: Debug + Send + Sync {
     /// Validates every field and builds the controller for a body whose voxels (voxel order) have
     /// these readings counts; a parameter vector of the wrong length is an error naming its field:
     /// "expected N for this body and sensors, got M".
-    fn build(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError>;
+    fn build(&self, shape: &BrainShape) -> Result<Box<dyn Controller>, BrainError>;
 }
 
 /// The error of freezing a brain that does not learn.

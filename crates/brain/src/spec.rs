@@ -13,11 +13,10 @@ use crate::controllers::random::RandomSpec;
 use crate::controllers::smoothed::SmoothedSpec;
 use crate::controllers::step::StepSpec;
 use crate::validation::check_count;
-use crate::{short_form, BrainError, BrainKind, Controller};
+use crate::{short_form, BrainError, BrainKind, BrainShape, Controller};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
-use vsrlab_body::Morphology;
 
 /// Description of a brain, as written in configs and robot files (JSON or TOML, tagged by `kind`).
 ///
@@ -209,12 +208,12 @@ impl BrainSpec {
         short_form::parse(s)
     }
 
-    /// Number of parameters this brain needs for a body whose voxels (voxel order) have these
-    /// readings counts: 0 for parameterless brains (`phase`, `constant`, `random`); wrappers
+    /// Number of parameters this brain needs for a body of this shape (units, their readings
+    /// counts, their layout): 0 for parameterless brains (`phase`, `constant`, `random`); wrappers
     /// delegate to their inner brain. Errors when the shape does not fit the body (for example
     /// unequal readings counts for a distributed MLP).
-    pub fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
-        self.as_kind().parameter_count(morphology, readings_per_voxel)
+    pub fn parameter_count(&self, shape: &BrainShape) -> Result<usize, BrainError> {
+        self.as_kind().parameter_count(shape)
     }
 
     /// The parameter vector (empty for parameterless brains and unfilled templates); wrappers give
@@ -238,13 +237,8 @@ impl BrainSpec {
     /// [`BrainSpec::with_parameters`], first checking the count against
     /// [`BrainSpec::parameter_count`] for this body: a mismatch is an error on field `parameters`,
     /// "expected N for this body and sensors, got M".
-    pub fn with_parameters_for(
-        &self,
-        params: &[f64],
-        morphology: &Morphology,
-        readings_per_voxel: &[usize],
-    ) -> Result<BrainSpec, BrainError> {
-        let expected = self.parameter_count(morphology, readings_per_voxel)?;
+    pub fn with_parameters_for(&self, params: &[f64], shape: &BrainShape) -> Result<BrainSpec, BrainError> {
+        let expected = self.parameter_count(shape)?;
         check_count("parameters", expected, params.len())?;
         self.with_parameters(params)
     }
@@ -252,29 +246,20 @@ impl BrainSpec {
     /// The same brain with [`BrainSpec::parameter_count`] parameters drawn uniformly in [−1, 1]
     /// from a ChaCha8 generator seeded with `seed` (reproducible: a random brain for the command
     /// line or a benchmark). Parameterless brains come back unchanged.
-    pub fn with_random_parameters(
-        &self,
-        seed: u64,
-        morphology: &Morphology,
-        readings_per_voxel: &[usize],
-    ) -> Result<BrainSpec, BrainError> {
-        let n = self.parameter_count(morphology, readings_per_voxel)?;
+    pub fn with_random_parameters(&self, seed: u64, shape: &BrainShape) -> Result<BrainSpec, BrainError> {
+        let n = self.parameter_count(shape)?;
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let params: Vec<f64> = (0..n).map(|_| rng.random_range(-1.0..=1.0)).collect();
         self.with_parameters(&params)
     }
 
-    /// Builds the controller for a body whose voxels (voxel order) have these readings counts.
+    /// Builds the controller for a body of this shape.
     ///
     /// Validates every field; a parameter vector of the wrong length is an error on `weights`
     /// (MLPs) or `parameters` (phase grid): "expected N for this body and sensors, got M" (an
     /// unfilled template has M = 0).
-    pub fn build(
-        &self,
-        morphology: &Morphology,
-        readings_per_voxel: &[usize],
-    ) -> Result<Box<dyn Controller>, BrainError> {
-        self.as_kind().build(morphology, readings_per_voxel)
+    pub fn build(&self, shape: &BrainShape) -> Result<Box<dyn Controller>, BrainError> {
+        self.as_kind().build(shape)
     }
 }
 
@@ -323,7 +308,7 @@ mod tests {
             .map(|(k, s)| {
                 BrainSpec::parse(s)
                     .unwrap()
-                    .with_random_parameters(k as u64, &m, &rpv)
+                    .with_random_parameters(k as u64, &BrainShape::grid(&m, &rpv))
                     .unwrap()
             })
             .collect();
@@ -337,7 +322,7 @@ mod tests {
                 positional: false,
                 weights: Vec::new(),
             })
-            .with_random_parameters(99, &m, &rpv)
+            .with_random_parameters(99, &BrainShape::grid(&m, &rpv))
             .unwrap(),
         );
         specs.push(
@@ -348,7 +333,7 @@ mod tests {
                 layout: PhaseLayout::Voxels,
                 parameters: Vec::new(),
             })
-            .with_random_parameters(100, &m, &rpv)
+            .with_random_parameters(100, &BrainShape::grid(&m, &rpv))
             .unwrap(),
         );
         specs.push(
@@ -358,7 +343,7 @@ mod tests {
                 input_activation: false,
                 weights: Vec::new(),
             })
-            .with_random_parameters(101, &m, &rpv)
+            .with_random_parameters(101, &BrainShape::grid(&m, &rpv))
             .unwrap(),
         );
         specs
@@ -507,7 +492,13 @@ mod tests {
     fn parameterless_kinds_count_no_parameters() {
         let (m, rpv) = biped();
         for s in ["phase", "constant:0", "random", "step:1:phase"] {
-            assert_eq!(BrainSpec::parse(s).unwrap().parameter_count(&m, &rpv), Ok(0), "{s}");
+            assert_eq!(
+                BrainSpec::parse(s)
+                    .unwrap()
+                    .parameter_count(&BrainShape::grid(&m, &rpv)),
+                Ok(0),
+                "{s}"
+            );
         }
     }
 
@@ -515,7 +506,9 @@ mod tests {
     fn every_kind_builds_and_actuates_within_bounds() {
         let (m, rpv) = biped();
         for spec in every_kind() {
-            let mut c = spec.build(&m, &rpv).unwrap_or_else(|e| panic!("{spec:?}: {e}"));
+            let mut c = spec
+                .build(&BrainShape::grid(&m, &rpv))
+                .unwrap_or_else(|e| panic!("{spec:?}: {e}"));
             c.reset();
             let mut a = vec![0.0; 10];
             for k in 1..=120 {
@@ -542,14 +535,18 @@ mod tests {
             .with_parameters(&params)
             .unwrap();
         assert_eq!(wrapped.parameters(), &params[..]);
-        assert!(wrapped.build(&m, &rpv).is_ok());
+        assert!(wrapped.build(&BrainShape::grid(&m, &rpv)).is_ok());
 
-        let err = homogeneous().with_parameters_for(&params[..40], &m, &rpv).unwrap_err();
+        let err = homogeneous()
+            .with_parameters_for(&params[..40], &BrainShape::grid(&m, &rpv))
+            .unwrap_err();
         assert_eq!(
             err.to_string(),
             "brain.parameters: expected 45 for this body and sensors, got 40"
         );
-        assert!(homogeneous().with_parameters_for(&params, &m, &rpv).is_ok());
+        assert!(homogeneous()
+            .with_parameters_for(&params, &BrainShape::grid(&m, &rpv))
+            .is_ok());
 
         let err = BrainSpec::default().with_parameters(&[1.0, 2.0]).unwrap_err();
         assert_eq!(
@@ -578,15 +575,15 @@ mod tests {
     fn random_parameters_are_reproducible_and_in_range() {
         let (m, rpv) = biped();
         let spec = BrainSpec::parse("mlp").unwrap();
-        let a = spec.with_random_parameters(7, &m, &rpv).unwrap();
-        let b = spec.with_random_parameters(7, &m, &rpv).unwrap();
-        let c = spec.with_random_parameters(8, &m, &rpv).unwrap();
+        let a = spec.with_random_parameters(7, &BrainShape::grid(&m, &rpv)).unwrap();
+        let b = spec.with_random_parameters(7, &BrainShape::grid(&m, &rpv)).unwrap();
+        let c = spec.with_random_parameters(8, &BrainShape::grid(&m, &rpv)).unwrap();
         assert_eq!(a, b);
         assert_ne!(a, c);
         assert_eq!(a.parameters().len(), 1336);
         assert!(a.parameters().iter().all(|w| (-1.0..=1.0).contains(w)));
         assert_eq!(
-            BrainSpec::default().with_random_parameters(7, &m, &rpv),
+            BrainSpec::default().with_random_parameters(7, &BrainShape::grid(&m, &rpv)),
             Ok(BrainSpec::default())
         );
     }

@@ -1,6 +1,6 @@
 //! Fixtures shared by the unit tests of the brain kinds.
 
-use crate::{BrainError, BrainSpec};
+use crate::{BrainError, BrainShape, BrainSpec};
 use vsrlab_body::Morphology;
 
 /// The biped-4x3 (10 voxels) with 4 readings per voxel: the body of the published check values.
@@ -11,7 +11,7 @@ pub(crate) fn biped() -> (Morphology, Vec<usize>) {
 /// The error of building `spec` for the biped whose voxels have these readings counts (panics if it
 /// builds).
 pub(crate) fn build_error(spec: &BrainSpec, readings_per_voxel: &[usize]) -> BrainError {
-    match spec.build(&biped().0, readings_per_voxel) {
+    match spec.build(&BrainShape::grid(&biped().0, readings_per_voxel)) {
         Ok(_) => panic!("{spec:?} builds"),
         Err(err) => err,
     }

@@ -1,7 +1,6 @@
 //! Checks shared by the brain kinds when they validate their fields; each error names the field.
 
-use crate::BrainError;
-use vsrlab_body::Morphology;
+use crate::{BrainError, BrainShape};
 
 /// Errors unless `v` is finite.
 pub(crate) fn finite(field: &'static str, v: f64) -> Result<(), BrainError> {
@@ -58,18 +57,15 @@ pub(crate) fn check_count(field: &'static str, expected: usize, got: usize) -> R
     }
 }
 
-/// Errors unless there is one readings count per voxel.
-pub(crate) fn check_voxels(morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<(), BrainError> {
-    if readings_per_voxel.len() == morphology.voxel_count() {
+/// Errors unless there is one readings count per unit of the shape's layout.
+pub(crate) fn check_units(shape: &BrainShape) -> Result<(), BrainError> {
+    let (readings, units) = (shape.readings().len(), shape.units());
+    if readings == units {
         Ok(())
     } else {
         Err(BrainError::Invalid {
             field: "readings_per_voxel",
-            msg: format!(
-                "{} entries for a body of {} voxels",
-                readings_per_voxel.len(),
-                morphology.voxel_count()
-            ),
+            msg: format!("{readings} entries for a body of {units} voxels"),
         })
     }
 }

@@ -4,6 +4,7 @@
 
 use proptest::prelude::*;
 use vsrlab_body::Morphology;
+use vsrlab_brain::BrainShape;
 use vsrlab_brain::BrainSpec;
 
 proptest! {
@@ -20,9 +21,9 @@ proptest! {
         let m = Morphology::named(body).unwrap();
         let n = m.voxel_count();
         let rpv = vec![4; n];
-        let random = BrainSpec::parse(form).unwrap().with_random_parameters(seed, &m, &rpv).unwrap();
+        let random = BrainSpec::parse(form).unwrap().with_random_parameters(seed, &BrainShape::grid(&m, &rpv)).unwrap();
         let scaled: Vec<f64> = random.parameters().iter().map(|p| p * scale).collect();
-        let mut c = random.with_parameters(&scaled).unwrap().build(&m, &rpv).unwrap();
+        let mut c = random.with_parameters(&scaled).unwrap().build(&BrainShape::grid(&m, &rpv)).unwrap();
         let mut a = vec![0.0; n];
         for k in 0..1000 {
             let start = (k % 20) * 44;

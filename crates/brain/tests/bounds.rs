@@ -2,12 +2,13 @@
 //! refused with the field named, before anything is allocated.
 
 use vsrlab_body::Morphology;
+use vsrlab_brain::BrainShape;
 use vsrlab_brain::{BrainError, BrainSpec};
 
 fn count(brain: &str, body: &str) -> Result<usize, BrainError> {
     let body = Morphology::parse(body).unwrap();
     let readings = vec![4; body.voxel_count()];
-    BrainSpec::parse(brain)?.parameter_count(&body, &readings)
+    BrainSpec::parse(brain)?.parameter_count(&BrainShape::grid(&body, &readings))
 }
 
 fn field_of(result: Result<usize, BrainError>) -> &'static str {
@@ -26,7 +27,7 @@ fn huge_brains_are_refused_naming_the_field() {
     let body = Morphology::parse("biped-4x3").unwrap();
     let err = BrainSpec::parse("distributed-mlp:100000000000000000")
         .unwrap()
-        .build(&body, &[4; 10])
+        .build(&BrainShape::grid(&body, &[4; 10]))
         .err()
         .unwrap();
     assert!(err.to_string().contains("signals"), "{err}");

@@ -9,6 +9,7 @@ use rand_chacha::ChaCha8Rng;
 use vsrlab_body::Morphology;
 use vsrlab_brain::graph_modules::ModuleMap;
 use vsrlab_brain::graph_ops::{apply, draw, Operator, Topology, EDGE_SIGMA, THESIS_OPERATORS};
+use vsrlab_brain::BrainShape;
 use vsrlab_brain::{BrainKind, GraphSpec, NeuronSpec};
 
 /// The thesis' biped modules: column 0, column 3, the middle columns.
@@ -29,7 +30,7 @@ proptest! {
     ) {
         let m = Morphology::named("biped-4x3").unwrap();
         let rpv = vec![2; 10];
-        let (neurons, edges) = GraphSpec::initial(&m, &rpv);
+        let (neurons, edges) = GraphSpec::initial(&BrainShape::grid(&m, &rpv));
         let mut g = GraphSpec { parameters: vec![0.1; 2 * edges.len()], neurons, edges, grow: 0 };
         let topology = Topology { max_dist, omega, modules: Some(biped_modules()), sigma: EDGE_SIGMA };
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
@@ -41,7 +42,7 @@ proptest! {
             let op = draw(if uniform { &uniform_ops } else { &THESIS_OPERATORS }, &mut rng);
             g = apply(&g, op, &topology, &mut rng);
             prop_assert_eq!(g.parameters.len(), 2 * g.edges.len());
-            let count = g.parameter_count(&m, &rpv);
+            let count = g.parameter_count(&BrainShape::grid(&m, &rpv));
             prop_assert!(count.is_ok(), "step {} ({:?}): {:?}", step, op, count);
             for e in &g.edges {
                 let ((ax, ay), (bx, by)) = (g.neurons[e.from].cell(), g.neurons[e.to].cell());
@@ -65,7 +66,7 @@ fn the_modularity_bias_favours_its_kind_of_edge() {
     // from the initial biped graph (max_dist ∞), count crossing edges among 2 000 additions
     let m = Morphology::named("biped-4x3").unwrap();
     let rpv = vec![2; 10];
-    let (neurons, edges) = GraphSpec::initial(&m, &rpv);
+    let (neurons, edges) = GraphSpec::initial(&BrainShape::grid(&m, &rpv));
     let g = GraphSpec {
         parameters: vec![0.0; 2 * edges.len()],
         neurons,

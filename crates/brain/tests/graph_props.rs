@@ -4,13 +4,14 @@
 
 use proptest::prelude::*;
 use vsrlab_body::Morphology;
+use vsrlab_brain::BrainShape;
 use vsrlab_brain::{Activation, Controller, EdgeSpec, GraphSpec, NeuronSpec};
 
 /// A random valid graph on the biped-4x3 with 2 readings per voxel, from a list of draws.
 fn graph(draws: &[u32], params: &[f64]) -> GraphSpec {
     let m = Morphology::named("biped-4x3").unwrap();
     let cells: Vec<(usize, usize)> = m.voxels().collect();
-    let (mut neurons, mut edges) = GraphSpec::initial(&m, &[2; 10]);
+    let (mut neurons, mut edges) = GraphSpec::initial(&BrainShape::grid(&m, &[2; 10]));
     let activations = [
         Activation::Sigmoid,
         Activation::Tanh,
@@ -77,8 +78,8 @@ proptest! {
             parameters: g.parameters.clone(),
             grow: 0,
         };
-        let mut a = g.controller(&m, &[2; 10]).unwrap();
-        let mut b = shuffled.controller(&m, &[2; 10]).unwrap();
+        let mut a = g.controller(&BrainShape::grid(&m, &[2; 10])).unwrap();
+        let mut b = shuffled.controller(&BrainShape::grid(&m, &[2; 10])).unwrap();
         let (mut out_a, mut out_b) = (vec![0.0; 10], vec![0.0; 10]);
         for k in 0..200 {
             let r = &readings[(k % 8) * 20..(k % 8 + 1) * 20];

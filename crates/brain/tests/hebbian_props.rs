@@ -4,6 +4,7 @@
 
 use proptest::prelude::*;
 use vsrlab_body::Morphology;
+use vsrlab_brain::BrainShape;
 use vsrlab_brain::{BrainKind, BrainSpec, HebbianModel, HebbianSpec, Normalisation};
 
 fn spec(model: HebbianModel, normalisation: Normalisation, eta: f64, evolve_eta: bool) -> HebbianSpec {
@@ -34,12 +35,12 @@ proptest! {
         let body = Morphology::named("worm-4x1").unwrap();
         let rpv = [2, 2, 2, 2];
         let template = BrainSpec::Hebbian(spec(model, normalisation, eta, evolve_eta));
-        let n = template.parameter_count(&body, &rpv).unwrap();
-        let random = template.with_random_parameters(seed, &body, &rpv).unwrap();
+        let n = template.parameter_count(&BrainShape::grid(&body, &rpv)).unwrap();
+        let random = template.with_random_parameters(seed, &BrainShape::grid(&body, &rpv)).unwrap();
         let scaled: Vec<f64> = random.parameters().iter().map(|p| p * scale).collect();
         let brain = template.with_parameters(&scaled).unwrap();
         prop_assert_eq!(brain.parameters().len(), n);
-        let mut c = brain.build(&body, &rpv).unwrap();
+        let mut c = brain.build(&BrainShape::grid(&body, &rpv)).unwrap();
         let mut a = [0.0; 4];
         // 50 distinct reading vectors, cycled for 2 000 steps (33 s)
         for k in 0..2000 {
@@ -86,7 +87,7 @@ fn the_parameter_counts_follow_the_documented_formulas() {
         let voxels = body.voxel_count();
         let mut rpv = vec![0; voxels];
         rpv[0] = n_in;
-        let count = |s: &HebbianSpec| s.parameter_count(body, &rpv).unwrap();
+        let count = |s: &HebbianSpec| s.parameter_count(&BrainShape::grid(body, &rpv)).unwrap();
         assert_eq!(
             count(&spec(HebbianModel::Full, Normalisation::None, 0.01, false)),
             4 * w(n_in, voxels)
@@ -110,5 +111,8 @@ fn the_parameter_counts_follow_the_documented_formulas() {
     rpv[2] = 1;
     rpv[3] = 1;
     rpv[4] = 1;
-    assert_eq!(worm_low.parameter_count(&worm, &rpv).unwrap(), 4 * (3 * 4 + 7 * 4));
+    assert_eq!(
+        worm_low.parameter_count(&BrainShape::grid(&worm, &rpv)).unwrap(),
+        4 * (3 * 4 + 7 * 4)
+    );
 }

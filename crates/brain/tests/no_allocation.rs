@@ -4,6 +4,7 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 use vsrlab_body::Morphology;
+use vsrlab_brain::BrainShape;
 use vsrlab_brain::BrainSpec;
 
 struct Counting;
@@ -66,9 +67,9 @@ fn control_does_not_allocate() {
     ] {
         let spec = BrainSpec::parse(form)
             .unwrap()
-            .with_random_parameters(1, &m, &rpv)
+            .with_random_parameters(1, &BrainShape::grid(&m, &rpv))
             .unwrap();
-        let mut brain = spec.build(&m, &rpv).unwrap();
+        let mut brain = spec.build(&BrainShape::grid(&m, &rpv)).unwrap();
         brain.reset();
         let readings = vec![0.3; 40];
         let mut actuations = vec![0.0; m.voxel_count()];

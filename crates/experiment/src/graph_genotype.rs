@@ -33,6 +33,7 @@ use vsrlab_body::sensors::SensorSuite;
 use vsrlab_body::Morphology;
 use vsrlab_brain::graph_modules::{self, ModuleMap};
 use vsrlab_brain::graph_ops::{apply, draw, Operator, Topology, THESIS_OPERATORS};
+use vsrlab_brain::BrainShape;
 use vsrlab_brain::{BrainSpec, GraphSpec};
 use vsrlab_evolution::rng::SeededRng;
 use vsrlab_evolution::{GaConfig, GeneticAlgorithm, Representation as Variation, Sense};
@@ -402,7 +403,7 @@ pub fn build(experiment: &Experiment, config: &GraphGenotypeConfig) -> Result<(G
     let suite = SensorSuite::new(representation.sensors().map_err(|e| e.to_string())?, body, 0)
         .map_err(|e| format!("representation.sensors: {e}"))?;
     let per_voxel: Vec<usize> = (0..body.voxel_count()).map(|v| suite.readings_per_voxel(v)).collect();
-    let (neurons, edges) = brain.topology(body, &per_voxel);
+    let (neurons, edges) = brain.topology(&BrainShape::grid(body, &per_voxel));
     let start = GraphSpec {
         neurons,
         edges,

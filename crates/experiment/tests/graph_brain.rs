@@ -8,6 +8,7 @@ mod common;
 use common::Killer;
 use vsrlab_body::Morphology;
 use vsrlab_brain::graph_ops::{apply, Operator, Topology};
+use vsrlab_brain::BrainShape;
 use vsrlab_brain::{BrainSpec, GraphSpec};
 use vsrlab_experiment::config;
 use vsrlab_experiment::runner::{deterministic_files, run_configured, run_dir, RunOptions, Silent};
@@ -132,7 +133,7 @@ fn topology_evolves_only_when_the_operators_allow_it() {
 fn a_seeded_population_starts_from_the_robot_file_graph() {
     // a seed: the initial graph with one added hidden neuron and known weights
     let m = Morphology::named("biped-4x3").unwrap();
-    let (neurons, edges) = GraphSpec::initial(&m, &[1; 10]);
+    let (neurons, edges) = GraphSpec::initial(&BrainShape::grid(&m, &[1; 10]));
     let mut seed = GraphSpec {
         parameters: vec![0.25; 2 * edges.len()],
         neurons,

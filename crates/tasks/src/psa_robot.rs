@@ -2,9 +2,10 @@
 //! [`Psa`] body, its [`PsaSensors`] and its brain; at every step its [`PsaAgent`] senses, controls
 //! and actuates, in that order (the step order of every vsrlab robot).
 //!
-//! The brain sees the agent as a row of units, one per controlled actuator: with spring control,
-//! unit i is mass i (readings touch, x, y; actuator: spring i, joining mass i and i+1); with
-//! pressure control, one more unit is the gas (readings Δx, Δy, p/p_max; actuator: Δp). Without
+//! The brain sees the agent as units, one per controlled actuator: with spring control, unit i is
+//! mass i (readings touch, x, y; actuator: spring i, joining mass i and i+1), and these units form
+//! a ring (each one's neighbours are the masses beside it on the membrane); with pressure control,
+//! one more unit is the gas (readings Δx, Δy, p/p_max; actuator: Δp), outside the ring. Without
 //! pressure control the gas's three readings go to the last spring unit; without spring control
 //! the gas unit has all 3n+3 readings. Any brain whose shape fits runs a PSA; the thesis's is
 //! `heads` (tanh spring heads, a linear Δp head).
@@ -14,8 +15,8 @@ use crate::episode::EpisodeError;
 use crate::outcome::Trace;
 use serde::{Deserialize, Serialize};
 use vsrlab_body::psa::{Psa, PsaBody, PsaSensors};
-use vsrlab_body::{Body, Morphology};
-use vsrlab_brain::{BrainSpec, Controller, HeadsSpec};
+use vsrlab_body::Body;
+use vsrlab_brain::{BrainShape, BrainSpec, Controller, HeadsSpec, RingLayout};
 use vsrlab_physics::{Vec2, World, WorldBuilder};
 
 /// Collision group of the agent (touch sensing).
@@ -37,32 +38,31 @@ fn default_brain() -> BrainSpec {
 }
 
 impl PsaRobot {
-    /// The brain's view of the agent: a one-row grid of the controlled units and the readings of
-    /// each (see the module documentation).
-    pub fn brain_shape(&self) -> (Morphology, Vec<usize>) {
+    /// The brain's view of the agent: the controlled units, the readings of each, and their ring
+    /// layout (see the module documentation).
+    pub fn brain_shape(&self) -> BrainShape {
         let p = &self.body.params;
         let n = p.masses;
         let mut readings = Vec::new();
-        if p.spring_control {
+        let layout = if p.spring_control {
             readings.extend(std::iter::repeat_n(3, n));
             if p.pressure_control {
                 readings.push(3);
             } else {
                 readings[n - 1] += 3;
             }
+            RingLayout::new(n, usize::from(p.pressure_control))
         } else {
             readings.push(3 * n + 3);
-        }
-        let units = readings.len();
-        let row = Morphology::from_fn(units, 1, |_, _| true).expect("a PSA has 1 to 201 units");
-        (row, readings)
+            RingLayout::new(0, 1)
+        };
+        BrainShape::new(layout, readings)
     }
 
     /// Number of brain parameters for this body.
     pub fn brain_parameters(&self) -> Result<usize, EpisodeError> {
-        let (row, readings) = self.brain_shape();
         self.brain
-            .parameter_count(&row, &readings)
+            .parameter_count(&self.brain_shape())
             .map_err(|e| EpisodeError::Invalid(format!("robot.{e}")))
     }
 
@@ -89,9 +89,8 @@ impl PsaRobot {
     /// Checks that body and brain fit together, parameters included; errors name the field.
     pub fn validate(&self) -> Result<(), EpisodeError> {
         self.validate_body()?;
-        let (row, readings) = self.brain_shape();
         self.brain
-            .build(&row, &readings)
+            .build(&self.brain_shape())
             .map(|_| ())
             .map_err(|e| EpisodeError::Invalid(format!("robot.{e}")))
     }
@@ -120,14 +119,14 @@ impl Robot for PsaRobot {
         let p = &self.body.params;
         let centre = origin + Vec2::new(p.radius, p.radius);
         let psa = Psa::assemble(builder, p, centre, PSA_GROUP);
-        let (row, readings) = self.brain_shape();
+        let shape = self.brain_shape();
         let mut brain = self
             .brain
-            .build(&row, &readings)
+            .build(&shape)
             .map_err(|e| EpisodeError::Invalid(format!("robot.{e}")))?;
         brain.reset();
         let sensors = PsaSensors::new(&psa, builder.settings().dt);
-        Ok(Box::new(PsaAgent::new(psa, sensors, brain, readings.len())))
+        Ok(Box::new(PsaAgent::new(psa, sensors, brain, shape.units())))
     }
 
     fn robot_file(&self, note: Option<&str>) -> Option<String> {
@@ -270,15 +269,12 @@ impl PsaRobot {
             body: PsaBody::of_size(size),
             brain,
         };
-        let (row, readings) = robot.brain_shape();
-        let count = robot
-            .brain
-            .parameter_count(&row, &readings)
-            .map_err(|e| format!("brain: {e}"))?;
+        let shape = robot.brain_shape();
+        let count = robot.brain.parameter_count(&shape).map_err(|e| format!("brain: {e}"))?;
         if count > 0 && robot.brain.parameters().is_empty() {
             robot.brain = robot
                 .brain
-                .with_random_parameters(RANDOM_BRAIN_SEED, &row, &readings)
+                .with_random_parameters(RANDOM_BRAIN_SEED, &shape)
                 .map_err(|e| format!("brain: {e}"))?;
         }
         robot.validate().map_err(|e| e.to_string())?;

@@ -24,6 +24,7 @@ use vsrlab_body::encodings::BodyEncoding;
 use vsrlab_body::psa::PsaBody;
 use vsrlab_body::sensors::{SensorConfig, SensorSuite};
 use vsrlab_body::{Morphology, Preset};
+use vsrlab_brain::BrainShape;
 use vsrlab_brain::BrainSpec;
 
 /// Where the body comes from. In configs: a shape name or text grid (`"biped-4x3"`, `"##/#."`) or
@@ -261,7 +262,7 @@ impl Representation {
         let suite = SensorSuite::new(self.sensors()?, body, 0).map_err(representation_error("sensors"))?;
         let per_voxel: Vec<usize> = (0..body.voxel_count()).map(|v| suite.readings_per_voxel(v)).collect();
         self.brain
-            .parameter_count(body, &per_voxel)
+            .parameter_count(&BrainShape::grid(body, &per_voxel))
             .map_err(|e| EvaluationError::Representation(e.to_string()))
     }
 }

@@ -3,6 +3,7 @@
 use serde::{Deserialize, Serialize};
 use vsrlab_body::sensors::{SensorConfig, SensorSuite};
 use vsrlab_body::{Morphology, Preset, VoxelParams};
+use vsrlab_brain::BrainShape;
 use vsrlab_brain::BrainSpec;
 
 /// Everything needed to build a robot in a world.
@@ -64,7 +65,7 @@ impl RobotSpec {
         self.voxel_params().validate().map_err(|e| split_field(&e))?;
         let per_voxel = self.readings_per_voxel()?;
         self.brain
-            .build(&self.body, &per_voxel)
+            .build(&BrainShape::grid(&self.body, &per_voxel))
             .map(|_| ())
             .map_err(|e| split_field(&e.to_string()))
     }

@@ -6,6 +6,7 @@
 use crate::robot::{RobotError, RobotSpec};
 use vsrlab_body::sensors::{SensorConfig, SensorError};
 use vsrlab_body::{Morphology, MorphologyError, Preset};
+use vsrlab_brain::BrainShape;
 use vsrlab_brain::{BrainError, BrainSpec};
 
 /// Default sensors: area ratio, velocity and touch on every voxel (thesis ch. 3), no noise.
@@ -109,12 +110,12 @@ impl RobotSpec {
         let per_voxel = self.readings_per_voxel().map_err(RobotArgsError::SensorsOnBody)?;
         let count = self
             .brain
-            .parameter_count(&self.body, &per_voxel)
+            .parameter_count(&BrainShape::grid(&self.body, &per_voxel))
             .map_err(RobotArgsError::Brain)?;
         if count > 0 && self.brain.parameters().is_empty() {
             self.brain = self
                 .brain
-                .with_random_parameters(RANDOM_BRAIN_SEED, &self.body, &per_voxel)
+                .with_random_parameters(RANDOM_BRAIN_SEED, &BrainShape::grid(&self.body, &per_voxel))
                 .map_err(RobotArgsError::Brain)?;
         }
         Ok(self)

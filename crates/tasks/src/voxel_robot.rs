@@ -8,6 +8,7 @@ use crate::outcome::{RayInfo, Trace};
 use crate::robot::RobotSpec;
 use vsrlab_body::sensors::SensorSuite;
 use vsrlab_body::{Body, Morphology, VoxelState, Vsr};
+use vsrlab_brain::BrainShape;
 use vsrlab_brain::Controller;
 use vsrlab_physics::{Vec2, World, WorldBuilder};
 
@@ -34,7 +35,7 @@ impl Robot for RobotSpec {
             .collect();
         let mut brain = self
             .brain
-            .build(&self.body, &per_voxel)
+            .build(&BrainShape::grid(&self.body, &per_voxel))
             .map_err(|e| EpisodeError::Invalid(format!("robot.{e}")))?;
         brain.reset();
         Ok(Box::new(VoxelAgent::new(vsr, sensors, brain)))

@@ -59,8 +59,7 @@ mod episodes {
             body: PsaBody::of_size(size),
             brain: BrainSpec::parse(brain).unwrap(),
         };
-        let (row, readings) = r.brain_shape();
-        r.brain = r.brain.with_random_parameters(seed, &row, &readings).unwrap();
+        r.brain = r.brain.with_random_parameters(seed, &r.brain_shape()).unwrap();
         r
     }
 
@@ -130,9 +129,8 @@ mod robustness {
             let size = PsaSize::ALL[size];
             let mut robot = PsaRobot { body: PsaBody::of_size(size), brain: BrainSpec::Random(RandomSpec { period: 0.0, seed }) };
             if heads {
-                let (row, readings) = robot.brain_shape();
                 let spec = BrainSpec::Heads(HeadsSpec::default())
-                    .with_random_parameters(seed, &row, &readings)
+                    .with_random_parameters(seed, &robot.brain_shape())
                     .unwrap();
                 let scaled: Vec<f64> = spec.parameters().iter().map(|w| w * scale).collect();
                 robot.brain = spec.with_parameters(&scaled).unwrap();

@@ -34,10 +34,9 @@
 use crate::controllers::distributed_mlp::common_readings;
 use crate::mlp::check_parameter_total;
 use crate::short_form::{self, ShortForm};
-use crate::validation::{check_count, check_finite, check_voxels, set_finite};
-use crate::{BrainError, BrainKind, BrainSpec, Controller, Layout};
+use crate::validation::{check_count, check_finite, check_units, set_finite};
+use crate::{BrainError, BrainKind, BrainShape, BrainSpec, Controller, Layout};
 use serde::{Deserialize, Serialize};
-use vsrlab_body::Morphology;
 
 /// Largest `d_k`.
 pub const MAX_D_K: usize = 10_000;
@@ -130,11 +129,11 @@ impl BrainKind for AttentionSpec {
         "attention"
     }
 
-    fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
+    fn parameter_count(&self, shape: &BrainShape) -> Result<usize, BrainError> {
         self.check()?;
-        check_voxels(morphology, readings_per_voxel)?;
-        let r = common_readings(morphology, readings_per_voxel)?;
-        let n = morphology.voxel_count();
+        check_units(shape)?;
+        let r = common_readings(shape)?;
+        let n = shape.units();
         let downstream = Self::downstream_len(n, r);
         let count = match (self.layout, self.attention.is_empty()) {
             (Layout::Homogeneous, true) => self.attention_len().saturating_add(downstream),
@@ -197,11 +196,11 @@ impl BrainKind for AttentionSpec {
         Ok(())
     }
 
-    fn build(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
-        let expected = self.parameter_count(morphology, readings_per_voxel)?;
+    fn build(&self, shape: &BrainShape) -> Result<Box<dyn Controller>, BrainError> {
+        let expected = self.parameter_count(shape)?;
         check_count("parameters", expected, self.parameters.len())?;
-        let r = common_readings(morphology, readings_per_voxel)?;
-        let n = morphology.voxel_count();
+        let r = common_readings(shape)?;
+        let n = shape.units();
         if !self.frozen.is_empty() {
             check_count("frozen", n * r * r, self.frozen.len())?;
         }
@@ -407,32 +406,41 @@ fn parse_short_form(argument: Option<&str>) -> Option<BrainSpec> {
 mod tests {
     use super::*;
     use crate::testing::{assert_invalid, biped};
+    use vsrlab_body::Morphology;
 
     fn filled(spec: &str, seed: u64) -> BrainSpec {
         let (m, rpv) = biped();
         BrainSpec::parse(spec)
             .unwrap()
-            .with_random_parameters(seed, &m, &rpv)
+            .with_random_parameters(seed, &BrainShape::grid(&m, &rpv))
             .unwrap()
     }
 
     #[test]
     fn the_thesis_parameter_counts() {
         let (m, rpv) = biped();
-        let count = |s: &str| BrainSpec::parse(s).unwrap().parameter_count(&m, &rpv).unwrap();
+        let count = |s: &str| {
+            BrainSpec::parse(s)
+                .unwrap()
+                .parameter_count(&BrainShape::grid(&m, &rpv))
+                .unwrap()
+        };
         assert_eq!(count("attention"), 73);
         assert_eq!(count("attention:slow"), 75);
         assert_eq!(count("attention:hetero"), 10 * 73);
         let comb = Morphology::named("comb-7x2").unwrap();
         let spec = BrainSpec::parse("attention").unwrap();
-        assert_eq!(spec.parameter_count(&comb, &[4; 11]).unwrap(), 77);
+        assert_eq!(spec.parameter_count(&BrainShape::grid(&comb, &[4; 11])).unwrap(), 77);
         // the baselines: per-voxel MLP on the one-hot readings, with and without signals
         assert_eq!(count("local-mlp"), 41);
         assert_eq!(count("local-mlp:1"), 5 * 45);
         // larger bodies: biped-6x4 has 18 voxels, comb-14x2 21
         let big = Morphology::named("biped-6x4").unwrap();
         assert_eq!(big.voxel_count(), 18);
-        assert_eq!(spec.parameter_count(&big, &[4; 18]).unwrap(), 32 + 18 * 4 + 1);
+        assert_eq!(
+            spec.parameter_count(&BrainShape::grid(&big, &[4; 18])).unwrap(),
+            32 + 18 * 4 + 1
+        );
     }
 
     #[test]
@@ -445,7 +453,7 @@ mod tests {
             parameters: params,
             ..AttentionSpec::default()
         });
-        let mut c = spec.build(&m, &[2]).unwrap();
+        let mut c = spec.build(&BrainShape::grid(&m, &[2])).unwrap();
         let s = [0.6, 0.2];
         let mut a = [0.0];
         c.control(0.0, &s, &mut a);
@@ -468,7 +476,7 @@ mod tests {
             let spec = filled(form, 5);
             let base: Vec<f64> = (0..40).map(|i| (i as f64 * 0.31).sin().abs()).collect();
             let run = |readings: &[f64]| {
-                let mut c = spec.build(&m, &rpv).unwrap();
+                let mut c = spec.build(&BrainShape::grid(&m, &rpv)).unwrap();
                 let mut a = vec![0.0; 10];
                 // two steps, so that slow attention's memory is involved too
                 c.control(0.0, &base, &mut a);
@@ -503,7 +511,7 @@ mod tests {
             parameters: vec![1.0, 0.0, 1.0, 0.0, -0.5, 3.0, 0.0, 1.0],
             ..AttentionSpec::default()
         });
-        let mut c = spec.build(&m, &[1]).unwrap();
+        let mut c = spec.build(&BrainShape::grid(&m, &[1])).unwrap();
         let mut a = [0.0];
         c.control(0.0, &[0.5], &mut a);
         let first = c.attention().unwrap().1[0];
@@ -521,14 +529,14 @@ mod tests {
         let (m, rpv) = biped();
         let spec = filled("attention", 2);
         let readings: Vec<f64> = (0..40).map(|i| (i as f64 * 0.17).cos().abs()).collect();
-        let mut live = spec.build(&m, &rpv).unwrap();
+        let mut live = spec.build(&BrainShape::grid(&m, &rpv)).unwrap();
         let mut a = vec![0.0; 10];
         live.control(0.0, &readings, &mut a);
         let snapshot = live.adaptive_weights().unwrap().to_vec();
         assert_eq!(snapshot.len(), 10 * 16);
         let mut frozen = spec.clone();
         frozen.as_kind_mut().freeze_with(&snapshot).unwrap();
-        let mut c = frozen.build(&m, &rpv).unwrap();
+        let mut c = frozen.build(&BrainShape::grid(&m, &rpv)).unwrap();
         let mut b = vec![0.0; 10];
         let other: Vec<f64> = readings.iter().map(|x| 1.0 - x).collect();
         c.control(0.0, &other, &mut b);
@@ -541,7 +549,7 @@ mod tests {
         assert_eq!(a, b, "the same matrices and readings give the same actuations");
         let mut wrong = spec.clone();
         wrong.as_kind_mut().freeze_with(&[0.0; 3]).unwrap();
-        assert_invalid(&wrong.build(&m, &rpv).err().unwrap(), "frozen");
+        assert_invalid(&wrong.build(&BrainShape::grid(&m, &rpv)).err().unwrap(), "frozen");
     }
 
     #[test]
@@ -557,18 +565,27 @@ mod tests {
             attention: genes,
             ..AttentionSpec::default()
         });
-        assert_eq!(transfer.parameter_count(&m, &rpv).unwrap(), 41);
+        assert_eq!(transfer.parameter_count(&BrainShape::grid(&m, &rpv)).unwrap(), 41);
         let rebuilt = transfer.with_parameters(&source.parameters()[32..]).unwrap();
         let readings = vec![0.4; 40];
         let (mut a, mut b) = (vec![0.0; 10], vec![0.0; 10]);
-        source.build(&m, &rpv).unwrap().control(0.0, &readings, &mut a);
-        rebuilt.build(&m, &rpv).unwrap().control(0.0, &readings, &mut b);
+        source
+            .build(&BrainShape::grid(&m, &rpv))
+            .unwrap()
+            .control(0.0, &readings, &mut a);
+        rebuilt
+            .build(&BrainShape::grid(&m, &rpv))
+            .unwrap()
+            .control(0.0, &readings, &mut b);
         assert_eq!(a, b);
         let bad = BrainSpec::Attention(AttentionSpec {
             attention: vec![0.0; 31],
             ..AttentionSpec::default()
         });
-        assert_invalid(&bad.parameter_count(&m, &rpv).unwrap_err(), "attention");
+        assert_invalid(
+            &bad.parameter_count(&BrainShape::grid(&m, &rpv)).unwrap_err(),
+            "attention",
+        );
         // the same through transfer_from, wrappers included
         let mut target = BrainSpec::parse("step:0.33:attention").unwrap();
         let wrapped_source = BrainSpec::Step(crate::StepSpec {
@@ -576,7 +593,7 @@ mod tests {
             inner: Box::new(source.clone()),
         });
         target.as_kind_mut().transfer_from(&wrapped_source).unwrap();
-        assert_eq!(target.parameter_count(&m, &rpv).unwrap(), 41);
+        assert_eq!(target.parameter_count(&BrainShape::grid(&m, &rpv)).unwrap(), 41);
         let mut slow = BrainSpec::parse("attention:slow").unwrap();
         assert_invalid(&slow.as_kind_mut().transfer_from(&source).unwrap_err(), "attention");
         let mut mlp = BrainSpec::parse("mlp").unwrap();
@@ -585,7 +602,7 @@ mod tests {
         assert!(bad.is_err());
         let err = serde_json::from_str::<BrainSpec>(r#"{"kind": "attention", "d_k": 0}"#)
             .unwrap()
-            .parameter_count(&m, &rpv)
+            .parameter_count(&BrainShape::grid(&m, &rpv))
             .unwrap_err();
         assert_invalid(&err, "d_k");
     }

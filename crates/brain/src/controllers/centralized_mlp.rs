@@ -14,10 +14,9 @@
 
 use crate::mlp::{Activation, Mlp};
 use crate::short_form::{self, ShortForm};
-use crate::validation::{check_count, check_voxels, set_finite};
-use crate::{BrainError, BrainKind, BrainSpec, Controller};
+use crate::validation::{check_count, check_units, set_finite};
+use crate::{BrainError, BrainKind, BrainShape, BrainSpec, Controller};
 use serde::{Deserialize, Serialize};
-use vsrlab_body::Morphology;
 
 /// The hidden layer 2D-VSR-Sim's drivers use by default: one layer of max(2, round(0.65·n_in)).
 pub fn default_hidden(n_inputs: usize) -> Vec<usize> {
@@ -89,14 +88,14 @@ impl Default for MlpSpec {
 
 impl MlpSpec {
     /// Layer sizes for a body: `[n_inputs, hidden…, n_voxels]`.
-    fn sizes(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Vec<usize> {
-        let n_in: usize = readings_per_voxel.iter().sum();
+    fn sizes(&self, shape: &BrainShape) -> Vec<usize> {
+        let n_in: usize = shape.readings().iter().sum();
         let mut sizes = vec![n_in];
         match &self.hidden {
             Some(h) => sizes.extend_from_slice(h),
             None => sizes.extend(default_hidden(n_in)),
         }
-        sizes.push(morphology.voxel_count());
+        sizes.push(shape.units());
         sizes
     }
 }
@@ -106,9 +105,9 @@ impl BrainKind for MlpSpec {
         "mlp"
     }
 
-    fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
-        check_voxels(morphology, readings_per_voxel)?;
-        let sizes = self.sizes(morphology, readings_per_voxel);
+    fn parameter_count(&self, shape: &BrainShape) -> Result<usize, BrainError> {
+        check_units(shape)?;
+        let sizes = self.sizes(shape);
         Mlp::check_sizes(&sizes)?;
         Ok(Mlp::parameter_count(&sizes))
     }
@@ -121,10 +120,10 @@ impl BrainKind for MlpSpec {
         set_finite("weights", &mut self.weights, params)
     }
 
-    fn build(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
-        let expected = self.parameter_count(morphology, readings_per_voxel)?;
+    fn build(&self, shape: &BrainShape) -> Result<Box<dyn Controller>, BrainError> {
+        let expected = self.parameter_count(shape)?;
         check_count("weights", expected, self.weights.len())?;
-        let sizes = self.sizes(morphology, readings_per_voxel);
+        let sizes = self.sizes(shape);
         let mlp = Mlp::new(sizes, self.activation, self.input_activation, self.weights.clone())?;
         Ok(Box::new(CentralizedMlpController::new(mlp)))
     }
@@ -177,9 +176,16 @@ mod tests {
     #[test]
     fn the_spec_counts_the_check_values() {
         let (m, rpv) = biped();
-        assert_eq!(BrainSpec::parse("mlp").unwrap().parameter_count(&m, &rpv), Ok(1336));
         assert_eq!(
-            BrainSpec::parse("mlp:none").unwrap().parameter_count(&m, &rpv),
+            BrainSpec::parse("mlp")
+                .unwrap()
+                .parameter_count(&BrainShape::grid(&m, &rpv)),
+            Ok(1336)
+        );
+        assert_eq!(
+            BrainSpec::parse("mlp:none")
+                .unwrap()
+                .parameter_count(&BrainShape::grid(&m, &rpv)),
             Ok(10 * 41)
         );
     }
@@ -199,7 +205,7 @@ mod tests {
         assert_invalid(&err, "readings_per_voxel");
         let err = BrainSpec::parse("mlp:4,0")
             .unwrap()
-            .parameter_count(&m, &rpv)
+            .parameter_count(&BrainShape::grid(&m, &rpv))
             .unwrap_err();
         assert_invalid(&err, "hidden");
     }

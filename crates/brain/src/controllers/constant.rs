@@ -3,9 +3,8 @@
 
 use crate::short_form::{self, ShortForm};
 use crate::validation::finite;
-use crate::{BrainError, BrainKind, BrainSpec, Controller};
+use crate::{BrainError, BrainKind, BrainShape, BrainSpec, Controller};
 use serde::{Deserialize, Serialize};
-use vsrlab_body::Morphology;
 
 /// Constant actuation (calibration runs, passive bodies with value 0).
 #[derive(Debug, Clone, PartialEq)]
@@ -34,11 +33,7 @@ impl BrainKind for ConstantSpec {
         "constant"
     }
 
-    fn build(
-        &self,
-        _morphology: &Morphology,
-        _readings_per_voxel: &[usize],
-    ) -> Result<Box<dyn Controller>, BrainError> {
+    fn build(&self, _shape: &BrainShape) -> Result<Box<dyn Controller>, BrainError> {
         finite("value", self.value)?;
         Ok(Box::new(ConstantController { value: self.value }))
     }

@@ -1,14 +1,17 @@
 //! Distributed MLP controller with neighbour signals (2D-VSR-Sim `DistributedSensing` at HEAD,
 //! vsr-model.md §4.4, thesis §2.2.2.1): every voxel runs its own MLP on its own readings and on the
-//! signals its four neighbours sent it at the previous control step.
+//! signals its neighbours sent it at the previous control step.
 //!
 //! # Wiring
 //!
-//! Directions come in the fixed order N, E, S, W with grid offsets N = (0, −1), E = (+1, 0),
-//! S = (0, +1), W = (−1, 0). Since y = 0 is the bottom row, "N" is physically the voxel *below*
-//! and "S" the one above; only the index semantics matter.
+//! Neighbours are those of the body's [`crate::UnitLayout`], D directions per unit. On a 2D grid
+//! ([`crate::GridLayout`], D = 4) the directions come in the fixed order N, E, S, W with grid
+//! offsets N = (0, −1), E = (+1, 0), S = (0, +1), W = (−1, 0). Since y = 0 is the bottom row, "N"
+//! is physically the voxel *below* and "S" the one above; only the index semantics matter. A 3D
+//! grid ([`crate::Grid3Layout`]) has D = 6, a ring D = 2; every formula below with 4 reads D there.
 //!
-//! With `s` signals per direction and `r` readings per voxel (the same on every voxel):
+//! With `s` signals per direction and `r` readings per voxel (the same on every voxel), on a 2D
+//! grid:
 //! - inputs (r + 4s) = `[own readings…, s from N, s from E, s from S, s from W]`, where the block
 //!   "from d" is the block the neighbour in direction d emitted towards this voxel, i.e. that
 //!   neighbour's output block for the opposite direction; a missing neighbour gives zeros;
@@ -24,7 +27,8 @@
 //! (layout in [`crate::mlp`]); with r = 4, s = 1 and no hidden layer: 8 inputs, 5 outputs, 45 weights.
 //! - homogeneous: the n_w weights are shared by all voxels (count n_w, whatever the body);
 //! - heterogeneous: one block per grid cell, empty cells included (count W·H·n_w); the voxel at
-//!   (x, y) uses `weights[(y·W + x)·n_w .. (y·W + x + 1)·n_w]`. 10×10 grid: 4500; 5×5: 1125.
+//!   (x, y) uses `weights[(y·W + x)·n_w .. (y·W + x + 1)·n_w]`. 10×10 grid: 4500; 5×5: 1125. In
+//!   general one block per slot of the layout ([`crate::UnitLayout::slot`]; W·H·D on a 3D grid).
 //!
 //! # Positional encoding
 //!
@@ -40,18 +44,9 @@
 
 use crate::mlp::{check_at_most, check_parameter_total, Activation, Mlp};
 use crate::short_form::{self, ShortForm};
-use crate::validation::{check_count, check_voxels, set_finite};
-use crate::{BrainError, BrainKind, BrainSpec, Controller};
+use crate::validation::{check_count, check_units, set_finite};
+use crate::{BrainError, BrainKind, BrainShape, BrainSpec, Controller};
 use serde::{Deserialize, Serialize};
-use vsrlab_body::Morphology;
-
-/// Grid offsets (dx, dy) of the directions N, E, S, W, in this order.
-pub const DIRECTION_OFFSETS: [(isize, isize); 4] = [(0, -1), (1, 0), (0, 1), (-1, 0)];
-
-/// Index of the opposite direction (N ↔ S, E ↔ W).
-pub const fn opposite(direction: usize) -> usize {
-    (direction + 2) % 4
-}
 
 /// How the voxels' networks get their weights.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -60,17 +55,18 @@ pub enum Layout {
     /// One weight vector shared by every voxel.
     #[default]
     Homogeneous,
-    /// One weight block per grid cell (W·H blocks, empty cells included).
+    /// One weight block per grid cell (W·H blocks, empty cells included; a layout's slots).
     Heterogeneous,
 }
 
-/// Sizes of one voxel's network: `[r + 4s, hidden…, 1 + 4s]`.
-pub fn network_sizes(readings: usize, signals: usize, hidden: &[usize]) -> Vec<usize> {
+/// Sizes of one voxel's network with D neighbour directions: `[r + D·s, hidden…, 1 + D·s]`
+/// (D = 4 on a 2D grid).
+pub fn network_sizes(readings: usize, directions: usize, signals: usize, hidden: &[usize]) -> Vec<usize> {
     let mut sizes = Vec::with_capacity(hidden.len() + 2);
-    let four = signals.saturating_mul(4);
-    sizes.push(readings.saturating_add(four));
+    let all = signals.saturating_mul(directions);
+    sizes.push(readings.saturating_add(all));
     sizes.extend_from_slice(hidden);
-    sizes.push(four.saturating_add(1));
+    sizes.push(all.saturating_add(1));
     sizes
 }
 
@@ -84,21 +80,22 @@ fn check_signals(signals: usize) -> Result<(), BrainError> {
 
 /// [`parameter_count`], checked: shape errors and totals above [`crate::mlp::MAX_PARAMETERS`].
 fn checked_parameter_count(
-    morphology: &Morphology,
+    shape: &BrainShape,
     readings: usize,
     signals: usize,
     hidden: &[usize],
     layout: Layout,
 ) -> Result<usize, BrainError> {
     check_signals(signals)?;
-    Mlp::check_sizes(&network_sizes(readings, signals, hidden))?;
-    let total = parameter_count(morphology, readings, signals, hidden, layout);
+    Mlp::check_sizes(&network_sizes(readings, shape.layout().directions(), signals, hidden))?;
+    let total = parameter_count(shape, readings, signals, hidden, layout);
     check_parameter_total(total)?;
     Ok(total)
 }
 
 /// The readings count shared by all voxels, or an error naming `readings_per_voxel`.
-pub fn common_readings(morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
+pub fn common_readings(shape: &BrainShape) -> Result<usize, BrainError> {
+    let readings_per_voxel = shape.readings();
     let Some(&first) = readings_per_voxel.first() else {
         return Err(BrainError::Invalid {
             field: "readings_per_voxel",
@@ -106,11 +103,13 @@ pub fn common_readings(morphology: &Morphology, readings_per_voxel: &[usize]) ->
         });
     };
     if let Some(v) = readings_per_voxel.iter().position(|&r| r != first) {
+        let layout = shape.layout();
         let cell = |i: usize| {
-            morphology
-                .voxels()
-                .nth(i)
-                .map_or_else(|| "?".to_string(), |(x, y)| format!("({x}, {y})"))
+            if i < layout.units() {
+                layout.cell_text(i)
+            } else {
+                "?".to_string()
+            }
         };
         return Err(BrainError::Invalid {
             field: "readings_per_voxel",
@@ -135,21 +134,14 @@ fn reading_inputs(readings: usize, voxels: usize, positional: bool) -> usize {
     }
 }
 
-/// Number of weights for a body: n_w (homogeneous) or W·H·n_w (heterogeneous).
-pub fn parameter_count(
-    morphology: &Morphology,
-    readings: usize,
-    signals: usize,
-    hidden: &[usize],
-    layout: Layout,
-) -> usize {
-    let per_network = Mlp::parameter_count(&network_sizes(readings, signals, hidden));
+/// Number of weights for a body: n_w (homogeneous) or W·H·n_w (heterogeneous: one block per slot
+/// of the layout).
+pub fn parameter_count(shape: &BrainShape, readings: usize, signals: usize, hidden: &[usize], layout: Layout) -> usize {
+    let sizes = network_sizes(readings, shape.layout().directions(), signals, hidden);
+    let per_network = Mlp::parameter_count(&sizes);
     match layout {
         Layout::Homogeneous => per_network,
-        Layout::Heterogeneous => morphology
-            .width()
-            .saturating_mul(morphology.height())
-            .saturating_mul(per_network),
+        Layout::Heterogeneous => shape.layout().slots().saturating_mul(per_network),
     }
 }
 
@@ -170,10 +162,14 @@ pub struct DistributedConfig {
     pub positional: bool,
 }
 
-/// One MLP per voxel exchanging signals with its four neighbours (module documentation).
+/// One MLP per voxel exchanging signals with its neighbours (module documentation).
 #[derive(Debug, Clone)]
 pub struct DistributedMlpController {
     signals: usize,
+    /// Neighbour directions per voxel (D).
+    directions: usize,
+    /// Per direction: the opposite one.
+    opposite: Vec<usize>,
     readings: usize,
     /// Reading inputs of a network: r, or n·r with positional encoding.
     reading_inputs: usize,
@@ -184,9 +180,9 @@ pub struct DistributedMlpController {
     networks: Vec<Mlp>,
     /// Per voxel: index into `networks`.
     network_of: Vec<usize>,
-    /// Per voxel and direction N, E, S, W: the neighbour's voxel index.
-    neighbours: Vec<[Option<usize>; 4]>,
-    /// Per voxel: the 4s signals it emitted at the last call (blocks towards N, E, S, W).
+    /// Per voxel and direction (voxel-major, D per voxel): the neighbour's voxel index.
+    neighbours: Vec<Option<usize>>,
+    /// Per voxel: the D·s signals it emitted at the last call (one block per direction).
     emitted: Vec<f64>,
     /// Per voxel: the n_in inputs of the last call.
     inputs: Vec<f64>,
@@ -196,12 +192,7 @@ pub struct DistributedMlpController {
 
 impl DistributedMlpController {
     /// Builds the controller; `weights` must have [`parameter_count`] entries for this body.
-    pub fn new(
-        morphology: &Morphology,
-        readings_per_voxel: &[usize],
-        config: &DistributedConfig,
-        weights: &[f64],
-    ) -> Result<Self, BrainError> {
+    pub fn new(shape: &BrainShape, config: &DistributedConfig, weights: &[f64]) -> Result<Self, BrainError> {
         let DistributedConfig {
             signals,
             ref hidden,
@@ -210,50 +201,38 @@ impl DistributedMlpController {
             layout,
             positional,
         } = *config;
-        check_voxels(morphology, readings_per_voxel)?;
-        let readings = common_readings(morphology, readings_per_voxel)?;
-        let reading_inputs = reading_inputs(readings, morphology.voxel_count(), positional);
-        let expected = checked_parameter_count(morphology, reading_inputs, signals, hidden, layout)?;
-        let sizes = network_sizes(reading_inputs, signals, hidden);
+        check_units(shape)?;
+        let readings = common_readings(shape)?;
+        let units = shape.units();
+        let reading_inputs = reading_inputs(readings, units, positional);
+        let expected = checked_parameter_count(shape, reading_inputs, signals, hidden, layout)?;
+        let grid = shape.layout();
+        let directions = grid.directions();
+        let sizes = network_sizes(reading_inputs, directions, signals, hidden);
         check_count("weights", expected, weights.len())?;
         let n_w = Mlp::parameter_count(&sizes);
-        let (w, h) = (morphology.width(), morphology.height());
-        let cells: Vec<(usize, usize)> = morphology.voxels().collect();
-        let mut voxel_at = vec![None; w * h];
-        for (v, &(x, y)) in cells.iter().enumerate() {
-            voxel_at[y * w + x] = Some(v);
-        }
-        let neighbours = cells
-            .iter()
-            .map(|&(x, y)| {
-                DIRECTION_OFFSETS.map(|(dx, dy)| {
-                    let (nx, ny) = (x as isize + dx, y as isize + dy);
-                    if nx < 0 || ny < 0 || nx >= w as isize || ny >= h as isize {
-                        None
-                    } else {
-                        voxel_at[ny as usize * w + nx as usize]
-                    }
-                })
-            })
+        let neighbours = (0..units)
+            .flat_map(|v| (0..directions).map(move |d| grid.neighbour(v, d)))
             .collect();
-        let block = |cell: usize| weights[cell * n_w..(cell + 1) * n_w].to_vec();
+        let block = |slot: usize| weights[slot * n_w..(slot + 1) * n_w].to_vec();
         let (networks, network_of) = match layout {
             Layout::Homogeneous => (
                 vec![Mlp::new(sizes.clone(), activation, input_activation, block(0))?],
-                vec![0; cells.len()],
+                vec![0; units],
             ),
             Layout::Heterogeneous => (
-                cells
-                    .iter()
-                    .map(|&(x, y)| Mlp::new(sizes.clone(), activation, input_activation, block(y * w + x)))
+                (0..units)
+                    .map(|v| Mlp::new(sizes.clone(), activation, input_activation, block(grid.slot(v))))
                     .collect::<Result<Vec<_>, _>>()?,
-                (0..cells.len()).collect(),
+                (0..units).collect(),
             ),
         };
         let (n_in, n_out) = (sizes[0], sizes[sizes.len() - 1]);
         let scratch = vec![0.0; networks[0].scratch_len()];
         Ok(DistributedMlpController {
             signals,
+            directions,
+            opposite: (0..directions).map(|d| grid.opposite(d)).collect(),
             readings,
             reading_inputs,
             positional,
@@ -262,8 +241,8 @@ impl DistributedMlpController {
             networks,
             network_of,
             neighbours,
-            emitted: vec![0.0; cells.len() * 4 * signals],
-            inputs: vec![0.0; cells.len() * n_in],
+            emitted: vec![0.0; units * directions * signals],
+            inputs: vec![0.0; units * n_in],
             outputs: vec![0.0; n_out],
             scratch,
         })
@@ -274,21 +253,27 @@ impl DistributedMlpController {
         self.signals
     }
 
-    /// The voxel's neighbours in directions N, E, S, W (voxel indices; `None` where no voxel).
-    pub fn neighbours(&self, voxel: usize) -> [Option<usize>; 4] {
-        self.neighbours[voxel]
+    /// Neighbour directions per voxel (D: 4 on a 2D grid, 6 on a 3D grid).
+    pub fn directions(&self) -> usize {
+        self.directions
     }
 
-    /// The 4s signals the voxel received at the last call, blocks from N, E, S, W in this order
-    /// (zeros before the first call).
+    /// The voxel's neighbours in the layout's directions (on a 2D grid N, E, S, W; voxel
+    /// indices, `None` where no voxel).
+    pub fn neighbours(&self, voxel: usize) -> &[Option<usize>] {
+        &self.neighbours[voxel * self.directions..(voxel + 1) * self.directions]
+    }
+
+    /// The D·s signals the voxel received at the last call, one block per direction in the
+    /// layout's order (zeros before the first call).
     pub fn incoming(&self, voxel: usize) -> &[f64] {
         &self.inputs[voxel * self.n_in + self.reading_inputs..(voxel + 1) * self.n_in]
     }
 
-    /// The 4s signals the voxel emitted at the last call, blocks towards N, E, S, W in this order.
+    /// The D·s signals the voxel emitted at the last call, one block towards each direction.
     pub fn emitted(&self, voxel: usize) -> &[f64] {
-        let s4 = 4 * self.signals;
-        &self.emitted[voxel * s4..(voxel + 1) * s4]
+        let all = self.directions * self.signals;
+        &self.emitted[voxel * all..(voxel + 1) * all]
     }
 }
 
@@ -300,20 +285,23 @@ impl Controller for DistributedMlpController {
 
     fn control(&mut self, _t: f64, readings: &[f64], actuations: &mut [f64]) {
         let (r, s, n_in, ri) = (self.readings, self.signals, self.n_in, self.reading_inputs);
-        let s4 = 4 * s;
-        debug_assert_eq!(readings.len(), r * self.neighbours.len());
-        debug_assert_eq!(actuations.len(), self.neighbours.len());
+        let directions = self.directions;
+        let all = directions * s;
+        let units = self.network_of.len();
+        debug_assert_eq!(readings.len(), r * units);
+        debug_assert_eq!(actuations.len(), units);
         // Gather every voxel's inputs from the previous step's signals before anyone emits.
-        for (v, neighbours) in self.neighbours.iter().enumerate() {
+        for v in 0..units {
             let input = &mut self.inputs[v * n_in..(v + 1) * n_in];
             // positional: block v of the n·r reading inputs; the others stay 0
             let own = if self.positional { v * r } else { 0 };
             input[own..own + r].copy_from_slice(&readings[v * r..(v + 1) * r]);
+            let neighbours = &self.neighbours[v * directions..(v + 1) * directions];
             for (d, neighbour) in neighbours.iter().enumerate() {
                 let slot = &mut input[ri + d * s..ri + (d + 1) * s];
                 match neighbour {
                     Some(n) => {
-                        let from = n * s4 + opposite(d) * s;
+                        let from = n * all + self.opposite[d] * s;
                         slot.copy_from_slice(&self.emitted[from..from + s]);
                     }
                     None => slot.fill(0.0),
@@ -328,7 +316,7 @@ impl Controller for DistributedMlpController {
                 &mut self.scratch,
             );
             *a = self.outputs[0].clamp(-1.0, 1.0);
-            self.emitted[v * s4..(v + 1) * s4].copy_from_slice(&self.outputs[1..self.n_out]);
+            self.emitted[v * all..(v + 1) * all].copy_from_slice(&self.outputs[1..self.n_out]);
         }
     }
 }
@@ -374,11 +362,11 @@ impl BrainKind for DistributedMlpSpec {
         "distributed-mlp"
     }
 
-    fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
-        check_voxels(morphology, readings_per_voxel)?;
-        let readings = common_readings(morphology, readings_per_voxel)?;
-        let inputs = reading_inputs(readings, morphology.voxel_count(), self.positional);
-        checked_parameter_count(morphology, inputs, self.signals, &self.hidden, self.layout)
+    fn parameter_count(&self, shape: &BrainShape) -> Result<usize, BrainError> {
+        check_units(shape)?;
+        let readings = common_readings(shape)?;
+        let inputs = reading_inputs(readings, shape.units(), self.positional);
+        checked_parameter_count(shape, inputs, self.signals, &self.hidden, self.layout)
     }
 
     fn parameters(&self) -> &[f64] {
@@ -389,7 +377,7 @@ impl BrainKind for DistributedMlpSpec {
         set_finite("weights", &mut self.weights, params)
     }
 
-    fn build(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
+    fn build(&self, shape: &BrainShape) -> Result<Box<dyn Controller>, BrainError> {
         let config = DistributedConfig {
             signals: self.signals,
             hidden: self.hidden.clone(),
@@ -398,12 +386,7 @@ impl BrainKind for DistributedMlpSpec {
             layout: self.layout,
             positional: self.positional,
         };
-        Ok(Box::new(DistributedMlpController::new(
-            morphology,
-            readings_per_voxel,
-            &config,
-            &self.weights,
-        )?))
+        Ok(Box::new(DistributedMlpController::new(shape, &config, &self.weights)?))
     }
 }
 
@@ -466,6 +449,7 @@ fn parse_short_form(argument: Option<&str>, layout: Layout) -> Option<BrainSpec>
 mod tests {
     use super::*;
     use crate::testing::{assert_invalid, biped, build_error};
+    use vsrlab_body::Morphology;
 
     fn config(
         signals: usize,
@@ -500,18 +484,33 @@ mod tests {
 
     #[test]
     fn parameter_counts_match_the_thesis() {
-        let sizes = network_sizes(4, 1, &[]);
+        let sizes = network_sizes(4, 4, 1, &[]);
         assert_eq!(sizes, vec![8, 5]);
         assert_eq!(Mlp::parameter_count(&sizes), 45);
         let m10 = Morphology::named("box-10x10").unwrap();
         let m5 = Morphology::named("box-5x5").unwrap();
         let single = Morphology::from_fn(10, 10, |x, y| x == 3 && y == 4).unwrap();
-        assert_eq!(parameter_count(&m10, 4, 1, &[], Layout::Homogeneous), 45);
-        assert_eq!(parameter_count(&m10, 4, 1, &[], Layout::Heterogeneous), 4500);
-        assert_eq!(parameter_count(&single, 4, 1, &[], Layout::Heterogeneous), 4500);
-        assert_eq!(parameter_count(&m5, 4, 1, &[], Layout::Heterogeneous), 1125);
+        assert_eq!(
+            parameter_count(&BrainShape::grid(&m10, &[]), 4, 1, &[], Layout::Homogeneous),
+            45
+        );
+        assert_eq!(
+            parameter_count(&BrainShape::grid(&m10, &[]), 4, 1, &[], Layout::Heterogeneous),
+            4500
+        );
+        assert_eq!(
+            parameter_count(&BrainShape::grid(&single, &[]), 4, 1, &[], Layout::Heterogeneous),
+            4500
+        );
+        assert_eq!(
+            parameter_count(&BrainShape::grid(&m5, &[]), 4, 1, &[], Layout::Heterogeneous),
+            1125
+        );
         // s = 2, hidden 6: sizes [12, 6, 9] → 6·13 + 9·7 = 141
-        assert_eq!(parameter_count(&m5, 4, 2, &[6], Layout::Homogeneous), 141);
+        assert_eq!(
+            parameter_count(&BrainShape::grid(&m5, &[]), 4, 2, &[6], Layout::Homogeneous),
+            141
+        );
     }
 
     /// Each voxel emits, in every direction, its own first reading (1 reading, s = 1, identity);
@@ -520,8 +519,7 @@ mod tests {
         let w = weights(1, 1, |o, i| if o >= 1 && i == Some(0) { 1.0 } else { 0.0 });
         let rpv = vec![1; m.voxel_count()];
         DistributedMlpController::new(
-            m,
-            &rpv,
+            &BrainShape::grid(m, &rpv),
             &config(1, &[], Activation::Identity, false, Layout::Homogeneous),
             &w,
         )
@@ -593,8 +591,7 @@ mod tests {
         let m = Morphology::named("box-3x2").unwrap();
         let rpv = vec![r; 6];
         let mut c = DistributedMlpController::new(
-            &m,
-            &rpv,
+            &BrainShape::grid(&m, &rpv),
             &config(s, &[], Activation::Identity, true, Layout::Homogeneous),
             &w,
         )
@@ -620,8 +617,7 @@ mod tests {
         let m = Morphology::named("biped-4x3").unwrap();
         let rpv = vec![0; m.voxel_count()];
         let mut c = DistributedMlpController::new(
-            &m,
-            &rpv,
+            &BrainShape::grid(&m, &rpv),
             &config(1, &[], Activation::Identity, false, Layout::Homogeneous),
             &w,
         )
@@ -630,7 +626,7 @@ mod tests {
         c.control(1.0 / 60.0, &[], &mut a);
         c.control(2.0 / 60.0, &[], &mut a);
         for (v, (x, y)) in m.voxels().enumerate() {
-            for (d, (dx, dy)) in DIRECTION_OFFSETS.iter().enumerate() {
+            for (d, (dx, dy)) in crate::layout::grid::DIRECTION_OFFSETS.iter().enumerate() {
                 let (nx, ny) = (x as isize + dx, y as isize + dy);
                 let present = nx >= 0 && ny >= 0 && m.has(nx as usize, ny as usize);
                 let expected = if present { 1.0 } else { 0.0 };
@@ -645,12 +641,17 @@ mod tests {
     fn heterogeneous_with_equal_blocks_equals_homogeneous() {
         let m = Morphology::named("comb-5x3").unwrap();
         let (r, s, hidden) = (3, 2, [5]);
-        let n_w = Mlp::parameter_count(&network_sizes(r, s, &hidden));
+        let n_w = Mlp::parameter_count(&network_sizes(r, 4, s, &hidden));
         let block: Vec<f64> = (0..n_w).map(|i| ((i * 37 % 23) as f64 / 11.5) - 1.0).collect();
         let all: Vec<f64> = (0..15).flat_map(|_| block.iter().copied()).collect();
         let rpv = vec![r; m.voxel_count()];
         let [mut ho, mut he] = [(Layout::Homogeneous, &block), (Layout::Heterogeneous, &all)].map(|(layout, w)| {
-            DistributedMlpController::new(&m, &rpv, &config(s, &hidden, Activation::Tanh, true, layout), w).unwrap()
+            DistributedMlpController::new(
+                &BrainShape::grid(&m, &rpv),
+                &config(s, &hidden, Activation::Tanh, true, layout),
+                w,
+            )
+            .unwrap()
         });
         let n = m.voxel_count();
         let (mut a1, mut a2) = (vec![0.0; n], vec![0.0; n]);
@@ -668,14 +669,13 @@ mod tests {
     fn heterogeneous_blocks_are_indexed_by_grid_cell() {
         // 2×2 grid with (1, 0) empty; each cell's block has actuation bias = its cell index
         let m = Morphology::from_rows(&["##", "#."]).unwrap();
-        let n_w = Mlp::parameter_count(&network_sizes(0, 1, &[]));
+        let n_w = Mlp::parameter_count(&network_sizes(0, 4, 1, &[]));
         let mut w = vec![0.0; 4 * n_w];
         for cell in 0..4 {
             w[cell * n_w] = cell as f64 / 10.0;
         }
         let mut c = DistributedMlpController::new(
-            &m,
-            &[0, 0, 0],
+            &BrainShape::grid(&m, &[0, 0, 0]),
             &config(1, &[], Activation::Identity, false, Layout::Heterogeneous),
             &w,
         )
@@ -690,8 +690,7 @@ mod tests {
     fn unequal_readings_and_wrong_weight_counts_are_errors() {
         let m = Morphology::named("worm-3x1").unwrap();
         let err = DistributedMlpController::new(
-            &m,
-            &[4, 4, 5],
+            &BrainShape::grid(&m, &[4, 4, 5]),
             &config(1, &[], Activation::Tanh, true, Layout::Homogeneous),
             &[],
         )
@@ -703,8 +702,7 @@ mod tests {
             "{err}"
         );
         let err = DistributedMlpController::new(
-            &m,
-            &[4, 4, 4],
+            &BrainShape::grid(&m, &[4, 4, 4]),
             &config(1, &[], Activation::Tanh, true, Layout::Heterogeneous),
             &[0.0; 45],
         )
@@ -727,11 +725,14 @@ mod tests {
         let m10 = Morphology::named("box-10x10").unwrap();
         let m5 = Morphology::named("box-5x5").unwrap();
         let hetero = BrainSpec::parse("distributed-mlp-hetero").unwrap();
-        assert_eq!(homogeneous().parameter_count(&m10, &[4; 100]), Ok(45));
-        assert_eq!(hetero.parameter_count(&m10, &[4; 100]), Ok(4500));
-        assert_eq!(hetero.parameter_count(&m5, &[4; 25]), Ok(1125));
+        assert_eq!(
+            homogeneous().parameter_count(&BrainShape::grid(&m10, &[4; 100])),
+            Ok(45)
+        );
+        assert_eq!(hetero.parameter_count(&BrainShape::grid(&m10, &[4; 100])), Ok(4500));
+        assert_eq!(hetero.parameter_count(&BrainShape::grid(&m5, &[4; 25])), Ok(1125));
         let single = Morphology::from_fn(5, 5, |x, y| (x, y) == (2, 2)).unwrap();
-        assert_eq!(hetero.parameter_count(&single, &[4]), Ok(1125));
+        assert_eq!(hetero.parameter_count(&BrainShape::grid(&single, &[4])), Ok(1125));
     }
 
     #[test]
@@ -762,9 +763,9 @@ mod tests {
         let (m, rpv) = biped();
         let spec = BrainSpec::parse("distributed-mlp-hetero:2")
             .unwrap()
-            .with_random_parameters(3, &m, &rpv)
+            .with_random_parameters(3, &BrainShape::grid(&m, &rpv))
             .unwrap();
-        let mut c = spec.build(&m, &rpv).unwrap();
+        let mut c = spec.build(&BrainShape::grid(&m, &rpv)).unwrap();
         let run = |c: &mut Box<dyn Controller>| {
             let mut a = vec![0.0; 10];
             let mut all = Vec::new();

@@ -30,10 +30,9 @@
 
 use crate::mlp::{check_at_most, Activation};
 use crate::short_form::ShortForm;
-use crate::validation::{check_count, check_voxels, set_finite};
-use crate::{BrainError, BrainKind, BrainSpec, Controller};
+use crate::validation::{check_count, check_units, set_finite};
+use crate::{BrainError, BrainKind, BrainShape, BrainSpec, Controller};
 use serde::{Deserialize, Serialize};
-use vsrlab_body::Morphology;
 
 /// Largest output of a neuron in absolute value: feedback loops through unbounded activations
 /// (identity, relu) would otherwise overflow to infinity and then NaN.
@@ -127,10 +126,12 @@ const GROW_SEED: u64 = 4_1;
 impl GraphSpec {
     /// The thesis' initial graph for a body whose voxels have these readings counts: sensing
     /// neurons and an actuator per voxel, every sensing neuron wired to its voxel's actuator.
-    pub fn initial(morphology: &Morphology, readings_per_voxel: &[usize]) -> (Vec<NeuronSpec>, Vec<EdgeSpec>) {
+    pub fn initial(shape: &BrainShape) -> (Vec<NeuronSpec>, Vec<EdgeSpec>) {
         let mut neurons = Vec::new();
         let mut edges = Vec::new();
-        for ((x, y), &count) in morphology.voxels().zip(readings_per_voxel) {
+        let layout = shape.layout();
+        for (unit, &count) in shape.readings().iter().enumerate().take(layout.units()) {
+            let [x, y, _] = layout.cell(unit);
             let first = neurons.len();
             neurons.extend((0..count).map(|reading| NeuronSpec::Sensing { x, y, reading }));
             let actuator = neurons.len();
@@ -142,11 +143,11 @@ impl GraphSpec {
 
     /// The neurons and edges in force for a body: the listed ones, or the initial graph (grown
     /// by `grow` additions).
-    pub fn topology(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> (Vec<NeuronSpec>, Vec<EdgeSpec>) {
+    pub fn topology(&self, shape: &BrainShape) -> (Vec<NeuronSpec>, Vec<EdgeSpec>) {
         if !self.neurons.is_empty() {
             return (self.neurons.clone(), self.edges.clone());
         }
-        let (neurons, edges) = Self::initial(morphology, readings_per_voxel);
+        let (neurons, edges) = Self::initial(shape);
         if self.grow == 0 {
             return (neurons, edges);
         }
@@ -170,14 +171,16 @@ impl GraphSpec {
     }
 
     /// Checks the graph against the body; errors name the neuron or edge.
-    fn check(
-        &self,
-        morphology: &Morphology,
-        readings_per_voxel: &[usize],
-        neurons: &[NeuronSpec],
-        edges: &[EdgeSpec],
-    ) -> Result<(), BrainError> {
-        check_voxels(morphology, readings_per_voxel)?;
+    fn check(&self, shape: &BrainShape, neurons: &[NeuronSpec], edges: &[EdgeSpec]) -> Result<(), BrainError> {
+        check_units(shape)?;
+        let layout = shape.layout();
+        if layout.extent()[2] > 1 {
+            return Err(invalid(
+                "kind",
+                "a graph brain names its voxels by (x, y): it does not take a 3D body yet".into(),
+            ));
+        }
+        let readings_per_voxel = shape.readings();
         check_at_most("neurons", "neurons", neurons.len(), MAX_GRAPH_ITEMS)?;
         check_at_most("edges", "edges", edges.len(), MAX_GRAPH_ITEMS)?;
         if !self.neurons.is_empty() && self.grow > 0 {
@@ -189,8 +192,8 @@ impl GraphSpec {
                 "edges need their neurons: list the neurons too".into(),
             ));
         }
-        let voxel_of = |cell: (usize, usize)| morphology.voxels().position(|c| c == cell);
-        let mut actuators = vec![None; morphology.voxel_count()];
+        let voxel_of = |(x, y): (usize, usize)| layout.unit_at([x, y, 0]);
+        let mut actuators = vec![None; shape.units()];
         for (i, n) in neurons.iter().enumerate() {
             let Some(v) = voxel_of(n.cell()) else {
                 return Err(invalid(
@@ -258,9 +261,9 @@ impl BrainKind for GraphSpec {
         "graph"
     }
 
-    fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
-        let (neurons, edges) = self.topology(morphology, readings_per_voxel);
-        self.check(morphology, readings_per_voxel, &neurons, &edges)?;
+    fn parameter_count(&self, shape: &BrainShape) -> Result<usize, BrainError> {
+        let (neurons, edges) = self.topology(shape);
+        self.check(shape, &neurons, &edges)?;
         Ok(2 * edges.len())
     }
 
@@ -272,28 +275,18 @@ impl BrainKind for GraphSpec {
         set_finite("parameters", &mut self.parameters, params)
     }
 
-    fn build(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
-        Ok(Box::new(self.controller(morphology, readings_per_voxel)?))
+    fn build(&self, shape: &BrainShape) -> Result<Box<dyn Controller>, BrainError> {
+        Ok(Box::new(self.controller(shape)?))
     }
 }
 
 impl GraphSpec {
     /// [`BrainKind::build`], as the concrete controller (to look at its neurons' outputs).
-    pub fn controller(
-        &self,
-        morphology: &Morphology,
-        readings_per_voxel: &[usize],
-    ) -> Result<GraphController, BrainError> {
-        let (neurons, edges) = self.topology(morphology, readings_per_voxel);
-        self.check(morphology, readings_per_voxel, &neurons, &edges)?;
+    pub fn controller(&self, shape: &BrainShape) -> Result<GraphController, BrainError> {
+        let (neurons, edges) = self.topology(shape);
+        self.check(shape, &neurons, &edges)?;
         check_count("parameters", 2 * edges.len(), self.parameters.len())?;
-        Ok(GraphController::new(
-            morphology,
-            readings_per_voxel,
-            &neurons,
-            &edges,
-            &self.parameters,
-        ))
+        Ok(GraphController::new(shape, &neurons, &edges, &self.parameters))
     }
 }
 
@@ -324,22 +317,16 @@ pub struct GraphController {
 }
 
 impl GraphController {
-    fn new(
-        morphology: &Morphology,
-        readings_per_voxel: &[usize],
-        neurons: &[NeuronSpec],
-        edges: &[EdgeSpec],
-        parameters: &[f64],
-    ) -> Self {
-        let cells: Vec<(usize, usize)> = morphology.voxels().collect();
-        let voxel_of = |cell: (usize, usize)| cells.iter().position(|&c| c == cell).expect("checked");
-        let mut first_reading = Vec::with_capacity(cells.len());
+    fn new(shape: &BrainShape, neurons: &[NeuronSpec], edges: &[EdgeSpec], parameters: &[f64]) -> Self {
+        let layout = shape.layout();
+        let voxel_of = |(x, y): (usize, usize)| layout.unit_at([x, y, 0]).expect("checked");
+        let mut first_reading = Vec::with_capacity(shape.units());
         let mut total = 0;
-        for &count in readings_per_voxel {
+        for &count in shape.readings() {
             first_reading.push(total);
             total += count;
         }
-        let mut actuator_of = vec![None; cells.len()];
+        let mut actuator_of = vec![None; shape.units()];
         let roles = neurons
             .iter()
             .enumerate()
@@ -458,6 +445,7 @@ fn parse_short_form(argument: Option<&str>) -> Option<BrainSpec> {
 mod tests {
     use super::*;
     use crate::testing::{assert_invalid, biped};
+    use vsrlab_body::Morphology;
 
     fn sensing(x: usize, y: usize, reading: usize) -> NeuronSpec {
         NeuronSpec::Sensing { x, y, reading }
@@ -468,8 +456,8 @@ mod tests {
         let (m, rpv) = biped();
         let spec = BrainSpec::parse("graph").unwrap();
         // 10 voxels × 4 readings → 40 edges, 80 parameters
-        assert_eq!(spec.parameter_count(&m, &rpv).unwrap(), 80);
-        let (neurons, edges) = GraphSpec::initial(&m, &rpv);
+        assert_eq!(spec.parameter_count(&BrainShape::grid(&m, &rpv)).unwrap(), 80);
+        let (neurons, edges) = GraphSpec::initial(&BrainShape::grid(&m, &rpv));
         assert_eq!(neurons.len(), 50);
         assert_eq!(edges[0], EdgeSpec { from: 0, to: 4 });
         assert_eq!(neurons[4], NeuronSpec::Actuator { x: 0, y: 0 });
@@ -480,20 +468,23 @@ mod tests {
         let (m, rpv) = biped();
         let spec = BrainSpec::parse("graph:37").unwrap();
         // 40 + 2·37 edges
-        assert_eq!(spec.parameter_count(&m, &rpv).unwrap(), 2 * (40 + 74));
+        assert_eq!(
+            spec.parameter_count(&BrainShape::grid(&m, &rpv)).unwrap(),
+            2 * (40 + 74)
+        );
         let BrainSpec::Graph(g) = &spec else { unreachable!() };
-        let (n1, e1) = g.topology(&m, &rpv);
-        let (n2, e2) = g.topology(&m, &rpv);
+        let (n1, e1) = g.topology(&BrainShape::grid(&m, &rpv));
+        let (n2, e2) = g.topology(&BrainShape::grid(&m, &rpv));
         assert_eq!((n1.len(), e1.len()), (50 + 37, 40 + 74));
         assert_eq!((n1, e1), (n2, e2));
-        let (neurons, edges) = GraphSpec::initial(&m, &rpv);
+        let (neurons, edges) = GraphSpec::initial(&BrainShape::grid(&m, &rpv));
         let listed = GraphSpec {
             parameters: vec![0.0; 2 * edges.len()],
             neurons,
             edges,
             grow: 3,
         };
-        assert_invalid(&listed.build(&m, &rpv).err().unwrap(), "grow");
+        assert_invalid(&listed.build(&BrainShape::grid(&m, &rpv)).err().unwrap(), "grow");
     }
 
     #[test]
@@ -522,7 +513,7 @@ mod tests {
             parameters: vec![2.0, 0.0, 1.0, 0.5, 1.0, 0.0],
             grow: 0,
         });
-        let mut c = spec.build(&m, &[1, 1]).unwrap();
+        let mut c = spec.build(&BrainShape::grid(&m, &[1, 1])).unwrap();
         let mut a = [0.0; 2];
         c.control(0.0, &[0.3, 0.6], &mut a);
         // step 1: every computing neuron reads zeros: h = 0, a1 = tanh(0·1 + 0.5)
@@ -540,7 +531,7 @@ mod tests {
     #[test]
     fn shuffling_the_neurons_changes_nothing() {
         let (m, rpv) = biped();
-        let (neurons, mut edges) = GraphSpec::initial(&m, &rpv);
+        let (neurons, mut edges) = GraphSpec::initial(&BrainShape::grid(&m, &rpv));
         // add a hidden neuron bridging two voxels, and a feedback edge between hidden neurons
         let mut neurons = neurons;
         neurons.push(NeuronSpec::Hidden {
@@ -590,8 +581,8 @@ mod tests {
             parameters: shuffled_params,
             grow: 0,
         };
-        let mut a = original.build(&m, &rpv).unwrap();
-        let mut b = shuffled.build(&m, &rpv).unwrap();
+        let mut a = original.build(&BrainShape::grid(&m, &rpv)).unwrap();
+        let mut b = shuffled.build(&BrainShape::grid(&m, &rpv)).unwrap();
         let (mut out_a, mut out_b) = (vec![0.0; 10], vec![0.0; 10]);
         for k in 0..50 {
             let readings: Vec<f64> = (0..40).map(|i| ((i * 7 + k * 3) as f64 * 0.13).sin()).collect();
@@ -611,7 +602,7 @@ mod tests {
             grow: 0,
         };
         let message = |s: GraphSpec, field: &str| {
-            let err = s.build(&m, &[2, 2]).err().expect("refused");
+            let err = s.build(&BrainShape::grid(&m, &[2, 2])).err().expect("refused");
             assert_invalid(&err, field);
             err.to_string()
         };

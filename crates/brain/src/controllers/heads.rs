@@ -8,10 +8,9 @@
 
 use crate::mlp::{Activation, Mlp};
 use crate::short_form::{self, ShortForm};
-use crate::validation::{check_count, check_voxels, set_finite};
-use crate::{BrainError, BrainKind, BrainSpec, Controller};
+use crate::validation::{check_count, check_units, set_finite};
+use crate::{BrainError, BrainKind, BrainShape, BrainSpec, Controller};
 use serde::{Deserialize, Serialize};
-use vsrlab_body::Morphology;
 
 /// The heads controller: a one-layer network whose last outputs skip the tanh.
 #[derive(Debug, Clone)]
@@ -53,8 +52,8 @@ impl Default for HeadsSpec {
 }
 
 impl HeadsSpec {
-    fn sizes(morphology: &Morphology, readings_per_voxel: &[usize]) -> [usize; 2] {
-        [readings_per_voxel.iter().sum(), morphology.voxel_count()]
+    fn sizes(shape: &BrainShape) -> [usize; 2] {
+        [shape.readings().iter().sum(), shape.units()]
     }
 }
 
@@ -63,9 +62,9 @@ impl BrainKind for HeadsSpec {
         "heads"
     }
 
-    fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
-        check_voxels(morphology, readings_per_voxel)?;
-        let sizes = HeadsSpec::sizes(morphology, readings_per_voxel);
+    fn parameter_count(&self, shape: &BrainShape) -> Result<usize, BrainError> {
+        check_units(shape)?;
+        let sizes = HeadsSpec::sizes(shape);
         Mlp::check_sizes(&sizes)?;
         if self.linear_outputs > sizes[1] {
             return Err(BrainError::Invalid {
@@ -87,10 +86,10 @@ impl BrainKind for HeadsSpec {
         set_finite("weights", &mut self.weights, params)
     }
 
-    fn build(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
-        let expected = self.parameter_count(morphology, readings_per_voxel)?;
+    fn build(&self, shape: &BrainShape) -> Result<Box<dyn Controller>, BrainError> {
+        let expected = self.parameter_count(shape)?;
         check_count("weights", expected, self.weights.len())?;
-        let sizes = HeadsSpec::sizes(morphology, readings_per_voxel);
+        let sizes = HeadsSpec::sizes(shape);
         // identity everywhere; the tanh heads are applied after
         let mlp = Mlp::new(sizes.to_vec(), Activation::Identity, false, self.weights.clone())?;
         let scratch = vec![0.0; mlp.scratch_len()];
@@ -123,6 +122,7 @@ fn parse_short_form(argument: Option<&str>) -> Option<BrainSpec> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use vsrlab_body::Morphology;
 
     fn row(n: usize) -> Morphology {
         Morphology::from_fn(n, 1, |_, _| true).unwrap()
@@ -133,7 +133,12 @@ mod tests {
         for (masses, expected) in [(10, 374), (15, 784), (20, 1344)] {
             let mut rpv = vec![3; masses + 1];
             let m = row(masses + 1);
-            assert_eq!(HeadsSpec::default().parameter_count(&m, &rpv).unwrap(), expected);
+            assert_eq!(
+                HeadsSpec::default()
+                    .parameter_count(&BrainShape::grid(&m, &rpv))
+                    .unwrap(),
+                expected
+            );
             // without pressure control: n outputs, the whole body's readings on the last unit
             rpv.pop();
             rpv[masses - 1] += 3;
@@ -142,7 +147,7 @@ mod tests {
                 ..HeadsSpec::default()
             };
             assert_eq!(
-                spec.parameter_count(&row(masses), &rpv).unwrap(),
+                spec.parameter_count(&BrainShape::grid(&row(masses), &rpv)).unwrap(),
                 (3 * masses + 4) * masses
             );
         }
@@ -156,7 +161,7 @@ mod tests {
             linear_outputs: 1,
             weights,
         };
-        let mut c = spec.build(&row(3), &[1, 1, 0]).unwrap();
+        let mut c = spec.build(&BrainShape::grid(&row(3), &[1, 1, 0])).unwrap();
         let mut out = [0.0; 3];
         c.control(0.0, &[2.0, -1.0], &mut out);
         assert!((out[0] - 2f64.tanh()).abs() < 1e-12);
@@ -166,7 +171,7 @@ mod tests {
             linear_outputs: 4,
             weights: Vec::new(),
         };
-        let err = bad.parameter_count(&row(3), &[1, 1, 0]).unwrap_err();
+        let err = bad.parameter_count(&BrainShape::grid(&row(3), &[1, 1, 0])).unwrap_err();
         assert!(err.to_string().contains("linear_outputs"), "{err}");
     }
 }

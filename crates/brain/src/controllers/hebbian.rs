@@ -35,12 +35,11 @@
 
 use crate::mlp::{check_parameter_total, Activation};
 use crate::short_form::ShortForm;
-use crate::validation::{check_count, check_finite, check_voxels, finite, set_finite};
-use crate::{BrainError, BrainKind, BrainSpec, Controller, Mlp};
+use crate::validation::{check_count, check_finite, check_units, finite, set_finite};
+use crate::{BrainError, BrainKind, BrainShape, BrainSpec, Controller, Mlp};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
-use vsrlab_body::Morphology;
 
 /// Which parameters a rule set has (module documentation).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -125,14 +124,14 @@ impl Default for HebbianSpec {
 
 impl HebbianSpec {
     /// Layer sizes for a body: `[n_inputs, hidden…, n_voxels]`.
-    pub fn sizes(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Vec<usize> {
-        let n_in: usize = readings_per_voxel.iter().sum();
+    pub fn sizes(&self, shape: &BrainShape) -> Vec<usize> {
+        let n_in: usize = shape.readings().iter().sum();
         let mut sizes = vec![n_in];
         match &self.hidden {
             Some(h) => sizes.extend_from_slice(h),
             None => sizes.push(n_in.max(2)),
         }
-        sizes.push(morphology.voxel_count());
+        sizes.push(shape.units());
         sizes
     }
 
@@ -189,9 +188,9 @@ impl BrainKind for HebbianSpec {
         "hebbian"
     }
 
-    fn parameter_count(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
-        check_voxels(morphology, readings_per_voxel)?;
-        let sizes = self.sizes(morphology, readings_per_voxel);
+    fn parameter_count(&self, shape: &BrainShape) -> Result<usize, BrainError> {
+        check_units(shape)?;
+        let sizes = self.sizes(shape);
         Mlp::check_sizes(&sizes)?;
         let count = self.count_for(&sizes);
         check_parameter_total(count)?;
@@ -221,11 +220,11 @@ impl BrainKind for HebbianSpec {
         Ok(())
     }
 
-    fn build(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
+    fn build(&self, shape: &BrainShape) -> Result<Box<dyn Controller>, BrainError> {
         self.validate()?;
-        let expected = self.parameter_count(morphology, readings_per_voxel)?;
+        let expected = self.parameter_count(shape)?;
         check_count("parameters", expected, self.parameters.len())?;
-        let sizes = self.sizes(morphology, readings_per_voxel);
+        let sizes = self.sizes(shape);
         let weights = Mlp::parameter_count(&sizes);
         let initial = match (&self.init, self.model) {
             (_, HebbianModel::Dew) => self.parameters.clone(),
@@ -441,6 +440,7 @@ fn parse_short_form(argument: Option<&str>) -> Option<BrainSpec> {
 mod tests {
     use super::*;
     use crate::testing::{assert_invalid, biped};
+    use vsrlab_body::Morphology;
 
     /// A 1 → 1 network (one synapse and one bias) with the rule [A, B, C, D] on both.
     fn two_neurons(rule: [f64; 4], initial: [f64; 2]) -> HebbianController {
@@ -552,7 +552,12 @@ mod tests {
         let m = Morphology::named("biped-4x3").unwrap();
         let rpv = [0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1];
         let rpv = &rpv[2..];
-        let count = |s: &str| BrainSpec::parse(s).unwrap().parameter_count(&m, rpv).unwrap();
+        let count = |s: &str| {
+            BrainSpec::parse(s)
+                .unwrap()
+                .parameter_count(&BrainShape::grid(&m, rpv))
+                .unwrap()
+        };
         assert_eq!(count("hebbian"), 4 * 162);
         assert_eq!(count("hebbian:l2"), 4 * 162);
         assert_eq!(count("hebbian:incoming"), 4 * (8 + 10));
@@ -561,11 +566,14 @@ mod tests {
             evolve_eta: true,
             ..HebbianSpec::default()
         };
-        assert_eq!(eta.parameter_count(&m, rpv).unwrap(), 5 * 162);
+        assert_eq!(eta.parameter_count(&BrainShape::grid(&m, rpv)).unwrap(), 5 * 162);
         // 4 readings per voxel: 40 inputs, hidden 40, 10 outputs: 40·41 + 10·41 = 2050
         let (m, rpv) = biped();
         assert_eq!(
-            BrainSpec::parse("hebbian").unwrap().parameter_count(&m, &rpv).unwrap(),
+            BrainSpec::parse("hebbian")
+                .unwrap()
+                .parameter_count(&BrainShape::grid(&m, &rpv))
+                .unwrap(),
             4 * 2050
         );
     }
@@ -575,9 +583,9 @@ mod tests {
         let m = Morphology::named("worm-2x1").unwrap();
         let spec = BrainSpec::parse("hebbian:dew").unwrap();
         let rpv = [1, 1];
-        let n = spec.parameter_count(&m, &rpv).unwrap();
-        let spec = spec.with_random_parameters(3, &m, &rpv).unwrap();
-        let mut c = spec.build(&m, &rpv).unwrap();
+        let n = spec.parameter_count(&BrainShape::grid(&m, &rpv)).unwrap();
+        let spec = spec.with_random_parameters(3, &BrainShape::grid(&m, &rpv)).unwrap();
+        let mut c = spec.build(&BrainShape::grid(&m, &rpv)).unwrap();
         let mlp = Mlp::new(vec![2, 2, 2], Activation::Tanh, false, spec.parameters().to_vec()).unwrap();
         assert_eq!(n, Mlp::parameter_count(&[2, 2, 2]));
         let (mut a, mut b) = ([0.0; 2], [0.0; 2]);
@@ -598,9 +606,9 @@ mod tests {
         let spec = |f: fn(&mut HebbianSpec)| {
             let mut s = HebbianSpec::default();
             f(&mut s);
-            let n = s.parameter_count(&m, &rpv).unwrap_or(0);
+            let n = s.parameter_count(&BrainShape::grid(&m, &rpv)).unwrap_or(0);
             s.parameters = vec![0.0; n];
-            s.build(&m, &rpv).err().expect("invalid")
+            s.build(&BrainShape::grid(&m, &rpv)).err().expect("invalid")
         };
         assert_invalid(&spec(|s| s.eta = f64::NAN), "eta");
         assert_invalid(
@@ -612,7 +620,7 @@ mod tests {
         );
         assert_invalid(&spec(|s| s.init = WeightInit::Weights(vec![0.0; 3])), "init");
         assert_invalid(&spec(|s| s.freeze_at = Some(f64::INFINITY)), "freeze_at");
-        let empty = HebbianSpec::default().build(&m, &rpv).err().unwrap();
+        let empty = HebbianSpec::default().build(&BrainShape::grid(&m, &rpv)).err().unwrap();
         assert_invalid(&empty, "parameters");
         let err = serde_json::from_str::<BrainSpec>(r#"{"kind": "hebbian", "model": "fast"}"#).unwrap_err();
         assert!(err.to_string().contains("model"), "{err}");
@@ -623,10 +631,10 @@ mod tests {
         let (m, rpv) = biped();
         let spec = BrainSpec::parse("hebbian")
             .unwrap()
-            .with_random_parameters(1, &m, &rpv)
+            .with_random_parameters(1, &BrainShape::grid(&m, &rpv))
             .unwrap();
         let readings: Vec<f64> = (0..40).map(|i| (i as f64 * 0.37).sin().abs()).collect();
-        let mut live = spec.build(&m, &rpv).unwrap();
+        let mut live = spec.build(&BrainShape::grid(&m, &rpv)).unwrap();
         let mut a = vec![0.0; 10];
         for k in 0..30 {
             live.control(k as f64 / 60.0, &readings, &mut a);
@@ -634,7 +642,7 @@ mod tests {
         let snapshot = live.adaptive_weights().unwrap().to_vec();
         let mut frozen_spec = spec.clone();
         frozen_spec.as_kind_mut().freeze_with(&snapshot).unwrap();
-        let mut frozen = frozen_spec.build(&m, &rpv).unwrap();
+        let mut frozen = frozen_spec.build(&BrainShape::grid(&m, &rpv)).unwrap();
         let mut b = vec![0.0; 10];
         for k in 0..5 {
             frozen.control(k as f64 / 60.0, &readings, &mut b);
@@ -645,12 +653,12 @@ mod tests {
         // wrappers pass the weights and the freezing through
         let mut stepped = BrainSpec::parse("step:0.33:hebbian")
             .unwrap()
-            .with_random_parameters(1, &m, &rpv)
+            .with_random_parameters(1, &BrainShape::grid(&m, &rpv))
             .unwrap();
-        let c = stepped.build(&m, &rpv).unwrap();
+        let c = stepped.build(&BrainShape::grid(&m, &rpv)).unwrap();
         assert_eq!(c.adaptive_weights().map(<[f64]>::len), Some(snapshot.len()));
         stepped.as_kind_mut().freeze_with(&snapshot).unwrap();
-        let c = stepped.build(&m, &rpv).unwrap();
+        let c = stepped.build(&BrainShape::grid(&m, &rpv)).unwrap();
         assert_eq!(c.adaptive_weights().unwrap(), &snapshot[..]);
     }
 }

@@ -1,11 +1,11 @@
 //! Open-loop phase controller (vsr-model.md §4.5): a(x, y, t) = A·sin(2πft + φ(x, y)), with
 //! φ = phase_x·π·x/W + phase_y·π·y/H. No parameters. Short form: `phase`.
 
+use crate::layout::UnitLayout;
 use crate::short_form::ShortForm;
 use crate::validation::finite;
-use crate::{BrainError, BrainKind, BrainSpec, Controller};
+use crate::{BrainError, BrainKind, BrainShape, BrainSpec, Controller};
 use serde::{Deserialize, Serialize};
-use vsrlab_body::Morphology;
 
 /// Each voxel oscillates with a common frequency and amplitude and its own phase.
 #[derive(Debug, Clone, PartialEq)]
@@ -19,12 +19,15 @@ pub struct PhaseController {
 }
 
 impl PhaseController {
-    /// φ = phase_x·π·x/W + phase_y·π·y/H for each voxel of the morphology.
-    pub fn for_morphology(m: &Morphology, frequency: f64, amplitude: f64, phase_x: f64, phase_y: f64) -> Self {
-        let (w, h) = (m.width() as f64, m.height() as f64);
-        let phases = m
-            .voxels()
-            .map(|(x, y)| std::f64::consts::PI * (phase_x * x as f64 / w + phase_y * y as f64 / h))
+    /// φ = phase_x·π·x/W + phase_y·π·y/H for each unit, (x, y) its cell in the layout and W×H
+    /// the layout's extent.
+    pub fn for_layout(layout: &dyn UnitLayout, frequency: f64, amplitude: f64, phase_x: f64, phase_y: f64) -> Self {
+        let [w, h, _] = layout.extent().map(|n| n as f64);
+        let phases = (0..layout.units())
+            .map(|u| {
+                let [x, y, _] = layout.cell(u).map(|c| c as f64);
+                std::f64::consts::PI * (phase_x * x / w + phase_y * y / h)
+            })
             .collect();
         PhaseController {
             frequency,
@@ -75,7 +78,7 @@ impl BrainKind for PhaseSpec {
         "phase"
     }
 
-    fn build(&self, morphology: &Morphology, _readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
+    fn build(&self, shape: &BrainShape) -> Result<Box<dyn Controller>, BrainError> {
         let PhaseSpec {
             frequency,
             amplitude,
@@ -90,8 +93,12 @@ impl BrainKind for PhaseSpec {
         ] {
             finite(field, v)?;
         }
-        Ok(Box::new(PhaseController::for_morphology(
-            morphology, frequency, amplitude, phase_x, phase_y,
+        Ok(Box::new(PhaseController::for_layout(
+            shape.layout(),
+            frequency,
+            amplitude,
+            phase_x,
+            phase_y,
         )))
     }
 }
@@ -116,8 +123,8 @@ mod tests {
 
     #[test]
     fn phases_follow_grid_x() {
-        let m = Morphology::named("worm-4x1").unwrap();
-        let mut c = PhaseController::for_morphology(&m, 1.0, 1.0, 1.0, 0.0);
+        let m = vsrlab_body::Morphology::named("worm-4x1").unwrap();
+        let mut c = PhaseController::for_layout(&crate::GridLayout::new(&m), 1.0, 1.0, 1.0, 0.0);
         let mut out = vec![0.0; 4];
         c.control(0.0, &[], &mut out);
         let expected: Vec<f64> = (0..4).map(|x| (std::f64::consts::PI * x as f64 / 4.0).sin()).collect();

@@ -14,10 +14,9 @@
 
 use crate::short_form::ShortForm;
 use crate::validation::{check_count, check_finite, finite, set_finite};
-use crate::{BrainError, BrainKind, BrainSpec, Controller};
+use crate::{BrainError, BrainKind, BrainShape, BrainSpec, Controller};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
-use vsrlab_body::Morphology;
 
 /// Which units the phase parameters belong to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -31,10 +30,10 @@ pub enum PhaseLayout {
 }
 
 /// Number of parameters: units × (1 + evolve_frequency).
-pub fn parameter_count(morphology: &Morphology, layout: PhaseLayout, evolve_frequency: bool) -> usize {
+pub fn parameter_count(shape: &BrainShape, layout: PhaseLayout, evolve_frequency: bool) -> usize {
     let units = match layout {
-        PhaseLayout::Grid => morphology.width() * morphology.height(),
-        PhaseLayout::Voxels => morphology.voxel_count(),
+        PhaseLayout::Grid => shape.layout().slots(),
+        PhaseLayout::Voxels => shape.units(),
     };
     units * (1 + usize::from(evolve_frequency))
 }
@@ -55,7 +54,7 @@ impl PhaseGridController {
     /// # Panics
     /// If `parameters` is shorter than [`parameter_count`].
     pub fn new(
-        morphology: &Morphology,
+        shape: &BrainShape,
         amplitude: f64,
         frequency: f64,
         layout: PhaseLayout,
@@ -63,13 +62,10 @@ impl PhaseGridController {
         parameters: &[f64],
     ) -> Self {
         let block = 1 + usize::from(evolve_frequency);
-        let w = morphology.width();
-        let (frequencies, phases) = morphology
-            .voxels()
-            .enumerate()
-            .map(|(v, (x, y))| {
+        let (frequencies, phases) = (0..shape.units())
+            .map(|v| {
                 let unit = match layout {
-                    PhaseLayout::Grid => y * w + x,
+                    PhaseLayout::Grid => shape.layout().slot(v),
                     PhaseLayout::Voxels => v,
                 };
                 let p = &parameters[unit * block..(unit + 1) * block];
@@ -140,8 +136,8 @@ impl BrainKind for PhaseGridSpec {
         "phase-grid"
     }
 
-    fn parameter_count(&self, morphology: &Morphology, _readings_per_voxel: &[usize]) -> Result<usize, BrainError> {
-        Ok(parameter_count(morphology, self.layout, self.evolve_frequency))
+    fn parameter_count(&self, shape: &BrainShape) -> Result<usize, BrainError> {
+        Ok(parameter_count(shape, self.layout, self.evolve_frequency))
     }
 
     fn parameters(&self) -> &[f64] {
@@ -152,14 +148,14 @@ impl BrainKind for PhaseGridSpec {
         set_finite("parameters", &mut self.parameters, params)
     }
 
-    fn build(&self, morphology: &Morphology, _readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
+    fn build(&self, shape: &BrainShape) -> Result<Box<dyn Controller>, BrainError> {
         finite("frequency", self.frequency)?;
         finite("amplitude", self.amplitude)?;
-        let expected = parameter_count(morphology, self.layout, self.evolve_frequency);
+        let expected = parameter_count(shape, self.layout, self.evolve_frequency);
         check_count("parameters", expected, self.parameters.len())?;
         check_finite("parameters", &self.parameters)?;
         Ok(Box::new(PhaseGridController::new(
-            morphology,
+            shape,
             self.amplitude,
             self.frequency,
             self.layout,
@@ -192,14 +188,24 @@ fn parse_short_form(argument: Option<&str>) -> Option<BrainSpec> {
 mod tests {
     use super::*;
     use crate::testing::{biped, build_error};
+    use vsrlab_body::Morphology;
 
     #[test]
     fn counts_by_layout() {
         let m = Morphology::named("biped-4x3").unwrap();
-        assert_eq!(parameter_count(&m, PhaseLayout::Grid, false), 12);
-        assert_eq!(parameter_count(&m, PhaseLayout::Grid, true), 24);
-        assert_eq!(parameter_count(&m, PhaseLayout::Voxels, false), 10);
-        assert_eq!(parameter_count(&m, PhaseLayout::Voxels, true), 20);
+        assert_eq!(
+            parameter_count(&BrainShape::grid(&m, &[]), PhaseLayout::Grid, false),
+            12
+        );
+        assert_eq!(parameter_count(&BrainShape::grid(&m, &[]), PhaseLayout::Grid, true), 24);
+        assert_eq!(
+            parameter_count(&BrainShape::grid(&m, &[]), PhaseLayout::Voxels, false),
+            10
+        );
+        assert_eq!(
+            parameter_count(&BrainShape::grid(&m, &[]), PhaseLayout::Voxels, true),
+            20
+        );
     }
 
     #[test]
@@ -207,7 +213,7 @@ mod tests {
         // 2×2 with (1, 0) empty: voxels (0,0), (0,1), (1,1) = cells 0, 2, 3
         let m = Morphology::from_rows(&["##", "#."]).unwrap();
         let g = PhaseGridController::new(
-            &m,
+            &BrainShape::grid(&m, &[]),
             1.0,
             2.0,
             PhaseLayout::Grid,
@@ -216,7 +222,14 @@ mod tests {
         );
         assert_eq!(g.phases(), &[0.0, PI * 0.5, -PI * 0.5]);
         assert_eq!(g.frequencies(), &[2.5, 1.0, 2.25]);
-        let v = PhaseGridController::new(&m, 1.0, 2.0, PhaseLayout::Voxels, false, &[0.0, 0.5, -0.5]);
+        let v = PhaseGridController::new(
+            &BrainShape::grid(&m, &[]),
+            1.0,
+            2.0,
+            PhaseLayout::Voxels,
+            false,
+            &[0.0, 0.5, -0.5],
+        );
         assert_eq!(v.phases(), &[0.0, PI * 0.5, -PI * 0.5]);
         assert_eq!(v.frequencies(), &[2.0; 3]);
     }
@@ -224,7 +237,14 @@ mod tests {
     #[test]
     fn actuation_is_a_clamped_sinusoid() {
         let m = Morphology::named("worm-2x1").unwrap();
-        let mut c = PhaseGridController::new(&m, 2.0, 1.0, PhaseLayout::Voxels, false, &[0.0, 0.5]);
+        let mut c = PhaseGridController::new(
+            &BrainShape::grid(&m, &[]),
+            2.0,
+            1.0,
+            PhaseLayout::Voxels,
+            false,
+            &[0.0, 0.5],
+        );
         let mut a = [0.0; 2];
         for k in 1..=120 {
             let t = k as f64 / 60.0;
@@ -238,7 +258,9 @@ mod tests {
     fn the_spec_counts_and_checks_its_parameters() {
         let (m, rpv) = biped();
         assert_eq!(
-            BrainSpec::parse("phase-grid:freq").unwrap().parameter_count(&m, &rpv),
+            BrainSpec::parse("phase-grid:freq")
+                .unwrap()
+                .parameter_count(&BrainShape::grid(&m, &rpv)),
             Ok(24)
         );
         let err = build_error(&BrainSpec::parse("phase-grid").unwrap(), &rpv);

@@ -3,11 +3,10 @@
 
 use crate::short_form::{self, ShortForm};
 use crate::validation::non_negative;
-use crate::{BrainError, BrainKind, BrainSpec, Controller};
+use crate::{BrainError, BrainKind, BrainShape, BrainSpec, Controller};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
-use vsrlab_body::Morphology;
 
 /// Each voxel gets an independent uniform value in [-1, 1], redrawn every `period` seconds.
 #[derive(Debug, Clone)]
@@ -67,11 +66,7 @@ impl BrainKind for RandomSpec {
         "random"
     }
 
-    fn build(
-        &self,
-        _morphology: &Morphology,
-        _readings_per_voxel: &[usize],
-    ) -> Result<Box<dyn Controller>, BrainError> {
+    fn build(&self, _shape: &BrainShape) -> Result<Box<dyn Controller>, BrainError> {
         non_negative("period", self.period, " seconds")?;
         Ok(Box::new(RandomController::new(self.period, self.seed)))
     }

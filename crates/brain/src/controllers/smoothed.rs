@@ -8,9 +8,8 @@
 use super::wrapper::Inner;
 use crate::short_form::{self, ShortForm};
 use crate::validation::non_negative;
-use crate::{BrainError, BrainKind, BrainSpec, Controller};
+use crate::{BrainError, BrainKind, BrainShape, BrainSpec, Controller};
 use serde::{Deserialize, Serialize};
-use vsrlab_body::Morphology;
 
 /// Rate-limits the inner controller's output to `speed` per second.
 pub struct SmoothedController {
@@ -86,14 +85,10 @@ impl BrainKind for SmoothedSpec {
         Some(&mut self.inner)
     }
 
-    fn build(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
+    fn build(&self, shape: &BrainShape) -> Result<Box<dyn Controller>, BrainError> {
         non_negative("speed", self.speed, " per second")?;
-        let inner = self.inner.build(morphology, readings_per_voxel)?;
-        Ok(Box::new(SmoothedController::new(
-            inner,
-            self.speed,
-            morphology.voxel_count(),
-        )))
+        let inner = self.inner.build(shape)?;
+        Ok(Box::new(SmoothedController::new(inner, self.speed, shape.units())))
     }
 }
 
@@ -167,7 +162,7 @@ mod tests {
         assert_eq!(
             BrainSpec::parse("smoothed:2:distributed-mlp-hetero")
                 .unwrap()
-                .parameter_count(&m, &rpv),
+                .parameter_count(&BrainShape::grid(&m, &rpv)),
             Ok(12 * 45)
         );
         let err = build_error(&BrainSpec::parse("smoothed:nan:phase").unwrap(), &rpv);

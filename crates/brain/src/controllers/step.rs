@@ -10,9 +10,8 @@
 use super::wrapper::Inner;
 use crate::short_form::{self, ShortForm};
 use crate::validation::non_negative;
-use crate::{BrainError, BrainKind, BrainSpec, Controller};
+use crate::{BrainError, BrainKind, BrainShape, BrainSpec, Controller};
 use serde::{Deserialize, Serialize};
-use vsrlab_body::Morphology;
 
 /// Holds the inner controller's output for `period` seconds.
 pub struct StepController {
@@ -87,14 +86,10 @@ impl BrainKind for StepSpec {
         Some(&mut self.inner)
     }
 
-    fn build(&self, morphology: &Morphology, readings_per_voxel: &[usize]) -> Result<Box<dyn Controller>, BrainError> {
+    fn build(&self, shape: &BrainShape) -> Result<Box<dyn Controller>, BrainError> {
         non_negative("period", self.period, " seconds")?;
-        let inner = self.inner.build(morphology, readings_per_voxel)?;
-        Ok(Box::new(StepController::new(
-            inner,
-            self.period,
-            morphology.voxel_count(),
-        )))
+        let inner = self.inner.build(shape)?;
+        Ok(Box::new(StepController::new(inner, self.period, shape.units())))
     }
 }
 
@@ -165,7 +160,9 @@ mod tests {
     fn the_spec_delegates_to_its_inner_brain_and_checks_its_period() {
         let (m, rpv) = biped();
         assert_eq!(
-            BrainSpec::parse("step:0.33:mlp").unwrap().parameter_count(&m, &rpv),
+            BrainSpec::parse("step:0.33:mlp")
+                .unwrap()
+                .parameter_count(&BrainShape::grid(&m, &rpv)),
             Ok(1336)
         );
         let err = build_error(&BrainSpec::parse("step:0.3:distributed-mlp-hetero").unwrap(), &rpv);

@@ -164,7 +164,6 @@ mod tests {
         let mut t = Trace {
             dt,
             side_length: 3.0,
-            cells: vec![(0, 0)],
             outline_corners: vec![4],
             ..Default::default()
         };
@@ -181,7 +180,7 @@ mod tests {
                 Vec2::new(x + 3.0, h),
                 Vec2::new(x, h),
             ]);
-            t.touching.push(h < 0.05);
+            vsrlab_tasks::Probe::step(&mut t, &vsrlab_tasks::channels::TOUCH, &[f64::from(u8::from(h < 0.05))]);
         }
         t
     }
@@ -214,7 +213,6 @@ mod tests {
         // A unit square rotating clockwise by 3 full turns over 300 steps.
         let mut t = Trace {
             dt: 0.01,
-            cells: vec![(0, 0)],
             outline_corners: vec![4],
             ..Default::default()
         };

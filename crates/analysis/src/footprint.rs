@@ -187,16 +187,15 @@ fn resting(poly: &[Vec2], terrain: &[Vec2], clearance: f64) -> bool {
 /// The footprint of every recorded step of a full trace (a voxel touches when its contact flag
 /// is on or it rests within [`FootprintParams::resting_clearance`] of the terrain).
 pub fn step_footprints(trace: &Trace, params: &FootprintParams) -> Vec<Footprint> {
-    let n = trace.voxels();
     (0..trace.len())
         .map(|k| {
             let polys: Vec<&[Vec2]> = trace.polygons_at(k).iter().collect();
-            let flags = trace.touching.get(k * n..(k + 1) * n).unwrap_or(&[]);
+            let flags = trace.at(vsrlab_tasks::channels::TOUCH.name, k).unwrap_or(&[]);
             let touch: Vec<bool> = polys
                 .iter()
                 .enumerate()
                 .map(|(v, poly)| {
-                    flags.get(v).copied().unwrap_or(false)
+                    flags.get(v).is_some_and(|&f| f > 0.5)
                         || resting(poly, &trace.terrain, params.resting_clearance * trace.side_length)
                 })
                 .collect();

@@ -182,7 +182,6 @@ mod tests {
     fn dynamic_pose_of_a_trace() {
         let mut t = Trace {
             dt: 1.0 / 60.0,
-            cells: vec![(0, 0), (1, 0)],
             outline_corners: vec![4, 4],
             ..Default::default()
         };

@@ -1,37 +1,46 @@
 //! [`Controller`]: what every brain does at each control step.
 
+use vsrlab_body::{Channel, Probe};
+
+/// The plastic weights of a brain whose weights change during the episode (a Hebbian network's
+/// synapses, an attention controller's matrices): for snapshots, freezing and histograms, read by
+/// observers (not kept by traces).
+pub const PLASTIC_WEIGHTS: Channel = Channel::traced("plastic_weights").untraced();
+
 /// A brain: maps (time, readings) to actuations, possibly with internal state.
 pub trait Controller: Send {
     /// Clears internal state, as at the start of an episode.
     fn reset(&mut self);
-    /// Computes one actuation per voxel (grid order) from all readings (grid order).
+    /// Computes one actuation per unit (unit order) from all readings (unit order).
     fn control(&mut self, t: f64, readings: &[f64], actuations: &mut [f64]);
-    /// Weights that change during the episode ("adaptive weights": a Hebbian network's synapses,
-    /// an attention controller's matrices),
-    /// for snapshots, freezing and histograms; `None` for brains whose weights are fixed.
-    /// Default: `None`.
-    fn adaptive_weights(&self) -> Option<&[f64]> {
-        None
-    }
-    /// Attention matrices of every voxel, for drawing: (side r, n·r² values, voxel-major,
-    /// row-major within a voxel); `None` for brains without attention. Default: `None`.
-    fn attention(&self) -> Option<(usize, &[f64])> {
-        None
-    }
-    /// The neurons and edges of a graph brain with the neurons' outputs after the last step, for
-    /// drawing; `None` for other brains. Default: `None`.
-    fn graph(&self) -> Option<GraphView<'_>> {
-        None
-    }
+    /// Publishes what does not change during the episode (a graph brain's neurons and edges).
+    /// Default: nothing.
+    fn describe(&self, _probe: &mut dyn Probe) {}
+    /// Publishes this step's inner quantities (attention matrices, neuron outputs,
+    /// [`PLASTIC_WEIGHTS`]), after [`Controller::control`]. Default: nothing.
+    fn publish(&self, _probe: &mut dyn Probe) {}
 }
 
-/// What a graph brain shows of itself ([`Controller::graph`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct GraphView<'a> {
-    /// Each neuron's voxel (grid order index) and kind (0 sensing, 1 hidden, 2 actuator).
-    pub neurons: &'a [(usize, u8)],
-    /// Edges as (source, target, weight).
-    pub edges: &'a [(usize, usize, f64)],
-    /// Each neuron's output after the last step.
-    pub outputs: &'a [f64],
+/// The brain's [`PLASTIC_WEIGHTS`] at this step, if it has any (a convenience over
+/// [`Controller::publish`] with a [`vsrlab_body::Capture`]).
+pub fn plastic_weights(controller: &dyn Controller) -> Option<Vec<f64>> {
+    let mut capture = vsrlab_body::Capture::new();
+    controller.publish(&mut capture);
+    capture.get(PLASTIC_WEIGHTS.name).map(<[f64]>::to_vec)
+}
+
+/// A boxed brain is a brain (so helpers taking `&dyn Controller` take a `Box` too).
+impl<C: Controller + ?Sized> Controller for Box<C> {
+    fn reset(&mut self) {
+        (**self).reset();
+    }
+    fn control(&mut self, t: f64, readings: &[f64], actuations: &mut [f64]) {
+        (**self).control(t, readings, actuations);
+    }
+    fn describe(&self, probe: &mut dyn Probe) {
+        (**self).describe(probe);
+    }
+    fn publish(&self, probe: &mut dyn Probe) {
+        (**self).publish(probe);
+    }
 }

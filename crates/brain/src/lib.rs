@@ -67,7 +67,7 @@ mod spec;
 mod testing;
 mod validation;
 
-pub use controller::{Controller, GraphView};
+pub use controller::{plastic_weights, Controller, PLASTIC_WEIGHTS};
 pub use controllers::attention::{AttentionController, AttentionSpec};
 pub use controllers::centralized_mlp::{CentralizedMlpController, MlpSpec};
 pub use controllers::constant::{ConstantController, ConstantSpec};

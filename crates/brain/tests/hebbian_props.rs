@@ -49,10 +49,10 @@ proptest! {
             prop_assert!(a.iter().all(|x| x.is_finite() && x.abs() <= 1.0), "step {}: {:?}", k, a);
         }
         if model == HebbianModel::Dew {
-            prop_assert!(c.adaptive_weights().is_none(), "fixed weights are not adaptive");
+            prop_assert!(vsrlab_brain::plastic_weights(&c).is_none(), "fixed weights are not adaptive");
             return Ok(());
         }
-        let w = c.adaptive_weights().unwrap();
+        let w = vsrlab_brain::plastic_weights(&c).unwrap();
         prop_assert!(w.iter().all(|x| x.is_finite()));
         if l2 {
             // every neuron's incoming vector has unit norm (or is still all zero)

@@ -8,7 +8,7 @@ use vsrlab_body::{Morphology, Preset};
 use vsrlab_brain::BrainSpec;
 use vsrlab_physics::Solver;
 use vsrlab_tasks::ensemble::{self, Summary};
-use vsrlab_tasks::{episode, Locomotion, RobotSpec, TaskSpec, TraceLevel};
+use vsrlab_tasks::{channels, episode, Locomotion, RobotSpec, TaskSpec, TraceLevel};
 
 /// One reference row of vsr-model.md §9.1: mean, sd, median, quartiles, min, max.
 struct Reference {
@@ -175,25 +175,26 @@ fn readings(n: usize, solver: Solver) {
                 .unwrap();
             // step 300 (t = 5 s) is the 300th recorded step: the first is step 1
             let k = 299;
-            let units = trace.voxels();
-            let per: usize = trace.readings_per_voxel.iter().sum();
             let first: Vec<usize> = trace
-                .readings_per_voxel
+                .fixed_values(channels::READINGS_PER_UNIT.name)
                 .iter()
                 .scan(0, |s, &r| {
                     let start = *s;
-                    *s += r;
+                    *s += r as usize;
                     Some(start)
                 })
                 .collect();
-            rows[0].push(trace.area_ratios[k * units + v00]);
-            rows[1].push(trace.area_ratios[k * units + v32]);
-            rows[2].push(f64::from(trace.readings[k * per + first[v00] + 1]));
-            rows[3].push(trace.angles[k * units + v00]);
-            rows[4].push(trace.angles[k * units + v32]);
+            let area_ratios = trace.at(channels::AREA_RATIO.name, k).unwrap();
+            let angles = trace.at(channels::ANGLE.name, k).unwrap();
+            let readings = trace.at(channels::READINGS.name, k).unwrap();
+            rows[0].push(area_ratios[v00]);
+            rows[1].push(area_ratios[v32]);
+            rows[2].push(readings[first[v00] + 1]);
+            rows[3].push(angles[v00]);
+            rows[4].push(angles[v32]);
             let l = first[index((3, 1))] + 4;
             for (i, ray) in lidar.iter_mut().enumerate() {
-                ray.push(f64::from(trace.readings[k * per + l + i]));
+                ray.push(readings[l + i]);
             }
         }
         columns.push(rows.iter().map(|r| mean_sd(r)).collect::<Vec<_>>());

@@ -6,7 +6,8 @@ use std::f64::consts::PI;
 use std::time::Instant;
 use vsrlab_physics::Vec2;
 use vsrlab_render::{save_video, RenderOptions};
-use vsrlab_tasks::outcome::RayInfo;
+use vsrlab_tasks::channels::{ACTUATION, ANGLE, AREA_RATIO, CELLS, LIDAR, RAYS, READINGS, READINGS_PER_UNIT, TOUCH};
+use vsrlab_tasks::Probe;
 use vsrlab_tasks::Trace;
 
 fn terrain() -> Vec<Vec2> {
@@ -53,24 +54,24 @@ fn synthetic(seconds: f64) -> Trace {
     let (w, h) = (env("DEMO_W", 5), env("DEMO_H", 2));
     let cells: Vec<(usize, usize)> = (0..h).flat_map(|j| (0..w).map(move |i| (i, j))).collect();
     let readings_per_voxel: Vec<usize> = cells.iter().map(|&(_, j)| if j + 1 == h { 3 } else { 2 }).collect();
-    let rays: Vec<RayInfo> = [-PI / 3.0, -PI / 6.0, 0.0, PI / 6.0]
+    // (voxel, direction relative to the voxel, range)
+    let rays: Vec<(usize, f64, f64)> = [-PI / 3.0, -PI / 6.0, 0.0, PI / 6.0]
         .iter()
-        .map(|&a| RayInfo {
-            voxel: w * h - 1,
-            relative_angle: a,
-            range: 15.0,
-        })
+        .map(|&a| (w * h - 1, a, 15.0))
         .collect();
     let mut tr = Trace {
         dt,
         side_length: side,
         terrain: terrain.clone(),
-        cells: cells.clone(),
         outline_corners: vec![4; cells.len()],
-        readings_per_voxel,
-        rays: rays.clone(),
         ..Trace::default()
     };
+    let flat: Vec<f64> = cells.iter().flat_map(|&(i, j)| [i as f64, j as f64]).collect();
+    tr.fixed(&CELLS, 2, &flat);
+    let counts: Vec<f64> = readings_per_voxel.iter().map(|&n| n as f64).collect();
+    tr.fixed(&READINGS_PER_UNIT, 1, &counts);
+    let flat: Vec<f64> = rays.iter().flat_map(|&(v, a, r)| [v as f64, a, r]).collect();
+    tr.fixed(&RAYS, 3, &flat);
     let steps = (seconds / dt).round() as usize;
     for k in 0..steps {
         let t = k as f64 * dt;
@@ -88,6 +89,7 @@ fn synthetic(seconds: f64) -> Trace {
         };
         tr.times.push(t);
         let mut center = Vec2::ZERO;
+        let (mut area, mut touch, mut readings) = (Vec::new(), Vec::new(), Vec::new());
         for (v, &(i, j)) in cells.iter().enumerate() {
             let s = 1.0 + 0.15 * (2.0 * PI * t - i as f64 * 0.9 + j as f64).sin();
             let c = Vec2::new((i as f64 + 0.5) * side, (h as f64 - 0.5 - j as f64) * side);
@@ -100,26 +102,32 @@ fn synthetic(seconds: f64) -> Trace {
             ];
             let poly = corners.map(|q| origin + rot(c + q));
             tr.outlines.extend_from_slice(&poly);
-            tr.area_ratios.push(s * s);
-            tr.angles.push(theta);
-            tr.touching
-                .push(j + 1 == h && poly[3].y - height_at(&terrain, poly[3].x) < 0.5);
-            tr.actuations.push(0.0);
+            area.push(s * s);
+            touch.push(f64::from(u8::from(
+                j + 1 == h && poly[3].y - height_at(&terrain, poly[3].x) < 0.5,
+            )));
             center = center + origin + rot(c);
-            for r in 0..tr.readings_per_voxel[v] {
-                tr.readings
-                    .push((0.5 + 0.5 * (3.0 * t + v as f64 + r as f64 * 2.0).sin()) as f32);
+            for r in 0..readings_per_voxel[v] {
+                readings.push(0.5 + 0.5 * (3.0 * t + v as f64 + r as f64 * 2.0).sin());
             }
         }
+        tr.step(&AREA_RATIO, &area);
+        tr.step(&ANGLE, &vec![theta; cells.len()]);
+        tr.step(&TOUCH, &touch);
+        tr.step(&ACTUATION, &vec![0.0; cells.len()]);
+        tr.step(&READINGS, &readings);
         tr.centers.push(center * (1.0 / cells.len() as f64));
         let polys = &tr.outlines[k * 4 * cells.len()..];
-        for ray in &rays {
-            let p = &polys[4 * ray.voxel..4 * ray.voxel + 4];
-            let c = (p[0] + p[1] + p[2] + p[3]) * 0.25;
-            let a = theta + ray.relative_angle;
-            tr.ray_distances
-                .push(cast(&terrain, c, Vec2::new(a.cos(), a.sin()), ray.range) as f32);
-        }
+        let distances: Vec<f64> = rays
+            .iter()
+            .map(|&(voxel, relative_angle, range)| {
+                let p = &polys[4 * voxel..4 * voxel + 4];
+                let c = (p[0] + p[1] + p[2] + p[3]) * 0.25;
+                let a = theta + relative_angle;
+                cast(&terrain, c, Vec2::new(a.cos(), a.sin()), range)
+            })
+            .collect();
+        tr.step(&LIDAR, &distances);
     }
     tr
 }

@@ -17,7 +17,7 @@ pub(crate) fn attention_color(value: f32) -> [u8; 3] {
 
 /// Draws an r × r matrix (row-major) as a heat map whose top-left corner is at `top_left` (pixels)
 /// and whose side is `size` pixels, with a dark frame.
-pub(crate) fn draw_matrix(pm: &mut Pixmap, top_left: (f32, f32), size: f32, r: usize, matrix: &[f32]) {
+pub(crate) fn draw_matrix(pm: &mut Pixmap, top_left: (f32, f32), size: f32, r: usize, matrix: &[f64]) {
     if r == 0 || size < 2.0 || matrix.len() < r * r {
         return;
     }
@@ -33,7 +33,7 @@ pub(crate) fn draw_matrix(pm: &mut Pixmap, top_left: (f32, f32), size: f32, r: u
     };
     for a in 0..r {
         for b in 0..r {
-            let [red, green, blue] = attention_color(matrix[a * r + b]);
+            let [red, green, blue] = attention_color(matrix[a * r + b] as f32);
             paint.set_color(Color::from_rgba8(red, green, blue, 235));
             let x = top_left.0 + b as f32 * cell;
             let y = top_left.1 + a as f32 * cell;

@@ -2,7 +2,7 @@
 
 use crate::RenderOptions;
 use vsrlab_physics::Vec2;
-use vsrlab_tasks::Trace;
+use vsrlab_tasks::{channels, Trace};
 
 /// Simulated seconds of history whose bounding boxes the camera keeps in view.
 pub(crate) const WINDOW: f64 = 2.0;
@@ -66,7 +66,7 @@ impl BBox {
 /// without them, a voxel-sized box around its centre.
 pub(crate) fn step_boxes(trace: &Trace) -> Vec<Option<BBox>> {
     let half = side(trace) / 2.0;
-    let balls = trace.object_radii.len();
+    let obstacles = channels::obstacles(trace);
     (0..trace.len())
         .map(|k| {
             let body = BBox::of_points(trace.polygons_at(k).iter().flatten().copied()).or_else(|| {
@@ -75,19 +75,14 @@ pub(crate) fn step_boxes(trace: &Trace) -> Vec<Option<BBox>> {
             })?;
             // the loose balls, and obstacles that overlap the body's box grown by its own size
             // (a cage around it), stay in view
-            let ball_boxes = trace
-                .objects
-                .get(k * balls..(k + 1) * balls)
-                .unwrap_or(&[])
-                .iter()
-                .zip(&trace.object_radii)
-                .filter_map(|(&(c, _), &r)| BBox::of_points([c - Vec2::new(r, r), c + Vec2::new(r, r)]));
+            let ball_boxes = channels::balls(trace, k)
+                .into_iter()
+                .filter_map(|(c, _, r)| BBox::of_points([c - Vec2::new(r, r), c + Vec2::new(r, r)]));
             let reach = BBox {
                 min: body.min - (body.max - body.min),
                 max: body.max + (body.max - body.min),
             };
-            let near = trace
-                .obstacles
+            let near = obstacles
                 .iter()
                 .filter_map(|p| BBox::of_points(p.iter().copied()))
                 .filter(|o| {

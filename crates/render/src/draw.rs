@@ -6,7 +6,12 @@ use crate::{RenderOptions, MAX_SIDE};
 use std::f64::consts::PI;
 use tiny_skia::{Color, FillRule, LineCap, LineJoin, Paint, PathBuilder, Pixmap, Rect, Stroke, Transform};
 use vsrlab_physics::Vec2;
-use vsrlab_tasks::{Polygons, Trace};
+use vsrlab_tasks::{channels, Polygons, Trace};
+
+/// Whole numbers of a fixed channel (counts, indices).
+fn whole(values: &[f64]) -> impl Iterator<Item = usize> + '_ {
+    values.iter().map(|&v| v as usize)
+}
 
 /// An opaque or translucent colour: red, green, blue, alpha.
 pub(crate) type Rgba = [u8; 4];
@@ -89,9 +94,18 @@ pub(crate) struct Scene<'a> {
     trace: &'a Trace,
     opts: RenderOptions,
     boxes: Vec<Option<BBox>>,
-    /// First reading of each voxel within a step's readings.
+    /// First reading of each voxel within a step's readings, and each voxel's count.
     reading_offsets: Vec<usize>,
-    readings_per_step: usize,
+    readings_per_unit: Vec<usize>,
+    /// A graph brain's neurons (unit, kind) and edges (source, target, weight), if any.
+    neurons: Vec<(usize, u8)>,
+    edges: Vec<(usize, usize, f32)>,
+    /// The lidar rays: (unit, direction relative to the unit, range).
+    rays: Vec<(usize, f64, f64)>,
+    /// Side of each unit's attention matrix (0 without).
+    attention_side: usize,
+    /// The polygon of each brain unit, where it is not the unit's own index.
+    unit_polygons: Vec<usize>,
     anti_alias: bool,
 }
 
@@ -101,18 +115,33 @@ impl<'a> Scene<'a> {
         let mut opts = opts.clone();
         opts.width = opts.width.clamp(1, MAX_SIDE);
         opts.height = opts.height.clamp(1, MAX_SIDE);
-        let mut reading_offsets = Vec::with_capacity(trace.readings_per_voxel.len());
+        let readings_per_unit: Vec<usize> = whole(trace.fixed_values(channels::READINGS_PER_UNIT.name)).collect();
+        let mut reading_offsets = Vec::with_capacity(readings_per_unit.len());
         let mut total = 0;
-        for &n in &trace.readings_per_voxel {
+        for &n in &readings_per_unit {
             reading_offsets.push(total);
             total += n;
         }
+        let rows = |name: &str| trace.channel(name).into_iter().flat_map(|c| c.rows());
+        let unit_polygons: Vec<usize> = whole(trace.fixed_values(channels::UNIT_POLYGONS.name)).collect();
+        let polygon = |unit: usize| unit_polygons.get(unit).copied().unwrap_or(unit);
         Scene {
             trace,
             opts,
             boxes: camera::step_boxes(trace),
             reading_offsets,
-            readings_per_step: total,
+            readings_per_unit,
+            neurons: rows(channels::GRAPH_NEURONS.name)
+                .map(|n| (polygon(n[0] as usize), n[1] as u8))
+                .collect(),
+            edges: rows(channels::GRAPH_EDGES.name)
+                .map(|e| (e[0] as usize, e[1] as usize, e[2] as f32))
+                .collect(),
+            rays: rows(channels::RAYS.name).map(|r| (r[0] as usize, r[1], r[2])).collect(),
+            attention_side: whole(trace.fixed_values(channels::ATTENTION_SIDE.name))
+                .next()
+                .unwrap_or(0),
+            unit_polygons: unit_polygons.clone(),
             anti_alias,
         }
     }
@@ -143,19 +172,19 @@ impl<'a> Scene<'a> {
             overlay::draw_trail(pm, t, &view, step, self.opts.width);
         }
         let polys = t.polygons_at(step);
-        let n = t.voxels();
+        let area_ratios = t.at(channels::AREA_RATIO.name, step);
+        let touching = t.at(channels::TOUCH.name, step);
+        let pressure = t.value(channels::PRESSURE.name, step, 0);
         for (v, poly) in polys.iter().enumerate() {
-            let idx = step * n + v;
             let Some(path) = closed_path(poly, px) else { continue };
-            let ratio = t
-                .area_ratios
-                .get(idx)
+            let ratio = area_ratios
+                .and_then(|a| a.get(v))
                 .copied()
                 .unwrap_or_else(|| area(poly) / camera::side(t).powi(2));
             let broken = t.is_broken(step, v);
-            let fill = match t.pressures.get(step) {
+            let fill = match pressure {
                 // a PSA: the membrane (polygon 0) shows the pressure
-                Some(&p) if v == 0 => pressure_color(f64::from(p)),
+                Some(p) if v == 0 => pressure_color(p),
                 _ if broken => BROKEN,
                 _ => area_color(ratio),
             };
@@ -173,7 +202,7 @@ impl<'a> Scene<'a> {
                     pm.stroke_path(&cross, &paint(VOXEL_OUTLINE), &stroke(1.0), Transform::identity(), None);
                 }
             }
-            let touching = t.touching.get(idx).copied().unwrap_or(false);
+            let touching = touching.and_then(|t| t.get(v)).is_some_and(|&t| t > 0.5);
             let (color, width) = if touching {
                 (TOUCH_OUTLINE, 2.0)
             } else {
@@ -182,20 +211,23 @@ impl<'a> Scene<'a> {
             pm.stroke_path(&path, &paint(color), &stroke(width), Transform::identity(), None);
         }
         self.draw_balls(pm, &view, step);
-        let attention = self.opts.draw_attention && t.attention_side > 0;
-        let graph = self.opts.draw_graph && !t.graph_neurons.is_empty();
+        let side = self.attention_side;
+        let attention = self.opts.draw_attention && side > 0;
+        let graph = self.opts.draw_graph && !self.neurons.is_empty();
         if self.opts.draw_sensors && !attention && !graph {
             self.draw_sensors(pm, &view, step, polys);
         }
         if attention {
             let px = |p: Vec2| view.to_pixel(p, self.opts.width);
-            for (v, poly) in polys.iter().enumerate() {
-                if let Some(matrix) = t.attention_at(step, v) {
+            let matrices = t.at(channels::ATTENTION.name, step).unwrap_or(&[]);
+            for (v, matrix) in matrices.chunks_exact(side * side).enumerate() {
+                let unit = self.unit_polygons.get(v).copied().unwrap_or(v);
+                if let Some(poly) = polys.get(unit) {
                     let c = center(poly);
                     let half = area(poly).sqrt() * 0.3;
                     let (x0, y0) = px(c - Vec2::new(half, -half));
                     let (x1, _) = px(c + Vec2::new(half, half));
-                    crate::attention::draw_matrix(pm, (x0, y0), x1 - x0, t.attention_side, matrix);
+                    crate::attention::draw_matrix(pm, (x0, y0), x1 - x0, side, matrix);
                 }
             }
         }
@@ -205,9 +237,9 @@ impl<'a> Scene<'a> {
             crate::graph::draw_graph(
                 pm,
                 &polys,
-                &t.graph_neurons,
-                &t.graph_edges,
-                t.graph_outputs_at(step),
+                &self.neurons,
+                &self.edges,
+                t.at(channels::GRAPH_OUTPUTS.name, step),
                 px,
                 self.anti_alias,
             );
@@ -220,7 +252,7 @@ impl<'a> Scene<'a> {
             overlay::draw_overlay(pm, t, step);
         }
         if self.opts.draw_legend {
-            overlay::draw_legend(pm, t.damage.is_some(), !t.pressures.is_empty());
+            overlay::draw_legend(pm, t.damage.is_some(), t.has(channels::PRESSURE.name));
         }
     }
 
@@ -256,7 +288,7 @@ impl<'a> Scene<'a> {
     /// Static polygons besides the ground (a cage).
     fn draw_obstacles(&self, pm: &mut Pixmap, view: &View) {
         let px = |p: Vec2| view.to_pixel(p, self.opts.width);
-        for poly in &self.trace.obstacles {
+        for poly in &channels::obstacles(self.trace) {
             if let Some(path) = closed_path(poly, px) {
                 pm.fill_path(
                     &path,
@@ -273,13 +305,8 @@ impl<'a> Scene<'a> {
 
     /// Loose balls at `step`, with a spoke that shows their rotation.
     fn draw_balls(&self, pm: &mut Pixmap, view: &View, step: usize) {
-        let t = self.trace;
-        let n = t.object_radii.len();
-        let Some(states) = t.objects.get(step * n..(step + 1) * n) else {
-            return;
-        };
         let px = |p: Vec2| view.to_pixel(p, self.opts.width);
-        for (&(centre, angle), &radius) in states.iter().zip(&t.object_radii) {
+        for (centre, angle, radius) in channels::balls(self.trace, step) {
             let (cx, cy) = px(centre);
             let (ex, _) = px(centre + Vec2::new(radius, 0.0));
             let r = (ex - cx).abs();
@@ -314,7 +341,7 @@ impl<'a> Scene<'a> {
         // without anti-aliasing, strokes under a pixel wide come out dotted
         let thin = stroke(if self.anti_alias { 0.75 } else { 1.0 });
         for (v, poly) in polys.iter().enumerate() {
-            let count = t.readings_per_voxel.get(v).copied().unwrap_or(0);
+            let count = self.readings_per_unit.get(v).copied().unwrap_or(0);
             if count == 0 {
                 continue;
             }
@@ -322,14 +349,11 @@ impl<'a> Scene<'a> {
             let radius = area(poly).sqrt() / 2.0;
             let angle = self.angle(step, v, poly);
             let slice = PI / count as f64;
-            let base = step * self.readings_per_step + self.reading_offsets[v];
+            let readings = t.at(channels::READINGS.name, step).unwrap_or(&[]);
+            let base = self.reading_offsets[v];
             for i in 0..count {
-                let Some(&value) = t.readings.get(base + i) else { break };
-                let value = if value.is_finite() {
-                    f64::from(value).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
+                let Some(&value) = readings.get(base + i) else { break };
+                let value = if value.is_finite() { value.clamp(0.0, 1.0) } else { 0.0 };
                 let a0 = angle + i as f64 * slice;
                 if let Some(path) = sector(c, radius * value, a0, a0 + slice, px) {
                     pm.fill_path(&path, &fill, FillRule::Winding, Transform::identity(), None);
@@ -348,18 +372,18 @@ impl<'a> Scene<'a> {
         let red = paint(LIDAR, self.anti_alias);
         let line = stroke(1.0);
         let hit_radius = (0.25 * view.scale(self.opts.width)) as f32;
-        for (i, ray) in t.rays.iter().enumerate() {
-            let Some(poly) = polys.get(ray.voxel) else { continue };
-            let measured = t.ray_distances.get(step * t.rays.len() + i).map(|&d| f64::from(d));
+        for (i, &(unit, relative_angle, range)) in self.rays.iter().enumerate() {
+            let Some(poly) = polys.get(unit) else { continue };
+            let measured = t.value(channels::LIDAR.name, step, i);
             let (length, hit) = match measured {
-                Some(d) if d.is_finite() && d >= 0.0 && d < ray.range => (d, true),
-                _ => (ray.range, false),
+                Some(d) if d.is_finite() && d >= 0.0 && d < range => (d, true),
+                _ => (range, false),
             };
             if !length.is_finite() {
                 continue;
             }
             let c = center(poly);
-            let dir = self.angle(step, ray.voxel, poly) + ray.relative_angle;
+            let dir = self.angle(step, unit, poly) + relative_angle;
             let end = c + Vec2::new(dir.cos(), dir.sin()) * length;
             let (x0, y0) = px(c);
             let (x1, y1) = px(end);
@@ -396,8 +420,8 @@ impl<'a> Scene<'a> {
     /// bottom edges.
     fn angle(&self, step: usize, v: usize, poly: &[Vec2]) -> f64 {
         let t = self.trace;
-        match (t.angles.get(step * t.voxels() + v), poly) {
-            (Some(&a), _) if a.is_finite() => a,
+        match (t.value(channels::ANGLE.name, step, v), poly) {
+            (Some(a), _) if a.is_finite() => a,
             (_, [nw, ne, se, sw]) => {
                 let d = (*ne - *nw) + (*se - *sw);
                 d.y.atan2(d.x)
@@ -489,6 +513,7 @@ pub fn render_frame(trace: &Trace, step: usize, opts: &RenderOptions) -> Pixmap 
 mod tests {
     use super::*;
     use crate::testutil::*;
+    use vsrlab_tasks::Probe;
 
     fn rgb(pm: &Pixmap, x: u32, y: u32) -> [u8; 3] {
         let c = pm.pixel(x, y).expect("inside");
@@ -637,7 +662,7 @@ mod tests {
         let (x, y) = view.to_pixel(Vec2::new(10.0, 7.0), opts.width);
         let pm = render_frame(&t, 0, &opts);
         let before = rgb(&pm, x as u32, y as u32);
-        t.touching[0] = true;
+        t.values_mut("touch")[0] = 1.0;
         let pm = render_frame(&t, 0, &opts);
         let after = rgb(&pm, x as u32, y as u32);
         assert!(after[2] < before[2], "{before:?} -> {after:?}");
@@ -646,8 +671,8 @@ mod tests {
     #[test]
     fn sensor_sectors_darken_the_upper_half_by_value() {
         let mut t = square_trace(1.0);
-        t.readings_per_voxel = vec![2];
-        t.readings = vec![1.0, 0.0]; // first sector (to the right of up) full, second empty
+        t.fixed(&channels::READINGS_PER_UNIT, 1, &[2.0]);
+        t.step(&channels::READINGS, &[1.0, 0.0]); // first sector (to the right of up) full, second empty
         let opts = RenderOptions {
             draw_lidar: false,
             ..RenderOptions::default()
@@ -661,7 +686,7 @@ mod tests {
         assert!(upper_left[0] > 240, "upper left darkened: {upper_left:?}");
         assert!(lower_right[0] > 240, "lower half darkened: {lower_right:?}");
         // turned by the voxel angle: at angle π the half-disk points down
-        t.angles[0] = PI;
+        t.values_mut("angle")[0] = PI;
         let pm = render_frame(&t, 0, &opts);
         let lower_left = at(&t, 0, &opts, &pm, Vec2::new(10.9, 5.9));
         assert!(lower_left[0] < 200, "rotated sector missing: {lower_left:?}");
@@ -672,12 +697,8 @@ mod tests {
     fn lidar_ray_stops_at_hit() {
         let mut t = square_trace(1.0);
         // one ray pointing straight down (relative to angle 0), range 10, hit at 1.0
-        t.rays = vec![vsrlab_tasks::outcome::RayInfo {
-            voxel: 0,
-            relative_angle: -PI / 2.0,
-            range: 10.0,
-        }];
-        t.ray_distances = vec![1.0];
+        t.fixed(&channels::RAYS, 3, &[0.0, -PI / 2.0, 10.0]);
+        t.step(&channels::LIDAR, &[1.0]);
         let opts = RenderOptions {
             draw_sensors: false,
             ..RenderOptions::default()
@@ -696,7 +717,7 @@ mod tests {
         assert!(!red_near(&pm, Vec2::new(11.5, 5.1)), "ray drawn past the hit");
         assert!(!red_near(&pm, Vec2::new(11.5, 4.5)), "ray drawn past the hit");
         // no hit: the full range is drawn
-        t.ray_distances = vec![10.0];
+        t.values_mut("lidar")[0] = 10.0;
         let pm = render_frame(&t, 0, &opts);
         assert!(red_near(&pm, Vec2::new(11.5, 4.5)), "full-range ray missing");
         assert!(!red_near(&pm, Vec2::new(11.75, 5.5)), "hit circle drawn without a hit");
@@ -731,16 +752,13 @@ mod tests {
     #[test]
     fn malformed_traces_do_not_panic() {
         let mut t = square_trace(1.0);
-        t.area_ratios.clear();
-        t.angles.clear();
-        t.touching.clear();
-        t.readings_per_voxel = vec![3];
-        t.readings.clear();
-        t.rays = vec![vsrlab_tasks::outcome::RayInfo {
-            voxel: 7,
-            relative_angle: 0.0,
-            range: f64::INFINITY,
-        }];
+        t.channels.clear();
+        t.fixed(&channels::READINGS_PER_UNIT, 1, &[3.0]);
+        t.fixed(&channels::RAYS, 3, &[7.0, 0.0, f64::INFINITY]);
+        t.fixed(&channels::GRAPH_NEURONS, 2, &[9.0, 1.0]);
+        t.fixed(&channels::GRAPH_EDGES, 3, &[0.0, 5.0, 1.0]);
+        t.fixed(&channels::ATTENTION_SIDE, 1, &[4.0]);
+        t.step(&channels::ATTENTION, &[0.5]);
         t.outlines[2] = Vec2::new(f64::NAN, 1.0);
         let _ = render_frame(&t, 10, &RenderOptions::default());
         let _ = render_frame(

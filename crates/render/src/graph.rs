@@ -31,7 +31,7 @@ pub(crate) fn draw_graph(
     polys: &[&[Vec2]],
     neurons: &[(usize, u8)],
     edges: &[(usize, usize, f32)],
-    outputs: Option<&[f32]>,
+    outputs: Option<&[f64]>,
     px: impl Fn(Vec2) -> (f32, f32),
     anti_alias: bool,
 ) {
@@ -76,7 +76,7 @@ pub(crate) fn draw_graph(
             2 => (3.2, [230, 140, 0, 255]),
             _ => (2.5, [20, 20, 20, 255]),
         };
-        let out = outputs.and_then(|o| o.get(i)).copied().unwrap_or(0.0);
+        let out = outputs.and_then(|o| o.get(i)).map_or(0.0, |&o| o as f32);
         let grey = if out.is_finite() {
             ((out.clamp(-1.0, 1.0) + 1.0) * 127.5) as u8
         } else {

@@ -108,7 +108,7 @@ pub(crate) fn overlay_lines(trace: &Trace, step: usize) -> Vec<String> {
         let distance = now.x - start.x;
         let side = trace.side_length;
         // a PSA (its trace has pressures) is not measured in voxels
-        let sides = if side > 0.0 && trace.pressures.is_empty() {
+        let sides = if side > 0.0 && !trace.has(vsrlab_tasks::channels::PRESSURE.name) {
             format!(" ({:+.1} voxels)", distance / side)
         } else {
             String::new()
@@ -118,7 +118,7 @@ pub(crate) fn overlay_lines(trace: &Trace, step: usize) -> Vec<String> {
         if elapsed > 0.0 {
             lines.push(format!("velocity {:+.2} /s", distance / elapsed));
         }
-        if let Some(p) = trace.pressures.get(step) {
+        if let Some(p) = trace.value(vsrlab_tasks::channels::PRESSURE.name, step, 0) {
             lines.push(format!("pressure {:.2} p_max", p));
         }
     }

@@ -10,7 +10,8 @@
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use vsrlab_physics::Vec2;
-use vsrlab_tasks::Trace;
+use vsrlab_tasks::outcome::ReplayMode;
+use vsrlab_tasks::{channels, Trace};
 
 /// The `format` field of every replay file.
 pub const FORMAT: &str = "vsrlab-replay";
@@ -230,6 +231,47 @@ fn point(p: Vec2) -> [f64; 2] {
     [p.x, p.y]
 }
 
+/// Whole numbers of a fixed channel (counts, indices) as integers.
+fn counts(values: &[f64]) -> Vec<usize> {
+    values.iter().map(|&v| v as usize).collect()
+}
+
+/// Each unit's grid cell, or, for a body that is not a grid, its index along x: the viewer keeps
+/// one per outline polygon.
+fn cells(trace: &Trace) -> Vec<[usize; 2]> {
+    match trace.channel(channels::CELLS.name) {
+        Some(cells) => cells.rows().map(|c| [c[0] as usize, c[1] as usize]).collect(),
+        None => (0..trace.units()).map(|i| [i, 0]).collect(),
+    }
+}
+
+/// The lidar rays of the fixed channel `rays`: (unit, relative angle, range) rows.
+fn rays(trace: &Trace) -> Vec<Ray> {
+    let Some(rays) = trace.channel(channels::RAYS.name) else {
+        return Vec::new();
+    };
+    rays.rows()
+        .map(|r| Ray {
+            unit: r[0] as usize,
+            angle: r[1],
+            range: r[2],
+        })
+        .collect()
+}
+
+/// A graph brain's neurons and edges, when the trace has them.
+fn graph(trace: &Trace) -> Option<Graph> {
+    let neurons = trace.channel(channels::GRAPH_NEURONS.name)?;
+    let edges = trace.channel(channels::GRAPH_EDGES.name)?;
+    (!neurons.values.is_empty()).then(|| Graph {
+        neurons: neurons.rows().map(|n| [n[0] as usize, n[1] as usize]).collect(),
+        edges: edges
+            .rows()
+            .map(|e| (e[0] as usize, e[1] as usize, e[2] as f32))
+            .collect(),
+    })
+}
+
 impl Replay {
     /// The replay of a recorded episode.
     pub fn from_trace(trace: &Trace, options: &ReplayOptions) -> Result<Replay, ReplayError> {
@@ -255,33 +297,23 @@ impl Replay {
             steps: &steps,
             map: BTreeMap::new(),
         };
-        let (position, fine, coarse) = ((quantum, 0.0), (1e-3, 0.0), (1e-2, 0.0));
+        let position = (quantum, 0.0);
         c.add("outline", &trace.outlines, trace.corners_per_step(), position, point);
         c.add("center", &trace.centers, 1, position, point);
-        let units = trace.voxels();
-        c.add("area_ratio", &trace.area_ratios, units, (1e-3, 1.0), |v| [v]);
-        c.add("actuation", &trace.actuations, units, fine, |v| [v]);
-        c.add("touch", &trace.touching, units, (1.0, 0.0), |b| {
-            [f64::from(u8::from(b))]
-        });
-        if !trace.rays.is_empty() {
-            c.add("angle", &trace.angles, units, fine, |v| [v]);
-            c.add("lidar", &trace.ray_distances, trace.rays.len(), coarse, |v| {
-                [f64::from(v)]
-            });
+        for (name, recorded) in trace.channels.iter().filter(|(_, r)| !r.fixed) {
+            let scale = match recorded.replay {
+                ReplayMode::No => continue,
+                ReplayMode::Step(scale) => scale,
+                ReplayMode::Position => quantum,
+            };
+            c.add(
+                name,
+                &recorded.values,
+                recorded.width,
+                (scale, recorded.fallback),
+                |v| [v],
+            );
         }
-        let readings: usize = trace.readings_per_voxel.iter().sum();
-        c.add("readings", &trace.readings, readings, coarse, |v| [f64::from(v)]);
-        let attention = units * trace.attention_side * trace.attention_side;
-        c.add("attention", &trace.attention, attention, coarse, |v| [f64::from(v)]);
-        let neurons = trace.graph_neurons.len();
-        c.add("graph_outputs", &trace.graph_outputs, neurons, fine, |v| [f64::from(v)]);
-        if trace.pressures.iter().any(|&p| p != 0.0) {
-            c.add("pressure", &trace.pressures, 1, fine, |v| [f64::from(v)]);
-        }
-        let balls = trace.object_radii.len();
-        c.add("ball_xy", &trace.objects, balls, position, |o| point(o.0));
-        c.add("ball_angle", &trace.objects, balls, fine, |o| [o.1]);
         let channels = c.map;
         let dt = if trace.dt > 0.0 { trace.dt } else { 1.0 / 60.0 };
         Ok(Replay {
@@ -296,37 +328,28 @@ impl Replay {
             quantum,
             world: World {
                 terrain: trace.terrain.iter().map(|&p| point(p)).collect(),
-                obstacles: trace
-                    .obstacles
+                obstacles: channels::obstacles(trace)
                     .iter()
                     .map(|o| o.iter().map(|&p| point(p)).collect())
                     .collect(),
-                balls: trace.object_radii.clone(),
+                balls: trace.fixed_values(channels::BALL_RADII.name).to_vec(),
             },
             body: Body {
-                cells: trace.cells.iter().map(|&(c, r)| [c, r]).collect(),
+                cells: cells(trace),
                 corners: trace.outline_corners.clone(),
-                readings_per_unit: trace.readings_per_voxel.clone(),
-                rays: trace
-                    .rays
-                    .iter()
-                    .map(|r| Ray {
-                        unit: r.voxel,
-                        angle: r.relative_angle,
-                        range: r.range,
-                    })
-                    .collect(),
-                attention_side: trace.attention_side,
+                readings_per_unit: counts(trace.fixed_values(channels::READINGS_PER_UNIT.name)),
+                rays: rays(trace),
+                attention_side: counts(trace.fixed_values(channels::ATTENTION_SIDE.name))
+                    .first()
+                    .copied()
+                    .unwrap_or(0),
             },
             channels,
             damage: trace.damage.as_ref().map(|d| Damage {
                 time: d.time,
                 broken: d.broken.clone(),
             }),
-            graph: (neurons > 0).then(|| Graph {
-                neurons: trace.graph_neurons.iter().map(|&(u, k)| [u, usize::from(k)]).collect(),
-                edges: trace.graph_edges.clone(),
-            }),
+            graph: graph(trace),
         })
     }
 

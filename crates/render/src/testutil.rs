@@ -1,7 +1,8 @@
 //! Synthetic traces for the tests: one 3×3 voxel above flat ground at y = 5.
 
 use vsrlab_physics::Vec2;
-use vsrlab_tasks::Trace;
+use vsrlab_tasks::Probe;
+use vsrlab_tasks::{channels, Trace};
 
 /// Flat terrain at y = 5 between two walls far from the robot.
 pub fn flat_terrain() -> Vec<Vec2> {
@@ -26,37 +27,31 @@ pub fn square_at(x: f64) -> [Vec2; 4] {
 /// One voxel whose left edge is at `xs[k]` at step k (60 Hz), area ratio 1, no sensors.
 pub fn trace_from_positions(xs: &[f64]) -> Trace {
     let dt = 1.0 / 60.0;
-    Trace {
+    let mut trace = Trace {
         dt,
         side_length: 3.0,
         terrain: flat_terrain(),
-        cells: vec![(0, 0)],
         times: (0..xs.len()).map(|k| k as f64 * dt).collect(),
         centers: xs.iter().map(|&x| Vec2::new(x + 1.5, 6.5)).collect(),
         outline_corners: vec![4],
         outlines: xs.iter().flat_map(|&x| square_at(x)).collect(),
-        area_ratios: vec![1.0; xs.len()],
-        angles: vec![0.0; xs.len()],
-        touching: vec![false; xs.len()],
-        actuations: vec![0.0; xs.len()],
-        readings_per_voxel: vec![0],
-        readings: Vec::new(),
-        rays: Vec::new(),
-        ray_distances: Vec::new(),
-        damage: None,
-        attention_side: 0,
-        attention: Vec::new(),
-        graph_neurons: Vec::new(),
-        graph_edges: Vec::new(),
-        graph_outputs: Vec::new(),
         ..Trace::default()
+    };
+    trace.fixed(&channels::CELLS, 2, &[0.0, 0.0]);
+    trace.fixed(&channels::READINGS_PER_UNIT, 1, &[0.0]);
+    for _ in xs {
+        trace.step(&channels::AREA_RATIO, &[1.0]);
+        trace.step(&channels::ANGLE, &[0.0]);
+        trace.step(&channels::TOUCH, &[0.0]);
+        trace.step(&channels::ACTUATION, &[0.0]);
     }
+    trace
 }
 
 /// A single step: the voxel at x ∈ [10, 13], y ∈ [5, 8], with the given area ratio.
 pub fn square_trace(area_ratio: f64) -> Trace {
     let mut t = trace_from_positions(&[10.0]);
-    t.area_ratios[0] = area_ratio;
+    t.values_mut("area_ratio")[0] = area_ratio;
     t
 }
 

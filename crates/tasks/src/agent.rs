@@ -5,6 +5,7 @@
 use crate::episode::EpisodeError;
 use crate::outcome::Trace;
 use vsrlab_body::{Body, Morphology};
+use vsrlab_brain::Controller;
 use vsrlab_physics::{Vec2, World, WorldBuilder};
 
 /// A robot description that can be put in a world.
@@ -50,10 +51,17 @@ pub trait Agent: Send {
     fn actuate(&mut self, world: &mut World, actions: &[f64]) {
         self.body().actuate(world, actions);
     }
-    /// Writes what does not change during the episode into a trace (grid cells, sensor layout).
+    /// Writes what does not change during the episode into a trace: the part size and fixed
+    /// channels (grid cells, sensor layout). The brain's own are added by the episode loop.
     fn describe(&mut self, trace: &mut Trace);
-    /// Appends this step's per-unit data (states, readings, actuations) to a trace.
+    /// Publishes this step's channels (states, readings, actuations) into a trace; the brain's
+    /// are added by the episode loop.
     fn record(&self, trace: &mut Trace);
+    /// The brain, whose channels ([`Controller::describe`], [`Controller::publish`]) the episode
+    /// loop records and observers read (plastic weights). Default: none.
+    fn brain(&self) -> Option<&dyn Controller> {
+        None
+    }
     /// Breaks the actuated units marked `true` (one flag per [`Body::actuator_count`] unit): their
     /// actuation stays 0 from the next step on ([`crate::Damage`]). Default: an error, for bodies
     /// that cannot be damaged.
@@ -61,10 +69,5 @@ pub trait Agent: Send {
         Err(EpisodeError::Invalid(
             "task.damage: this robot's body cannot be damaged".into(),
         ))
-    }
-    /// The brain's weights that change during the episode (Hebbian brains), for snapshots.
-    /// Default: none.
-    fn brain_weights(&self) -> Option<&[f64]> {
-        None
     }
 }

@@ -3,8 +3,10 @@
 //! or until the task stops the episode. Pure: the same inputs give bit-identical outcomes.
 
 use crate::agent::{Agent, Robot};
+use crate::channels::{BALL_ANGLE, BALL_RADII, BALL_XY, OBSTACLES, OBSTACLE_CORNERS};
 use crate::outcome::{DamageRecord, Outcome, Trace, TraceLevel};
 use crate::task::{fitness_values, Flow, Objective, Scene, StepView, Task, TaskEpisode};
+use vsrlab_body::Probe;
 use vsrlab_physics::{PhysicsError, Vec2, World, WorldBuilder};
 
 /// Why an episode could not be run or completed.
@@ -224,6 +226,20 @@ impl Episode {
     }
 }
 
+/// Writes the scene's obstacles and balls into a trace's fixed channels.
+fn describe_scene(scene: &Scene, trace: &mut Trace) {
+    if !scene.obstacles.is_empty() {
+        let corners: Vec<f64> = scene.obstacles.iter().map(|o| o.len() as f64).collect();
+        trace.fixed(&OBSTACLE_CORNERS, 1, &corners);
+        let points: Vec<f64> = scene.obstacles.iter().flatten().flat_map(|p| [p.x, p.y]).collect();
+        trace.fixed(&OBSTACLES, 2, &points);
+    }
+    if !scene.objects.is_empty() {
+        let radii: Vec<f64> = scene.objects.iter().map(|o| o.radius).collect();
+        trace.fixed(&BALL_RADII, 1, &radii);
+    }
+}
+
 /// Accumulates the trace at the requested level.
 struct Recorder {
     level: TraceLevel,
@@ -241,11 +257,13 @@ impl Recorder {
             trace.times.reserve(steps);
             trace.centers.reserve(steps);
             agent.describe(&mut trace);
+            if let Some(brain) = agent.brain() {
+                brain.describe(&mut trace);
+            }
         }
         if level == TraceLevel::Full {
             trace.terrain = scene.terrain.clone();
-            trace.obstacles = scene.obstacles.clone();
-            trace.object_radii = scene.objects.iter().map(|o| o.radius).collect();
+            describe_scene(scene, &mut trace);
             trace.outline_corners = agent.body().outline_corners();
             trace.outlines.reserve(steps * trace.corners_per_step());
         }
@@ -262,12 +280,19 @@ impl Recorder {
             return;
         }
         agent.body().outline(world, &mut self.trace.outlines);
-        for o in &scene.objects {
-            self.trace
-                .objects
-                .push((world.part_position(o.part), world.part_angle(o.part)));
+        if !scene.objects.is_empty() {
+            let xy = scene.objects.iter().flat_map(|o| {
+                let p = world.part_position(o.part);
+                [p.x, p.y]
+            });
+            self.trace.step_from(&BALL_XY, &mut xy.into_iter());
+            let angles = scene.objects.iter().map(|o| world.part_angle(o.part));
+            self.trace.step_from(&BALL_ANGLE, &mut angles.into_iter());
         }
         agent.record(&mut self.trace);
+        if let Some(brain) = agent.brain() {
+            brain.publish(&mut self.trace);
+        }
     }
 
     /// Notes the damage of this step (traces of every level but `None`).

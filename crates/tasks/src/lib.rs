@@ -15,6 +15,7 @@
 
 pub mod agent;
 pub mod carrier;
+pub mod channels;
 pub mod damage;
 pub mod ensemble;
 pub mod episode;
@@ -43,7 +44,7 @@ pub use escape::Escape;
 pub use fitness::Fitness;
 pub use jump::Jump;
 pub use locomotion::Locomotion;
-pub use outcome::{DamageRecord, Outcome, Polygons, Trace, TraceLevel};
+pub use outcome::{DamageRecord, Outcome, Polygons, Recorded, Trace, TraceLevel};
 pub use psa_robot::{PsaAgent, PsaRobot};
 pub use registry::{FieldError, TaskParseError, TaskSpec};
 pub use representation::{evaluate, evaluate_traced, BodyPart, EvaluationError, Mapper, Representation};
@@ -51,3 +52,4 @@ pub use robot::{RobotError, RobotSpec};
 pub use short_forms::{RobotArgsError, RobotPart};
 pub use task::{Flow, Metrics, Objective, Sense, Task};
 pub use terrain::Terrain;
+pub use vsrlab_body::{Channel, Probe};

@@ -3,6 +3,9 @@
 
 use crate::task::Metrics;
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+pub use vsrlab_body::probe::ReplayMode;
+use vsrlab_body::{Channel, Probe};
 use vsrlab_physics::Vec2;
 
 /// How much of an episode to record.
@@ -40,23 +43,13 @@ impl Outcome {
     }
 }
 
-/// A lidar ray of one voxel: direction relative to the voxel angle, and its range.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct RayInfo {
-    /// Index of the voxel (grid order).
-    pub voxel: usize,
-    /// Direction relative to the voxel's angle (radians).
-    pub relative_angle: f64,
-    /// Maximum distance.
-    pub range: f64,
-}
-
-/// Per-step record of an episode. Arrays indexed `[step][unit]` are stored flat, step-major.
+/// Per-step record of an episode: a small core that every robot kind has (time, centre, outline,
+/// damage) plus named channels published by the body, its sensors, its brain and the task
+/// ([`vsrlab_body::Probe`]). Arrays indexed `[step][…]` are stored flat, step-major.
 ///
 /// The body's outline is a list of polygons with any number of corners each
-/// ([`Trace::outline_corners`], the same at every step); per-unit arrays (area ratios, touch,
-/// actuations, readings) have one entry per sensing unit (voxel) and step, and stay empty for
-/// bodies that have no such units.
+/// ([`Trace::outline_corners`], the same at every step). Per-unit channels (area ratio, touch,
+/// actuation, …) have one value per outline polygon and step.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 pub struct Trace {
     /// Time step (s).
@@ -65,8 +58,6 @@ pub struct Trace {
     pub side_length: f64,
     /// Terrain polyline.
     pub terrain: Vec<Vec2>,
-    /// Grid cell of each voxel (grid order); empty for bodies that are not grids.
-    pub cells: Vec<(usize, usize)>,
     /// Time of each recorded step.
     pub times: Vec<f64>,
     /// Robot centre at each step.
@@ -75,57 +66,27 @@ pub struct Trace {
     pub outline_corners: Vec<usize>,
     /// Outline corners, `[step][polygon][corner]`.
     pub outlines: Vec<Vec2>,
-    /// Area ratios, `[step][unit]`.
-    pub area_ratios: Vec<f64>,
-    /// Unit angles, `[step][unit]`.
-    pub angles: Vec<f64>,
-    /// Touch flags, `[step][unit]`.
-    pub touching: Vec<bool>,
-    /// Actuation applied after sensing, `[step][unit]`.
-    pub actuations: Vec<f64>,
-    /// Number of sensor readings of each unit.
-    pub readings_per_voxel: Vec<usize>,
-    /// Sensor readings scaled to [0, 1] by each reading's domain, `[step][reading]`.
-    pub readings: Vec<f32>,
-    /// The lidar rays, in order.
-    pub rays: Vec<RayInfo>,
-    /// Lidar distances, `[step][ray]`.
-    pub ray_distances: Vec<f32>,
-    /// Side r of each unit's attention matrix (attention brains; 0 otherwise).
-    #[serde(default, skip_serializing_if = "is_zero")]
-    pub attention_side: usize,
-    /// Attention matrices, `[step][unit][r][r]` (attention brains; empty otherwise).
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub attention: Vec<f32>,
-    /// A graph brain's neurons: each one's unit and kind (0 sensing, 1 hidden, 2 actuator);
-    /// empty for other brains.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub graph_neurons: Vec<(usize, u8)>,
-    /// A graph brain's edges: (source, target, weight).
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub graph_edges: Vec<(usize, usize, f32)>,
-    /// A graph brain's neuron outputs, `[step][neuron]`.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub graph_outputs: Vec<f32>,
-    /// Static polygons besides the ground (a cage), for drawing.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub obstacles: Vec<Vec<Vec2>>,
-    /// Radius of each loose ball of the world.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub object_radii: Vec<f64>,
-    /// Each ball's centre and angle, `[step][ball]`.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub objects: Vec<(Vec2, f64)>,
-    /// A pressurised body's pressure over its largest pressure, `[step]` (PSAs; empty otherwise).
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub pressures: Vec<f32>,
     /// When units broke and which ([`crate::Damage`]); absent without damage.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub damage: Option<DamageRecord>,
+    /// Everything else, by channel name.
+    pub channels: BTreeMap<String, Recorded>,
 }
 
-fn is_zero(n: &usize) -> bool {
-    *n == 0
+/// One channel of a trace: per-step values (`width` per recorded step) or fixed values
+/// (`width` per row, recorded once).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Recorded {
+    /// Whether the values hold for the whole episode (recorded once).
+    pub fixed: bool,
+    /// Values per step (per row, for a fixed channel).
+    pub width: usize,
+    /// How replays keep it.
+    pub replay: ReplayMode,
+    /// What replays write for a non-finite value.
+    pub fallback: f64,
+    /// The values, step-major.
+    pub values: Vec<f64>,
 }
 
 /// The damage that happened during an episode: from `time` on, the units marked in `broken` do
@@ -138,20 +99,98 @@ pub struct DamageRecord {
     pub broken: Vec<bool>,
 }
 
-impl Trace {
-    /// Unit `unit`'s attention matrix at recorded step `step` (r·r values, row-major), if recorded.
-    pub fn attention_at(&self, step: usize, unit: usize) -> Option<&[f32]> {
-        let r2 = self.attention_side * self.attention_side;
-        let start = (step * self.voxels() + unit) * r2;
-        (r2 > 0).then(|| self.attention.get(start..start + r2)).flatten()
+impl Probe for Trace {
+    fn step(&mut self, channel: &Channel, values: &[f64]) {
+        self.step_from(channel, &mut values.iter().copied());
     }
 
-    /// A graph brain's neuron outputs at recorded step `step`, if recorded.
-    pub fn graph_outputs_at(&self, step: usize) -> Option<&[f32]> {
-        let n = self.graph_neurons.len();
-        (n > 0)
-            .then(|| self.graph_outputs.get(step * n..(step + 1) * n))
-            .flatten()
+    fn step_from(&mut self, channel: &Channel, values: &mut dyn Iterator<Item = f64>) {
+        if !channel.traced {
+            return;
+        }
+        let (recorded, first) = match self.channels.get_mut(channel.name) {
+            Some(r) => (r, false),
+            None => {
+                let r = Recorded::new(channel, false, 0);
+                (self.channels.entry(channel.name.to_string()).or_insert(r), true)
+            }
+        };
+        let before = recorded.values.len();
+        if channel.single {
+            recorded.values.extend(values.map(|v| f64::from(v as f32)));
+        } else {
+            recorded.values.extend(values);
+        }
+        if first {
+            recorded.width = recorded.values.len() - before;
+        }
+    }
+
+    fn fixed(&mut self, channel: &Channel, width: usize, values: &[f64]) {
+        if channel.traced {
+            let mut recorded = Recorded::new(channel, true, width);
+            recorded.values = values.to_vec();
+            self.channels.insert(channel.name.to_string(), recorded);
+        }
+    }
+}
+
+impl Recorded {
+    fn new(channel: &Channel, fixed: bool, width: usize) -> Recorded {
+        Recorded {
+            fixed,
+            width,
+            replay: channel.replay,
+            fallback: channel.fallback,
+            values: Vec::new(),
+        }
+    }
+
+    /// The values of recorded step `step` (of row `step` for a fixed channel), if recorded.
+    pub fn row(&self, step: usize) -> Option<&[f64]> {
+        self.values.get(step * self.width..(step + 1) * self.width)
+    }
+
+    /// The rows of a fixed channel (or the steps of a per-step one), in order.
+    pub fn rows(&self) -> impl Iterator<Item = &[f64]> {
+        self.values.chunks(self.width.max(1))
+    }
+}
+
+impl Trace {
+    /// The channel called `name`, if recorded.
+    pub fn channel(&self, name: &str) -> Option<&Recorded> {
+        self.channels.get(name)
+    }
+
+    /// Whether a channel called `name` was recorded.
+    pub fn has(&self, name: &str) -> bool {
+        self.channels.contains_key(name)
+    }
+
+    /// The values of per-step channel `name` at recorded step `step`, if recorded.
+    pub fn at(&self, name: &str, step: usize) -> Option<&[f64]> {
+        self.channel(name)?.row(step)
+    }
+
+    /// Value `i` of per-step channel `name` at recorded step `step`, if recorded.
+    pub fn value(&self, name: &str, step: usize, i: usize) -> Option<f64> {
+        self.at(name, step)?.get(i).copied()
+    }
+
+    /// Every value of channel `name`, step-major (empty when not recorded).
+    pub fn values(&self, name: &str) -> &[f64] {
+        self.channel(name).map_or(&[], |c| &c.values)
+    }
+
+    /// Every value of channel `name`, to edit (empty when not recorded): for synthetic traces.
+    pub fn values_mut(&mut self, name: &str) -> &mut [f64] {
+        self.channels.get_mut(name).map_or(&mut [], |c| &mut c.values)
+    }
+
+    /// The values of fixed channel `name` (empty when not recorded).
+    pub fn fixed_values(&self, name: &str) -> &[f64] {
+        self.values(name)
     }
 
     /// Whether unit `unit` is broken at recorded step `step`.
@@ -216,9 +255,9 @@ impl Trace {
     pub fn is_empty(&self) -> bool {
         self.times.is_empty()
     }
-    /// Number of sensing units (voxels).
-    pub fn voxels(&self) -> usize {
-        self.cells.len()
+    /// Number of units: the outline's polygons (a voxel each; a PSA's membrane and masses).
+    pub fn units(&self) -> usize {
+        self.outline_corners.len()
     }
     /// Corners per step: the sum of [`Trace::outline_corners`].
     pub fn corners_per_step(&self) -> usize {
@@ -237,6 +276,30 @@ impl Trace {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn channels_are_kept_per_step_or_once_and_untraced_ones_are_not() {
+        const A: Channel = Channel::replayed("a", 1e-3);
+        const S: Channel = Channel::replayed("s", 1e-3).single();
+        const F: Channel = Channel::traced("f");
+        const U: Channel = Channel::traced("u").untraced();
+        let mut trace = Trace::default();
+        trace.fixed(&F, 2, &[1.0, 2.0, 3.0, 4.0]);
+        for k in 0..3 {
+            let k = k as f64;
+            trace.step(&A, &[k, 10.0 * k]);
+            trace.step(&S, &[0.1 + k]);
+            trace.step(&U, &[k]);
+        }
+        assert_eq!(trace.at("a", 2), Some(&[2.0, 20.0][..]));
+        assert_eq!(trace.value("a", 1, 1), Some(10.0));
+        assert_eq!(trace.at("a", 3), None);
+        assert_eq!(trace.value("s", 0, 0), Some(f64::from(0.1f32)));
+        assert_eq!(trace.fixed_values("f"), [1.0, 2.0, 3.0, 4.0]);
+        assert_eq!(trace.channel("f").unwrap().rows().count(), 2);
+        assert!(!trace.has("u"));
+        assert!(!trace.has("nothing"));
+    }
 
     #[test]
     fn polygons_of_any_corner_count_are_cut_per_step() {

@@ -11,11 +11,12 @@
 //! `heads` (tanh spring heads, a linear Δp head).
 
 use crate::agent::{Agent, Robot};
+use crate::channels::{ACTUATION, ANGLE, AREA_RATIO, TOUCH, UNIT_POLYGONS};
 use crate::episode::EpisodeError;
 use crate::outcome::Trace;
 use serde::{Deserialize, Serialize};
 use vsrlab_body::psa::{Psa, PsaBody, PsaSensors};
-use vsrlab_body::Body;
+use vsrlab_body::{Body, Channel, Probe};
 use vsrlab_brain::{BrainShape, BrainSpec, Controller, HeadsSpec, RingLayout};
 use vsrlab_physics::{Vec2, World, WorldBuilder};
 
@@ -223,27 +224,46 @@ impl Agent for PsaAgent {
         self.apply(world);
     }
 
+    fn brain(&self) -> Option<&dyn Controller> {
+        Some(self.brain.as_ref())
+    }
+
     fn describe(&mut self, trace: &mut Trace) {
-        trace.side_length = self.psa.params().mass_side;
-        // the trace's units are the outline's polygons: the membrane, then the masses
-        trace.cells = (0..=self.psa.mass_count()).map(|i| (i, 0)).collect();
+        let p = self.psa.params();
+        trace.side_length = p.mass_side;
+        // brain units: the masses (polygons 1…n) when springs are controlled, then the gas unit
+        // (the membrane, polygon 0)
+        let masses = if p.spring_control { p.masses } else { 0 };
+        let gas = usize::from(p.pressure_control || !p.spring_control);
+        let polygons: Vec<f64> = (1..=masses)
+            .chain(std::iter::repeat_n(0, gas))
+            .map(|i| i as f64)
+            .collect();
+        trace.fixed(&UNIT_POLYGONS, 1, &polygons);
     }
 
     fn record(&self, trace: &mut Trace) {
-        // the membrane: φ as its area ratio, no touch; then each mass
-        trace.area_ratios.push(self.phi);
-        trace.angles.push(0.0);
-        trace.touching.push(false);
-        trace.actuations.push(self.actuations[self.psa.mass_count()]);
-        for i in 0..self.psa.mass_count() {
-            trace.area_ratios.push(1.0);
-            trace.angles.push(0.0);
-            trace.touching.push(self.touching[i]);
-            trace.actuations.push(self.actuations[i]);
-        }
-        trace.pressures.push((self.pressure / self.psa.max_pressure()) as f32);
+        // the trace's units are the outline's polygons: the membrane (φ as its area ratio, no
+        // touch, the Δp actuation), then each mass
+        let masses = self.psa.mass_count();
+        trace.step_from(
+            &AREA_RATIO,
+            &mut std::iter::once(self.phi).chain((0..masses).map(|_| 1.0)),
+        );
+        trace.step_from(&ANGLE, &mut (0..=masses).map(|_| 0.0));
+        let touch = self.touching.iter().map(|&t| f64::from(u8::from(t)));
+        trace.step_from(&TOUCH, &mut std::iter::once(0.0).chain(touch));
+        let actuations = self.actuations[..masses].iter().copied();
+        trace.step_from(
+            &ACTUATION,
+            &mut std::iter::once(self.actuations[masses]).chain(actuations),
+        );
+        trace.step(&PRESSURE, &[self.pressure / self.psa.max_pressure()]);
     }
 }
+
+/// The pressure of a pressurised body over its largest pressure, per step.
+pub const PRESSURE: Channel = Channel::replayed("pressure", 1e-3).single();
 
 /// Seed of the random brain parameters of a PSA built from short forms (as for voxel robots).
 const RANDOM_BRAIN_SEED: u64 = 0;

@@ -3,14 +3,26 @@
 //! controls and actuates, in that order (vsr-model.md §2.2).
 
 use crate::agent::{Agent, Robot};
+use crate::channels::{ACTUATION, AREA_RATIO, READINGS, READINGS_PER_UNIT, TOUCH};
 use crate::episode::EpisodeError;
-use crate::outcome::{RayInfo, Trace};
+use crate::outcome::Trace;
 use crate::robot::RobotSpec;
 use vsrlab_body::sensors::SensorSuite;
-use vsrlab_body::{Body, Morphology, VoxelState, Vsr};
+use vsrlab_body::{Body, Channel, Morphology, Probe, VoxelState, Vsr};
 use vsrlab_brain::BrainShape;
 use vsrlab_brain::Controller;
 use vsrlab_physics::{Vec2, World, WorldBuilder};
+
+/// Grid cell (x, y) of each voxel, grid order (fixed).
+pub const CELLS: Channel = Channel::traced("cells");
+/// The lidar rays: (voxel, direction relative to the voxel's angle, range) each (fixed).
+pub const RAYS: Channel = Channel::traced("rays");
+/// Lidar distances, one per ray, per step.
+pub const LIDAR: Channel = Channel::replayed("lidar", 1e-2).single();
+/// Each voxel's angle (radians), per step; replays keep it for robots with lidars, whose rays are
+/// drawn from it.
+pub const ANGLE: Channel = Channel::traced("angle");
+const ANGLE_FOR_LIDAR: Channel = Channel::replayed("angle", 1e-3);
 
 /// Collision group of the robot (touch sensing and self-collision).
 const ROBOT_GROUP: u32 = 1;
@@ -62,6 +74,8 @@ pub struct VoxelAgent {
     broken: Vec<bool>,
     /// Domain of every reading, for scaling recorded readings to [0, 1] (filled by `describe`).
     domains: Vec<(f64, f64)>,
+    /// Whether any voxel has a lidar (filled by `describe`).
+    has_lidar: bool,
 }
 
 impl VoxelAgent {
@@ -78,6 +92,7 @@ impl VoxelAgent {
             actuations: vec![0.0; n],
             broken: Vec::new(),
             domains: Vec::new(),
+            has_lidar: false,
         }
     }
 }
@@ -137,53 +152,51 @@ impl Agent for VoxelAgent {
         Ok(())
     }
 
-    fn brain_weights(&self) -> Option<&[f64]> {
-        self.brain.adaptive_weights()
+    fn brain(&self) -> Option<&dyn Controller> {
+        Some(self.brain.as_ref())
     }
 
     fn describe(&mut self, trace: &mut Trace) {
         trace.side_length = self.vsr.params().side_length;
-        trace.cells = self.vsr.voxels().iter().map(|v| v.cell).collect();
-        if let Some(g) = self.brain.graph() {
-            trace.graph_neurons = g.neurons.to_vec();
-            trace.graph_edges = g.edges.iter().map(|&(a, b, w)| (a, b, w as f32)).collect();
-        }
+        let cells: Vec<f64> = self
+            .vsr
+            .voxels()
+            .iter()
+            .flat_map(|v| [v.cell.0 as f64, v.cell.1 as f64])
+            .collect();
+        trace.fixed(&CELLS, 2, &cells);
+        let mut per_unit = Vec::new();
+        let mut rays = Vec::new();
         for v in 0..self.vsr.voxel_count() {
-            trace.readings_per_voxel.push(self.sensors.readings_per_voxel(v));
+            per_unit.push(self.sensors.readings_per_voxel(v) as f64);
             self.domains.extend(self.sensors.domains(v));
             for ray in self.sensors.lidar_rays(v) {
-                trace.rays.push(RayInfo {
-                    voxel: v,
-                    relative_angle: ray.relative_angle,
-                    range: ray.range,
-                });
+                rays.extend([v as f64, ray.relative_angle, ray.range]);
             }
+        }
+        trace.fixed(&READINGS_PER_UNIT, 1, &per_unit);
+        self.has_lidar = !rays.is_empty();
+        if self.has_lidar {
+            trace.fixed(&RAYS, 3, &rays);
         }
     }
 
     fn record(&self, trace: &mut Trace) {
-        for s in &self.states {
-            trace.area_ratios.push(s.area_ratio);
-            trace.angles.push(s.angle);
-            trace.touching.push(s.touching);
-        }
-        trace.actuations.extend_from_slice(&self.actuations);
-        if let Some(g) = self.brain.graph() {
-            trace.graph_outputs.extend(g.outputs.iter().map(|&o| o as f32));
-        }
-        if let Some((side, matrices)) = self.brain.attention() {
-            trace.attention_side = side;
-            trace.attention.extend(matrices.iter().map(|&a| a as f32));
-        }
-        for (r, (lo, hi)) in self.readings.iter().zip(&self.domains) {
+        trace.step_from(&AREA_RATIO, &mut self.states.iter().map(|s| s.area_ratio));
+        let angle = if self.has_lidar { &ANGLE_FOR_LIDAR } else { &ANGLE };
+        trace.step_from(angle, &mut self.states.iter().map(|s| s.angle));
+        trace.step_from(&TOUCH, &mut self.states.iter().map(|s| f64::from(u8::from(s.touching))));
+        trace.step(&ACTUATION, &self.actuations);
+        let scaled = self.readings.iter().zip(&self.domains).map(|(r, (lo, hi))| {
             let span = hi - lo;
             let v = if span > 0.0 { (r - lo) / span } else { 0.0 };
-            trace.readings.push(v.clamp(0.0, 1.0) as f32);
-        }
-        for v in 0..self.states.len() {
-            for ray in self.sensors.lidar_rays(v) {
-                trace.ray_distances.push(ray.distance as f32);
-            }
+            v.clamp(0.0, 1.0)
+        });
+        trace.step_from(&READINGS, &mut scaled.into_iter());
+        if self.has_lidar {
+            let distances =
+                (0..self.states.len()).flat_map(|v| self.sensors.lidar_rays(v).into_iter().map(|ray| ray.distance));
+            trace.step_from(&LIDAR, &mut distances.into_iter());
         }
     }
 }

@@ -18,7 +18,7 @@ fn actuations(robot: &RobotSpec, task: &Locomotion, seed: u64) -> Vec<Vec<f64>> 
         .unwrap()
         .trace
         .unwrap();
-    trace.actuations.chunks(10).map(<[f64]>::to_vec).collect()
+    trace.values("actuation").chunks(10).map(<[f64]>::to_vec).collect()
 }
 
 #[test]
@@ -78,7 +78,10 @@ fn the_observer_sees_every_step_and_the_hebbian_weights_move() {
     let robot = RobotSpec::from_short_forms("biped-4x3", "2021", "uniform-a+vxy+t-0", "hebbian").unwrap();
     let mut seen = Vec::new();
     let out = run_observed(&robot, &task(None), 0, TraceLevel::None, &mut |t, agent| {
-        let w = agent.brain_weights().expect("a hebbian brain has plastic weights");
+        let w = agent
+            .brain()
+            .and_then(vsrlab_brain::plastic_weights)
+            .expect("a hebbian brain has plastic weights");
         seen.push((t, w.iter().map(|x| x.abs()).sum::<f64>()));
     })
     .unwrap();
@@ -140,7 +143,7 @@ mod random {
             prop_assert!(out.fitness.iter().all(|f| f.is_finite()));
             let trace = out.trace.unwrap();
             prop_assert!(trace.outlines.iter().all(|p| p.is_finite()));
-            prop_assert!(trace.actuations.iter().all(|a| a.is_finite() && a.abs() <= 1.0));
+            prop_assert!(trace.values("actuation").iter().all(|a| a.is_finite() && a.abs() <= 1.0));
         }
     }
 }

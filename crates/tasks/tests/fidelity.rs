@@ -26,8 +26,8 @@ fn calibrate_with(body: &str, preset: Preset, brain: BrainSpec, solver: Solver) 
     let t = solver_task(solver, 5.0);
     let o = episode::run(&robot(body, preset, brain), &t, 0, TraceLevel::Full).unwrap();
     let tr = o.trace.unwrap();
-    let n = tr.voxels();
-    let mean = |k: usize| tr.area_ratios[k * n..(k + 1) * n].iter().sum::<f64>() / n as f64;
+    let n = tr.units();
+    let mean = |k: usize| tr.values("area_ratio")[k * n..(k + 1) * n].iter().sum::<f64>() / n as f64;
     let last = tr.len() - 1;
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for k in 0..tr.len() {
@@ -166,12 +166,14 @@ fn lidar_directions_follow_the_preset() {
         r.sensors = SensorConfig::parse("spinedTouchSighted-f-f-0").unwrap();
         let o = episode::run(&r, &task("flat", 0.1), 0, TraceLevel::Full).unwrap();
         let trace = o.trace.unwrap();
-        let v31 = trace.cells.iter().position(|&c| c == (3, 1)).unwrap();
+        let cells = trace.channel("cells").unwrap();
+        let v31 = cells.rows().position(|c| c == [3.0, 1.0]).unwrap() as f64;
         let angles: Vec<f64> = trace
-            .rays
-            .iter()
-            .filter(|ray| ray.voxel == v31)
-            .map(|ray| ray.relative_angle)
+            .channel("rays")
+            .unwrap()
+            .rows()
+            .filter(|ray| ray[0] == v31)
+            .map(|ray| ray[1])
             .collect();
         assert_eq!(angles.len(), 5, "{preset}");
         for (a, e) in angles.iter().zip(expected) {

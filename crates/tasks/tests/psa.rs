@@ -148,7 +148,7 @@ mod robustness {
                     prop_assert!(m.is_finite());
                     let ground = height_at(&trace.terrain, m.x).unwrap_or(f64::NEG_INFINITY);
                     prop_assert!(m.y > ground - 0.25, "step {k}: mass at {m:?} under the ground {ground}");
-                    for wall in &trace.obstacles {
+                    for wall in &vsrlab_tasks::channels::obstacles(&trace) {
                         prop_assert!(!inside(wall, m), "step {k}: mass at {m:?} inside a wall");
                     }
                 }

@@ -92,14 +92,18 @@ fn run_case(i: usize, only: Option<usize>, solver: Solver) -> Result<(f64, f64),
         return Err(format!("{}: non-finite state", describe()));
     }
     if only.is_some() {
-        let n = tr.voxels();
-        for (k, chunk) in tr.area_ratios.chunks(n * 60).enumerate() {
+        let n = tr.units();
+        for (k, chunk) in tr.values("area_ratio").chunks(n * 60).enumerate() {
             print!("{k}s:{:.2} ", chunk.iter().copied().fold(f64::INFINITY, f64::min));
         }
         println!();
     }
-    let lo = tr.area_ratios.iter().copied().fold(f64::INFINITY, f64::min);
-    let hi = tr.area_ratios.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let lo = tr.values("area_ratio").iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = tr
+        .values("area_ratio")
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max);
     if lo < AREA_BOUNDS.0 || hi > AREA_BOUNDS.1 {
         return Err(format!("{}: area ratio range [{lo:.3}, {hi:.3}]", describe()));
     }

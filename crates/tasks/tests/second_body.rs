@@ -3,7 +3,7 @@
 //! implementing `Body`, `Robot` and `Agent`, and then runs on every task through the one episode
 //! loop, with traces of polygons of any corner count.
 
-use vsrlab_body::{Body, VoxelState};
+use vsrlab_body::{Body, Probe, VoxelState};
 use vsrlab_physics::{
     PartDesc, PartHandle, Polygon, SpringDesc, SpringHandle, SpringMassModel, Vec2, World, WorldBuilder,
 };
@@ -67,7 +67,7 @@ impl Agent for Hopper {
         trace.side_length = 2.0;
     }
     fn record(&self, trace: &mut Trace) {
-        trace.actuations.push(self.actuation);
+        trace.step(&vsrlab_tasks::channels::ACTUATION, &[self.actuation]);
     }
 }
 
@@ -130,7 +130,7 @@ fn a_second_body_kind_runs_on_every_task_with_general_outlines() {
         assert_eq!(last.first().unwrap().len(), 3);
         assert_eq!(last.get(1).unwrap().len(), 4);
         assert!(trace.outlines.iter().all(|p| p.is_finite()), "{task}");
-        assert_eq!(trace.actuations.len(), steps);
+        assert_eq!(trace.values("actuation").len(), steps);
         // the same inputs give the same bits
         let again = episode::run(&hopper, spec.task(), 1, TraceLevel::Full).unwrap();
         assert_eq!(again, outcome);

@@ -172,8 +172,13 @@ pub fn weight_snapshots(
     let mut snapshots: Vec<Option<Vec<f64>>> = vec![None; times.len()];
     let mut last: Option<Vec<f64>> = None;
     let mut plastic = false;
+    let mut capture = vsrlab_body::Capture::new();
     run_observed(robot, task, seed, TraceLevel::None, &mut |t, agent| {
-        let Some(w) = agent.brain_weights() else {
+        let Some(brain) = agent.brain() else {
+            return;
+        };
+        brain.publish(&mut capture);
+        let Some(w) = capture.get(vsrlab_brain::PLASTIC_WEIGHTS.name) else {
             return;
         };
         plastic = true;

@@ -27,16 +27,19 @@
 //! With `attention` set (transfer to another body, thesis §4.2.4.1), the attention genes are fixed
 //! to those values and the parameters are the downstream network only.
 //!
-//! The attention matrices are the controller's adaptive weights ([`Controller::adaptive_weights`],
-//! n·r² values, voxel-major, row-major within a voxel): they can be snapshot and frozen (the
-//! frozen-attention ablation) and are drawn in videos.
+//! The attention matrices are the controller's plastic weights ([`crate::PLASTIC_WEIGHTS`], n·r²
+//! values, voxel-major, row-major within a voxel): they can be snapshot and frozen (the
+//! frozen-attention ablation), and as channel [`ATTENTION`] they are recorded, drawn in videos and
+//! replayed.
 
+use crate::controller::PLASTIC_WEIGHTS;
 use crate::controllers::distributed_mlp::common_readings;
 use crate::mlp::check_parameter_total;
 use crate::short_form::{self, ShortForm};
 use crate::validation::{check_count, check_finite, check_units, set_finite};
 use crate::{BrainError, BrainKind, BrainShape, BrainSpec, Controller, Layout};
 use serde::{Deserialize, Serialize};
+use vsrlab_body::{Channel, Probe};
 
 /// Largest `d_k`.
 pub const MAX_D_K: usize = 10_000;
@@ -375,14 +378,22 @@ impl Controller for AttentionController {
         self.started = true;
     }
 
-    fn adaptive_weights(&self) -> Option<&[f64]> {
-        Some(&self.attention)
+    fn describe(&self, probe: &mut dyn Probe) {
+        probe.fixed(&ATTENTION_SIDE, 1, &[self.readings as f64]);
     }
 
-    fn attention(&self) -> Option<(usize, &[f64])> {
-        Some((self.readings, &self.attention))
+    fn publish(&self, probe: &mut dyn Probe) {
+        probe.step(&ATTENTION, &self.attention);
+        probe.step(&PLASTIC_WEIGHTS, &self.attention);
     }
 }
+
+/// Every voxel's attention matrix, r·r values each (voxel-major, row-major within a voxel), for
+/// drawing and replays.
+pub const ATTENTION: Channel = Channel::replayed("attention", 1e-2).single();
+
+/// The side r of each voxel's attention matrix (its readings count).
+pub const ATTENTION_SIDE: Channel = Channel::traced("attention_side");
 
 /// `attention` (homogeneous, d_k = 8), `attention:hetero`, `attention:slow`.
 pub const SHORT_FORM: ShortForm = ShortForm {
@@ -407,6 +418,17 @@ mod tests {
     use super::*;
     use crate::testing::{assert_invalid, biped};
     use vsrlab_body::Morphology;
+
+    /// The attention side and matrices the controller publishes.
+    fn attention(c: &dyn Controller) -> Option<(usize, Vec<f64>)> {
+        let mut capture = vsrlab_body::Capture::new();
+        c.describe(&mut capture);
+        c.publish(&mut capture);
+        Some((
+            capture.get("attention_side")?[0] as usize,
+            capture.get("attention")?.to_vec(),
+        ))
+    }
 
     fn filled(spec: &str, seed: u64) -> BrainSpec {
         let (m, rpv) = biped();
@@ -464,7 +486,7 @@ mod tests {
         let y1 = att(1, 0) * s[0] + att(1, 1) * s[1];
         let expected = (0.05 + 0.7 * y0.tanh() - 0.4 * y1.tanh()).tanh();
         assert!((a[0] - expected).abs() < 1e-15, "{} vs {expected}", a[0]);
-        let (side, matrix) = c.attention().unwrap();
+        let (side, matrix) = attention(&c).unwrap();
         assert_eq!(side, 2);
         assert!((matrix[1] - att(0, 1)).abs() < 1e-15);
     }
@@ -514,14 +536,14 @@ mod tests {
         let mut c = spec.build(&BrainShape::grid(&m, &[1])).unwrap();
         let mut a = [0.0];
         c.control(0.0, &[0.5], &mut a);
-        let first = c.attention().unwrap().1[0];
+        let first = attention(&c).unwrap().1[0];
         assert!((first - 0.25f64.tanh()).abs() < 1e-15);
         c.control(1.0 / 60.0, &[0.8], &mut a);
-        let second = c.attention().unwrap().1[0];
+        let second = attention(&c).unwrap().1[0];
         assert!((second - (0.5 * 0.64f64.tanh() + first)).abs() < 1e-15);
         c.reset();
         c.control(0.0, &[0.5], &mut a);
-        assert_eq!(c.attention().unwrap().1[0], first, "reset forgets");
+        assert_eq!(attention(&c).unwrap().1[0], first, "reset forgets");
     }
 
     #[test]
@@ -532,7 +554,7 @@ mod tests {
         let mut live = spec.build(&BrainShape::grid(&m, &rpv)).unwrap();
         let mut a = vec![0.0; 10];
         live.control(0.0, &readings, &mut a);
-        let snapshot = live.adaptive_weights().unwrap().to_vec();
+        let snapshot = crate::plastic_weights(&live).unwrap().to_vec();
         assert_eq!(snapshot.len(), 10 * 16);
         let mut frozen = spec.clone();
         frozen.as_kind_mut().freeze_with(&snapshot).unwrap();
@@ -541,7 +563,7 @@ mod tests {
         let other: Vec<f64> = readings.iter().map(|x| 1.0 - x).collect();
         c.control(0.0, &other, &mut b);
         assert_eq!(
-            c.adaptive_weights().unwrap(),
+            crate::plastic_weights(&c).unwrap(),
             &snapshot[..],
             "frozen matrices never change"
         );

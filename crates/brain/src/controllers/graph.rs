@@ -33,6 +33,7 @@ use crate::short_form::ShortForm;
 use crate::validation::{check_count, check_units, set_finite};
 use crate::{BrainError, BrainKind, BrainShape, BrainSpec, Controller};
 use serde::{Deserialize, Serialize};
+use vsrlab_body::{Channel, Probe};
 
 /// Largest output of a neuron in absolute value: feedback loops through unbounded activations
 /// (identity, relu) would otherwise overflow to infinity and then NaN.
@@ -388,13 +389,31 @@ impl GraphController {
     }
 }
 
+/// A graph brain's neurons: (unit, kind) per neuron, kind 0 sensing, 1 hidden, 2 actuator.
+pub const GRAPH_NEURONS: Channel = Channel::traced("graph_neurons");
+/// A graph brain's edges: (source, target, weight) per edge.
+pub const GRAPH_EDGES: Channel = Channel::traced("graph_edges");
+/// A graph brain's neuron outputs after each step, in neuron order.
+pub const GRAPH_OUTPUTS: Channel = Channel::replayed("graph_outputs", 1e-3).single();
+
 impl Controller for GraphController {
-    fn graph(&self) -> Option<crate::controller::GraphView<'_>> {
-        Some(crate::controller::GraphView {
-            neurons: &self.layout,
-            edges: &self.edges,
-            outputs: &self.previous,
-        })
+    fn describe(&self, probe: &mut dyn Probe) {
+        let neurons: Vec<f64> = self
+            .layout
+            .iter()
+            .flat_map(|&(unit, kind)| [unit as f64, f64::from(kind)])
+            .collect();
+        probe.fixed(&GRAPH_NEURONS, 2, &neurons);
+        let edges: Vec<f64> = self
+            .edges
+            .iter()
+            .flat_map(|&(a, b, w)| [a as f64, b as f64, w])
+            .collect();
+        probe.fixed(&GRAPH_EDGES, 3, &edges);
+    }
+
+    fn publish(&self, probe: &mut dyn Probe) {
+        probe.step(&GRAPH_OUTPUTS, &self.previous);
     }
 
     fn reset(&mut self) {

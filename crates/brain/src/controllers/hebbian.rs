@@ -411,8 +411,10 @@ impl Controller for HebbianController {
     }
 
     /// The weights, unless they cannot change (`dew`).
-    fn adaptive_weights(&self) -> Option<&[f64]> {
-        (self.rules != Rules::None).then_some(&self.weights[..])
+    fn publish(&self, probe: &mut dyn vsrlab_body::Probe) {
+        if self.rules != Rules::None {
+            probe.step(&crate::controller::PLASTIC_WEIGHTS, &self.weights);
+        }
     }
 }
 
@@ -595,7 +597,7 @@ mod tests {
             mlp.apply(&[0.3, 0.9], &mut b, &mut scratch);
             assert_eq!(a, b);
         }
-        assert_eq!(c.adaptive_weights(), None, "fixed weights are not plastic");
+        assert_eq!(crate::plastic_weights(&c), None, "fixed weights are not plastic");
         let mut dew = spec.clone();
         assert!(dew.as_kind_mut().freeze_with(&[0.0; 12]).is_err());
     }
@@ -639,7 +641,7 @@ mod tests {
         for k in 0..30 {
             live.control(k as f64 / 60.0, &readings, &mut a);
         }
-        let snapshot = live.adaptive_weights().unwrap().to_vec();
+        let snapshot = crate::plastic_weights(&live).unwrap().to_vec();
         let mut frozen_spec = spec.clone();
         frozen_spec.as_kind_mut().freeze_with(&snapshot).unwrap();
         let mut frozen = frozen_spec.build(&BrainShape::grid(&m, &rpv)).unwrap();
@@ -647,7 +649,7 @@ mod tests {
         for k in 0..5 {
             frozen.control(k as f64 / 60.0, &readings, &mut b);
         }
-        assert_eq!(frozen.adaptive_weights().unwrap(), &snapshot[..]);
+        assert_eq!(crate::plastic_weights(&frozen).unwrap(), &snapshot[..]);
         let mut wrapped = BrainSpec::parse("step:0.5:phase").unwrap();
         assert!(wrapped.as_kind_mut().freeze_with(&snapshot).is_err());
         // wrappers pass the weights and the freezing through
@@ -656,9 +658,9 @@ mod tests {
             .with_random_parameters(1, &BrainShape::grid(&m, &rpv))
             .unwrap();
         let c = stepped.build(&BrainShape::grid(&m, &rpv)).unwrap();
-        assert_eq!(c.adaptive_weights().map(<[f64]>::len), Some(snapshot.len()));
+        assert_eq!(crate::plastic_weights(&c).map(|w| w.len()), Some(snapshot.len()));
         stepped.as_kind_mut().freeze_with(&snapshot).unwrap();
         let c = stepped.build(&BrainShape::grid(&m, &rpv)).unwrap();
-        assert_eq!(c.adaptive_weights().unwrap(), &snapshot[..]);
+        assert_eq!(crate::plastic_weights(&c).unwrap(), &snapshot[..]);
     }
 }

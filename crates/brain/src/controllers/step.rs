@@ -40,16 +40,12 @@ impl Controller for StepController {
         self.held.fill(0.0);
     }
 
-    fn adaptive_weights(&self) -> Option<&[f64]> {
-        self.inner.adaptive_weights()
+    fn describe(&self, probe: &mut dyn vsrlab_body::Probe) {
+        self.inner.controller().describe(probe);
     }
 
-    fn attention(&self) -> Option<(usize, &[f64])> {
-        self.inner.attention()
-    }
-
-    fn graph(&self) -> Option<crate::controller::GraphView<'_>> {
-        self.inner.graph()
+    fn publish(&self, probe: &mut dyn vsrlab_body::Probe) {
+        self.inner.controller().publish(probe);
     }
 
     fn control(&mut self, t: f64, readings: &[f64], actuations: &mut [f64]) {

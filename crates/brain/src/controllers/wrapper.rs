@@ -25,19 +25,9 @@ impl Inner {
         &self.actuations
     }
 
-    /// The inner controller's adaptive weights.
-    pub(crate) fn adaptive_weights(&self) -> Option<&[f64]> {
-        self.controller.adaptive_weights()
-    }
-
-    /// The inner controller's attention matrices.
-    pub(crate) fn attention(&self) -> Option<(usize, &[f64])> {
-        self.controller.attention()
-    }
-
-    /// The inner controller's graph, when it is a graph brain.
-    pub(crate) fn graph(&self) -> Option<crate::controller::GraphView<'_>> {
-        self.controller.graph()
+    /// The inner controller, whose channels the wrapper publishes as its own.
+    pub(crate) fn controller(&self) -> &dyn Controller {
+        self.controller.as_ref()
     }
 
     /// Resets the inner controller.

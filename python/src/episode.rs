@@ -11,7 +11,7 @@ use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyRe
 use pyo3::prelude::*;
 use rayon::prelude::*;
 use std::sync::Mutex;
-use vsrlab_tasks::files::AnyRobot;
+use vsrlab_tasks::AnyRobot;
 use vsrlab_tasks::{Episode, EpisodeError, TaskSpec, TraceLevel};
 
 /// One environment: the robot, the task and the running episode.

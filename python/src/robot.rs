@@ -4,9 +4,8 @@ use crate::value_error;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
-use vsrlab_tasks::files::{any_robot_from_json, load_any_robot, save_any_robot, AnyRobot};
-use vsrlab_tasks::short_forms::DEFAULT_SENSORS;
-use vsrlab_tasks::{episode, PsaRobot, RobotSpec, TaskSpec, TraceLevel};
+use vsrlab_tasks::files::{any_robot_from_json, load_any_robot, save_any_robot};
+use vsrlab_tasks::{episode, kinds, AnyRobot, RobotArgs, TaskSpec, TraceLevel};
 
 /// Episode length of a task short form when no duration is given (the CLI's default).
 const DEFAULT_DURATION: f64 = 30.0;
@@ -27,23 +26,13 @@ impl PyRobot {
     #[new]
     #[pyo3(signature = (body = "biped-4x3", brain = None, sensors = None, preset = "2021"))]
     fn new(body: &str, brain: Option<&str>, sensors: Option<&str>, preset: &str) -> PyResult<Self> {
-        let robot = if PsaRobot::is_short_form(body) {
-            if sensors.is_some() {
-                return Err(value_error(
-                    "sensors: a PSA's sensors are fixed (docs/psa.md); leave sensors out",
-                ));
-            }
-            AnyRobot::Psa(PsaRobot::from_short_forms(body, brain.unwrap_or("heads")).map_err(value_error)?)
-        } else {
-            let spec = RobotSpec::from_short_forms(
-                body,
-                preset,
-                sensors.unwrap_or(DEFAULT_SENSORS),
-                brain.unwrap_or("phase"),
-            )
-            .map_err(|e| value_error(format!("{}: {}", e.part(), e.message())))?;
-            AnyRobot::Voxel(spec)
-        };
+        let robot = kinds::from_short_forms(&RobotArgs {
+            body,
+            brain,
+            sensors,
+            preset,
+        })
+        .map_err(|e| value_error(format!("{}: {}", e.part(), e.message())))?;
         Ok(PyRobot { robot })
     }
 
@@ -73,13 +62,10 @@ impl PyRobot {
         self.robot.to_json(note)
     }
 
-    /// `"voxel"` or `"psa"`.
+    /// The robot's kind: `"voxel"`, `"psa"`, … (`vsrlab_tasks::ROBOT_KINDS`).
     #[getter]
     fn kind(&self) -> &'static str {
-        match self.robot {
-            AnyRobot::Voxel(_) => "voxel",
-            AnyRobot::Psa(_) => "psa",
-        }
+        self.robot.kind().name
     }
 
     /// The brain's kind (`phase`, `mlp`, `heads`, …).
@@ -95,20 +81,7 @@ impl PyRobot {
     }
 
     fn __repr__(&self) -> String {
-        match &self.robot {
-            AnyRobot::Voxel(r) => format!(
-                "Robot(body={:?}, brain={:?}, sensors={:?}, preset={:?})",
-                r.body.to_rows().join("/"),
-                r.brain.kind(),
-                r.sensors.to_string(),
-                r.preset.to_string()
-            ),
-            AnyRobot::Psa(r) => format!(
-                "Robot(psa with {} masses, brain={:?})",
-                r.body.params.masses,
-                r.brain.kind()
-            ),
-        }
+        format!("Robot({})", self.robot.description().label())
     }
 }
 

@@ -5,7 +5,7 @@ use crate::simulate::robot_option_error;
 use clap::Args;
 use vsrlab_experiment::bench::{run_bench, BenchError, BenchOptions, BenchReport};
 use vsrlab_physics::Solver;
-use vsrlab_tasks::short_forms::DEFAULT_SENSORS;
+use vsrlab_tasks::kinds::voxel::short_forms::DEFAULT_SENSORS;
 
 /// Arguments of `vsrlab bench`.
 #[derive(Args, Debug)]

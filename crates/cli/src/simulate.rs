@@ -4,9 +4,8 @@ use clap::Args;
 use serde_json::json;
 use std::path::PathBuf;
 use std::time::Instant;
-use vsrlab_tasks::files::{load_any_robot, save_any_robot, AnyRobot};
-use vsrlab_tasks::short_forms::DEFAULT_SENSORS;
-use vsrlab_tasks::{episode, PsaRobot, RobotArgsError, RobotSpec, TaskSpec, TraceLevel};
+use vsrlab_tasks::files::{load_any_robot, save_any_robot};
+use vsrlab_tasks::{episode, kinds, AnyRobot, RobotArgs, RobotArgsError, TaskSpec, TraceLevel};
 
 /// Episode length when neither --duration nor --task-of gives one.
 const DEFAULT_DURATION: f64 = 30.0;
@@ -36,9 +35,10 @@ pub struct SimulateArgs {
     #[arg(long, default_value = "locomotion:flat")]
     pub task: String,
     /// Sensors: uniform-<s1>+<s2>…-<noise σ>, spinedTouch-…, spinedTouchSighted-…,
-    /// <high|medium|low>_<biped|worm>-<σ>-<cpg t|f> (the Hebbian study's), or empty.
-    #[arg(long, default_value = DEFAULT_SENSORS)]
-    pub sensors: String,
+    /// <high|medium|low>_<biped|worm>-<σ>-<cpg t|f> (the Hebbian study's), or empty. Default:
+    /// uniform-a+vxy+t-0 on voxel bodies; a PSA has its own sensors and takes none.
+    #[arg(long)]
+    pub sensors: Option<String>,
     /// Take the task (kind and every setting: terrain, cage, ball, physics, start) from an
     /// experiment file, or from the experiment.toml of a `vsrlab run` output folder, instead of
     /// --task; --duration, --transient, --substeps and --damage still apply when given.
@@ -267,11 +267,6 @@ pub fn damage_value(text: &str) -> Result<serde_json::Value, String> {
     Ok(json!({"at": d.at, "probability": d.probability}))
 }
 
-/// Builds the robot description from command-line strings; errors name the option.
-fn robot_from_args(body: &str, preset: &str, sensors: &str, brain: &str) -> Result<RobotSpec, String> {
-    RobotSpec::from_short_forms(body, preset, sensors, brain).map_err(|e| robot_option_error(&e))
-}
-
 /// A robot short form's error, prefixed by its option (`--body: …`, `--brain: …`).
 pub fn robot_option_error(e: &RobotArgsError) -> String {
     format!("--{}: {}", e.part(), e.message())
@@ -281,26 +276,18 @@ pub fn robot_option_error(e: &RobotArgsError) -> String {
 pub fn run(a: SimulateArgs) -> Result<(), String> {
     let robot = match &a.robot {
         Some(path) => load_any_robot(path).map_err(|e| e.to_string())?,
-        None if PsaRobot::is_short_form(&a.body) => AnyRobot::Psa(
-            PsaRobot::from_short_forms(&a.body, a.brain.as_deref().unwrap_or("heads")).map_err(|e| format!("--{e}"))?,
-        ),
-        None => AnyRobot::Voxel(robot_from_args(
-            &a.body,
-            &a.preset,
-            &a.sensors,
-            a.brain.as_deref().unwrap_or("phase"),
-        )?),
+        None => kinds::from_short_forms(&RobotArgs {
+            body: &a.body,
+            brain: a.brain.as_deref(),
+            sensors: a.sensors.as_deref(),
+            preset: &a.preset,
+        })
+        .map_err(|e| robot_option_error(&e))?,
     };
     if let Some(path) = &a.save_robot {
         save_any_robot(path, &robot, None).map_err(|e| e.to_string())?;
     }
-    let (sensors, preset) = match &robot {
-        AnyRobot::Voxel(r) => (r.sensors.to_string(), r.preset.to_string()),
-        AnyRobot::Psa(r) => (
-            format!("psa ({} readings)", r.body.params.reading_count()),
-            "psa".to_string(),
-        ),
-    };
+    let (sensors, preset) = (robot.description().sensors_label(), robot.description().preset_label());
     let brain = robot.brain();
     let body_name = match &a.robot {
         Some(path) => path.display().to_string(),
@@ -383,16 +370,11 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         }
         println!("{}", serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?);
     } else {
-        match &robot {
-            AnyRobot::Voxel(r) => println!(
-                "body      {} ({} voxels, preset {})",
-                body_name, outcome.units, r.preset
-            ),
-            AnyRobot::Psa(r) => println!(
-                "body      {} ({} masses, radius {}, {} actuators)",
-                body_name, r.body.params.masses, r.body.params.radius, outcome.units
-            ),
-        }
+        println!(
+            "body      {} ({})",
+            body_name,
+            robot.description().body_details(outcome.units)
+        );
         let mut transient_note = a.transient.map(|t| format!(", transient {t} s")).unwrap_or_default();
         if let Some(d) = &a.damage {
             transient_note += &format!(", damage {d}");

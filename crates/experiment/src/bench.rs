@@ -12,20 +12,21 @@ use crate::cpu_time::{process_cpu_seconds, thread_cpu_seconds};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::time::Instant;
-use vsrlab_tasks::files::AnyRobot;
-use vsrlab_tasks::psa_inflation::psa_physics;
-use vsrlab_tasks::short_forms::DEFAULT_SENSORS;
-use vsrlab_tasks::{EpisodeError, Locomotion, PsaRobot, RobotArgsError, RobotSpec, TraceLevel};
+use vsrlab_tasks::kinds::voxel::short_forms::DEFAULT_SENSORS;
+use vsrlab_tasks::kinds::{self, AnyRobot, RobotArgs};
+use vsrlab_tasks::{EpisodeError, Locomotion, RobotArgsError, TraceLevel};
 
-/// The standard robots of the benchmark, each with the terrain it walks on.
-pub const STANDARD_CASES: [(&str, &str); 7] = [
-    ("biped-4x3", "flat"),
-    ("worm-10x4", "flat"),
-    ("box-5x5", "hilly-1-10"),
-    ("box-10x10", "flat"),
-    ("psa:small", "flat"),
-    ("psa:medium", "flat"),
-    ("psa:large", "flat"),
+/// The standard robots of the benchmark, each with the terrain it walks on and whether the
+/// options' brain and sensors apply to it (otherwise it keeps its kind's published brain and
+/// sensors: a PSA's `heads` and its own sensors).
+pub const STANDARD_CASES: [(&str, &str, bool); 7] = [
+    ("biped-4x3", "flat", true),
+    ("worm-10x4", "flat", true),
+    ("box-5x5", "hilly-1-10", true),
+    ("box-10x10", "flat", true),
+    ("psa:small", "flat", false),
+    ("psa:medium", "flat", false),
+    ("psa:large", "flat", false),
 ];
 
 /// What to measure. Robots are given by short forms, as on the command line.
@@ -202,7 +203,7 @@ pub enum BenchError {
 /// Checks the options that no episode would reject: known robots, a finite positive time budget
 /// and duration, a sane thread count.
 fn check_options(options: &BenchOptions) -> Result<(), BenchError> {
-    let known: Vec<&str> = STANDARD_CASES.iter().map(|(robot, _)| *robot).collect();
+    let known: Vec<&str> = STANDARD_CASES.iter().map(|(robot, _, _)| *robot).collect();
     if let Some(unknown) = options.robots.iter().flatten().find(|r| !known.contains(&r.as_str())) {
         return Err(BenchError::Option(format!(
             "robots: unknown robot '{unknown}': expected some of {}",
@@ -230,11 +231,11 @@ pub fn run_bench(options: &BenchOptions) -> Result<BenchReport, BenchError> {
         .unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1));
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
     let mut rows = Vec::new();
-    for (robot, terrain) in STANDARD_CASES {
+    for (robot, terrain, takes_options) in STANDARD_CASES {
         if !is_selected(options, robot) {
             continue;
         }
-        let case = Case::new(robot, terrain, options)?;
+        let case = Case::new(robot, terrain, takes_options, options)?;
         let single = case.measure_single(options.min_cpu_seconds)?;
         let single_episodes = single.episodes;
         rows.push(case.row(Mode::Single, 1, single));
@@ -279,14 +280,19 @@ struct Measurement {
 
 impl<'a> Case<'a> {
     /// The robot `name` with the options' preset, sensors and brain, on `terrain`.
-    fn new(name: &'static str, terrain: &'static str, options: &'a BenchOptions) -> Result<Self, BenchError> {
-        let (robot, physics) = if PsaRobot::is_short_form(name) {
-            let psa = PsaRobot::from_short_forms(name, "heads").map_err(BenchError::Option)?;
-            (AnyRobot::Psa(psa), psa_physics())
-        } else {
-            let voxels = RobotSpec::from_short_forms(name, &options.preset, &options.sensors, &options.brain)?;
-            (AnyRobot::Voxel(voxels), Locomotion::default().physics)
-        };
+    fn new(
+        name: &'static str,
+        terrain: &'static str,
+        takes_options: bool,
+        options: &'a BenchOptions,
+    ) -> Result<Self, BenchError> {
+        let robot = kinds::from_short_forms(&RobotArgs {
+            body: name,
+            brain: takes_options.then_some(options.brain.as_str()),
+            sensors: takes_options.then_some(options.sensors.as_str()),
+            preset: &options.preset,
+        })?;
+        let physics = (robot.kind().physics)();
         let mut task = Locomotion {
             terrain: terrain.parse().map_err(BenchError::Terrain)?,
             duration: options.duration,
@@ -348,10 +354,7 @@ impl<'a> Case<'a> {
     /// machine); parallel rates use wall time (throughput of the whole machine); the
     /// cross-simulator unit always uses CPU time.
     fn row(&self, mode: Mode, threads: usize, m: Measurement) -> Row {
-        let voxels = match &self.robot {
-            AnyRobot::Voxel(r) => r.body.voxel_count(),
-            AnyRobot::Psa(r) => r.body.params.masses,
-        };
+        let voxels = self.robot.description().size();
         let steps_per_s = match mode {
             Mode::Single => m.steps as f64 / m.cpu_seconds,
             Mode::Parallel => m.steps as f64 / m.wall_seconds,

@@ -6,8 +6,8 @@ use std::path::Path;
 use vsrlab_experiment::config::{self, Experiment};
 use vsrlab_experiment::evaluator::RobotEvaluator;
 use vsrlab_experiment::runner::{run_experiment, RunOptions, Silent};
-use vsrlab_tasks::files::{load_any_robot, AnyRobot};
-use vsrlab_tasks::{episode, TraceLevel};
+use vsrlab_tasks::files::load_any_robot;
+use vsrlab_tasks::{episode, PsaRobot, TraceLevel};
 
 fn experiment(body: &str, brain: &str, extra: &str) -> Result<Experiment, String> {
     let text = format!(
@@ -51,9 +51,7 @@ fn a_psa_run_writes_a_robot_that_replays_to_its_fitness_on_any_thread_count() {
     let read = |dir: &Path, file: &str| std::fs::read_to_string(dir.join("run-00").join(file)).unwrap();
     assert_eq!(read(one.path(), "generations.csv"), read(two.path(), "generations.csv"));
     let robot = load_any_robot(&one.path().join("run-00/best.robot.json")).unwrap();
-    let AnyRobot::Psa(psa) = &robot else {
-        panic!("expected a PSA robot file")
-    };
+    let psa = robot.downcast_ref::<PsaRobot>().expect("expected a PSA robot file");
     assert_eq!(psa.brain.parameters().len(), 374);
     let outcome = episode::run(robot.as_robot(), e.task.spec.task(), 0, TraceLevel::None).unwrap();
     let best: f64 = read(one.path(), "generations.csv")

@@ -74,7 +74,7 @@ impl Default for Carrier {
             initial_gap: 0.5,
             ball: Ball::default(),
             fitness: Fitness::maximize("velocity"),
-            physics: crate::psa_inflation::psa_physics(),
+            physics: crate::kinds::psa::inflation::psa_physics(),
         }
     }
 }

@@ -7,8 +7,8 @@ use crate::outcome::Trace;
 use vsrlab_body::Channel;
 use vsrlab_physics::Vec2;
 
-pub use crate::psa_robot::PRESSURE;
-pub use crate::voxel_robot::{ANGLE, CELLS, LIDAR, RAYS};
+pub use crate::kinds::psa::robot::PRESSURE;
+pub use crate::kinds::voxel::agent::{ANGLE, CELLS, LIDAR, RAYS};
 pub use vsrlab_brain::controllers::attention::{ATTENTION, ATTENTION_SIDE};
 pub use vsrlab_brain::controllers::graph::{GRAPH_EDGES, GRAPH_NEURONS, GRAPH_OUTPUTS};
 pub use vsrlab_brain::PLASTIC_WEIGHTS;

@@ -52,7 +52,7 @@ impl Default for Escape {
             aperture: None,
             start_height: None,
             fitness: Fitness::maximize("distance"),
-            physics: crate::psa_inflation::psa_physics(),
+            physics: crate::kinds::psa::inflation::psa_physics(),
         }
     }
 }

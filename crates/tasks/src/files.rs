@@ -1,9 +1,6 @@
 //! Files: atomic writes, and robot files (a robot as small, human-readable JSON).
 
-use crate::agent::Robot;
-use crate::psa_robot::PsaRobot;
-use crate::robot::RobotSpec;
-use serde::{Deserialize, Serialize};
+use crate::kinds::{self, AnyRobot};
 use std::io::Write;
 use std::path::Path;
 
@@ -39,48 +36,8 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     tmp.commit()
 }
 
-/// On-disk form of a robot.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RobotFile {
-    format: String,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    note: Option<String>,
-    robot: RobotSpec,
-}
-
-/// Serialises a robot to pretty JSON (floats written in shortest round-trip form).
-pub fn robot_to_json(robot: &RobotSpec, note: Option<&str>) -> String {
-    let file = RobotFile {
-        format: ROBOT_FORMAT.to_string(),
-        note: note.map(str::to_string),
-        robot: robot.clone(),
-    };
-    serde_json::to_string_pretty(&file).expect("robot specs always serialise")
-}
-
-/// On-disk form of a pressure-based soft agent.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct PsaFile {
-    format: String,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    note: Option<String>,
-    psa: PsaRobot,
-}
-
-/// Serialises a PSA to pretty JSON: like a voxel robot file, with the robot under `psa`.
-pub fn psa_to_json(robot: &PsaRobot, note: Option<&str>) -> String {
-    let file = PsaFile {
-        format: ROBOT_FORMAT.to_string(),
-        note: note.map(str::to_string),
-        psa: robot.clone(),
-    };
-    serde_json::to_string_pretty(&file).expect("PSA descriptions always serialise")
-}
-
 /// Parses JSON text into `T`, naming the field, line and column of an error.
-fn parse_json<T: serde::de::DeserializeOwned>(text: &str, origin: &str) -> Result<T, FileError> {
+pub fn parse_json<T: serde::de::DeserializeOwned>(text: &str, origin: &str) -> Result<T, FileError> {
     let de = &mut serde_json::Deserializer::from_str(text);
     serde_path_to_error::deserialize(de).map_err(|e| {
         let path = e.path().to_string();
@@ -96,122 +53,54 @@ fn parse_json<T: serde::de::DeserializeOwned>(text: &str, origin: &str) -> Resul
     })
 }
 
-/// Whether JSON text is a PSA robot file (its robot is under `psa`).
-fn is_psa_file(text: &str) -> bool {
-    serde_json::from_str::<serde_json::Value>(text).is_ok_and(|v| v.get("psa").is_some())
-}
-
-/// A robot of any kind read from a robot file.
-#[derive(Debug, Clone, PartialEq)]
-pub enum AnyRobot {
-    /// A voxel-based soft robot.
-    Voxel(RobotSpec),
-    /// A pressure-based soft agent.
-    Psa(PsaRobot),
-}
-
-impl AnyRobot {
-    /// The robot, for episodes.
-    pub fn as_robot(&self) -> &dyn Robot {
-        match self {
-            AnyRobot::Voxel(r) => r,
-            AnyRobot::Psa(r) => r,
-        }
-    }
-}
-
-impl AnyRobot {
-    /// The brain.
-    pub fn brain(&self) -> &vsrlab_brain::BrainSpec {
-        match self {
-            AnyRobot::Voxel(r) => &r.brain,
-            AnyRobot::Psa(r) => &r.brain,
-        }
-    }
-    /// The robot file's JSON.
-    pub fn to_json(&self, note: Option<&str>) -> String {
-        match self {
-            AnyRobot::Voxel(r) => robot_to_json(r, note),
-            AnyRobot::Psa(r) => psa_to_json(r, note),
-        }
+/// Checks a robot file's `format` field, naming it.
+pub fn check_format(format: &str, origin: &str) -> Result<(), FileError> {
+    if format == ROBOT_FORMAT {
+        Ok(())
+    } else {
+        Err(FileError::Invalid {
+            path: origin.to_string(),
+            msg: format!("field 'format': expected \"{ROBOT_FORMAT}\", got \"{format}\""),
+        })
     }
 }
 
 /// Saves a robot file of any kind atomically.
 pub fn save_any_robot(path: &Path, robot: &AnyRobot, note: Option<&str>) -> Result<(), FileError> {
-    write_atomic(path, robot.to_json(note).as_bytes()).map_err(|source| FileError::Io {
+    write_text(path, &robot.to_json(note))
+}
+
+/// Writes a file atomically, naming it in the error.
+pub fn write_text(path: &Path, text: &str) -> Result<(), FileError> {
+    write_atomic(path, text.as_bytes()).map_err(|source| FileError::Io {
         path: path.display().to_string(),
         source,
     })
 }
 
-/// Parses and validates a robot file of any kind.
+/// Reads a text file, naming it in the error.
+pub fn read_text(path: &Path) -> Result<String, FileError> {
+    std::fs::read_to_string(path).map_err(|source| FileError::Io {
+        path: path.display().to_string(),
+        source,
+    })
+}
+
+/// Parses and validates a robot file of any registered kind (the kind is the one whose key the
+/// file holds; a file with none is read as a voxel robot file, whose errors then name what is
+/// missing).
 pub fn any_robot_from_json(text: &str, origin: &str) -> Result<AnyRobot, FileError> {
-    if !is_psa_file(text) {
-        return robot_from_json(text, origin).map(AnyRobot::Voxel);
-    }
-    let file: PsaFile = parse_json(text, origin)?;
-    let invalid = |msg: String| FileError::Invalid {
-        path: origin.to_string(),
-        msg,
-    };
-    if file.format != ROBOT_FORMAT {
-        return Err(invalid(format!(
-            "field 'format': expected \"{ROBOT_FORMAT}\", got \"{}\"",
-            file.format
-        )));
-    }
-    file.psa.validate().map_err(|e| invalid(e.to_string()))?;
-    Ok(AnyRobot::Psa(file.psa))
+    let value = serde_json::from_str::<serde_json::Value>(text).unwrap_or_default();
+    let kind = kinds::kind_of_file(&value).unwrap_or(&kinds::voxel::KIND);
+    (kind.from_file)(text, origin)
 }
 
-/// Loads and validates a robot file of any kind.
+/// Loads and validates a robot file of any registered kind.
 pub fn load_any_robot(path: &Path) -> Result<AnyRobot, FileError> {
-    let text = std::fs::read_to_string(path).map_err(|source| FileError::Io {
-        path: path.display().to_string(),
-        source,
-    })?;
-    any_robot_from_json(&text, &path.display().to_string())
+    any_robot_from_json(&read_text(path)?, &path.display().to_string())
 }
 
-/// Parses and validates a robot from JSON text; `origin` names the source in errors.
-pub fn robot_from_json(text: &str, origin: &str) -> Result<RobotSpec, FileError> {
-    let invalid = |msg: String| FileError::Invalid {
-        path: origin.to_string(),
-        msg,
-    };
-    if is_psa_file(text) {
-        return Err(invalid(
-            "this is a pressure-based soft agent (field 'psa'); this command reads voxel robots only".into(),
-        ));
-    }
-    let file: RobotFile = parse_json(text, origin)?;
-    if file.format != ROBOT_FORMAT {
-        return Err(invalid(format!(
-            "field 'format': expected \"{ROBOT_FORMAT}\", got \"{}\"",
-            file.format
-        )));
-    }
-    file.robot.validate().map_err(|e| invalid(e.to_string()))?;
-    Ok(file.robot)
-}
-
-/// Saves a robot file atomically.
-pub fn save_robot(path: &Path, robot: &RobotSpec, note: Option<&str>) -> Result<(), FileError> {
-    write_atomic(path, robot_to_json(robot, note).as_bytes()).map_err(|source| FileError::Io {
-        path: path.display().to_string(),
-        source,
-    })
-}
-
-/// Loads and validates a robot file.
-pub fn load_robot(path: &Path) -> Result<RobotSpec, FileError> {
-    let text = std::fs::read_to_string(path).map_err(|source| FileError::Io {
-        path: path.display().to_string(),
-        source,
-    })?;
-    robot_from_json(&text, &path.display().to_string())
-}
+pub use crate::kinds::voxel::{load_robot, robot_from_json, robot_to_json, save_robot};
 
 /// A temporary path beside a destination file, for writers that must be given a path of their
 /// own (an encoder process, a library that saves by file name), where [`write_atomic`] cannot

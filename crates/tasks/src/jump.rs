@@ -110,8 +110,8 @@ impl TaskEpisode for JumpEpisode {
 mod tests {
     use super::*;
     use crate::episode;
+    use crate::kinds::voxel::robot::RobotSpec;
     use crate::outcome::TraceLevel;
-    use crate::robot::RobotSpec;
     use vsrlab_body::sensors::SensorConfig;
     use vsrlab_body::{Morphology, Preset};
     use vsrlab_brain::BrainSpec;

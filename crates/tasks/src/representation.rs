@@ -13,9 +13,9 @@
 
 use crate::agent::Robot;
 use crate::episode::{self, EpisodeError};
+use crate::kinds::psa::robot::PsaRobot;
+use crate::kinds::voxel::robot::RobotSpec;
 use crate::outcome::{Outcome, TraceLevel};
-use crate::psa_robot::PsaRobot;
-use crate::robot::RobotSpec;
 use crate::task::Task;
 use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
 use serde::de::{self, MapAccess, SeqAccess, Visitor};

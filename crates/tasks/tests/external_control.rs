@@ -2,7 +2,7 @@
 //! episode loop of `episode::run`, so outside actions equal to the brain's give the same outcome
 //! bit for bit, and bad actions are refused.
 
-use vsrlab_tasks::short_forms::DEFAULT_SENSORS;
+use vsrlab_tasks::kinds::voxel::short_forms::DEFAULT_SENSORS;
 use vsrlab_tasks::{episode, Episode, PsaRobot, Robot, RobotSpec, TaskSpec, TraceLevel};
 
 fn task(text: &str, duration: f64) -> TaskSpec {

@@ -1,7 +1,7 @@
 //! Pressure-based soft agents: the inflation protocol, episodes on every task, robustness.
 
 use vsrlab_body::psa::{PsaParams, PsaSize};
-use vsrlab_tasks::psa_inflation::{inflate, psa_physics};
+use vsrlab_tasks::kinds::psa::inflation::{inflate, psa_physics};
 
 #[test]
 fn inflation_reaches_a_circle_for_every_size() {

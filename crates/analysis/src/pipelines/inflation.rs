@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use vsrlab_body::psa::{PsaParams, PsaSize};
 use vsrlab_physics::Vec2;
-use vsrlab_tasks::psa_inflation::{inflate, psa_physics, InflationPoint};
+use vsrlab_tasks::kinds::psa::inflation::{inflate, psa_physics, InflationPoint};
 
 /// Options of the inflation protocol.
 #[derive(Debug, Clone)]

@@ -3,7 +3,7 @@
 //! (`phase`, `mlp`, …). A parameterised brain gets seeded random parameters, so that any brain can
 //! be simulated or benchmarked without evolving it first.
 
-use crate::robot::{RobotError, RobotSpec};
+use crate::kinds::voxel::robot::{RobotError, RobotSpec};
 use vsrlab_body::sensors::{SensorConfig, SensorError};
 use vsrlab_body::{Morphology, MorphologyError, Preset};
 use vsrlab_brain::BrainShape;
@@ -64,6 +64,14 @@ pub enum RobotArgsError {
     /// The brain's short form is not understood, or it does not fit the body and sensors.
     #[error("brain: {0}")]
     Brain(#[source] BrainError),
+    /// A robot kind refused a part (a PSA given sensors, an unknown PSA size).
+    #[error("{part}: {message}")]
+    Kind {
+        /// The short form at fault.
+        part: RobotPart,
+        /// What is wrong.
+        message: String,
+    },
 }
 
 impl RobotArgsError {
@@ -74,6 +82,7 @@ impl RobotArgsError {
             RobotArgsError::Preset(_) => RobotPart::Preset,
             RobotArgsError::Sensors(_) | RobotArgsError::SensorsOnBody(_) => RobotPart::Sensors,
             RobotArgsError::Brain(_) => RobotPart::Brain,
+            RobotArgsError::Kind { part, .. } => *part,
         }
     }
 
@@ -85,6 +94,7 @@ impl RobotArgsError {
             RobotArgsError::Sensors(e) => e.to_string(),
             RobotArgsError::SensorsOnBody(e) => e.to_string(),
             RobotArgsError::Brain(e) => e.to_string(),
+            RobotArgsError::Kind { message, .. } => message.clone(),
         }
     }
 }

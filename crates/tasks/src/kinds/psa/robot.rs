@@ -13,6 +13,7 @@
 use crate::agent::{Agent, Robot};
 use crate::channels::{ACTUATION, ANGLE, AREA_RATIO, TOUCH, UNIT_POLYGONS};
 use crate::episode::EpisodeError;
+use crate::kinds::voxel::short_forms::{RobotArgsError, RobotPart};
 use crate::outcome::Trace;
 use serde::{Deserialize, Serialize};
 use vsrlab_body::psa::{Psa, PsaBody, PsaSensors};
@@ -131,7 +132,7 @@ impl Robot for PsaRobot {
     }
 
     fn robot_file(&self, note: Option<&str>) -> Option<String> {
-        Some(crate::files::psa_to_json(self, note))
+        Some(crate::kinds::psa::psa_to_json(self, note))
     }
 }
 
@@ -269,35 +270,51 @@ pub const PRESSURE: Channel = Channel::replayed("pressure", 1e-3).single();
 const RANDOM_BRAIN_SEED: u64 = 0;
 
 impl PsaRobot {
-    /// Whether a command-line body names a PSA (`psa` or `psa:<size>`).
-    pub fn is_short_form(body: &str) -> bool {
-        body == "psa" || body.starts_with("psa:")
-    }
-
     /// A PSA from command-line short forms: `psa[:small|medium|large]` and a brain short form
     /// (`heads` for the thesis's controller); a brain with parameters gets seeded random ones in
-    /// [−1, 1]. Errors say which of the two is wrong (`body: …`, `brain: …`).
-    pub fn from_short_forms(body: &str, brain: &str) -> Result<PsaRobot, String> {
+    /// [−1, 1]. Errors name the part at fault (body or brain).
+    pub fn from_short_forms(body: &str, brain: &str) -> Result<PsaRobot, RobotArgsError> {
         let size = match body.strip_prefix("psa:") {
             None if body == "psa" => Default::default(),
-            Some(size) => serde_json::from_value(serde_json::Value::String(size.to_string()))
-                .map_err(|_| format!("body: unknown PSA size '{size}': expected small, medium or large"))?,
-            None => return Err(format!("body: '{body}' is not a PSA (psa[:small|medium|large])")),
+            Some(size) => serde_json::from_value(serde_json::Value::String(size.to_string())).map_err(|_| {
+                kind_error(
+                    RobotPart::Body,
+                    format!("unknown PSA size '{size}': expected small, medium or large"),
+                )
+            })?,
+            None => {
+                return Err(kind_error(
+                    RobotPart::Body,
+                    format!("'{body}' is not a PSA (psa[:small|medium|large])"),
+                ))
+            }
         };
-        let brain = BrainSpec::parse(brain).map_err(|e| format!("brain: {e}"))?;
+        let brain = BrainSpec::parse(brain).map_err(RobotArgsError::Brain)?;
         let mut robot = PsaRobot {
             body: PsaBody::of_size(size),
             brain,
         };
         let shape = robot.brain_shape();
-        let count = robot.brain.parameter_count(&shape).map_err(|e| format!("brain: {e}"))?;
+        let count = robot.brain.parameter_count(&shape).map_err(RobotArgsError::Brain)?;
         if count > 0 && robot.brain.parameters().is_empty() {
             robot.brain = robot
                 .brain
                 .with_random_parameters(RANDOM_BRAIN_SEED, &shape)
-                .map_err(|e| format!("brain: {e}"))?;
+                .map_err(RobotArgsError::Brain)?;
         }
-        robot.validate().map_err(|e| e.to_string())?;
+        robot.validate().map_err(|e| {
+            let text = e.to_string();
+            let part = if text.starts_with("robot.brain") {
+                RobotPart::Brain
+            } else {
+                RobotPart::Body
+            };
+            kind_error(part, text)
+        })?;
         Ok(robot)
     }
+}
+
+fn kind_error(part: RobotPart, message: String) -> RobotArgsError {
+    RobotArgsError::Kind { part, message }
 }

@@ -5,8 +5,8 @@
 use crate::agent::{Agent, Robot};
 use crate::channels::{ACTUATION, AREA_RATIO, READINGS, READINGS_PER_UNIT, TOUCH};
 use crate::episode::EpisodeError;
+use crate::kinds::voxel::robot::RobotSpec;
 use crate::outcome::Trace;
-use crate::robot::RobotSpec;
 use vsrlab_body::sensors::SensorSuite;
 use vsrlab_body::{Body, Channel, Morphology, Probe, VoxelState, Vsr};
 use vsrlab_brain::BrainShape;

@@ -4,8 +4,8 @@
 
 use crate::agent::Robot;
 use crate::episode::EpisodeError;
+use crate::kinds::psa::robot::PsaRobot;
 use crate::locomotion::place_on_ground;
-use crate::psa_robot::PsaRobot;
 use crate::terrain::{add_ground, Terrain};
 use vsrlab_body::psa::{Psa, PsaParams};
 use vsrlab_physics::{PhysicsError, Vec2, WorldBuilder, WorldSettings};

@@ -1,0 +1,217 @@
+//! Robot kinds: what a robot can be (a 2D-VSR-Sim voxel robot, a pressure-based soft agent, …).
+//!
+//! Each kind lives in its own folder and has one entry in [`ROBOT_KINDS`]: its name, its
+//! command-line body form, its robot-file form and the `kind` tags of its `[representation] body`
+//! tables. Its robots implement [`RobotDescription`] (a [`Robot`] that can also be saved and
+//! summarised), so that the command line, the benchmark and the Python package hold an
+//! [`AnyRobot`] without knowing its kind.
+//!
+//! Adding a kind: a folder `kinds/<name>/` with the robot type (implementing [`Robot`] and
+//! [`RobotDescription`]), its agent, and a `pub const KIND: RobotKind`; one line in
+//! [`ROBOT_KINDS`] and one `pub mod` line here.
+
+pub mod psa;
+pub mod voxel;
+
+use crate::agent::Robot;
+use crate::files::FileError;
+use crate::kinds::voxel::short_forms::{RobotArgsError, RobotPart};
+use std::any::Any;
+use std::fmt::Debug;
+use vsrlab_brain::BrainSpec;
+
+/// Every robot kind. The first whose [`RobotKind::claims_body`] accepts a command-line body
+/// builds it, so the voxel robot, whose bodies are any shape name or text grid, comes last.
+pub const ROBOT_KINDS: &[RobotKind] = &[psa::KIND, voxel::KIND];
+
+/// One registered robot kind.
+pub struct RobotKind {
+    /// The kind's name (`voxel`, `psa`): what the Python package's `Robot.kind` says.
+    pub name: &'static str,
+    /// The key under which a robot file holds a robot of this kind (`robot`, `psa`).
+    pub file_key: &'static str,
+    /// The command-line body form, for help and error messages.
+    pub body_usage: &'static str,
+    /// Whether a command-line body names a robot of this kind.
+    pub claims_body: fn(&str) -> bool,
+    /// A robot from command-line short forms.
+    pub from_short_forms: fn(&RobotArgs) -> Result<AnyRobot, RobotArgsError>,
+    /// A robot from a robot file's text (validated; errors name the field); `origin` names the
+    /// source.
+    pub from_file: fn(&str, &str) -> Result<AnyRobot, FileError>,
+    /// The `kind` tags of this kind's `[representation] body` tables.
+    pub body_tables: &'static [&'static str],
+    /// The world settings its published models were run with (time step, gravity, solver).
+    pub physics: fn() -> vsrlab_physics::WorldSettings,
+}
+
+/// The command line's description of a robot: a body, and optionally a brain, sensors and a
+/// preset (each kind has its defaults, and refuses what it has no use for).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RobotArgs<'a> {
+    /// The body (`biped-4x3`, `###/#.#`, `psa:small`, …).
+    pub body: &'a str,
+    /// The brain's short form; `None`: the kind's default.
+    pub brain: Option<&'a str>,
+    /// The sensors' short form; `None`: the kind's default.
+    pub sensors: Option<&'a str>,
+    /// The physical preset (`2021`, `2022`).
+    pub preset: &'a str,
+}
+
+/// A robot of a registered kind, as robot files and the command line describe it.
+pub trait RobotDescription: Robot + Debug {
+    /// The kind's registry entry.
+    fn kind(&self) -> &'static RobotKind;
+    /// The brain.
+    fn brain(&self) -> &BrainSpec;
+    /// The robot as a robot file (JSON) with an optional note.
+    fn to_json(&self, note: Option<&str>) -> String;
+    /// What the command line prints after `body NAME`: sizes and constants, given the
+    /// number of actuators the episode reported.
+    fn body_details(&self, actuators: usize) -> String;
+    /// The sensors, as the command line prints them.
+    fn sensors_label(&self) -> String;
+    /// The physical preset, as the command line prints it.
+    fn preset_label(&self) -> String;
+    /// The body's size in the units of the speed benchmark (voxels; a PSA's masses).
+    fn size(&self) -> usize;
+    /// A one-line description (the Python package's `repr`).
+    fn label(&self) -> String;
+    /// A boxed copy.
+    fn clone_box(&self) -> Box<dyn RobotDescription>;
+    /// The robot itself, for code of its own kind.
+    fn as_any(&self) -> &dyn Any;
+}
+
+/// A robot of any registered kind.
+#[derive(Debug)]
+pub struct AnyRobot(Box<dyn RobotDescription>);
+
+impl AnyRobot {
+    /// Wraps a robot of a registered kind.
+    pub fn new(robot: impl RobotDescription + 'static) -> AnyRobot {
+        AnyRobot(Box::new(robot))
+    }
+
+    /// The robot, for episodes.
+    pub fn as_robot(&self) -> &dyn Robot {
+        self.0.as_ref()
+    }
+
+    /// The robot as its kind sees it (saving, summaries).
+    pub fn description(&self) -> &dyn RobotDescription {
+        self.0.as_ref()
+    }
+
+    /// The kind's registry entry.
+    pub fn kind(&self) -> &'static RobotKind {
+        self.0.kind()
+    }
+
+    /// The brain.
+    pub fn brain(&self) -> &BrainSpec {
+        self.0.brain()
+    }
+
+    /// The robot file's JSON.
+    pub fn to_json(&self, note: Option<&str>) -> String {
+        self.0.to_json(note)
+    }
+
+    /// The robot as a `T`, when it is one.
+    pub fn downcast_ref<T: 'static>(&self) -> Option<&T> {
+        self.0.as_any().downcast_ref()
+    }
+}
+
+impl Clone for AnyRobot {
+    fn clone(&self) -> Self {
+        AnyRobot(self.0.clone_box())
+    }
+}
+
+impl PartialEq for AnyRobot {
+    /// Two robots are equal when they are of the same kind and write the same robot file.
+    fn eq(&self, other: &Self) -> bool {
+        self.kind().name == other.kind().name && self.to_json(None) == other.to_json(None)
+    }
+}
+
+/// The robot that command-line short forms describe, of the first kind that claims the body.
+pub fn from_short_forms(args: &RobotArgs) -> Result<AnyRobot, RobotArgsError> {
+    let kind = ROBOT_KINDS
+        .iter()
+        .find(|k| (k.claims_body)(args.body))
+        .ok_or_else(|| RobotArgsError::Kind {
+            part: RobotPart::Body,
+            message: format!("'{}' is no robot body: expected {}", args.body, body_usages()),
+        })?;
+    (kind.from_short_forms)(args)
+}
+
+/// Every kind's command-line body form, for messages.
+pub fn body_usages() -> String {
+    ROBOT_KINDS
+        .iter()
+        .map(|k| k.body_usage)
+        .collect::<Vec<_>>()
+        .join(", or ")
+}
+
+/// The kind whose robots robot files hold under `key`, if any.
+pub fn kind_of_file(value: &serde_json::Value) -> Option<&'static RobotKind> {
+    ROBOT_KINDS.iter().find(|k| value.get(k.file_key).is_some())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_file_keys_and_body_tables_are_unique() {
+        for (i, a) in ROBOT_KINDS.iter().enumerate() {
+            for b in &ROBOT_KINDS[i + 1..] {
+                assert_ne!(a.name, b.name);
+                assert_ne!(a.file_key, b.file_key);
+                assert!(a.body_tables.iter().all(|t| !b.body_tables.contains(t)), "{}", a.name);
+            }
+        }
+    }
+
+    #[test]
+    fn each_body_form_goes_to_its_kind() {
+        let cases = [
+            ("psa", "psa"),
+            ("psa:large", "psa"),
+            ("biped-4x3", "voxel"),
+            ("##/#.", "voxel"),
+        ];
+        for (body, kind) in cases {
+            let args = RobotArgs {
+                body,
+                brain: None,
+                sensors: None,
+                preset: "2021",
+            };
+            let robot = from_short_forms(&args).unwrap_or_else(|e| panic!("{body}: {e}"));
+            assert_eq!(robot.kind().name, kind, "{body}");
+            let copy = robot.clone();
+            assert_eq!(copy, robot);
+            let again = (robot.kind().from_file)(&robot.to_json(None), "test").unwrap();
+            assert_eq!(again, robot, "{body}: the robot file reads back");
+        }
+    }
+
+    #[test]
+    fn a_kind_refuses_what_it_has_no_use_for() {
+        let args = RobotArgs {
+            body: "psa:small",
+            brain: None,
+            sensors: Some("uniform-a-0"),
+            preset: "2021",
+        };
+        let e = from_short_forms(&args).unwrap_err();
+        assert_eq!(e.part(), RobotPart::Sensors);
+    }
+}

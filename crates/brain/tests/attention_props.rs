@@ -30,7 +30,7 @@ proptest! {
             c.control(k as f64 / 60.0, &readings[start..start + 4 * n], &mut a);
             prop_assert!(a.iter().all(|x| x.is_finite() && x.abs() <= 1.0), "step {}: {:?}", k, a);
         }
-        if let Some((side, matrices)) = attention(&c) {
+        if let Some((side, matrices)) = vsrlab_brain::controllers::attention::attention_matrices(&c) {
             prop_assert_eq!(side, 4);
             prop_assert_eq!(matrices.len(), n * 16);
             prop_assert!(matrices.iter().all(|x| x.is_finite()));
@@ -39,15 +39,4 @@ proptest! {
             }
         }
     }
-}
-
-/// The attention side and matrices the controller publishes.
-fn attention(c: &dyn vsrlab_brain::Controller) -> Option<(usize, Vec<f64>)> {
-    let mut capture = vsrlab_body::Capture::new();
-    c.describe(&mut capture);
-    c.publish(&mut capture);
-    Some((
-        capture.get("attention_side")?[0] as usize,
-        capture.get("attention")?.to_vec(),
-    ))
 }

@@ -395,6 +395,16 @@ pub const ATTENTION: Channel = Channel::replayed("attention", 1e-2).single();
 /// The side r of each voxel's attention matrix (its readings count).
 pub const ATTENTION_SIDE: Channel = Channel::traced("attention_side");
 
+/// The side r and the matrices (n·r² values) a brain publishes on [`ATTENTION_SIDE`] and
+/// [`ATTENTION`], if it is an attention brain (wrapped or not).
+pub fn attention_matrices(brain: &dyn Controller) -> Option<(usize, Vec<f64>)> {
+    let mut capture = vsrlab_body::Capture::new();
+    brain.describe(&mut capture);
+    brain.publish(&mut capture);
+    let side = capture.get(ATTENTION_SIDE.name)?.first().copied()? as usize;
+    Some((side, capture.get(ATTENTION.name)?.to_vec()))
+}
+
 /// `attention` (homogeneous, d_k = 8), `attention:hetero`, `attention:slow`.
 pub const SHORT_FORM: ShortForm = ShortForm {
     name: "attention",
@@ -418,17 +428,6 @@ mod tests {
     use super::*;
     use crate::testing::{assert_invalid, biped};
     use vsrlab_body::Morphology;
-
-    /// The attention side and matrices the controller publishes.
-    fn attention(c: &dyn Controller) -> Option<(usize, Vec<f64>)> {
-        let mut capture = vsrlab_body::Capture::new();
-        c.describe(&mut capture);
-        c.publish(&mut capture);
-        Some((
-            capture.get("attention_side")?[0] as usize,
-            capture.get("attention")?.to_vec(),
-        ))
-    }
 
     fn filled(spec: &str, seed: u64) -> BrainSpec {
         let (m, rpv) = biped();
@@ -486,7 +485,7 @@ mod tests {
         let y1 = att(1, 0) * s[0] + att(1, 1) * s[1];
         let expected = (0.05 + 0.7 * y0.tanh() - 0.4 * y1.tanh()).tanh();
         assert!((a[0] - expected).abs() < 1e-15, "{} vs {expected}", a[0]);
-        let (side, matrix) = attention(&c).unwrap();
+        let (side, matrix) = attention_matrices(&c).unwrap();
         assert_eq!(side, 2);
         assert!((matrix[1] - att(0, 1)).abs() < 1e-15);
     }
@@ -536,14 +535,14 @@ mod tests {
         let mut c = spec.build(&BrainShape::grid(&m, &[1])).unwrap();
         let mut a = [0.0];
         c.control(0.0, &[0.5], &mut a);
-        let first = attention(&c).unwrap().1[0];
+        let first = attention_matrices(&c).unwrap().1[0];
         assert!((first - 0.25f64.tanh()).abs() < 1e-15);
         c.control(1.0 / 60.0, &[0.8], &mut a);
-        let second = attention(&c).unwrap().1[0];
+        let second = attention_matrices(&c).unwrap().1[0];
         assert!((second - (0.5 * 0.64f64.tanh() + first)).abs() < 1e-15);
         c.reset();
         c.control(0.0, &[0.5], &mut a);
-        assert_eq!(attention(&c).unwrap().1[0], first, "reset forgets");
+        assert_eq!(attention_matrices(&c).unwrap().1[0], first, "reset forgets");
     }
 
     #[test]

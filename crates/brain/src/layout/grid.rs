@@ -1,6 +1,6 @@
 //! [`GridLayout`]: the voxels of a 2D grid body, each with 4 neighbours.
 
-use super::{step, Cell, UnitLayout};
+use super::{Cell, Grid3Layout, UnitLayout};
 use vsrlab_body::Morphology;
 
 /// Grid offsets (dx, dy) of the directions N, E, S, W, in this order. Since y = 0 is the bottom
@@ -9,42 +9,34 @@ pub const DIRECTION_OFFSETS: [(isize, isize); 4] = [(0, -1), (1, 0), (0, 1), (-1
 
 /// The voxels of a W×H grid (units in grid order: row-major from the bottom row) with their
 /// neighbours in directions N, E, S, W ([`DIRECTION_OFFSETS`]); opposite directions are two apart.
+/// It is a [`Grid3Layout`] one voxel deep whose first 4 directions are these, without the two
+/// along z.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct GridLayout {
-    extent: Cell,
-    cells: Vec<Cell>,
-    /// Per grid cell (y·W + x): its unit.
-    unit_of: Vec<Option<usize>>,
+    grid: Grid3Layout,
 }
 
 impl GridLayout {
     /// The layout of a morphology's voxels.
     pub fn new(morphology: &Morphology) -> GridLayout {
-        let (w, h) = (morphology.width(), morphology.height());
-        let cells: Vec<Cell> = morphology.voxels().map(|(x, y)| [x, y, 0]).collect();
-        let mut unit_of = vec![None; w * h];
-        for (u, &[x, y, _]) in cells.iter().enumerate() {
-            unit_of[y * w + x] = Some(u);
-        }
+        let extent = [morphology.width(), morphology.height(), 1];
         GridLayout {
-            extent: [w, h, 1],
-            cells,
-            unit_of,
+            grid: Grid3Layout::from_fn(extent, |x, y, _| morphology.has(x, y)),
         }
     }
 }
 
 impl UnitLayout for GridLayout {
     fn units(&self) -> usize {
-        self.cells.len()
+        self.grid.units()
     }
 
     fn cell(&self, unit: usize) -> Cell {
-        self.cells[unit]
+        self.grid.cell(unit)
     }
 
     fn extent(&self) -> Cell {
-        self.extent
+        self.grid.extent()
     }
 
     fn directions(&self) -> usize {
@@ -56,17 +48,12 @@ impl UnitLayout for GridLayout {
     }
 
     fn neighbour(&self, unit: usize, direction: usize) -> Option<usize> {
-        let (dx, dy) = DIRECTION_OFFSETS[direction];
-        self.unit_at(step(self.cells[unit], [dx, dy, 0], self.extent)?)
+        // the 3D grid's first four directions are N, E, S, W in the plane
+        self.grid.neighbour(unit, direction)
     }
 
-    fn unit_at(&self, [x, y, z]: Cell) -> Option<usize> {
-        let [w, h, _] = self.extent;
-        if x < w && y < h && z == 0 {
-            self.unit_of[y * w + x]
-        } else {
-            None
-        }
+    fn unit_at(&self, cell: Cell) -> Option<usize> {
+        self.grid.unit_at(cell)
     }
 }
 
@@ -77,7 +64,7 @@ mod tests {
     #[test]
     fn neighbours_follow_the_original_direction_order() {
         // #.#
-        // ###    units in grid order: 0 (0,0)  1 (1,0)  2 (2,0) on the bottom row …
+        // ###    units in grid order: 0 (1,0) on the bottom row, 1 (0,1), 2 (1,1), 3 (2,1), …
         // .#.
         let m = Morphology::from_rows(&["#.#", "###", ".#."]).unwrap();
         let g = GridLayout::new(&m);
@@ -87,6 +74,11 @@ mod tests {
         assert_eq!(g.unit_at([1, 1, 0]), Some(2));
         let n: Vec<_> = (0..4).map(|d| g.neighbour(2, d)).collect();
         assert_eq!(n, [Some(0), Some(3), None, Some(1)]);
+        // the offsets say the same
+        for (d, (dx, dy)) in DIRECTION_OFFSETS.iter().enumerate() {
+            let at = [(1 + dx) as usize, (1 + dy) as usize, 0];
+            assert_eq!(g.neighbour(2, d), g.unit_at(at), "direction {d}");
+        }
         assert_eq!(g.slot(2), 4);
         assert_eq!(g.slots(), 9);
         assert_eq!(g.cell_text(5), "(2, 2)");

@@ -101,6 +101,10 @@ mod tests {
         let m = Morphology::named("biped-4x3").unwrap();
         let flat = Grid3Layout::from_fn([4, 3, 1], |x, y, _| m.has(x, y));
         let grid = GridLayout::new(&m);
+        // the planar directions are the 2D grid's offsets
+        for (d, &(dx, dy)) in crate::layout::grid::DIRECTION_OFFSETS.iter().enumerate() {
+            assert_eq!(DIRECTION_OFFSETS[d], [dx, dy, 0]);
+        }
         assert_eq!(flat.units(), grid.units());
         for u in 0..grid.units() {
             assert_eq!(flat.cell(u), grid.cell(u));

@@ -120,10 +120,8 @@ impl PyBatchEvaluator {
             .representation
             .any_robot(&genotype)
             .map_err(|e| value_error(format!("genotype: {e}")))?;
-        let text = robot
-            .robot_file(None)
-            .ok_or_else(|| value_error("genotype: this robot kind has no robot file"))?;
-        let robot = any_robot_from_json(&text, "genotype").map_err(value_error)?;
+        // through its robot file, which validates it
+        let robot = any_robot_from_json(&robot.to_json(None), "genotype").map_err(value_error)?;
         Ok(PyRobot { robot })
     }
 

@@ -37,7 +37,7 @@ use vsrlab_brain::BrainShape;
 use vsrlab_brain::{BrainSpec, GraphSpec};
 use vsrlab_evolution::rng::SeededRng;
 use vsrlab_evolution::{GaConfig, GeneticAlgorithm, Representation as Variation, Sense};
-use vsrlab_tasks::{BodyPart, EvaluationError, Mapper, Representation, Robot, RobotSpec};
+use vsrlab_tasks::{EvaluationError, Mapper, Representation, Robot, RobotSpec};
 
 /// The `kind` of a `[genotype]` table.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -185,13 +185,12 @@ fn default_sigma() -> f64 {
 
 /// The fixed body of a representation, or the field and message.
 fn fixed_body(representation: &Representation) -> Result<&Morphology, (String, String)> {
-    match &representation.body {
-        BodyPart::Fixed(m) => Ok(m),
-        BodyPart::Encoded(_) | BodyPart::Psa(_) => Err((
+    representation.body.fixed_grid().ok_or_else(|| {
+        (
             "representation.body".into(),
             "a graph genotype places neurons in voxels: give a fixed voxel body (a shape name or rows)".into(),
-        )),
-    }
+        )
+    })
 }
 
 /// The graph brain of a representation, or the field and message.
@@ -366,7 +365,7 @@ pub const GRAPH_COLUMNS: [&str; 5] = ["neurons", "edges", "size", "connection_co
 
 impl Mapper<GraphSpec> for GraphMapper {
     fn robot(&self, genotype: &GraphSpec) -> Result<Box<dyn Robot>, EvaluationError> {
-        let BodyPart::Fixed(body) = &self.representation.body else {
+        let Some(body) = self.representation.body.fixed_grid() else {
             return Err(EvaluationError::Representation("body: not fixed".into()));
         };
         Ok(Box::new(RobotSpec {

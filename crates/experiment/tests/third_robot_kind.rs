@@ -18,6 +18,7 @@ use vsrlab_tasks::kinds::{AnyRobot, RobotArgs, RobotDescription, RobotKind};
 use vsrlab_tasks::{
     channels, episode, Agent, EpisodeError, Robot, RobotArgsError, RobotPart, TaskSpec, Trace, TraceLevel,
 };
+use vsrlab_tasks::{evaluate, BodyPart, BodySource, EvaluationError, Representation};
 
 /// The chain's registry entry.
 const KIND: RobotKind = RobotKind {
@@ -27,9 +28,66 @@ const KIND: RobotKind = RobotKind {
     claims_body: |body| body.starts_with("chain:"),
     from_short_forms,
     from_file,
-    body_tables: &[],
+    body_tables: &["chain"],
     physics: || vsrlab_tasks::Locomotion::default().physics,
+    decode_body,
 };
+
+/// The chain's `[representation] body` form: `{ kind = "chain", links = N }` (no body genes).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ChainForm {
+    kind: String,
+    links: usize,
+}
+
+fn decode_body(value: serde_json::Value) -> Result<BodyPart, String> {
+    let body: ChainForm = serde_json::from_value(value).map_err(|e| e.to_string())?;
+    if !(3..=50).contains(&body.links) {
+        return Err(format!("links: 3 to 50, got {}", body.links));
+    }
+    Ok(BodyPart::new(body))
+}
+
+impl BodySource for ChainForm {
+    fn kind(&self) -> &'static RobotKind {
+        &KIND
+    }
+    fn genes(&self) -> usize {
+        0
+    }
+    fn brain_genes(&self, representation: &Representation) -> Result<usize, EvaluationError> {
+        let chain = Chain {
+            links: self.links,
+            brain: representation.brain.clone(),
+        };
+        chain
+            .brain
+            .parameter_count(&chain.shape())
+            .map_err(|e| EvaluationError::Representation(e.to_string()))
+    }
+    fn robot(&self, _: &Representation, _genes: &[f64], brain: BrainSpec) -> Result<AnyRobot, EvaluationError> {
+        Ok(AnyRobot::new(Chain {
+            links: self.links,
+            brain,
+        }))
+    }
+    fn size(&self) -> usize {
+        self.links
+    }
+    fn as_serialize(&self) -> &dyn vsrlab_tasks::erased_serde::Serialize {
+        self
+    }
+    fn clone_box(&self) -> Box<dyn BodySource> {
+        Box::new(self.clone())
+    }
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+    fn same_as(&self, other: &dyn BodySource) -> bool {
+        other.as_any().downcast_ref::<ChainForm>() == Some(self)
+    }
+}
 
 /// A ring of `links` square links; its brain takes 3 readings per link (touch, vx, vy).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -306,4 +364,31 @@ fn a_third_kind_plugs_in_from_its_own_file() {
         episode::run(chain.as_robot(), task.task(), 0, TraceLevel::Full).unwrap(),
         outcome
     );
+}
+
+#[test]
+fn a_third_kind_is_evolvable_through_its_body_form() {
+    let body = (KIND.decode_body)(serde_json::json!({"kind": "chain", "links": 6})).unwrap();
+    assert!((KIND.decode_body)(serde_json::json!({"kind": "chain", "links": 2})).is_err());
+    let representation = Representation {
+        body,
+        sensors: None,
+        brain: BrainSpec::parse("distributed-mlp").unwrap(),
+        preset: Default::default(),
+    };
+    // no body genes; the brain's 18 weights are the genotype
+    assert_eq!(representation.genotype_length(), Ok(18));
+    let mut task = TaskSpec::parse("locomotion:flat").unwrap();
+    if let TaskSpec::Locomotion(l) = &mut task {
+        l.duration = 2.0;
+    }
+    let genotype: Vec<f64> = (0..18).map(|i| (i as f64 * 0.37).sin()).collect();
+    let outcome = evaluate(&representation, &genotype, task.task(), 0).unwrap();
+    assert!(outcome.fitness.iter().all(|f| f.is_finite()));
+    assert_eq!(outcome.units, 6);
+    // a genotype of the wrong length is named
+    assert!(evaluate(&representation, &genotype[..17].to_vec(), task.task(), 0).is_err());
+    // the resolved experiment file writes the form back
+    let text = serde_json::to_string(&representation.body).unwrap();
+    assert_eq!(text, r#"{"kind":"chain","links":6}"#);
 }

@@ -91,7 +91,7 @@ pub fn read_text(path: &Path) -> Result<String, FileError> {
 /// missing).
 pub fn any_robot_from_json(text: &str, origin: &str) -> Result<AnyRobot, FileError> {
     let value = serde_json::from_str::<serde_json::Value>(text).unwrap_or_default();
-    let kind = kinds::kind_of_file(&value).unwrap_or(&kinds::voxel::KIND);
+    let kind = kinds::kind_of_file(&value).unwrap_or_else(kinds::default_kind);
     (kind.from_file)(text, origin)
 }
 

@@ -15,6 +15,7 @@
 #![warn(missing_docs)]
 
 pub mod agent;
+pub mod body_part;
 pub mod carrier;
 pub mod channels;
 pub mod damage;
@@ -37,6 +38,8 @@ pub use agent::{Agent, Robot};
 pub use carrier::Carrier;
 pub use damage::Damage;
 pub use episode::{Episode, EpisodeError};
+/// Type-erased serialisation, which a robot kind's [`BodySource::as_serialize`] returns.
+pub use erased_serde;
 pub use escape::Escape;
 pub use fitness::Fitness;
 pub use jump::Jump;
@@ -47,7 +50,7 @@ pub use kinds::{AnyRobot, RobotArgs, RobotDescription, RobotKind, ROBOT_KINDS};
 pub use locomotion::Locomotion;
 pub use outcome::{DamageRecord, Outcome, Polygons, Recorded, Trace, TraceLevel};
 pub use registry::{FieldError, TaskParseError, TaskSpec};
-pub use representation::{evaluate, evaluate_traced, BodyPart, EvaluationError, Mapper, Representation};
+pub use representation::{evaluate, evaluate_traced, BodyPart, BodySource, EvaluationError, Mapper, Representation};
 pub use task::{Flow, Metrics, Objective, Sense, Task};
 pub use terrain::Terrain;
 pub use vsrlab_body::{Channel, Probe};

@@ -1,8 +1,9 @@
 //! From a flat genotype to a robot (thesis §3.3.5): a representation is a body part and a brain
 //! part over one vector `v = [v_body v_brain]`, plus the sensors and the physical preset.
 //!
-//! - The body part is either a fixed [`Morphology`] (no genes) or a [`BodyEncoding`] (Direct: W·H
-//!   genes, GMM: 5 genes per Gaussian).
+//! - The body part ([`BodyPart`]) belongs to a robot kind, which reads its forms: for voxel
+//!   robots a fixed [`vsrlab_body::Morphology`] (no genes) or a body encoding (Direct: W·H genes,
+//!   GMM: 5 genes per Gaussian); for a PSA its size and constants (no genes).
 //! - The brain part is a [`BrainSpec`] *template*: its kind and shape; its parameters come from
 //!   the genotype. With an evolved body the brain's parameter count must not depend on which cells
 //!   the decoded body occupies (distributed MLPs, homogeneous or one block per grid cell); a brain
@@ -12,91 +13,15 @@
 //! call, from as many threads as they like; [`Mapper`] makes it generic over the genotype.
 
 use crate::agent::Robot;
+pub use crate::body_part::{BodyPart, BodySource};
 use crate::episode::{self, EpisodeError};
-use crate::kinds::psa::robot::PsaRobot;
 use crate::kinds::voxel::robot::RobotSpec;
 use crate::outcome::{Outcome, TraceLevel};
 use crate::task::Task;
-use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
-use serde::de::{self, MapAccess, SeqAccess, Visitor};
-use serde::{Deserialize, Deserializer, Serialize};
-use vsrlab_body::encodings::BodyEncoding;
-use vsrlab_body::psa::PsaBody;
-use vsrlab_body::sensors::{SensorConfig, SensorSuite};
-use vsrlab_body::{Morphology, Preset};
-use vsrlab_brain::BrainShape;
+use serde::{Deserialize, Serialize};
+use vsrlab_body::sensors::SensorConfig;
+use vsrlab_body::Preset;
 use vsrlab_brain::BrainSpec;
-
-/// Where the body comes from. In configs: a shape name or text grid (`"biped-4x3"`, `"##/#."`) or
-/// a list of rows for a fixed body; a table with `kind = "direct"` or `"gmm"` for an encoded one;
-/// a table with `kind = "psa"` for a pressure-based soft agent (fixed body, thesis ch. 6).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[serde(untagged)]
-pub enum BodyPart {
-    /// The same body for every genotype (no body genes).
-    Fixed(Morphology),
-    /// A body decoded from the first genes of the genotype.
-    Encoded(BodyEncoding),
-    /// A pressure-based soft agent (no body genes; the genotype is its brain).
-    Psa(PsaTable),
-}
-
-/// A PSA body in an experiment file: `{ kind = "psa", size = …, … }` (see [`PsaBody`]).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct PsaTable {
-    /// Always `psa`.
-    pub kind: PsaKind,
-    /// Size and constants.
-    #[serde(flatten)]
-    pub body: PsaBody,
-}
-
-/// The `kind` tag of a PSA body table.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum PsaKind {
-    /// A pressure-based soft agent.
-    Psa,
-}
-
-impl<'de> Deserialize<'de> for BodyPart {
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        deserializer.deserialize_any(BodyPartVisitor)
-    }
-}
-
-struct BodyPartVisitor;
-
-impl<'de> Visitor<'de> for BodyPartVisitor {
-    type Value = BodyPart;
-
-    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-        f.write_str("a shape name, a text grid, a list of rows, or a body encoding {kind = \"direct\" | \"gmm\", …}")
-    }
-
-    fn visit_str<E: de::Error>(self, s: &str) -> Result<BodyPart, E> {
-        Morphology::parse(s).map(BodyPart::Fixed).map_err(E::custom)
-    }
-
-    fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<BodyPart, A::Error> {
-        Morphology::deserialize(SeqAccessDeserializer::new(seq)).map(BodyPart::Fixed)
-    }
-
-    fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<BodyPart, A::Error> {
-        let table = serde_json::Value::deserialize(MapAccessDeserializer::new(map))?;
-        if table.get("kind").and_then(serde_json::Value::as_str) == Some("psa") {
-            return PsaBody::deserialize(table).map_err(de::Error::custom).map(|body| {
-                BodyPart::Psa(PsaTable {
-                    kind: PsaKind::Psa,
-                    body,
-                })
-            });
-        }
-        BodyEncoding::deserialize(table)
-            .map_err(de::Error::custom)
-            .map(BodyPart::Encoded)
-    }
-}
 
 /// A genotype → robot mapping: body part, sensors, brain template and preset.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -132,10 +57,7 @@ pub enum EvaluationError {
 impl Representation {
     /// Number of body genes (0 for a fixed body).
     pub fn body_genes(&self) -> usize {
-        match &self.body {
-            BodyPart::Fixed(_) | BodyPart::Psa(_) => 0,
-            BodyPart::Encoded(encoding) => encoding.gene_count(),
-        }
+        self.body.genes()
     }
 
     /// The voxel sensors; an error for a voxel body without them.
@@ -145,48 +67,10 @@ impl Representation {
         })
     }
 
-    /// The PSA robot (brain as a template) of a PSA representation.
-    fn psa_robot(&self, body: &PsaBody) -> Result<PsaRobot, EvaluationError> {
-        if self.sensors.is_some() {
-            return Err(EvaluationError::Representation(
-                "sensors: a PSA has its own sensors (3 per mass and 3 for the whole); remove this field".into(),
-            ));
-        }
-        Ok(PsaRobot {
-            body: body.clone(),
-            brain: self.brain.clone(),
-        })
-    }
-
-    /// Number of brain genes. With an encoded body it is computed on the full W×H grid and must be
-    /// the same for a single-voxel body, otherwise the brain cannot follow an evolving body.
+    /// Number of brain genes (the body's kind counts them; with an encoded voxel body they must
+    /// not depend on which cells the body occupies).
     pub fn brain_genes(&self) -> Result<usize, EvaluationError> {
-        match &self.body {
-            BodyPart::Fixed(body) => self.brain_parameters_for(body),
-            BodyPart::Psa(table) => {
-                let robot = self.psa_robot(&table.body)?;
-                robot.validate_body().map_err(representation_message)?;
-                robot.brain_parameters().map_err(representation_message)
-            }
-            BodyPart::Encoded(encoding) => {
-                encoding
-                    .validate()
-                    .map_err(|e| EvaluationError::Representation(format!("body: {e}")))?;
-                let (w, h) = (encoding.width(), encoding.height());
-                let full = Morphology::from_fn(w, h, |_, _| true).map_err(representation_error("body"))?;
-                let single =
-                    Morphology::from_fn(w, h, |x, y| x == 0 && y == 0).map_err(representation_error("body"))?;
-                let count = self.brain_parameters_for(&full)?;
-                if self.brain_parameters_for(&single)? != count {
-                    return Err(EvaluationError::Representation(
-                        "brain: its parameter count depends on the body's voxels, so it cannot be used with an \
-                         evolved body; use a fixed body or a distributed brain"
-                            .to_string(),
-                    ));
-                }
-                Ok(count)
-            }
-        }
+        self.body.brain_genes(self)
     }
 
     /// Total genotype length: body genes then brain genes.
@@ -202,28 +86,7 @@ impl Representation {
     }
 
     /// Builds the robot a genotype stands for, of any body kind.
-    pub fn any_robot(&self, genotype: &[f64]) -> Result<Box<dyn Robot>, EvaluationError> {
-        let BodyPart::Psa(table) = &self.body else {
-            return Ok(Box::new(self.robot(genotype)?));
-        };
-        let expected = self.genotype_length()?;
-        if genotype.len() != expected {
-            return Err(EvaluationError::Genotype(format!(
-                "expected {expected} genes (brain), got {}",
-                genotype.len()
-            )));
-        }
-        let mut robot = self.psa_robot(&table.body)?;
-        robot.brain = self
-            .brain
-            .with_parameters(genotype)
-            .map_err(|e| EvaluationError::Genotype(e.to_string()))?;
-        Ok(Box::new(robot))
-    }
-
-    /// Builds the voxel robot a genotype stands for (an error for a PSA: see
-    /// [`Representation::any_robot`]).
-    pub fn robot(&self, genotype: &[f64]) -> Result<RobotSpec, EvaluationError> {
+    pub fn any_robot(&self, genotype: &[f64]) -> Result<crate::AnyRobot, EvaluationError> {
         let expected = self.genotype_length()?;
         if genotype.len() != expected {
             return Err(EvaluationError::Genotype(format!(
@@ -234,41 +97,23 @@ impl Representation {
             )));
         }
         let (body_genes, brain_genes) = genotype.split_at(self.body_genes());
-        let body = match &self.body {
-            BodyPart::Fixed(body) => body.clone(),
-            BodyPart::Encoded(encoding) => encoding
-                .decode(body_genes)
-                .map_err(|e| EvaluationError::Genotype(format!("body: {e}")))?,
-            BodyPart::Psa(_) => {
-                return Err(EvaluationError::Representation(
-                    "body: a PSA is not a voxel robot (this analysis reads voxel robots only)".into(),
-                ))
-            }
-        };
         let brain = self
             .brain
             .with_parameters(brain_genes)
             .map_err(|e| EvaluationError::Genotype(e.to_string()))?;
-        Ok(RobotSpec {
-            body,
-            preset: self.preset,
-            voxel: None,
-            sensors: self.sensors()?.clone(),
-            brain,
+        self.body.robot(self, body_genes, brain)
+    }
+
+    /// Builds the voxel robot a genotype stands for (an error for a robot of another kind).
+    pub fn robot(&self, genotype: &[f64]) -> Result<RobotSpec, EvaluationError> {
+        let robot = self.any_robot(genotype)?;
+        robot.downcast_ref::<RobotSpec>().cloned().ok_or_else(|| {
+            EvaluationError::Representation(format!(
+                "body: a {} robot is not a voxel robot (this analysis reads voxel robots only)",
+                robot.kind().name
+            ))
         })
     }
-
-    fn brain_parameters_for(&self, body: &Morphology) -> Result<usize, EvaluationError> {
-        let suite = SensorSuite::new(self.sensors()?, body, 0).map_err(representation_error("sensors"))?;
-        let per_voxel: Vec<usize> = (0..body.voxel_count()).map(|v| suite.readings_per_voxel(v)).collect();
-        self.brain
-            .parameter_count(&BrainShape::grid(body, &per_voxel))
-            .map_err(|e| EvaluationError::Representation(e.to_string()))
-    }
-}
-
-fn representation_error<E: std::fmt::Display>(field: &'static str) -> impl Fn(E) -> EvaluationError {
-    move |e| EvaluationError::Representation(format!("{field}: {e}"))
 }
 
 /// A genotype → robot mapping (JGEA's "mapper"): flat vectors through [`Representation`]; graph
@@ -288,12 +133,12 @@ pub trait Mapper<G>: Send + Sync {
 
 impl Mapper<Vec<f64>> for Representation {
     fn robot(&self, genotype: &Vec<f64>) -> Result<Box<dyn Robot>, EvaluationError> {
-        self.any_robot(genotype)
+        self.any_robot(genotype).map(crate::AnyRobot::into_robot)
     }
 }
 
 /// An episode error's message ("robot.brain.x: …") as a representation error ("brain.x: …").
-fn representation_message(e: EpisodeError) -> EvaluationError {
+pub(crate) fn representation_message(e: EpisodeError) -> EvaluationError {
     let text = e.to_string();
     EvaluationError::Representation(text.strip_prefix("robot.").unwrap_or(&text).to_string())
 }

@@ -18,7 +18,7 @@ use crate::graph_genotype::GraphGenotypeConfig;
 use crate::optimizers::{self, OptimizerConfig};
 use error::{dotted, line_column, locate, Step};
 use serde::{Deserialize, Serialize};
-use vsrlab_tasks::{BodyPart, Representation};
+use vsrlab_tasks::Representation;
 
 /// A whole experiment.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -349,11 +349,7 @@ impl Experiment {
     /// Fills in defaults that depend on other fields (e.g. MAP-Elites axes over the body grid,
     /// the ES parent count).
     pub fn resolve(mut self) -> Self {
-        let cells = match &self.representation.body {
-            BodyPart::Encoded(e) => e.width() * e.height(),
-            BodyPart::Fixed(m) => m.width() * m.height(),
-            BodyPart::Psa(t) => t.body.params.masses + 1,
-        };
+        let cells = self.representation.body.size();
         let genes = self.representation.genotype_length().ok();
         self.optimizer.resolve(cells, genes);
         self

@@ -43,6 +43,10 @@ pub struct RobotKind {
     pub body_tables: &'static [&'static str],
     /// The world settings its published models were run with (time step, gravity, solver).
     pub physics: fn() -> vsrlab_physics::WorldSettings,
+    /// Reads one of its `[representation] body` forms (a table with one of its
+    /// [`RobotKind::body_tables`] tags; the default kind also gets every form that is not a
+    /// table); the message names what is wrong.
+    pub decode_body: fn(serde_json::Value) -> Result<crate::BodyPart, String>,
 }
 
 /// The command line's description of a robot: a body, and optionally a brain, sensors and a
@@ -89,6 +93,11 @@ pub trait RobotDescription: Robot + Debug {
 pub struct AnyRobot(Box<dyn RobotDescription>);
 
 impl AnyRobot {
+    /// The robot as the episode loop takes it.
+    pub fn into_robot(self) -> Box<dyn Robot> {
+        self.0
+    }
+
     /// Wraps a robot of a registered kind.
     pub fn new(robot: impl RobotDescription + 'static) -> AnyRobot {
         AnyRobot(Box::new(robot))
@@ -157,6 +166,12 @@ pub fn body_usages() -> String {
         .map(|k| k.body_usage)
         .collect::<Vec<_>>()
         .join(", or ")
+}
+
+/// The kind that reads robot files and body forms that name no kind: the last one, the voxel
+/// robot, whose body forms are any shape name, text grid or list of rows.
+pub fn default_kind() -> &'static RobotKind {
+    ROBOT_KINDS.last().expect("at least one robot kind")
 }
 
 /// The kind whose robots robot files hold under `key`, if any.

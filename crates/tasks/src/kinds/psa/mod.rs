@@ -2,6 +2,7 @@
 //! pressurised gas. Its robot-file form (`{"format", "note", "psa": {…}}`), its command-line
 //! short form (`psa[:small|medium|large]`) and its registry entry.
 
+pub mod body;
 pub mod inflation;
 pub mod robot;
 
@@ -21,6 +22,7 @@ pub const KIND: RobotKind = RobotKind {
     from_file,
     body_tables: &["psa"],
     physics: inflation::psa_physics,
+    decode_body: body::decode,
 };
 
 fn from_short_forms(args: &RobotArgs) -> Result<AnyRobot, RobotArgsError> {

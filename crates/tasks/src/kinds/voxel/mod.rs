@@ -3,6 +3,7 @@
 //! registry entry.
 
 pub mod agent;
+pub mod body;
 pub mod robot;
 pub mod short_forms;
 
@@ -24,6 +25,7 @@ pub const KIND: RobotKind = RobotKind {
     from_file: |text, origin| robot_from_json(text, origin).map(AnyRobot::new),
     body_tables: &["direct", "gmm"],
     physics: || crate::Locomotion::default().physics,
+    decode_body: body::decode,
 };
 
 fn from_short_forms(args: &RobotArgs) -> Result<AnyRobot, RobotArgsError> {

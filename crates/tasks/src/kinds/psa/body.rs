@@ -1,0 +1,97 @@
+//! The PSA's `[representation] body` form: `{ kind = "psa", size = …, … }` (no body genes; the
+//! genotype is the brain's parameters).
+
+use super::robot::PsaRobot;
+use crate::body_part::{BodyPart, BodySource};
+use crate::kinds::{AnyRobot, RobotKind};
+use crate::representation::{representation_message, EvaluationError, Representation};
+use serde::{Deserialize, Serialize};
+use vsrlab_body::psa::PsaBody;
+use vsrlab_brain::BrainSpec;
+
+/// A PSA body in an experiment file: `{ kind = "psa", size = …, … }` (see [`PsaBody`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PsaTable {
+    /// Always `psa`.
+    pub kind: PsaKind,
+    /// Size and constants.
+    #[serde(flatten)]
+    pub body: PsaBody,
+}
+
+/// The `kind` tag of a PSA body table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PsaKind {
+    /// A pressure-based soft agent.
+    Psa,
+}
+
+/// Reads a PSA body table.
+pub(crate) fn decode(value: serde_json::Value) -> Result<BodyPart, String> {
+    let body = PsaBody::deserialize(value).map_err(|e| e.to_string())?;
+    Ok(BodyPart::new(PsaTable {
+        kind: PsaKind::Psa,
+        body,
+    }))
+}
+
+impl PsaTable {
+    /// The PSA robot (brain as given) of a representation; an error if it lists sensors.
+    fn robot_with(&self, representation: &Representation, brain: BrainSpec) -> Result<PsaRobot, EvaluationError> {
+        if representation.sensors.is_some() {
+            return Err(EvaluationError::Representation(
+                "sensors: a PSA has its own sensors (3 per mass and 3 for the whole); remove this field".into(),
+            ));
+        }
+        Ok(PsaRobot {
+            body: self.body.clone(),
+            brain,
+        })
+    }
+}
+
+impl BodySource for PsaTable {
+    fn kind(&self) -> &'static RobotKind {
+        &super::KIND
+    }
+
+    fn genes(&self) -> usize {
+        0
+    }
+
+    fn brain_genes(&self, representation: &Representation) -> Result<usize, EvaluationError> {
+        let robot = self.robot_with(representation, representation.brain.clone())?;
+        robot.validate_body().map_err(representation_message)?;
+        robot.brain_parameters().map_err(representation_message)
+    }
+
+    fn robot(
+        &self,
+        representation: &Representation,
+        _genes: &[f64],
+        brain: BrainSpec,
+    ) -> Result<AnyRobot, EvaluationError> {
+        self.robot_with(representation, brain).map(AnyRobot::new)
+    }
+
+    fn size(&self) -> usize {
+        self.body.params.masses + 1
+    }
+
+    fn as_serialize(&self) -> &dyn erased_serde::Serialize {
+        self
+    }
+
+    fn clone_box(&self) -> Box<dyn BodySource> {
+        Box::new(self.clone())
+    }
+
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+
+    fn same_as(&self, other: &dyn BodySource) -> bool {
+        other.as_any().downcast_ref::<PsaTable>() == Some(self)
+    }
+}

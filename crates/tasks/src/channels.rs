@@ -1,6 +1,6 @@
 //! The channels that the episode loop and the robot kinds record, by name: what traces, videos,
 //! replays and analyses read. A kind's own channels live beside its code (the voxel robot's cells
-//! and lidar in `voxel_robot.rs`, the PSA's pressure in `psa_robot.rs`, a brain's in its
+//! and lidar in `kinds/voxel/agent.rs`, the PSA's pressure in `kinds/psa/robot.rs`, a brain's in its
 //! controller module); this module re-exports them so that consumers find every name in one place.
 
 use crate::outcome::Trace;

@@ -234,102 +234,134 @@ fn find(parent: &mut [usize], mut i: usize) -> usize {
     i
 }
 
+/// Groups of parts joined by welds (the soft solver merges each into one rigid body): each part's
+/// group root, the lowest part index of its group. Without merging, every part is its own group.
+fn weld_groups(b: &WorldBuilder, merge_welds: bool) -> Vec<usize> {
+    let n = b.parts.len();
+    let mut parent: Vec<usize> = (0..n).collect();
+    for &(x, y) in b.welds.iter().filter(|_| merge_welds) {
+        let (rx, ry) = (find(&mut parent, x.0 as usize), find(&mut parent, y.0 as usize));
+        if rx != ry {
+            parent[rx.max(ry)] = rx.min(ry);
+        }
+    }
+    (0..n).map(|i| find(&mut parent, i)).collect()
+}
+
+/// Each part's mass, centre of mass and inertia about it, in the world frame (all parts start
+/// unrotated).
+fn part_mass_properties(b: &WorldBuilder) -> Vec<(f64, Vec2, f64)> {
+    b.parts
+        .iter()
+        .map(|p| {
+            let (area, c, i) = p.shape.mass_properties();
+            (area * p.density, p.position + c, i * p.density)
+        })
+        .collect()
+}
+
+/// One body per weld group, in order of first part, after body 0 (the static world); and each
+/// part's body.
+fn bodies_of_groups(b: &WorldBuilder, roots: &[usize], props: &[(f64, Vec2, f64)]) -> (Bodies, Vec<u32>) {
+    let n = b.parts.len();
+    let mut bodies = Bodies::default();
+    bodies.push(Vec2::ZERO, 0.0, 0.0, 0.0, 0.0); // body 0: the static world
+    let mut body_of_root = vec![NONE; n];
+    let mut part_body = vec![0u32; n];
+    for i in 0..n {
+        let r = roots[i];
+        if body_of_root[r] == NONE {
+            let members: Vec<usize> = (0..n).filter(|&j| roots[j] == r).collect();
+            let mass: f64 = members.iter().map(|&j| props[j].0).sum();
+            let com = members.iter().fold(Vec2::ZERO, |acc, &j| acc + props[j].1 * props[j].0) / mass;
+            let inertia: f64 = if members.iter().any(|&j| b.parts[j].fixed_rotation) {
+                0.0 // never rotates: zero inverse inertia
+            } else {
+                members
+                    .iter()
+                    .map(|&j| props[j].2 + props[j].0 * (props[j].1 - com).length_squared())
+                    .sum()
+            };
+            let lin = members
+                .iter()
+                .map(|&j| b.parts[j].linear_damping * props[j].0)
+                .sum::<f64>()
+                / mass;
+            let ang = members
+                .iter()
+                .map(|&j| b.parts[j].angular_damping * props[j].0)
+                .sum::<f64>()
+                / mass;
+            body_of_root[r] = bodies.len() as u32;
+            bodies.push(com, mass, inertia, lin, ang);
+        }
+        part_body[i] = body_of_root[r];
+    }
+    (bodies, part_body)
+}
+
+/// Each part as a body sees it, and its collision shape in its body's frame.
+fn parts_and_shapes(b: &WorldBuilder, bodies: &Bodies, part_body: &[u32]) -> (Vec<Part>, Vec<Shape>) {
+    let n = b.parts.len();
+    let parts: Vec<Part> = (0..n)
+        .map(|i| Part {
+            body: part_body[i],
+            local: b.parts[i].position - bodies.state[part_body[i] as usize].pos,
+            touching: false,
+        })
+        .collect();
+    let shapes: Vec<Shape> = (0..n)
+        .map(|i| {
+            let p = &b.parts[i];
+            Shape {
+                part: i as u32,
+                body: part_body[i],
+                local: p.shape.transformed(Rot::IDENTITY, parts[i].local),
+                radius: p
+                    .shape
+                    .verts()
+                    .iter()
+                    .map(|v| (*v + parts[i].local).length())
+                    .fold(0.0, f64::max)
+                    + p.shape.radius,
+                friction: p.friction,
+                restitution: p.restitution,
+                group: p.group,
+                collide_within_group: p.collide_within_group,
+            }
+        })
+        .collect();
+    (parts, shapes)
+}
+
+/// The static shapes (ground, obstacles), sorted by the left edge of their boxes.
+fn static_shapes(b: &WorldBuilder) -> Vec<StaticShape> {
+    let mut statics: Vec<StaticShape> = b
+        .statics
+        .iter()
+        .map(|s| StaticShape {
+            polygon: s.polygon,
+            aabb: Aabb::of_points(s.polygon.verts()),
+            friction: s.friction,
+            restitution: s.restitution,
+        })
+        .collect();
+    statics.sort_by(|x, y| x.aabb.min.x.total_cmp(&y.aabb.min.x));
+    statics
+}
+
 impl World {
     pub(crate) fn from_builder(b: WorldBuilder) -> World {
         let n = b.parts.len();
-        let mut parent: Vec<usize> = (0..n).collect();
         // the sequential-impulse solver keeps every part a body of its own, joined by weld joints
         let merge_welds = b.settings.solver == Solver::SoftSubsteps;
         let mut sequential = (!merge_welds).then(SequentialSolver::default);
-        for &(x, y) in b.welds.iter().filter(|_| merge_welds) {
-            let (rx, ry) = (find(&mut parent, x.0 as usize), find(&mut parent, y.0 as usize));
-            if rx != ry {
-                parent[rx.max(ry)] = rx.min(ry);
-            }
-        }
-        // part mass properties in world frame (all parts start unrotated)
-        let props: Vec<(f64, Vec2, f64)> = b
-            .parts
-            .iter()
-            .map(|p| {
-                let (area, c, i) = p.shape.mass_properties();
-                (area * p.density, p.position + c, i * p.density)
-            })
-            .collect();
-        // one body per weld group, in order of first part
-        let mut bodies = Bodies::default();
-        bodies.push(Vec2::ZERO, 0.0, 0.0, 0.0, 0.0); // body 0: the static world
-        let roots: Vec<usize> = (0..n).map(|i| find(&mut parent, i)).collect();
-        let mut body_of_root = vec![NONE; n];
-        let mut part_body = vec![0u32; n];
-        for i in 0..n {
-            let r = roots[i];
-            if body_of_root[r] == NONE {
-                let members: Vec<usize> = (0..n).filter(|&j| roots[j] == r).collect();
-                let mass: f64 = members.iter().map(|&j| props[j].0).sum();
-                let com = members.iter().fold(Vec2::ZERO, |acc, &j| acc + props[j].1 * props[j].0) / mass;
-                let inertia: f64 = if members.iter().any(|&j| b.parts[j].fixed_rotation) {
-                    0.0 // never rotates: zero inverse inertia
-                } else {
-                    members
-                        .iter()
-                        .map(|&j| props[j].2 + props[j].0 * (props[j].1 - com).length_squared())
-                        .sum()
-                };
-                let lin = members
-                    .iter()
-                    .map(|&j| b.parts[j].linear_damping * props[j].0)
-                    .sum::<f64>()
-                    / mass;
-                let ang = members
-                    .iter()
-                    .map(|&j| b.parts[j].angular_damping * props[j].0)
-                    .sum::<f64>()
-                    / mass;
-                body_of_root[r] = bodies.len() as u32;
-                bodies.push(com, mass, inertia, lin, ang);
-            }
-            part_body[i] = body_of_root[r];
-        }
-        let parts: Vec<Part> = (0..n)
-            .map(|i| Part {
-                body: part_body[i],
-                local: b.parts[i].position - bodies.state[part_body[i] as usize].pos,
-                touching: false,
-            })
-            .collect();
-        let shapes: Vec<Shape> = (0..n)
-            .map(|i| {
-                let p = &b.parts[i];
-                Shape {
-                    part: i as u32,
-                    body: part_body[i],
-                    local: p.shape.transformed(Rot::IDENTITY, parts[i].local),
-                    radius: p
-                        .shape
-                        .verts()
-                        .iter()
-                        .map(|v| (*v + parts[i].local).length())
-                        .fold(0.0, f64::max)
-                        + p.shape.radius,
-                    friction: p.friction,
-                    restitution: p.restitution,
-                    group: p.group,
-                    collide_within_group: p.collide_within_group,
-                }
-            })
-            .collect();
-        let mut statics: Vec<StaticShape> = b
-            .statics
-            .iter()
-            .map(|s| StaticShape {
-                polygon: s.polygon,
-                aabb: Aabb::of_points(s.polygon.verts()),
-                friction: s.friction,
-                restitution: s.restitution,
-            })
-            .collect();
-        statics.sort_by(|x, y| x.aabb.min.x.total_cmp(&y.aabb.min.x));
+        let roots = weld_groups(&b, merge_welds);
+        let props = part_mass_properties(&b);
+        let (bodies, part_body) = bodies_of_groups(&b, &roots, &props);
+        let (parts, shapes) = parts_and_shapes(&b, &bodies, &part_body);
+        let statics = static_shapes(&b);
+
         let static_aabbs: Vec<Aabb> = statics.iter().map(|s| s.aabb).collect();
         let mut excluded: Vec<(u32, u32)> = b.excluded.iter().map(|&(x, y)| (x.0, y.0)).collect();
         // a world point relative to a body's centre of mass (bodies start unrotated)

@@ -225,6 +225,148 @@ fn remap_slots(slots: &mut [u32], order: &[usize]) {
     }
 }
 
+/// What joining parts needs: the builder, each part's body and mass properties, the bodies.
+struct Joining<'a> {
+    b: &'a WorldBuilder,
+    part_body: &'a [u32],
+    props: &'a [(f64, Vec2, f64)],
+    bodies: &'a Bodies,
+}
+
+impl Joining<'_> {
+    /// A world point relative to a body's centre of mass (bodies start unrotated).
+    fn local(&self, world: Vec2, body: u32) -> Vec2 {
+        world - self.bodies.state[body as usize].pos
+    }
+
+    /// The builder's springs: the soft solver's (with their mass models) or, with the
+    /// sequential-impulse solver, its own; each builder spring's slot (`NONE` within a body).
+    /// Parts joined by a spring that does not collide are added to `excluded`.
+    fn springs(
+        &self,
+        sequential: &mut Option<SequentialSolver>,
+        excluded: &mut Vec<(u32, u32)>,
+    ) -> (Vec<Spring>, Vec<SpringModel>, Vec<u32>) {
+        let mut springs = Vec::new();
+        let mut spring_models = Vec::new();
+        let mut spring_slot = Vec::new();
+        for s in &self.b.springs {
+            if !s.collide_connected {
+                excluded.push((s.part_a.0, s.part_b.0));
+            }
+            let (pa, pb) = (s.part_a.0 as usize, s.part_b.0 as usize);
+            let (ba, bb) = (self.part_body[pa], self.part_body[pb]);
+            if ba == bb {
+                spring_slot.push(NONE);
+                continue;
+            }
+            let (ma, mb) = (self.props[pa].0, self.props[pb].0);
+            let world_a = self.b.parts[pa].position + s.anchor_a;
+            let world_b = self.b.parts[pb].position + s.anchor_b;
+            if let Some(si) = sequential {
+                spring_slot.push(si.joints.springs.len() as u32);
+                si.joints.springs.push(SequentialSpring::new(
+                    ba,
+                    bb,
+                    self.local(world_a, ba),
+                    self.local(world_b, bb),
+                    s.rest_length,
+                    s.frequency,
+                    s.damping_ratio,
+                    s.mass_model,
+                ));
+                continue;
+            }
+            spring_slot.push(springs.len() as u32);
+            springs.push(Spring {
+                a: ba,
+                b: bb,
+                local_a: self.local(world_a, ba),
+                local_b: self.local(world_b, bb),
+                rest: s.rest_length,
+            });
+            let part_inv_inertia = |k: usize| {
+                if self.b.parts[k].fixed_rotation {
+                    0.0
+                } else {
+                    1.0 / self.props[k].2
+                }
+            };
+            spring_models.push(SpringModel {
+                arm_a: world_a - self.props[pa].1,
+                arm_b: world_b - self.props[pb].1,
+                part_inv_mass_a: 1.0 / ma,
+                part_inv_inertia_a: part_inv_inertia(pa),
+                part_inv_mass_b: 1.0 / mb,
+                part_inv_inertia_b: part_inv_inertia(pb),
+                omega: 2.0 * std::f64::consts::PI * s.frequency,
+                zeta: s.damping_ratio,
+                model: s.mass_model,
+                reduced_mass: ma * mb / (ma + mb),
+            });
+        }
+        (springs, spring_models, spring_slot)
+    }
+
+    /// The builder's ropes, as [`Joining::springs`] does springs.
+    fn ropes(
+        &self,
+        sequential: &mut Option<SequentialSolver>,
+        excluded: &mut Vec<(u32, u32)>,
+    ) -> (Vec<Rope>, Vec<u32>) {
+        let mut ropes = Vec::new();
+        let mut rope_slot = Vec::new();
+        for r in &self.b.ropes {
+            if !r.collide_connected {
+                excluded.push((r.part_a.0, r.part_b.0));
+            }
+            let (pa, pb) = (r.part_a.0 as usize, r.part_b.0 as usize);
+            let (ba, bb) = (self.part_body[pa], self.part_body[pb]);
+            if ba == bb {
+                rope_slot.push(NONE);
+                continue;
+            }
+            let world_a = self.b.parts[pa].position + r.anchor_a;
+            let world_b = self.b.parts[pb].position + r.anchor_b;
+            if let Some(si) = sequential {
+                rope_slot.push(si.joints.ropes.len() as u32);
+                si.joints.ropes.push(SequentialRope::new(
+                    ba,
+                    bb,
+                    self.local(world_a, ba),
+                    self.local(world_b, bb),
+                    r.min_length,
+                ));
+                continue;
+            }
+            rope_slot.push(ropes.len() as u32);
+            ropes.push(Rope {
+                a: ba,
+                b: bb,
+                local_a: self.local(world_a, ba),
+                local_b: self.local(world_b, bb),
+                min_length: r.min_length,
+                impulse: 0.0,
+                active: true,
+            });
+        }
+        (ropes, rope_slot)
+    }
+
+    /// The sequential-impulse solver's weld joints: welded parts never collide; the weld's anchor
+    /// is the first part's centre of mass (2D-VSR-Sim's, vsr-model.md §1.8).
+    fn welds(&self, si: &mut SequentialSolver, excluded: &mut Vec<(u32, u32)>) {
+        for &(x, y) in &self.b.welds {
+            excluded.push((x.0, y.0));
+            let (ba, bb) = (self.part_body[x.0 as usize], self.part_body[y.0 as usize]);
+            let anchor = self.bodies.state[ba as usize].pos;
+            si.joints
+                .welds
+                .push(Weld::new(ba, bb, Vec2::ZERO, self.local(anchor, bb), 0.0));
+        }
+    }
+}
+
 /// Union–find root with path halving.
 fn find(parent: &mut [usize], mut i: usize) -> usize {
     while parent[i] != i {
@@ -364,113 +506,16 @@ impl World {
 
         let static_aabbs: Vec<Aabb> = statics.iter().map(|s| s.aabb).collect();
         let mut excluded: Vec<(u32, u32)> = b.excluded.iter().map(|&(x, y)| (x.0, y.0)).collect();
-        // a world point relative to a body's centre of mass (bodies start unrotated)
-        let local = |world: Vec2, body: u32| world - bodies.state[body as usize].pos;
-        let mut springs = Vec::new();
-        let mut spring_models = Vec::new();
-        let mut spring_slot = Vec::new();
-        for s in &b.springs {
-            if !s.collide_connected {
-                excluded.push((s.part_a.0, s.part_b.0));
-            }
-            let (pa, pb) = (s.part_a.0 as usize, s.part_b.0 as usize);
-            let (ba, bb) = (part_body[pa], part_body[pb]);
-            if ba == bb {
-                spring_slot.push(NONE);
-                continue;
-            }
-            let (ma, mb) = (props[pa].0, props[pb].0);
-            let world_a = b.parts[pa].position + s.anchor_a;
-            let world_b = b.parts[pb].position + s.anchor_b;
-            if let Some(si) = &mut sequential {
-                spring_slot.push(si.joints.springs.len() as u32);
-                si.joints.springs.push(SequentialSpring::new(
-                    ba,
-                    bb,
-                    local(world_a, ba),
-                    local(world_b, bb),
-                    s.rest_length,
-                    s.frequency,
-                    s.damping_ratio,
-                    s.mass_model,
-                ));
-                continue;
-            }
-            spring_slot.push(springs.len() as u32);
-            springs.push(Spring {
-                a: ba,
-                b: bb,
-                local_a: local(world_a, ba),
-                local_b: local(world_b, bb),
-                rest: s.rest_length,
-            });
-            let part_inv_inertia = |k: usize| {
-                if b.parts[k].fixed_rotation {
-                    0.0
-                } else {
-                    1.0 / props[k].2
-                }
-            };
-            spring_models.push(SpringModel {
-                arm_a: world_a - props[pa].1,
-                arm_b: world_b - props[pb].1,
-                part_inv_mass_a: 1.0 / ma,
-                part_inv_inertia_a: part_inv_inertia(pa),
-                part_inv_mass_b: 1.0 / mb,
-                part_inv_inertia_b: part_inv_inertia(pb),
-                omega: 2.0 * std::f64::consts::PI * s.frequency,
-                zeta: s.damping_ratio,
-                model: s.mass_model,
-                reduced_mass: ma * mb / (ma + mb),
-            });
-        }
-        let mut ropes = Vec::new();
-        let mut rope_slot = Vec::new();
-        for r in &b.ropes {
-            if !r.collide_connected {
-                excluded.push((r.part_a.0, r.part_b.0));
-            }
-            let (pa, pb) = (r.part_a.0 as usize, r.part_b.0 as usize);
-            let (ba, bb) = (part_body[pa], part_body[pb]);
-            if ba == bb {
-                rope_slot.push(NONE);
-                continue;
-            }
-            let world_a = b.parts[pa].position + r.anchor_a;
-            let world_b = b.parts[pb].position + r.anchor_b;
-            if let Some(si) = &mut sequential {
-                rope_slot.push(si.joints.ropes.len() as u32);
-                si.joints.ropes.push(SequentialRope::new(
-                    ba,
-                    bb,
-                    local(world_a, ba),
-                    local(world_b, bb),
-                    r.min_length,
-                ));
-                continue;
-            }
-            rope_slot.push(ropes.len() as u32);
-            ropes.push(Rope {
-                a: ba,
-                b: bb,
-                local_a: local(world_a, ba),
-                local_b: local(world_b, bb),
-                min_length: r.min_length,
-                impulse: 0.0,
-                active: true,
-            });
-        }
+        let joining = Joining {
+            b: &b,
+            part_body: &part_body,
+            props: &props,
+            bodies: &bodies,
+        };
+        let (springs, spring_models, mut spring_slot) = joining.springs(&mut sequential, &mut excluded);
+        let (ropes, mut rope_slot) = joining.ropes(&mut sequential, &mut excluded);
         if let Some(si) = &mut sequential {
-            // welded parts never collide; the weld's anchor is the first part's centre of mass
-            // (2D-VSR-Sim's, vsr-model.md §1.8)
-            for &(x, y) in &b.welds {
-                excluded.push((x.0, y.0));
-                let (ba, bb) = (part_body[x.0 as usize], part_body[y.0 as usize]);
-                let anchor = bodies.state[ba as usize].pos;
-                si.joints
-                    .welds
-                    .push(Weld::new(ba, bb, Vec2::ZERO, local(anchor, bb), 0.0));
-            }
+            joining.welds(si, &mut excluded);
         }
         let excluded = ExcludedPairs::new(n, excluded);
         // order constraints so that neighbours in the solver loop touch different bodies: the

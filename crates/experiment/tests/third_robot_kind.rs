@@ -75,18 +75,6 @@ impl BodySource for ChainForm {
     fn size(&self) -> usize {
         self.links
     }
-    fn as_serialize(&self) -> &dyn vsrlab_tasks::erased_serde::Serialize {
-        self
-    }
-    fn clone_box(&self) -> Box<dyn BodySource> {
-        Box::new(self.clone())
-    }
-    fn as_any(&self) -> &dyn std::any::Any {
-        self
-    }
-    fn same_as(&self, other: &dyn BodySource) -> bool {
-        other.as_any().downcast_ref::<ChainForm>() == Some(self)
-    }
 }
 
 /// A ring of `links` square links; its brain takes 3 readings per link (touch, vx, vy).

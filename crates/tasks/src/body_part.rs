@@ -12,8 +12,9 @@ use std::fmt::Debug;
 use vsrlab_body::Morphology;
 use vsrlab_brain::BrainSpec;
 
-/// A robot kind's body in a representation.
-pub trait BodySource: Debug + Send + Sync {
+/// A robot kind's body in a representation. The type-erased plumbing ([`BodyFormCopy`]) comes
+/// with any `Clone + PartialEq + Serialize` type.
+pub trait BodySource: Debug + Send + Sync + BodyFormCopy {
     /// The robot kind it makes.
     fn kind(&self) -> &'static RobotKind;
     /// Number of body genes (0 for a fixed body).
@@ -34,6 +35,11 @@ pub trait BodySource: Debug + Send + Sync {
     fn fixed_grid(&self) -> Option<&Morphology> {
         None
     }
+}
+
+/// What a boxed [`BodySource`] needs to be copied, compared and written; implemented for every
+/// `Clone + PartialEq + Serialize` body form.
+pub trait BodyFormCopy {
     /// The experiment-file form, for writing resolved experiment files.
     fn as_serialize(&self) -> &dyn erased_serde::Serialize;
     /// A boxed copy.
@@ -42,6 +48,21 @@ pub trait BodySource: Debug + Send + Sync {
     fn as_any(&self) -> &dyn Any;
     /// Whether `other` is the same body.
     fn same_as(&self, other: &dyn BodySource) -> bool;
+}
+
+impl<T: BodySource + Clone + PartialEq + Serialize + 'static> BodyFormCopy for T {
+    fn as_serialize(&self) -> &dyn erased_serde::Serialize {
+        self
+    }
+    fn clone_box(&self) -> Box<dyn BodySource> {
+        Box::new(self.clone())
+    }
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+    fn same_as(&self, other: &dyn BodySource) -> bool {
+        other.as_any().downcast_ref::<T>() == Some(self)
+    }
 }
 
 /// Where the body comes from, for any robot kind: in experiment files a shape name, a text grid

@@ -78,20 +78,4 @@ impl BodySource for PsaTable {
     fn size(&self) -> usize {
         self.body.params.masses + 1
     }
-
-    fn as_serialize(&self) -> &dyn erased_serde::Serialize {
-        self
-    }
-
-    fn clone_box(&self) -> Box<dyn BodySource> {
-        Box::new(self.clone())
-    }
-
-    fn as_any(&self) -> &dyn std::any::Any {
-        self
-    }
-
-    fn same_as(&self, other: &dyn BodySource) -> bool {
-        other.as_any().downcast_ref::<PsaTable>() == Some(self)
-    }
 }

@@ -38,7 +38,7 @@ pub use agent::{Agent, Robot};
 pub use carrier::Carrier;
 pub use damage::Damage;
 pub use episode::{Episode, EpisodeError};
-/// Type-erased serialisation, which a robot kind's [`BodySource::as_serialize`] returns.
+/// Type-erased serialisation, which a body form's [`body_part::BodyFormCopy::as_serialize`] returns.
 pub use erased_serde;
 pub use escape::Escape;
 pub use fitness::Fitness;

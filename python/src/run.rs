@@ -7,6 +7,7 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use std::path::{Path, PathBuf};
 use vsrlab_experiment::evaluator::{Evaluated, Evaluator, RobotEvaluator};
+use vsrlab_experiment::genotypes::vector::run_vectors;
 use vsrlab_experiment::runner::{self, Flow, Observer, Progress, RunOptions, RunSummary};
 use vsrlab_experiment::{config, Experiment};
 
@@ -149,17 +150,21 @@ pub fn run(
     };
     let summaries = py.detach(|| -> Result<Vec<RunSummary>, String> {
         match evaluate {
-            None => runner::run_configured(&experiment, &out, &options, &mut reporter).map_err(|e| e.to_string()),
+            None => vsrlab_experiment::run_configured(&experiment, &out, &options, &mut reporter).map_err(|e| e.to_string()),
             Some(callable) => {
-                if experiment.genotype.is_some() {
-                    return Err("evaluate: graph genotypes are evaluated locally only; leave evaluate out".into());
+                let kind = experiment.genotype_kind();
+                if !kind.rows() {
+                    return Err(format!(
+                        "evaluate: {} genotypes are not rows of numbers and are evaluated locally only; leave evaluate out",
+                        kind.name()
+                    ));
                 }
                 let local = RobotEvaluator::new(&experiment).map_err(|e| e.to_string())?;
                 let remote = Remote {
                     local,
                     evaluate: callable,
                 };
-                runner::run_experiment(&experiment, &remote, &out, &options, &mut reporter).map_err(|e| e.to_string())
+                run_vectors(&experiment, &remote, &out, &options, &mut reporter).map_err(|e| e.to_string())
             }
         }
     });

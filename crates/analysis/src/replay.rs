@@ -6,8 +6,9 @@
 
 use crate::results::SnapshotRow;
 use crate::run_folder::RunFolder;
-use vsrlab_tasks::{episode, EpisodeError, EvaluationError, Representation, Robot, TaskSpec, Trace, TraceLevel};
-use vsrlab_tasks::{RobotSpec, Task};
+use std::sync::Arc;
+use vsrlab_tasks::Task;
+use vsrlab_tasks::{episode, EpisodeError, EvaluationError, Robot, StoredGenotypes, TaskSpec, Trace, TraceLevel};
 
 /// An error of the caller's own type (setup readers, video writers).
 pub type BoxError = Box<dyn std::error::Error + Send + Sync>;
@@ -34,10 +35,10 @@ pub fn replay(robot: &dyn Robot, task: &dyn Task, seed: u64, level: TraceLevel) 
 }
 
 /// How the individuals of one experiment are replayed: what its configuration says.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Clone)]
 pub struct ReplaySetup {
-    /// Genotype → robot mapping.
-    pub representation: Representation,
+    /// Stored genotype → robot, for the experiment's genotype kind.
+    pub genotypes: Arc<dyn StoredGenotypes>,
     /// The task.
     pub task: TaskSpec,
     /// The episode seed of every evaluation when `random_terrain` is off.
@@ -46,12 +47,22 @@ pub struct ReplaySetup {
     pub random_terrain: bool,
 }
 
+impl std::fmt::Debug for ReplaySetup {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ReplaySetup")
+            .field("task", &self.task)
+            .field("episode_seed", &self.episode_seed)
+            .field("random_terrain", &self.random_terrain)
+            .finish_non_exhaustive()
+    }
+}
+
 impl ReplaySetup {
     /// The robot of a snapshot row and its full trace, replayed with the row's episode seed
     /// (the episode evolution saw).
-    pub fn replay_row(&self, row: &SnapshotRow) -> Result<(RobotSpec, Trace), ReplayError> {
-        let robot = self.representation.robot(&row.genotype)?;
-        let trace = replay(&robot, self.task.task(), row.seed, TraceLevel::Full)?;
+    pub fn replay_row(&self, row: &SnapshotRow) -> Result<(Box<dyn Robot>, Trace), ReplayError> {
+        let robot = self.genotypes.robot(&row.genotype)?;
+        let trace = replay(robot.as_ref(), self.task.task(), row.seed, TraceLevel::Full)?;
         Ok((robot, trace))
     }
 

@@ -143,16 +143,11 @@ pub struct SnapshotRow {
     /// Why the evaluation failed.
     #[serde(default)]
     pub error: Option<String>,
-    /// The genotype when it is a flat vector; empty for other genotypes (graphs), which
-    /// analyses that replay snapshots skip.
-    #[serde(default, deserialize_with = "flat_or_empty")]
-    pub genotype: Vec<f64>,
-}
-
-/// A flat genotype, or nothing for a genotype of another shape.
-fn flat_or_empty<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<Vec<f64>, D::Error> {
-    let value = serde_json::Value::deserialize(deserializer)?;
-    Ok(serde_json::from_value(value).unwrap_or_default())
+    /// The genotype as stored, of any genotype kind (a list of genes, a graph, …): the
+    /// experiment's genotype kind reads it ([`crate::replay::ReplaySetup::replay_row`]); null
+    /// when the row has none.
+    #[serde(default)]
+    pub genotype: serde_json::Value,
 }
 
 impl SnapshotRow {
@@ -555,15 +550,16 @@ mod tests {
         assert_eq!(run.final_best(), 0.7);
         assert_eq!(run.snapshots.iter().map(|s| s.0).collect::<Vec<_>>(), vec![40, 80]);
         let rows = read_snapshot(&run.final_snapshot().unwrap().1).unwrap();
-        assert_eq!(rows[0].genotype, vec![0.1, -0.2]);
+        assert_eq!(rows[0].genotype, serde_json::json!([0.1, -0.2]));
         assert_eq!(rows[0].body.as_deref(), Some("##/##"));
         let graph = root.join("graph.jsonl");
         let line = r#"{"generation": 3, "fitness": 0.5, "genotype": {"neurons": [], "edges": [], "parameters": []}}"#;
         write(&graph, line);
         let rows = read_snapshot(&graph).unwrap();
-        assert!(
-            rows[0].genotype.is_empty(),
-            "a graph genotype reads as no flat genotype"
+        assert_eq!(
+            rows[0].genotype["neurons"],
+            serde_json::json!([]),
+            "a graph genotype is read whole"
         );
         assert_eq!(rows[0].fitness, Some(0.5));
         assert_eq!(exps[0].fitness_kind(), "velocity");

@@ -8,7 +8,7 @@ use vsrlab_analysis::RunFolder;
 pub fn read_setup(folder: &RunFolder) -> Result<ReplaySetup, BoxError> {
     let e = vsrlab_experiment::config::load(&folder.experiment_toml())?;
     Ok(ReplaySetup {
-        representation: e.representation,
+        genotypes: e.genotype_kind().stored(&e)?,
         task: e.task.spec,
         episode_seed: e.task.episode_seed,
         random_terrain: e.task.random_terrain_per_evaluation,

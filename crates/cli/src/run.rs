@@ -5,8 +5,8 @@ use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use vsrlab_experiment::memory::{gib, MemoryEstimate};
-use vsrlab_experiment::runner::{run_configured, worker_threads, Flow, Observer, Progress, RunOptions, RunSummary};
-use vsrlab_experiment::{config, graph_genotype, Experiment, RobotEvaluator};
+use vsrlab_experiment::runner::{worker_threads, Flow, Observer, Progress, RunOptions, RunSummary};
+use vsrlab_experiment::{config, run_configured, Experiment};
 
 /// Arguments of `vsrlab run`.
 #[derive(Args, Debug)]
@@ -237,21 +237,8 @@ fn run_one(experiment: &Experiment, out: &Path, a: &RunArgs) -> Result<(), Strin
         memory_limit: Some((a.max_memory_gib * (1u64 << 30) as f64).min(u64::MAX as f64) as u64),
     };
     let threads = worker_threads(options.threads);
-    let (genes, genotype) = match &experiment.genotype {
-        None => {
-            let genes = RobotEvaluator::new(experiment)
-                .map_err(|e| e.to_string())?
-                .genotype_length();
-            (genes, format!("{genes} genes per genotype"))
-        }
-        Some(graph) => {
-            let (neurons, edges) = graph_genotype::start_size(experiment, graph)?;
-            (
-                2 * edges,
-                format!("graph genotypes from {neurons} neurons and {edges} edges"),
-            )
-        }
-    };
+    let size = experiment.genotype_kind().size(experiment)?;
+    let (genes, genotype) = (size.genes, size.text);
     let estimate = MemoryEstimate::of(experiment, genes, threads);
     eprintln!(
         "{name}: {} run(s), {genotype}, about {} per run, output in {}",

@@ -33,12 +33,13 @@ impl BatchEvaluator {
     /// The evaluator of a parsed experiment; refuses graph genotypes, which are not rows of
     /// numbers.
     pub fn new(experiment: Experiment) -> Result<BatchEvaluator, BatchError> {
-        if experiment.genotype.is_some() {
-            return Err(BatchError(
+        let kind = experiment.genotype_kind();
+        if !kind.rows() {
+            return Err(BatchError(format!(
                 "genotype: batch evaluation takes flat genotypes (rows of numbers); this experiment's \
-                 genotypes are graphs"
-                    .into(),
-            ));
+                 genotypes are of kind {}",
+                kind.name()
+            )));
         }
         let evaluator = RobotEvaluator::new(&experiment).map_err(|e| BatchError(e.to_string()))?;
         let genes = evaluator.genotype_length();
@@ -193,6 +194,6 @@ evaluations = 100
         let experiment = config::load_all(path.as_ref()).unwrap().remove(0);
         assert!(experiment.genotype.is_some());
         let err = BatchEvaluator::new(experiment).unwrap_err().0;
-        assert!(err.starts_with("genotype:") && err.contains("graphs"), "{err}");
+        assert!(err.starts_with("genotype:") && err.contains("of kind graph"), "{err}");
     }
 }

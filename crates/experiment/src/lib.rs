@@ -8,6 +8,8 @@
 //! - [`optimizers`]: the registry of optimizer kinds and their `[optimizer]` parameters, and
 //!   [`optimizers::SearchOptimizer`], what the runner needs of an optimizer over any genotype.
 //! - [`genotype`]: what the runner needs of a genotype type (serde and a key).
+//! - [`genotypes`]: the registry of genotype kinds (`[genotype] kind`: flat vectors, the graph
+//!   of the self-organizing controller) and [`run_configured`], which runs any experiment file.
 //! - [`evaluator`]: genotype → fitness values, descriptor, speciation features, snapshot record.
 //! - [`features`]: simple morphology descriptors, dynamic pose and behaviour spectrum.
 //! - [`runner`]: the ask → parallel evaluate → tell loop, with CSV logs, snapshots, the best
@@ -31,12 +33,10 @@
 //!
 //! ## Example
 //! ```no_run
-//! use vsrlab_experiment::{config, evaluator::RobotEvaluator, runner};
+//! use vsrlab_experiment::{config, run_configured, runner};
 //! let experiment = config::load("experiments/quickstart.toml".as_ref()).unwrap();
-//! let evaluator = RobotEvaluator::new(&experiment).unwrap();
 //! let options = runner::RunOptions::default();
-//! runner::run_experiment(&experiment, &evaluator, "out/quickstart".as_ref(), &options, &mut runner::Silent)
-//!     .unwrap();
+//! run_configured(&experiment, "out/quickstart".as_ref(), &options, &mut runner::Silent).unwrap();
 //! ```
 #![warn(missing_docs)]
 
@@ -48,7 +48,7 @@ pub mod cpu_time;
 pub mod evaluator;
 pub mod features;
 pub mod genotype;
-pub mod graph_genotype;
+pub mod genotypes;
 pub mod memory;
 pub mod optimizers;
 pub mod output_lock;
@@ -60,6 +60,5 @@ pub use bench::{run_bench, BenchError, BenchOptions, BenchReport};
 pub use config::{ConfigError, Experiment};
 pub use evaluator::{Evaluated, Evaluator, Record, RobotEvaluator};
 pub use genotype::Genotype;
-pub use runner::{
-    run_experiment, run_search, Flow, Observer, Plan, Progress, RunError, RunOptions, RunSummary, Silent,
-};
+pub use genotypes::run_configured;
+pub use runner::{run_search, Flow, Observer, Plan, Progress, RunError, RunOptions, RunSummary, Silent};

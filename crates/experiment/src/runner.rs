@@ -29,10 +29,9 @@
 
 use crate::checkpoint::{self, content_hash, Checkpoint, RunState, SnapshotEntry};
 use crate::config::{Experiment, OutputConfig, StopConfig};
-use crate::evaluator::{Evaluated, Evaluator, Record, RobotEvaluator};
+use crate::evaluator::{Evaluated, Evaluator, Record};
 use crate::genotype::Genotype;
-use crate::memory::{MemoryEstimate, DEFAULT_MEMORY_LIMIT};
-use crate::optimizers::{AnyOptimizer, SearchOptimizer};
+use crate::optimizers::SearchOptimizer;
 use crate::output_lock::{OutputLock, LOCK_FILE};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet};
@@ -100,7 +99,7 @@ pub struct RunOptions {
     /// Continue runs from their checkpoints (and skip finished runs) instead of refusing a
     /// non-empty output folder.
     pub resume: bool,
-    /// Most bytes one run may be estimated to need (`None`: [`DEFAULT_MEMORY_LIMIT`]); see
+    /// Most bytes one run may be estimated to need (`None`: [`DEFAULT_MEMORY_LIMIT`](crate::memory::DEFAULT_MEMORY_LIMIT)); see
     /// [`crate::memory`].
     pub memory_limit: Option<u64>,
 }
@@ -291,57 +290,6 @@ pub fn run_dir(out: &Path, run: usize, runs: usize) -> PathBuf {
     RunFolder::new(out).run_dir(run, runs)
 }
 
-/// Runs every run of a flat-vector experiment file into `out` (see the module docs for the
-/// files), with the optimizer its `[optimizer]` table names.
-pub fn run_experiment(
-    experiment: &Experiment,
-    evaluator: &dyn Evaluator<Vec<f64>>,
-    out: &Path,
-    options: &RunOptions,
-    observer: &mut dyn Observer,
-) -> Result<Vec<RunSummary>, RunError> {
-    let dimension = experiment
-        .representation
-        .genotype_length()
-        .map_err(|e| RunError::Other(e.to_string()))?;
-    let senses: Vec<Sense> = experiment
-        .task
-        .spec
-        .task()
-        .objectives()
-        .iter()
-        .map(|o| match o.sense {
-            vsrlab_tasks::Sense::Maximize => Sense::Maximize,
-            vsrlab_tasks::Sense::Minimize => Sense::Minimize,
-        })
-        .collect();
-    check_threads(options)?;
-    MemoryEstimate::of(experiment, dimension, worker_threads(options.threads))
-        .check(options.memory_limit.unwrap_or(DEFAULT_MEMORY_LIMIT))
-        .map_err(RunError::Mismatch)?;
-    let new_optimizer = |seed: u64| -> Result<AnyOptimizer, RunError> {
-        Ok(experiment.optimizer.kind().build(dimension, &senses, seed)?)
-    };
-    run_search(&Plan::of(experiment), &new_optimizer, evaluator, out, options, observer)
-}
-
-/// Runs every run of an experiment file into `out`, whatever its genotype: flat vectors with the
-/// optimizer its `[optimizer]` table names, or the graphs of `[genotype] kind = "graph"`.
-pub fn run_configured(
-    experiment: &Experiment,
-    out: &Path,
-    options: &RunOptions,
-    observer: &mut dyn Observer,
-) -> Result<Vec<RunSummary>, RunError> {
-    match &experiment.genotype {
-        None => {
-            let evaluator = RobotEvaluator::new(experiment).map_err(|e| RunError::Other(e.to_string()))?;
-            run_experiment(experiment, &evaluator, out, options, observer)
-        }
-        Some(graph) => crate::graph_genotype::run(experiment, graph, out, options, observer),
-    }
-}
-
 /// Runs every run of a plan into `out` with optimizers of any genotype type: `new_optimizer`
 /// builds the optimizer of a run from its seed.
 pub fn run_search<G: Genotype, O: SearchOptimizer<G>>(
@@ -425,7 +373,7 @@ pub fn worker_threads(requested: usize) -> usize {
 }
 
 /// Refuses more than [`MAX_THREADS`] worker threads.
-fn check_threads(options: &RunOptions) -> Result<(), RunError> {
+pub(crate) fn check_threads(options: &RunOptions) -> Result<(), RunError> {
     if options.threads > MAX_THREADS {
         return Err(RunError::Mismatch(format!(
             "threads: at most {MAX_THREADS} worker threads, got {}",

@@ -3,13 +3,10 @@
 //! time estimate from one timed evaluation.
 
 use crate::config::Experiment;
-use crate::evaluator::{Evaluator, RobotEvaluator};
 use crate::memory::MemoryEstimate;
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
 use std::time::Instant;
 
-/// Random genotypes timed for the estimate.
+/// Initial genotypes timed for the estimate.
 const TIMED_EVALUATIONS: usize = 3;
 
 /// What an experiment will do.
@@ -23,8 +20,9 @@ pub struct Validation {
     pub memory: MemoryEstimate,
     /// Evaluations per run, when a stop criterion bounds them (`None` for a wall-clock stop only).
     pub evaluations_per_run: Option<u64>,
-    /// Mean seconds of one evaluation of a random genotype (genes uniform in [-1, 1], seeded):
-    /// evolved bodies are often larger, so the time estimate is a lower figure.
+    /// Mean seconds of one evaluation of an initial genotype (flat vectors: genes uniform in
+    /// [-1, 1], seeded; other kinds: their first initial genotypes): evolved bodies are often
+    /// larger, so the time estimate is a lower figure.
     pub seconds_per_evaluation: f64,
     /// Estimated wall seconds of the whole experiment on `threads` threads (`None` when the
     /// evaluations are not bounded).
@@ -34,32 +32,19 @@ pub struct Validation {
 }
 
 /// Checks an experiment (already parsed and validated) and estimates its cost on `threads`
-/// threads (0: every core). Runs a few evaluations of random genotypes.
+/// threads (0: every core). Runs a few evaluations of initial genotypes.
 pub fn validate(experiment: &Experiment, threads: usize) -> Result<Validation, String> {
     let threads = crate::runner::worker_threads(threads);
     let start = Instant::now();
-    let genes = match &experiment.genotype {
-        None => {
-            let evaluator = RobotEvaluator::new(experiment).map_err(|e| e.to_string())?;
-            let genes = evaluator.genotype_length();
-            let mut rng = ChaCha8Rng::seed_from_u64(0);
-            for _ in 0..TIMED_EVALUATIONS {
-                let genotype: Vec<f64> = (0..genes).map(|_| rng.random_range(-1.0..1.0)).collect();
-                let _ = Evaluator::<Vec<f64>>::evaluate(&evaluator, &genotype, 0);
-            }
-            genes
-        }
-        Some(graph) => {
-            crate::graph_genotype::timed_evaluations(experiment, graph, TIMED_EVALUATIONS)?;
-            2 * crate::graph_genotype::start_size(experiment, graph)?.1
-        }
-    };
+    let kind = experiment.genotype_kind();
+    kind.time_evaluations(experiment, TIMED_EVALUATIONS)?;
+    let genes = kind.size(experiment)?.genes;
     let seconds_per_evaluation = start.elapsed().as_secs_f64() / TIMED_EVALUATIONS as f64;
-    let kind = experiment.optimizer.kind();
+    let optimizer = experiment.optimizer.kind();
     let stop = &experiment.stop;
     let evaluations_per_run = stop.evaluations.or(stop.births).or_else(|| {
         stop.generations
-            .map(|g| g.saturating_mul(kind.batch_size(genes) as u64))
+            .map(|g| g.saturating_mul(optimizer.batch_size(genes) as u64))
     });
     let estimated_seconds = evaluations_per_run.map(|n| {
         let per_run = n as f64 * seconds_per_evaluation / threads as f64;

@@ -11,7 +11,9 @@ use vsrlab_brain::graph_ops::{apply, Operator, Topology};
 use vsrlab_brain::BrainShape;
 use vsrlab_brain::{BrainSpec, GraphSpec};
 use vsrlab_experiment::config;
-use vsrlab_experiment::runner::{deterministic_files, run_configured, run_dir, RunOptions, Silent};
+use vsrlab_experiment::genotypes::graph::GraphGenotypeConfig;
+use vsrlab_experiment::run_configured;
+use vsrlab_experiment::runner::{deterministic_files, run_dir, RunOptions, Silent};
 
 /// A tiny graph experiment; `extra` lines go into `[genotype]`.
 fn text(extra: &str) -> String {
@@ -164,7 +166,7 @@ fn a_seeded_population_starts_from_the_robot_file_graph() {
     );
     let file = text(&extra).replace("modules = \"legs-torso\"", "modules = \"discovered\"");
     let experiment = config::parse(&file, "g.toml").unwrap();
-    let graph = experiment.genotype.as_ref().unwrap();
+    let graph: &GraphGenotypeConfig = experiment.genotype.as_ref().unwrap().downcast_ref().unwrap();
     assert!(graph.seeded && graph.initial.is_none());
     assert_ne!(graph.modules, "discovered", "the discovered module is written out");
     assert_eq!(experiment.representation.brain, BrainSpec::Graph(seed.clone()));
@@ -206,7 +208,7 @@ fn mistakes_name_their_field() {
                 "",
             ),
             "optimizer.kind",
-            "kind = \"ga\"",
+            "(ga, map-elites, nsga2), not cma-es",
         ),
         (
             text("").replace("modules = \"legs-torso\"", "modules = \"thirds\""),

@@ -5,7 +5,8 @@
 use std::path::Path;
 use vsrlab_experiment::config::{self, Experiment};
 use vsrlab_experiment::evaluator::RobotEvaluator;
-use vsrlab_experiment::runner::{run_experiment, RunOptions, Silent};
+use vsrlab_experiment::genotypes::vector::run_vectors;
+use vsrlab_experiment::runner::{RunOptions, Silent};
 use vsrlab_tasks::files::load_any_robot;
 use vsrlab_tasks::{episode, PsaRobot, TraceLevel};
 
@@ -39,7 +40,7 @@ fn run(e: &Experiment, out: &Path, threads: usize) {
         resume: false,
         ..RunOptions::default()
     };
-    run_experiment(e, &evaluator, out, &options, &mut Silent).unwrap();
+    run_vectors(e, &evaluator, out, &options, &mut Silent).unwrap();
 }
 
 #[test]

@@ -9,8 +9,9 @@ use std::path::Path;
 use vsrlab_evolution::Sense;
 use vsrlab_experiment::config::{self, Experiment};
 use vsrlab_experiment::evaluator::{Evaluated, Evaluator, Record, RobotEvaluator};
+use vsrlab_experiment::genotypes::vector::run_vectors;
 use vsrlab_experiment::optimizers::AnyOptimizer;
-use vsrlab_experiment::runner::{run_dir, run_experiment, run_search, Observer, Plan, RunError, RunOptions, Silent};
+use vsrlab_experiment::runner::{run_dir, run_search, Observer, Plan, RunError, RunOptions, Silent};
 
 /// The brain of the tiny experiments.
 const BRAIN: &str = r#"{ kind = "distributed-mlp", layout = "homogeneous", signals = 1, hidden = [] }"#;
@@ -51,7 +52,7 @@ fn run(experiment: &Experiment, out: &Path, threads: usize) {
         resume: false,
         ..RunOptions::default()
     };
-    run_experiment(experiment, &evaluator, out, &options, &mut Silent).unwrap();
+    run_vectors(experiment, &evaluator, out, &options, &mut Silent).unwrap();
 }
 
 #[test]
@@ -110,7 +111,7 @@ fn resumed_runs_end_like_uninterrupted_ones() {
         run(&experiment, &straight, 2);
         // Kill run 1 after its 2nd generation, then run 0 is done and run 1 has a checkpoint.
         let options = common::two_threads(false);
-        let done = run_experiment(
+        let done = run_vectors(
             &experiment,
             &evaluator,
             &resumed,
@@ -123,7 +124,7 @@ fn resumed_runs_end_like_uninterrupted_ones() {
         assert!(run1.join("checkpoint.json").exists());
         assert!(!run1.join("summary.json").exists());
         // Without --resume the folder is refused.
-        let again = run_experiment(&experiment, &evaluator, &resumed, &options, &mut Silent);
+        let again = run_vectors(&experiment, &evaluator, &resumed, &options, &mut Silent);
         assert!(again.unwrap_err().to_string().contains("--resume"));
         // A stale extra CSV row (killed after writing it, before the checkpoint) is dropped.
         let csv = run1.join("generations.csv");
@@ -135,7 +136,7 @@ fn resumed_runs_end_like_uninterrupted_ones() {
             resume: true,
             ..RunOptions::default()
         };
-        let summaries = run_experiment(&experiment, &evaluator, &resumed, &options, &mut Silent).unwrap();
+        let summaries = run_vectors(&experiment, &evaluator, &resumed, &options, &mut Silent).unwrap();
         assert_eq!(summaries.len(), 2);
         assert_eq!(
             files_of(&straight),
@@ -163,7 +164,7 @@ fn resuming_with_another_configuration_is_refused() {
         resume: true,
         ..RunOptions::default()
     };
-    let err = run_experiment(&other, &evaluator, dir.path(), &options, &mut Silent).unwrap_err();
+    let err = run_vectors(&other, &evaluator, dir.path(), &options, &mut Silent).unwrap_err();
     assert!(err.to_string().contains("different experiment"), "{err}");
 }
 
@@ -305,7 +306,7 @@ fn too_many_threads_are_refused_before_anything_is_written() {
         resume: false,
         ..RunOptions::default()
     };
-    let err = run_experiment(&experiment, &evaluator, &out, &options, &mut Silent).unwrap_err();
+    let err = run_vectors(&experiment, &evaluator, &out, &options, &mut Silent).unwrap_err();
     assert!(err.to_string().contains("at most 1024"), "{err}");
     assert!(!out.exists());
 }
@@ -334,7 +335,7 @@ fn interrupted(dir: &Path) -> (Experiment, std::path::PathBuf, std::path::PathBu
         threads: 2,
         ..RunOptions::default()
     };
-    run_experiment(
+    run_vectors(
         &experiment,
         &evaluator,
         &resumed,
@@ -352,7 +353,7 @@ fn resume(experiment: &Experiment, out: &Path, observer: &mut dyn Observer) -> R
         resume: true,
         ..RunOptions::default()
     };
-    run_experiment(experiment, &evaluator, out, &options, observer).map(drop)
+    run_vectors(experiment, &evaluator, out, &options, observer).map(drop)
 }
 
 /// Rewrites a checkpoint's content with `edit` and a freshly computed content hash, as someone
@@ -465,13 +466,13 @@ fn a_second_process_on_one_output_folder_is_refused() {
     std::fs::create_dir_all(&out).unwrap();
     let held = vsrlab_experiment::output_lock::OutputLock::acquire(&out).unwrap();
     let evaluator = RobotEvaluator::new(&experiment).unwrap();
-    let err = run_experiment(&experiment, &evaluator, &out, &RunOptions::default(), &mut Silent)
+    let err = run_vectors(&experiment, &evaluator, &out, &RunOptions::default(), &mut Silent)
         .unwrap_err()
         .to_string();
     assert!(err.contains("in use by another vsrlab process"), "{err}");
     assert!(!out.join("experiment.toml").exists());
     drop(held);
-    run_experiment(&experiment, &evaluator, &out, &RunOptions::default(), &mut Silent).unwrap();
+    run_vectors(&experiment, &evaluator, &out, &RunOptions::default(), &mut Silent).unwrap();
 }
 
 #[test]
@@ -483,7 +484,7 @@ fn resuming_a_run_without_checkpoint_says_it_restarts() {
     let dir = tempfile::tempdir().unwrap();
     let evaluator = RobotEvaluator::new(&experiment).unwrap();
     let out = dir.path().join("out");
-    run_experiment(
+    run_vectors(
         &experiment,
         &evaluator,
         &out,
@@ -520,7 +521,7 @@ fn a_run_estimated_above_the_memory_limit_is_refused_before_anything_is_written(
         memory_limit: Some(1 << 20),
         ..RunOptions::default()
     };
-    let err = run_experiment(&experiment, &evaluator, &out, &options, &mut Silent)
+    let err = run_vectors(&experiment, &evaluator, &out, &options, &mut Silent)
         .unwrap_err()
         .to_string();
     assert!(

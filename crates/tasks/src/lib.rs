@@ -50,7 +50,9 @@ pub use kinds::{AnyRobot, RobotArgs, RobotDescription, RobotKind, ROBOT_KINDS};
 pub use locomotion::Locomotion;
 pub use outcome::{DamageRecord, Outcome, Polygons, Recorded, Trace, TraceLevel};
 pub use registry::{FieldError, TaskParseError, TaskSpec};
-pub use representation::{evaluate, evaluate_traced, BodyPart, BodySource, EvaluationError, Mapper, Representation};
+pub use representation::{
+    evaluate, evaluate_traced, BodyPart, BodySource, EvaluationError, Mapper, Representation, Stored, StoredGenotypes,
+};
 pub use task::{Flow, Metrics, Objective, Sense, Task};
 pub use terrain::Terrain;
 pub use vsrlab_body::{Channel, Probe};

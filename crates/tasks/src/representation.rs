@@ -137,6 +137,37 @@ impl Mapper<Vec<f64>> for Representation {
     }
 }
 
+/// Genotypes in the form snapshots and checkpoints store them (JSON) → robots: how analyses
+/// replay the individuals of any genotype kind without knowing its type.
+pub trait StoredGenotypes: Send + Sync {
+    /// The robot a stored genotype stands for (an error when it is not of this kind).
+    fn robot(&self, genotype: &serde_json::Value) -> Result<Box<dyn Robot>, EvaluationError>;
+}
+
+/// A [`Mapper`] of a serde genotype type read as [`StoredGenotypes`].
+pub struct Stored<G, M> {
+    mapper: M,
+    genotype: std::marker::PhantomData<fn() -> G>,
+}
+
+impl<G, M> Stored<G, M> {
+    /// Reads stored genotypes of type `G` and maps them with `mapper`.
+    pub fn new(mapper: M) -> Self {
+        Stored {
+            mapper,
+            genotype: std::marker::PhantomData,
+        }
+    }
+}
+
+impl<G: serde::de::DeserializeOwned, M: Mapper<G>> StoredGenotypes for Stored<G, M> {
+    fn robot(&self, genotype: &serde_json::Value) -> Result<Box<dyn Robot>, EvaluationError> {
+        let genotype = G::deserialize(genotype)
+            .map_err(|e| EvaluationError::Genotype(format!("not a genotype of this experiment: {e}")))?;
+        self.mapper.robot(&genotype)
+    }
+}
+
 /// An episode error's message ("robot.brain.x: …") as a representation error ("brain.x: …").
 pub(crate) fn representation_message(e: EpisodeError) -> EvaluationError {
     let text = e.to_string();

@@ -29,7 +29,7 @@ pub(crate) fn candidates(
     min_velocity: Option<f64>,
 ) -> Result<Vec<Candidate>, AnalysisError> {
     let mut pool = Vec::new();
-    let mut seen: HashSet<(String, Vec<u64>)> = HashSet::new();
+    let mut seen: HashSet<(String, String)> = HashSet::new();
     for (e, exp) in experiments.iter().enumerate() {
         for r in &exp.runs {
             for (_, path) in &r.snapshots {
@@ -38,10 +38,7 @@ pub(crate) fn candidates(
                         continue;
                     }
                     let Some(body) = row.morphology() else { continue };
-                    let key = (
-                        exp.dir.display().to_string(),
-                        row.genotype.iter().map(|g| g.to_bits()).collect(),
-                    );
+                    let key = (exp.dir.display().to_string(), row.genotype.to_string());
                     if !seen.insert(key) {
                         continue;
                     }
@@ -63,6 +60,6 @@ pub(crate) fn candidates(
 fn eligible(row: &SnapshotRow, min_velocity: Option<f64>) -> bool {
     row.error.is_none()
         && row.fitness.is_some()
-        && !row.genotype.is_empty()
+        && !row.genotype.is_null()
         && !min_velocity.is_some_and(|v| row.velocity.unwrap_or(f64::NEG_INFINITY) < v)
 }

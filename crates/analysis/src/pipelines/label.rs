@@ -19,7 +19,7 @@ use crate::results::{self, ExperimentData};
 use crate::sampling::stratified_sample;
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
-use vsrlab_tasks::files::save_robot;
+use vsrlab_tasks::files::write_text;
 use vsrlab_tasks::{TaskSpec, Trace};
 
 /// What to put on the labelling page and how (the options of `vsrlab label`).
@@ -255,7 +255,11 @@ impl PageRobotMaker<'_> {
         let robot_rel = format!("robots/{id}.robot.json");
         let video_rel = format!("videos/{id}.gif");
         let out = &self.options.out;
-        save_robot(&out.join(&robot_rel), &robot, Some(&note))?;
+        let text = robot.robot_file(Some(&note)).ok_or_else(|| AnalysisError::Setup {
+            folder: exp.dir.clone(),
+            source: "this kind of robot has no robot file".into(),
+        })?;
+        write_text(&out.join(&robot_rel), &text)?;
         let video = out.join(&video_rel);
         self.videos
             .write_video(&trace, &self.options.video_spec(), &video)

@@ -14,7 +14,7 @@ pub use error::ConfigError;
 pub use sweep::{expand, MAX_SETTINGS};
 pub use task::TaskConfig;
 
-use crate::graph_genotype::GraphGenotypeConfig;
+use crate::genotypes::{self, GenotypeConfig, GenotypeKind};
 use crate::optimizers::{self, OptimizerConfig};
 use error::{dotted, line_column, locate, Step};
 use serde::{Deserialize, Serialize};
@@ -40,9 +40,9 @@ pub struct Experiment {
     pub seed: u64,
     /// Genotype → robot mapping.
     pub representation: Representation,
-    /// A genotype other than a flat vector (`[genotype] kind = "graph"`); `None`: flat vectors.
+    /// The `[genotype]` table, by kind ([`genotypes::GENOTYPES`]); `None`: flat vectors.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub genotype: Option<GraphGenotypeConfig>,
+    pub genotype: Option<GenotypeConfig>,
     /// The task, its fitness and how episodes are seeded.
     pub task: TaskConfig,
     /// The optimizer and its parameters.
@@ -70,7 +70,7 @@ struct ExperimentFile {
     seed: u64,
     representation: Representation,
     #[serde(default)]
-    genotype: Option<GraphGenotypeConfig>,
+    genotype: Option<toml::Table>,
     task: toml::Table,
     optimizer: toml::Table,
     stop: StopConfig,
@@ -230,10 +230,14 @@ pub fn parse(text: &str, origin: &str) -> Result<Experiment, ConfigError> {
             .transfer_from(&source.brain)
             .map_err(|e| field(format!("{}: {e}", transfer.from.display())))?;
     }
-    let mut genotype = file.genotype;
-    if let Some(graph) = &mut genotype {
-        graph
-            .load_initial(&mut representation)
+    let mut genotype = file
+        .genotype
+        .map(genotypes::decode_table)
+        .transpose()
+        .map_err(|e| in_table("genotype", e))?;
+    if let Some(kind) = &mut genotype {
+        kind.kind_mut()
+            .load_files(&mut representation)
             .map_err(|(field, message)| ConfigError::at_field(origin, text, &field, message))?;
     }
     let optimizer = optimizers::decode_table(file.optimizer).map_err(|e| in_table("optimizer", e))?;
@@ -373,9 +377,7 @@ impl Experiment {
             };
             return err(&field, msg);
         }
-        if let Some(graph) = &self.genotype {
-            graph.validate(self)?;
-        }
+        self.genotype_kind().validate(self)?;
         self.task.validate()?;
         let s = &self.stop;
         if s.evaluations.is_none() && s.births.is_none() && s.generations.is_none() && s.wall_seconds.is_none() {
@@ -423,6 +425,28 @@ impl Experiment {
     /// The experiment as TOML, every default written out (the "resolved config").
     pub fn to_toml(&self) -> String {
         toml::to_string(self).expect("experiments always serialise to TOML")
+    }
+
+    /// The genotype kind: the `[genotype]` table's, or flat vectors without one.
+    pub fn genotype_kind(&self) -> &dyn GenotypeKind {
+        match &self.genotype {
+            Some(kind) => &**kind,
+            None => &genotypes::vector::VECTOR,
+        }
+    }
+
+    /// Whether each of the task's objectives is maximised or minimised, as optimizers take them.
+    pub fn senses(&self) -> Vec<vsrlab_evolution::Sense> {
+        self.task
+            .spec
+            .task()
+            .objectives()
+            .iter()
+            .map(|o| match o.sense {
+                vsrlab_tasks::Sense::Maximize => vsrlab_evolution::Sense::Maximize,
+                vsrlab_tasks::Sense::Minimize => vsrlab_evolution::Sense::Minimize,
+            })
+            .collect()
     }
 
     /// The run seeds, in order.

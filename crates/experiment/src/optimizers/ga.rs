@@ -1,7 +1,9 @@
 //! The μ + λ genetic algorithm of the thesis (§3.3.5.2).
 
 use super::check::{positive, probability};
-use super::{decode_flat, single, AnyOptimizer, Operators, OptimizerConfig, OptimizerEntry, OptimizerKind};
+use super::{
+    decode_flat, single, AnyOptimizer, OperatorPlan, Operators, OptimizerConfig, OptimizerEntry, OptimizerKind,
+};
 use serde::{Deserialize, Serialize};
 use vsrlab_evolution::{EvolutionError, GaConfig, GeneticAlgorithm, Sense};
 
@@ -40,6 +42,20 @@ impl Default for GaParams {
     }
 }
 
+impl GaParams {
+    /// The GA's settings for an objective of this sense.
+    fn config(&self, senses: &[Sense]) -> GaConfig {
+        GaConfig {
+            population_size: self.population_size,
+            offspring_size: self.offspring_size,
+            tournament_size: self.tournament_size,
+            mutation_probability: self.mutation_probability,
+            reevaluate_survivors: self.reevaluate_survivors,
+            sense: single(senses),
+        }
+    }
+}
+
 impl OptimizerKind for GaParams {
     fn name(&self) -> &'static str {
         "ga"
@@ -55,17 +71,14 @@ impl OptimizerKind for GaParams {
 
     fn build(&self, dimension: usize, senses: &[Sense], seed: u64) -> Result<AnyOptimizer, EvolutionError> {
         Ok(AnyOptimizer::Ga(GeneticAlgorithm::new(
-            GaConfig {
-                population_size: self.population_size,
-                offspring_size: self.offspring_size,
-                tournament_size: self.tournament_size,
-                mutation_probability: self.mutation_probability,
-                reevaluate_survivors: self.reevaluate_survivors,
-                sense: single(senses),
-            },
+            self.config(senses),
             self.operators.real_vector(dimension),
             seed,
         )?))
+    }
+
+    fn over_operators(&self, senses: &[Sense]) -> Option<OperatorPlan> {
+        Some(OperatorPlan::Ga(self.config(senses)))
     }
 
     fn held_genotypes(&self, _dimension: usize, _budget: Option<u64>) -> u128 {

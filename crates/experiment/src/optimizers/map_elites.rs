@@ -1,7 +1,7 @@
 //! MAP-Elites over the thesis' morphology descriptors (ME, §3.3.5.2).
 
 use super::check::{positive, range, sigma};
-use super::{decode, real_vector, single, AnyOptimizer, OptimizerConfig, OptimizerEntry, OptimizerKind};
+use super::{decode, real_vector, single, AnyOptimizer, OperatorPlan, OptimizerConfig, OptimizerEntry, OptimizerKind};
 use serde::{Deserialize, Serialize};
 use vsrlab_evolution::{EvolutionError, GridAxis, MapElites, MapElitesConfig, Sense};
 
@@ -66,6 +66,26 @@ impl Default for MapElitesParams {
     }
 }
 
+impl MapElitesParams {
+    /// MAP-Elites' settings for an objective of this sense.
+    fn config(&self, senses: &[Sense]) -> MapElitesConfig {
+        MapElitesConfig {
+            axes: self
+                .axes
+                .iter()
+                .map(|a| GridAxis {
+                    min: a.min,
+                    max: a.max,
+                    bins: a.bins,
+                })
+                .collect(),
+            initial_population: self.initial_population,
+            batch_size: self.batch_size,
+            sense: single(senses),
+        }
+    }
+}
+
 impl OptimizerKind for MapElitesParams {
     fn name(&self) -> &'static str {
         "map-elites"
@@ -117,23 +137,14 @@ impl OptimizerKind for MapElitesParams {
 
     fn build(&self, dimension: usize, senses: &[Sense], seed: u64) -> Result<AnyOptimizer, EvolutionError> {
         Ok(AnyOptimizer::MapElites(MapElites::new(
-            MapElitesConfig {
-                axes: self
-                    .axes
-                    .iter()
-                    .map(|a| GridAxis {
-                        min: a.min,
-                        max: a.max,
-                        bins: a.bins,
-                    })
-                    .collect(),
-                initial_population: self.initial_population,
-                batch_size: self.batch_size,
-                sense: single(senses),
-            },
+            self.config(senses),
             real_vector(dimension, self.init_range, self.mutation_sigma, [0.0, 1.0], 0.0),
             seed,
         )?))
+    }
+
+    fn over_operators(&self, senses: &[Sense]) -> Option<OperatorPlan> {
+        Some(OperatorPlan::MapElites(self.config(senses)))
     }
 
     /// The archive (at most one elite per cell, and never more than the evaluation budget) plus

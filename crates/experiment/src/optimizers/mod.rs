@@ -6,7 +6,9 @@
 //! only in [`OptimizerConfig::kind`] and [`OPTIMIZERS`].
 //!
 //! Adding an optimizer for flat vectors: a file with its parameters and `OptimizerKind` impl, a
-//! variant in [`OptimizerConfig`] and [`AnyOptimizer`], and an entry in [`OPTIMIZERS`].
+//! variant in [`OptimizerConfig`] and [`AnyOptimizer`], and an entry in [`OPTIMIZERS`]. An
+//! optimizer that needs nothing of a genotype but its variation operators also returns an
+//! [`OperatorPlan`] ([`OptimizerKind::over_operators`]) and then runs over every genotype kind.
 
 mod any;
 mod cma_es;
@@ -14,6 +16,7 @@ mod es;
 mod ga;
 mod map_elites;
 mod nsga2;
+mod over_operators;
 mod se;
 
 pub use any::{AnyOptimizer, SearchOptimizer, Searcher, SpeciationFeatures};
@@ -22,6 +25,7 @@ pub use es::EsParams;
 pub use ga::GaParams;
 pub use map_elites::{Axis, Descriptor, MapElitesParams};
 pub use nsga2::Nsga2Params;
+pub use over_operators::{OperatorOptimizer, OperatorPlan};
 pub use se::{SeFeatures, SeParams};
 
 use serde::de::DeserializeOwned;
@@ -59,6 +63,11 @@ pub trait OptimizerKind {
     /// Builds the optimizer for genotypes of `dimension` genes, objectives of these senses, and
     /// a run seed.
     fn build(&self, dimension: usize, senses: &[Sense], seed: u64) -> Result<AnyOptimizer, EvolutionError>;
+    /// Its algorithm over any genotype kind's variation operators, for objectives of these
+    /// senses; `None` when the algorithm needs flat vectors (ES, CMA-ES, the speciated evolver).
+    fn over_operators(&self, _senses: &[Sense]) -> Option<OperatorPlan> {
+        None
+    }
     /// What the evaluation must extract for it (speciation features).
     fn extract(&self) -> Extract {
         Extract::Nothing

@@ -6,7 +6,7 @@
 //! `offspring_size = 50`.
 
 use super::check::{positive, probability};
-use super::{decode_flat, AnyOptimizer, Operators, OptimizerConfig, OptimizerEntry, OptimizerKind};
+use super::{decode_flat, AnyOptimizer, OperatorPlan, Operators, OptimizerConfig, OptimizerEntry, OptimizerKind};
 use serde::{Deserialize, Serialize};
 use vsrlab_evolution::{EvolutionError, Nsga2, Nsga2Config, Sense};
 
@@ -42,6 +42,18 @@ impl Default for Nsga2Params {
     }
 }
 
+impl Nsga2Params {
+    /// NSGA-II's settings for objectives of these senses.
+    fn config(&self, senses: &[Sense]) -> Nsga2Config {
+        Nsga2Config {
+            population_size: self.population_size,
+            offspring_size: self.offspring_size,
+            mutation_probability: self.mutation_probability,
+            senses: senses.to_vec(),
+        }
+    }
+}
+
 impl OptimizerKind for Nsga2Params {
     fn name(&self) -> &'static str {
         "nsga2"
@@ -60,18 +72,13 @@ impl OptimizerKind for Nsga2Params {
 
     fn build(&self, dimension: usize, senses: &[Sense], seed: u64) -> Result<AnyOptimizer, EvolutionError> {
         Ok(AnyOptimizer::Nsga2(
-            Nsga2::new(
-                Nsga2Config {
-                    population_size: self.population_size,
-                    offspring_size: self.offspring_size,
-                    mutation_probability: self.mutation_probability,
-                    senses: senses.to_vec(),
-                },
-                self.operators.real_vector(dimension),
-                seed,
-            )?
-            .with_duplicate_elimination(self.eliminate_duplicates),
+            Nsga2::new(self.config(senses), self.operators.real_vector(dimension), seed)?
+                .with_duplicate_elimination(self.eliminate_duplicates),
         ))
+    }
+
+    fn over_operators(&self, senses: &[Sense]) -> Option<OperatorPlan> {
+        Some(OperatorPlan::Nsga2(self.config(senses), self.eliminate_duplicates))
     }
 
     fn held_genotypes(&self, _dimension: usize, _budget: Option<u64>) -> u128 {

@@ -17,18 +17,22 @@
 //!   `representation.brain` and `seeded = true` is written instead, so the resolved
 //!   `experiment.toml` holds everything a resume needs.
 //!
+//! Graphs have no crossover: they evolve with any optimizer over variation operators whose
+//! children are all mutants (`ga` or `nsga2` with `mutation_probability = 1.0`, `map-elites`).
+//!
 //! The best graph of each generation is logged in `generations.csv` as `best_neurons`,
 //! `best_edges`, `best_size` (|G|), `best_connection_cost` and `best_within_module`.
 
+use super::{check_operators, run_with_operators, time_with_operators};
+use super::{GenotypeConfig, GenotypeEntry, GenotypeKind, GenotypeSize};
 use crate::config::Experiment;
-use crate::evaluator::RobotEvaluator;
 use crate::genotype::{fnv1a, Genotype};
-use crate::memory::MemoryEstimate;
-use crate::optimizers::{OptimizerConfig, Searcher};
-use crate::runner::{run_search, worker_threads, Observer, Plan, RunError, RunOptions, RunSummary};
+use crate::optimizers::FieldError;
+use crate::runner::{Observer, RunError, RunOptions, RunSummary};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use vsrlab_body::sensors::SensorSuite;
 use vsrlab_body::Morphology;
 use vsrlab_brain::graph_modules::{self, ModuleMap};
@@ -36,13 +40,13 @@ use vsrlab_brain::graph_ops::{apply, draw, Operator, Topology, THESIS_OPERATORS}
 use vsrlab_brain::BrainShape;
 use vsrlab_brain::{BrainSpec, GraphSpec};
 use vsrlab_evolution::rng::SeededRng;
-use vsrlab_evolution::{GaConfig, GeneticAlgorithm, Representation as Variation, Sense};
-use vsrlab_tasks::{EvaluationError, Mapper, Representation, Robot, RobotSpec};
+use vsrlab_evolution::Representation as Variation;
+use vsrlab_tasks::{EvaluationError, Mapper, Representation, Robot, RobotSpec, Stored, StoredGenotypes};
 
-/// The `kind` of a `[genotype]` table.
+/// The `kind` tag of the table.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
-pub enum GenotypeKind {
+pub enum GraphTag {
     /// A graph of neurons in voxels (the self-organizing controller).
     Graph,
 }
@@ -141,7 +145,7 @@ impl OperatorMix {
 #[serde(deny_unknown_fields)]
 pub struct GraphGenotypeConfig {
     /// `graph`.
-    pub kind: GenotypeKind,
+    pub kind: GraphTag,
     /// How far edges may reach.
     #[serde(default)]
     pub connectivity: Connectivity,
@@ -207,10 +211,14 @@ fn graph_brain(representation: &Representation) -> Result<&GraphSpec, (String, S
     }
 }
 
-impl GraphGenotypeConfig {
+impl GenotypeKind for GraphGenotypeConfig {
+    fn name(&self) -> &'static str {
+        "graph"
+    }
+
     /// Replaces `initial` by the robot file's graph in `representation.brain` and a
-    /// `discovered` module map by its rows; errors name the field.
-    pub fn load_initial(&mut self, representation: &mut Representation) -> Result<(), (String, String)> {
+    /// `discovered` module map by its rows.
+    fn load_files(&mut self, representation: &mut Representation) -> Result<(), FieldError> {
         if let Some(path) = self.initial.take() {
             let field = |m: String| ("genotype.initial".to_string(), format!("{}: {m}", path.display()));
             let robot = vsrlab_tasks::files::load_robot(&path).map_err(|e| field(e.to_string()))?;
@@ -250,31 +258,10 @@ impl GraphGenotypeConfig {
         Ok(())
     }
 
-    /// Checks the table against the rest of the experiment: the field and the message on error.
-    pub fn validate(&self, experiment: &Experiment) -> Result<(), (String, String)> {
+    fn validate(&self, experiment: &Experiment) -> Result<(), FieldError> {
         let body = fixed_body(&experiment.representation)?;
         let graph = graph_brain(&experiment.representation)?;
-        match &experiment.optimizer {
-            OptimizerConfig::Ga(ga) if ga.mutation_probability != 1.0 => {
-                return Err((
-                    "optimizer.mutation_probability".into(),
-                    format!(
-                        "graphs have no crossover (the thesis' GA is mutation only): set 1.0, got {}",
-                        ga.mutation_probability
-                    ),
-                ))
-            }
-            OptimizerConfig::Ga(_) => {}
-            other => {
-                return Err((
-                    "optimizer.kind".into(),
-                    format!(
-                        "a graph genotype evolves with kind = \"ga\", not {}",
-                        other.kind().name()
-                    ),
-                ))
-            }
-        }
+        check_operators(experiment, false)?;
         let err = |field: &str, m: String| Err((format!("genotype.{field}"), m));
         if !(self.omega.is_finite() && self.omega > 0.0) {
             return err("omega", format!("must be a positive number, got {}", self.omega));
@@ -298,6 +285,38 @@ impl GraphGenotypeConfig {
             ));
         }
         Ok(())
+    }
+
+    fn size(&self, experiment: &Experiment) -> Result<GenotypeSize, String> {
+        let (variation, _) = build(experiment, self)?;
+        let (neurons, edges) = (variation.start.neurons.len(), variation.start.edges.len());
+        Ok(GenotypeSize {
+            genes: 2 * edges,
+            text: format!("graph genotypes from {neurons} neurons and {edges} edges"),
+        })
+    }
+
+    fn run(
+        &self,
+        experiment: &Experiment,
+        out: &Path,
+        options: &RunOptions,
+        observer: &mut dyn Observer,
+    ) -> Result<Vec<RunSummary>, RunError> {
+        let (variation, mapper) = build(experiment, self).map_err(RunError::Other)?;
+        let genes = 2 * variation.start.edges.len();
+        run_with_operators(experiment, variation, mapper, genes, out, options, observer)
+    }
+
+    fn time_evaluations(&self, experiment: &Experiment, count: usize) -> Result<(), String> {
+        let (variation, mapper) = build(experiment, self)?;
+        time_with_operators(experiment, &variation, mapper, count);
+        Ok(())
+    }
+
+    fn stored(&self, experiment: &Experiment) -> Result<Arc<dyn StoredGenotypes>, String> {
+        let (_, mapper) = build(experiment, self)?;
+        Ok(Arc::new(Stored::<GraphSpec, _>::new(mapper)))
     }
 }
 
@@ -444,72 +463,8 @@ pub fn build(experiment: &Experiment, config: &GraphGenotypeConfig) -> Result<(G
     Ok((variation, mapper))
 }
 
-/// The GA of a graph experiment's `[optimizer]` table (validated to be `ga`).
-fn ga_config(experiment: &Experiment) -> Result<GaConfig, RunError> {
-    let OptimizerConfig::Ga(ga) = &experiment.optimizer else {
-        return Err(RunError::Mismatch(
-            "a graph genotype evolves with optimizer kind = \"ga\"".into(),
-        ));
-    };
-    Ok(GaConfig {
-        population_size: ga.population_size,
-        offspring_size: ga.offspring_size,
-        tournament_size: ga.tournament_size,
-        mutation_probability: ga.mutation_probability,
-        reevaluate_survivors: ga.reevaluate_survivors,
-        sense: Sense::Maximize,
-    })
-}
-
-/// Runs every run of a graph experiment into `out`.
-pub fn run(
-    experiment: &Experiment,
-    config: &GraphGenotypeConfig,
-    out: &Path,
-    options: &RunOptions,
-    observer: &mut dyn Observer,
-) -> Result<Vec<RunSummary>, RunError> {
-    let (variation, mapper) = build(experiment, config).map_err(RunError::Other)?;
-    let mut ga = ga_config(experiment)?;
-    if let [objective] = experiment.task.spec.task().objectives() {
-        ga.sense = match objective.sense {
-            vsrlab_tasks::Sense::Maximize => Sense::Maximize,
-            vsrlab_tasks::Sense::Minimize => Sense::Minimize,
-        };
-    }
-    let genes = 2 * variation.start.edges.len();
-    MemoryEstimate::of(experiment, genes, worker_threads(options.threads))
-        .check(options.memory_limit.unwrap_or(crate::memory::DEFAULT_MEMORY_LIMIT))
-        .map_err(RunError::Mismatch)?;
-    let evaluator = RobotEvaluator::with_mapper(mapper, experiment);
-    let new_optimizer = |seed: u64| -> Result<Searcher<GeneticAlgorithm<GraphVariation>>, RunError> {
-        Ok(Searcher(GeneticAlgorithm::new(ga.clone(), variation.clone(), seed)?))
-    };
-    run_search(
-        &Plan::of(experiment),
-        &new_optimizer,
-        &evaluator,
-        out,
-        options,
-        observer,
-    )
-}
-
-/// The size of the starting graph of a graph experiment: (neurons, edges).
-pub fn start_size(experiment: &Experiment, config: &GraphGenotypeConfig) -> Result<(usize, usize), String> {
-    let (variation, _) = build(experiment, config)?;
-    Ok((variation.start.neurons.len(), variation.start.edges.len()))
-}
-
-/// A few initial genotypes of a graph experiment, evaluated (for time estimates).
-pub fn timed_evaluations(experiment: &Experiment, config: &GraphGenotypeConfig, count: usize) -> Result<(), String> {
-    use crate::evaluator::Evaluator;
-    let (variation, mapper) = build(experiment, config)?;
-    let evaluator = RobotEvaluator::with_mapper(mapper, experiment);
-    for i in 0..count {
-        let mut rng = SeededRng::derive(0, 0, i as u64, vsrlab_evolution::rng::Stream::Initialisation);
-        let g = variation.initial(i, &mut rng);
-        let _ = evaluator.evaluate(&g, 0);
-    }
-    Ok(())
-}
+/// The registry entry of `kind = "graph"`.
+pub(crate) const ENTRY: GenotypeEntry = GenotypeEntry {
+    name: "graph",
+    decode: |v| crate::optimizers::decode::<GraphGenotypeConfig>(v).map(GenotypeConfig::new),
+};

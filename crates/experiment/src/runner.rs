@@ -42,7 +42,7 @@ use vsrlab_analysis::run_folder::{
     snapshot_file_name, RunFiles, RunFolder, BEST_ROBOT_FILE, GENERATIONS_FILE, SNAPSHOTS_DIR, SUMMARY_FILE,
     TIMINGS_FILE,
 };
-use vsrlab_evolution::{Evaluation, Sense, Told};
+use vsrlab_evolution::{Evaluation, Individual, Sense, Told};
 use vsrlab_tasks::files::write_atomic;
 
 pub use crate::checkpoint::CHECKPOINT_FORMAT;
@@ -346,6 +346,11 @@ pub fn run_search<G: Genotype, O: SearchOptimizer<G>>(
     let mut summaries = Vec::new();
     for (run, &seed) in plan.run_seeds.iter().enumerate() {
         let files = folder.run(run, plan.run_seeds.len());
+        let slot = RunSlot {
+            run,
+            seed,
+            files: &files,
+        };
         let session = Session {
             plan,
             evaluator,
@@ -353,7 +358,7 @@ pub fn run_search<G: Genotype, O: SearchOptimizer<G>>(
             options,
             pool: &pool,
         };
-        match run_one(&session, run, seed, &files, observer)? {
+        match run_one(&session, &slot, observer)? {
             Some(summary) => summaries.push(summary),
             None => return Ok(summaries),
         }
@@ -451,86 +456,47 @@ struct Session<'a, G, O> {
     pool: &'a rayon::ThreadPool,
 }
 
-fn run_one<G: Genotype, O: SearchOptimizer<G>>(
-    session: &Session<'_, G, O>,
+/// One run's place: which run, its seed and its files.
+struct RunSlot<'a> {
     run: usize,
     seed: u64,
-    files: &RunFiles,
+    files: &'a RunFiles,
+}
+
+/// The text of a run's two logs as written so far (`generations.csv`, `timings.csv`).
+struct RunLogs {
+    csv: String,
+    timings: String,
+}
+
+/// What one generation's batch gave, besides what the optimizer was told.
+struct BatchResult {
+    fitness: Vec<f64>,
+    failures: u64,
+    evaluation_seconds: f64,
+    episode_cpu: f64,
+}
+
+/// Runs (or resumes, or confirms as finished) one run; `None` when the observer interrupted it.
+fn run_one<G: Genotype, O: SearchOptimizer<G>>(
+    session: &Session<'_, G, O>,
+    slot: &RunSlot<'_>,
     observer: &mut dyn Observer,
 ) -> Result<Option<RunSummary>, RunError> {
-    let Session {
-        plan,
-        evaluator,
-        new_optimizer,
-        options,
-        pool,
-    } = *session;
-    let dir = files.dir();
-    let summary_path = files.summary_json();
-    let checkpoint_path = files.checkpoint_json();
-    let csv_path = files.generations_csv();
-    let timings_path = files.timings_csv();
-    let snapshots = files.snapshots_dir();
-    if options.resume {
-        if let Ok(text) = std::fs::read_to_string(&summary_path) {
-            let summary: RunSummary = serde_json::from_str(&text)
-                .map_err(|e| RunError::Mismatch(format!("{}: {e}", summary_path.display())))?;
-            verify_finished(files, &summary, observer)?;
+    if session.options.resume {
+        if let Some(summary) = finished_summary(slot.files, observer)? {
             observer.run_finished(&summary);
             return Ok(Some(summary));
         }
     }
-    let started_before = csv_path.exists();
-    std::fs::create_dir_all(&snapshots).map_err(io_error(&snapshots))?;
-    if options.resume {
-        remove_stale_temporaries(dir);
-        remove_stale_temporaries(&snapshots);
-    }
+    let (mut optimizer, mut state, mut logs) = start_or_resume(session, slot, observer)?;
+    let plan = session.plan;
     let every = plan.output.snapshot_every;
-    let checkpoint = if options.resume {
-        match std::fs::read(&checkpoint_path) {
-            Ok(bytes) => Some(load_checkpoint::<G, O>(&bytes, files, run, seed, evaluator, observer)?),
-            Err(_) => {
-                if started_before {
-                    observer.notice(&format!(
-                        "run {}/{}: no checkpoint was written before it stopped; starting it from the beginning \
-                         (it gives the same results)",
-                        run + 1,
-                        plan.run_seeds.len()
-                    ));
-                }
-                None
-            }
-        }
-    } else {
-        None
-    };
-    let (mut optimizer, mut state, mut csv, mut timings) = match checkpoint {
-        Some(resumed) => resumed,
-        None => {
-            let optimizer = new_optimizer(seed)?;
-            let state = RunState {
-                next_snapshot: every,
-                ..RunState::default()
-            };
-            let extra: String = evaluator
-                .genotype_columns()
-                .iter()
-                .map(|c| format!(",best_{c}"))
-                .collect();
-            (
-                optimizer,
-                state,
-                format!("{GENERATIONS_HEADER}{extra}\n"),
-                format!("{TIMINGS_HEADER}\n"),
-            )
-        }
-    };
     let session_start = Instant::now();
     let wall_before = state.wall_seconds;
     let wall = |start: &Instant| wall_before + start.elapsed().as_secs_f64();
     let progress = |optimizer: &O, wall: f64| Progress {
-        run,
+        run: slot.run,
         runs: plan.run_seeds.len(),
         generation: optimizer.generation(),
         evaluations: optimizer.evaluations(),
@@ -545,174 +511,276 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
             break reason;
         }
         let generation_start = Instant::now();
-        let batch = optimizer.ask();
-        let evaluation_start = Instant::now();
-        let genotypes: Vec<&G> = batch.iter().map(|c| &c.genotype).collect();
-        let seeds: Vec<u64> = batch.iter().map(|c| c.seed).collect();
-        let results: Vec<Evaluated> = pool
-            .install(|| evaluator.evaluate_batch(&genotypes, &seeds))
-            .map_err(|e| RunError::Other(format!("evaluations: {e}")))?;
-        if results.len() != batch.len() {
-            return Err(RunError::Other(format!(
-                "evaluations: {} results for a batch of {}",
-                results.len(),
-                batch.len()
-            )));
-        }
-        let evaluation_seconds = evaluation_start.elapsed().as_secs_f64();
-        let batch_fitness: Vec<f64> = results.iter().map(|e| e.fitness()).collect();
-        let sense = first_sense(&optimizer);
-        let failures = results.iter().filter(|e| e.failed()).count() as u64;
-        let episode_cpu: f64 = results.iter().map(|e| e.seconds).sum();
-        let mut told = Vec::with_capacity(batch.len());
-        for (candidate, evaluated) in batch.iter().zip(results) {
-            state.records.insert(candidate.genotype.key(), evaluated.record);
-            told.push(Told {
-                id: candidate.id,
-                evaluation: Evaluation {
-                    objectives: evaluated.objectives,
-                    descriptor: evaluated.descriptor,
-                    outcome: evaluated.features,
-                },
-            });
-        }
-        optimizer.tell(told)?;
-        if let Some(best) = optimizer.best() {
-            let hash = best.genotype.key();
-            if state.best.as_ref().map(|b| b.0) != Some(hash) {
-                state.best = state.records.get(&hash).map(|r| (hash, r.clone()));
-            }
-        }
-        let population = optimizer.population();
-        let keep: BTreeSet<u64> = population.iter().map(|i| i.genotype.key()).collect();
-        state.records.retain(|k, _| keep.contains(k));
-
-        // Per-generation statistics (deterministic columns).
-        let population_fitness: Vec<f64> = population.iter().map(|i| i.fitness()).collect();
-        let records: Vec<Option<&Record>> = population
-            .iter()
-            .map(|i| state.records.get(&i.genotype.key()))
-            .collect();
-        let bodies: BTreeSet<&str> = records
-            .iter()
-            .filter_map(|r| r.and_then(|r| r.body.as_deref()))
-            .collect();
-        let voxels: Vec<usize> = records.iter().filter_map(|r| r.and_then(|r| r.voxels)).collect();
-        let mean_voxels = if voxels.is_empty() {
-            f64::NAN
-        } else {
-            voxels.iter().sum::<usize>() as f64 / voxels.len() as f64
-        };
-        state.failures += failures;
-        let best = optimizer.best().map_or(f64::NAN, |b| b.fitness());
-        let _ = writeln!(
-            csv,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-            optimizer.generation(),
-            optimizer.evaluations(),
-            optimizer.births(),
-            failures,
-            num(best),
-            num(best_of(&batch_fitness, sense)),
-            num(median(&batch_fitness, sense)),
-            num(best_of(&population_fitness, sense)),
-            num(median(&population_fitness, sense)),
-            population.len(),
-            bodies.len(),
-            num(mean_voxels),
-            optimizer.species().map_or(String::new(), |s| s.to_string()),
-            optimizer.archive_cells().map_or(String::new(), |s| s.to_string()),
-        );
-        // columns of the best genotype's own statistics (graph size, …), when it has any
-        if !evaluator.genotype_columns().is_empty() {
-            let stats = optimizer
-                .best()
-                .map(|b| evaluator.genotype_stats(&b.genotype))
-                .unwrap_or_default();
-            csv.pop(); // the row's newline
-            for k in 0..evaluator.genotype_columns().len() {
-                let _ = write!(csv, ",{}", num(stats.get(k).copied().unwrap_or(f64::NAN)));
-            }
-            csv.push('\n');
-        }
-        drop(population);
-        write_file(&csv_path, csv.as_bytes())?;
-
-        // Snapshots.
+        let batch = evaluate_generation(session, &mut optimizer, &mut state)?;
+        log_generation(session.evaluator, &optimizer, &state, &batch, &mut logs.csv);
+        write_file(&slot.files.generations_csv(), logs.csv.as_bytes())?;
         if every > 0 && optimizer.evaluations() >= state.next_snapshot {
-            write_snapshot(files, &optimizer, &mut state)?;
+            write_snapshot(slot.files, &optimizer, &mut state)?;
             while state.next_snapshot <= optimizer.evaluations() {
                 state.next_snapshot += every;
             }
         }
-
-        // Timings (wall clock: kept apart from the deterministic CSV).
-        let generation_seconds = generation_start.elapsed().as_secs_f64();
-        state.evaluation_seconds += evaluation_seconds;
-        state.episode_cpu_seconds += episode_cpu;
-        let _ = writeln!(
-            timings,
-            "{},{:.6},{:.6},{:.6},{:.6},{:.6}",
-            optimizer.generation(),
+        log_timings(
+            &optimizer,
+            &mut state,
+            &batch,
+            generation_start,
             wall(&session_start),
-            generation_seconds,
-            evaluation_seconds,
-            episode_cpu,
-            generation_seconds - evaluation_seconds,
+            &mut logs.timings,
         );
-        write_file(&timings_path, timings.as_bytes())?;
-
-        // Checkpoint.
+        write_file(&slot.files.timings_csv(), logs.timings.as_bytes())?;
         state.wall_seconds = wall(&session_start);
         if last_checkpoint.elapsed().as_secs_f64() >= plan.output.checkpoint_interval {
-            state.csv_bytes = csv.len() as u64;
-            state.csv_hash = content_hash(csv.as_bytes());
-            state.timings_bytes = timings.len() as u64;
-            write_checkpoint(&checkpoint_path, run, seed, &state, &optimizer)?;
+            state.csv_bytes = logs.csv.len() as u64;
+            state.csv_hash = content_hash(logs.csv.as_bytes());
+            state.timings_bytes = logs.timings.len() as u64;
+            write_checkpoint(&slot.files.checkpoint_json(), slot.run, slot.seed, &state, &optimizer)?;
             last_checkpoint = Instant::now();
         }
         if observer.generation(&progress(&optimizer, wall(&session_start))) == Flow::Interrupt {
             return Ok(None);
         }
     };
+    let summary = finish_run(
+        session,
+        slot,
+        &optimizer,
+        &mut state,
+        &logs,
+        reason,
+        wall(&session_start),
+    )?;
+    observer.run_finished(&summary);
+    Ok(Some(summary))
+}
 
-    // The run is over: final population, best robot, summary; the checkpoint is no longer needed.
+/// The summary of a run that a previous session finished, verified against its files.
+fn finished_summary(files: &RunFiles, observer: &mut dyn Observer) -> Result<Option<RunSummary>, RunError> {
+    let summary_path = files.summary_json();
+    let Ok(text) = std::fs::read_to_string(&summary_path) else {
+        return Ok(None);
+    };
+    let summary: RunSummary =
+        serde_json::from_str(&text).map_err(|e| RunError::Mismatch(format!("{}: {e}", summary_path.display())))?;
+    verify_finished(files, &summary, observer)?;
+    Ok(Some(summary))
+}
+
+/// The optimizer, state and logs a run goes on from: its checkpoint when resuming one, or a new
+/// optimizer from the run seed.
+fn start_or_resume<G: Genotype, O: SearchOptimizer<G>>(
+    session: &Session<'_, G, O>,
+    slot: &RunSlot<'_>,
+    observer: &mut dyn Observer,
+) -> Result<(O, RunState, RunLogs), RunError> {
+    let Session {
+        plan,
+        evaluator,
+        new_optimizer,
+        options,
+        ..
+    } = *session;
+    let files = slot.files;
+    let started_before = files.generations_csv().exists();
+    let snapshots = files.snapshots_dir();
+    std::fs::create_dir_all(&snapshots).map_err(io_error(&snapshots))?;
+    if options.resume {
+        remove_stale_temporaries(files.dir());
+        remove_stale_temporaries(&snapshots);
+        match std::fs::read(files.checkpoint_json()) {
+            Ok(bytes) => {
+                let (optimizer, state, csv, timings) =
+                    load_checkpoint::<G, O>(&bytes, files, slot.run, slot.seed, evaluator, observer)?;
+                return Ok((optimizer, state, RunLogs { csv, timings }));
+            }
+            Err(_) if started_before => observer.notice(&format!(
+                "run {}/{}: no checkpoint was written before it stopped; starting it from the beginning \
+                 (it gives the same results)",
+                slot.run + 1,
+                plan.run_seeds.len()
+            )),
+            Err(_) => {}
+        }
+    }
+    let state = RunState {
+        next_snapshot: plan.output.snapshot_every,
+        ..RunState::default()
+    };
+    let extra: String = evaluator
+        .genotype_columns()
+        .iter()
+        .map(|c| format!(",best_{c}"))
+        .collect();
+    let logs = RunLogs {
+        csv: format!("{GENERATIONS_HEADER}{extra}\n"),
+        timings: format!("{TIMINGS_HEADER}\n"),
+    };
+    Ok((new_optimizer(slot.seed)?, state, logs))
+}
+
+/// Ask → evaluate the batch on the pool → tell; keeps the records of the population and the
+/// best.
+fn evaluate_generation<G: Genotype, O: SearchOptimizer<G>>(
+    session: &Session<'_, G, O>,
+    optimizer: &mut O,
+    state: &mut RunState,
+) -> Result<BatchResult, RunError> {
+    let batch = optimizer.ask();
+    let evaluation_start = Instant::now();
+    let genotypes: Vec<&G> = batch.iter().map(|c| &c.genotype).collect();
+    let seeds: Vec<u64> = batch.iter().map(|c| c.seed).collect();
+    let results: Vec<Evaluated> = session
+        .pool
+        .install(|| session.evaluator.evaluate_batch(&genotypes, &seeds))
+        .map_err(|e| RunError::Other(format!("evaluations: {e}")))?;
+    if results.len() != batch.len() {
+        return Err(RunError::Other(format!(
+            "evaluations: {} results for a batch of {}",
+            results.len(),
+            batch.len()
+        )));
+    }
+    let summary = BatchResult {
+        fitness: results.iter().map(|e| e.fitness()).collect(),
+        failures: results.iter().filter(|e| e.failed()).count() as u64,
+        evaluation_seconds: evaluation_start.elapsed().as_secs_f64(),
+        episode_cpu: results.iter().map(|e| e.seconds).sum(),
+    };
+    let mut told = Vec::with_capacity(batch.len());
+    for (candidate, evaluated) in batch.iter().zip(results) {
+        state.records.insert(candidate.genotype.key(), evaluated.record);
+        told.push(Told {
+            id: candidate.id,
+            evaluation: Evaluation {
+                objectives: evaluated.objectives,
+                descriptor: evaluated.descriptor,
+                outcome: evaluated.features,
+            },
+        });
+    }
+    optimizer.tell(told)?;
+    if let Some(best) = optimizer.best() {
+        let hash = best.genotype.key();
+        if state.best.as_ref().map(|b| b.0) != Some(hash) {
+            state.best = state.records.get(&hash).map(|r| (hash, r.clone()));
+        }
+    }
+    let keep: BTreeSet<u64> = optimizer.population().iter().map(|i| i.genotype.key()).collect();
+    state.records.retain(|k, _| keep.contains(k));
+    state.failures += summary.failures;
+    Ok(summary)
+}
+
+/// Appends the generation's row (deterministic columns) to `generations.csv`'s text.
+fn log_generation<G: Genotype, O: SearchOptimizer<G>>(
+    evaluator: &dyn Evaluator<G>,
+    optimizer: &O,
+    state: &RunState,
+    batch: &BatchResult,
+    csv: &mut String,
+) {
+    let sense = first_sense(optimizer);
+    let population = optimizer.population();
+    let population_fitness: Vec<f64> = population.iter().map(|i| i.fitness()).collect();
+    let records: Vec<Option<&Record>> = population
+        .iter()
+        .map(|i| state.records.get(&i.genotype.key()))
+        .collect();
+    let bodies: BTreeSet<&str> = records
+        .iter()
+        .filter_map(|r| r.and_then(|r| r.body.as_deref()))
+        .collect();
+    let voxels: Vec<usize> = records.iter().filter_map(|r| r.and_then(|r| r.voxels)).collect();
+    let mean_voxels = if voxels.is_empty() {
+        f64::NAN
+    } else {
+        voxels.iter().sum::<usize>() as f64 / voxels.len() as f64
+    };
+    let best = optimizer.best().map_or(f64::NAN, |b| b.fitness());
+    let _ = write!(
+        csv,
+        "{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+        optimizer.generation(),
+        optimizer.evaluations(),
+        optimizer.births(),
+        batch.failures,
+        num(best),
+        num(best_of(&batch.fitness, sense)),
+        num(median(&batch.fitness, sense)),
+        num(best_of(&population_fitness, sense)),
+        num(median(&population_fitness, sense)),
+        population.len(),
+        bodies.len(),
+        num(mean_voxels),
+        optimizer.species().map_or(String::new(), |s| s.to_string()),
+        optimizer.archive_cells().map_or(String::new(), |s| s.to_string()),
+    );
+    // columns of the best genotype's own statistics (graph size, …), when it has any
+    let columns = evaluator.genotype_columns().len();
+    if columns > 0 {
+        let stats = optimizer
+            .best()
+            .map(|b| evaluator.genotype_stats(&b.genotype))
+            .unwrap_or_default();
+        for k in 0..columns {
+            let _ = write!(csv, ",{}", num(stats.get(k).copied().unwrap_or(f64::NAN)));
+        }
+    }
+    csv.push('\n');
+}
+
+/// Appends the generation's wall-clock row to `timings.csv`'s text (kept apart from the
+/// deterministic CSV) and adds its times to the run's totals.
+fn log_timings<G, O: SearchOptimizer<G>>(
+    optimizer: &O,
+    state: &mut RunState,
+    batch: &BatchResult,
+    generation_start: Instant,
+    wall: f64,
+    timings: &mut String,
+) {
+    let generation_seconds = generation_start.elapsed().as_secs_f64();
+    state.evaluation_seconds += batch.evaluation_seconds;
+    state.episode_cpu_seconds += batch.episode_cpu;
+    let _ = writeln!(
+        timings,
+        "{},{:.6},{:.6},{:.6},{:.6},{:.6}",
+        optimizer.generation(),
+        wall,
+        generation_seconds,
+        batch.evaluation_seconds,
+        batch.episode_cpu,
+        generation_seconds - batch.evaluation_seconds,
+    );
+}
+
+/// The run is over: final population, best robot and replay, the summary with the hashes of
+/// the deterministic files; the checkpoint is no longer needed.
+fn finish_run<G: Genotype, O: SearchOptimizer<G>>(
+    session: &Session<'_, G, O>,
+    slot: &RunSlot<'_>,
+    optimizer: &O,
+    state: &mut RunState,
+    logs: &RunLogs,
+    reason: &str,
+    wall_seconds: f64,
+) -> Result<RunSummary, RunError> {
+    let RunSlot { run, seed, files } = *slot;
     if state.last_snapshot != Some(optimizer.evaluations()) {
-        write_snapshot(files, &optimizer, &mut state)?;
+        write_snapshot(files, optimizer, state)?;
     }
     let best = optimizer.best();
     let mut manifest = BTreeMap::new();
-    manifest.insert(GENERATIONS_FILE.to_string(), content_hash(csv.as_bytes()));
+    manifest.insert(GENERATIONS_FILE.to_string(), content_hash(logs.csv.as_bytes()));
     for snapshot in &state.snapshots {
         let name = format!("{SNAPSHOTS_DIR}/{}", snapshot_file_name(snapshot.evaluations));
         manifest.insert(name, snapshot.hash.clone());
     }
-    if plan.output.save_best {
-        if let Some(best) = best {
-            let note = format!(
-                "{}: run {run} (seed {seed}), best of {} evaluations, born in generation {}, fitness {}",
-                plan.name.as_deref().unwrap_or("experiment"),
-                optimizer.evaluations(),
-                best.birth_generation,
-                best.fitness()
-            );
-            evaluator
-                .save_robot(&best.genotype, &files.best_robot(), &note)
-                .map_err(|e| RunError::Other(format!("best robot of run {run}: {e}")))?;
-            if let Ok(bytes) = std::fs::read(files.best_robot()) {
-                manifest.insert(BEST_ROBOT_FILE.to_string(), content_hash(&bytes));
-            }
-            let title = format!(
-                "{} run {run}: best, fitness {}",
-                plan.name.as_deref().unwrap_or("experiment"),
-                best.fitness()
-            );
-            evaluator
-                .save_replay(&best.genotype, &files.best_replay(), &title)
-                .map_err(|e| RunError::Other(format!("best replay of run {run}: {e}")))?;
+    if let (true, Some(best)) = (session.plan.output.save_best, best) {
+        if let Some(hash) = save_best(session, slot, optimizer, best)? {
+            manifest.insert(BEST_ROBOT_FILE.to_string(), hash);
         }
     }
-    let wall_seconds = wall(&session_start);
     let overhead = (wall_seconds - state.evaluation_seconds).max(0.0);
     let best_record = state.best.as_ref().map(|b| &b.1);
     let summary = RunSummary {
@@ -735,14 +803,41 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
             0.0
         },
         episode_cpu_seconds: state.episode_cpu_seconds,
-        threads: pool.current_num_threads(),
+        threads: session.pool.current_num_threads(),
         files: manifest,
     };
     let text = serde_json::to_string_pretty(&summary).expect("summaries serialise");
-    write_file(&summary_path, text.as_bytes())?;
-    let _ = std::fs::remove_file(&checkpoint_path);
-    observer.run_finished(&summary);
-    Ok(Some(summary))
+    write_file(&files.summary_json(), text.as_bytes())?;
+    let _ = std::fs::remove_file(files.checkpoint_json());
+    Ok(summary)
+}
+
+/// Writes the best robot's file and replay; the robot file's hash when there is one.
+fn save_best<G: Genotype, O: SearchOptimizer<G>>(
+    session: &Session<'_, G, O>,
+    slot: &RunSlot<'_>,
+    optimizer: &O,
+    best: &Individual<G>,
+) -> Result<Option<String>, RunError> {
+    let RunSlot { run, seed, files } = *slot;
+    let name = session.plan.name.as_deref().unwrap_or("experiment");
+    let note = format!(
+        "{name}: run {run} (seed {seed}), best of {} evaluations, born in generation {}, fitness {}",
+        optimizer.evaluations(),
+        best.birth_generation,
+        best.fitness()
+    );
+    session
+        .evaluator
+        .save_robot(&best.genotype, &files.best_robot(), &note)
+        .map_err(|e| RunError::Other(format!("best robot of run {run}: {e}")))?;
+    let hash = std::fs::read(files.best_robot()).ok().map(|bytes| content_hash(&bytes));
+    let title = format!("{name} run {run}: best, fitness {}", best.fitness());
+    session
+        .evaluator
+        .save_replay(&best.genotype, &files.best_replay(), &title)
+        .map_err(|e| RunError::Other(format!("best replay of run {run}: {e}")))?;
+    Ok(hash)
 }
 
 /// Removes the temporary files a killed process may have left mid-write (`.NAME.tmp-PID`, see

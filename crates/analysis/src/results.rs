@@ -144,7 +144,7 @@ pub struct SnapshotRow {
     #[serde(default)]
     pub error: Option<String>,
     /// The genotype as stored, of any genotype kind (a list of genes, a graph, …): the
-    /// experiment's genotype kind reads it ([`crate::replay::ReplaySetup::replay_row`]); null
+    /// experiment's genotype kind reads it (`vsrlab_pipelines::replay::ReplaySetup::replay_row`); null
     /// when the row has none.
     #[serde(default)]
     pub genotype: serde_json::Value,

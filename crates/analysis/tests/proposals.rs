@@ -5,8 +5,12 @@
 use vsrlab_analysis::diversity::{propose_behaviour, propose_shape};
 use vsrlab_analysis::features::{FeatureParams, RobotFeatures};
 use vsrlab_analysis::morphology::MorphologyDescriptors;
-use vsrlab_analysis::replay::replay;
-use vsrlab_tasks::{Robot, TaskSpec, TraceLevel};
+use vsrlab_tasks::{Robot, Task, TaskSpec, Trace, TraceLevel};
+
+/// The full trace of one episode.
+fn replay(robot: &dyn Robot, task: &dyn Task, seed: u64, level: TraceLevel) -> Option<Trace> {
+    vsrlab_tasks::episode::run(robot, task, seed, level).ok()?.trace
+}
 
 #[test]
 fn the_evolved_biped_is_a_planted_walker() {

@@ -1,12 +1,12 @@
 //! `vsrlab analyze`: figures and a summary table from the output of `vsrlab run`
-//! (docs/analysis.md). The pipeline is `vsrlab_analysis::pipelines::analyze`; this file turns
+//! (docs/analysis.md). The pipeline is `vsrlab_pipelines::analyze`; this file turns
 //! the arguments into its options and prints its report.
 
-use crate::replay_setup::read_setup;
 use clap::Args;
 use std::path::PathBuf;
-use vsrlab_analysis::pipelines::{analyze, AnalyzeOptions};
 use vsrlab_analysis::progress::Stderr;
+use vsrlab_pipelines::setup::read_setup;
+use vsrlab_pipelines::{analyze, AnalyzeOptions};
 
 /// Arguments of `vsrlab analyze`.
 #[derive(Args, Debug)]

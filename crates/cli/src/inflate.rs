@@ -1,10 +1,10 @@
 //! `vsrlab inflate`: the PSA inflation protocol (thesis §6.4.1) for each size, φ and p/p_max per
-//! step as a CSV and a figure. The pipeline is `vsrlab_analysis::pipelines::inflation`.
+//! step as a CSV and a figure. The pipeline is `vsrlab_pipelines::inflation`.
 
 use clap::Args;
 use std::path::PathBuf;
-use vsrlab_analysis::pipelines::{inflation, InflationOptions};
 use vsrlab_body::psa::PsaSize;
+use vsrlab_pipelines::{inflation, InflationOptions};
 
 /// Arguments of `vsrlab inflate`.
 #[derive(Args, Debug)]

@@ -1,13 +1,13 @@
 //! `vsrlab label`: a page for labelling a stratified sample of evolved robots by hand
-//! (docs/analysis.md). The pipeline is `vsrlab_analysis::pipelines::label`; this file turns the
+//! (docs/analysis.md). The pipeline is `vsrlab_pipelines::label`; this file turns the
 //! arguments into its options, draws the videos with `vsrlab-render` and prints what to do next.
 
-use crate::replay_setup::read_setup;
 use clap::Args;
 use std::path::{Path, PathBuf};
-use vsrlab_analysis::pipelines::{label, parse_classes, LabelOptions, VideoSpec};
 use vsrlab_analysis::progress::Stderr;
-use vsrlab_analysis::replay::BoxError;
+use vsrlab_pipelines::replay::BoxError;
+use vsrlab_pipelines::setup::read_setup;
+use vsrlab_pipelines::{label, parse_classes, LabelOptions, VideoSpec};
 use vsrlab_render::{RenderOptions, Trace};
 
 /// Arguments of `vsrlab label`.

@@ -12,7 +12,6 @@ mod modules;
 mod overrides;
 mod plasticity;
 mod reassess;
-mod replay_setup;
 mod run;
 mod simulate;
 mod validate;

@@ -1,15 +1,15 @@
 //! The graph-brain commands of thesis §4.1: `vsrlab modules` (automatic module discovery),
 //! `vsrlab reassemble` (hybrids of evolved robots and their re-optimisation experiment) and
 //! `vsrlab transferability` (ρ and η per setting). The pipelines are
-//! `vsrlab_analysis::pipelines::{modules, reassemble}`.
+//! `vsrlab_pipelines::{modules, reassemble}`.
 
 use clap::Args;
 use std::path::PathBuf;
-use vsrlab_analysis::pipelines::{
-    modules, reassemble, transferability, ModulesOptions, ReassembleOptions, TransferabilityOptions,
-};
 use vsrlab_analysis::progress::Stderr;
 use vsrlab_experiment::config;
+use vsrlab_pipelines::{
+    modules, reassemble, transferability, ModulesOptions, ReassembleOptions, TransferabilityOptions,
+};
 
 /// Arguments of `vsrlab modules`.
 #[derive(Args, Debug)]
@@ -102,7 +102,7 @@ pub fn run_reassemble(a: ReassembleArgs) -> Result<(), String> {
         report.config.display(),
         options
             .out
-            .join(vsrlab_analysis::pipelines::reassemble::REOPTIMISED_DIR)
+            .join(vsrlab_pipelines::reassemble::REOPTIMISED_DIR)
             .display()
     );
     Ok(())

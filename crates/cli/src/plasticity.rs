@@ -1,12 +1,12 @@
 //! `vsrlab plasticity`: the frozen-weight test and weight histograms of evolved Hebbian robots
-//! (thesis §5.3.4.2–3). The pipeline is `vsrlab_analysis::pipelines::plasticity`.
+//! (thesis §5.3.4.2–3). The pipeline is `vsrlab_pipelines::plasticity`.
 
 use crate::overrides::TaskOverrides;
-use crate::replay_setup::read_setup;
 use clap::Args;
 use std::path::PathBuf;
-use vsrlab_analysis::pipelines::{plasticity, PlasticityOptions};
 use vsrlab_analysis::progress::Stderr;
+use vsrlab_pipelines::setup::read_setup;
+use vsrlab_pipelines::{plasticity, PlasticityOptions};
 
 /// Arguments of `vsrlab plasticity`.
 #[derive(Args, Debug)]

@@ -1,12 +1,12 @@
 //! `vsrlab reassess`: the best robot of every run on unseen episodes (new terrains, optionally
-//! damage), compared between settings. The pipeline is `vsrlab_analysis::pipelines::reassess`.
+//! damage), compared between settings. The pipeline is `vsrlab_pipelines::reassess`.
 
 use crate::overrides::TaskOverrides;
-use crate::replay_setup::read_setup;
 use clap::Args;
 use std::path::PathBuf;
-use vsrlab_analysis::pipelines::{reassess, ReassessOptions};
 use vsrlab_analysis::progress::Stderr;
+use vsrlab_pipelines::setup::read_setup;
+use vsrlab_pipelines::{reassess, ReassessOptions};
 
 /// Arguments of `vsrlab reassess`.
 #[derive(Args, Debug)]

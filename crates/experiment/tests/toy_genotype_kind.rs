@@ -216,37 +216,35 @@ fn a_toy_genotype_kind_runs_with_the_ga_and_its_snapshots_replay_in_the_analyses
         "{resolved}"
     );
 
-    // snapshots hold the genotypes as the kind stores them; the analyses read and replay them
+    // snapshots hold the genotypes as the kind stores them; the analyses read them and replay
+    // them through the kind's stored-genotype reader (what `vsrlab-pipelines`' ReplaySetup holds)
     let rows =
         vsrlab_analysis::results::read_snapshot(&run_dir(&out, 0, 2).join("snapshots/evaluations-0000012.jsonl"))
             .unwrap();
     assert_eq!(rows.len(), 6);
     let levels: Vec<i8> = serde_json::from_value(rows[0].genotype.clone()).unwrap();
     assert_eq!(levels.len(), CELLS);
-    let setup = vsrlab_analysis::replay::ReplaySetup {
-        genotypes: experiment.genotype_kind().stored(&experiment).unwrap(),
-        task: experiment.task.spec.clone(),
-        episode_seed: experiment.task.episode_seed,
-        random_terrain: false,
-    };
-    let (robot, trace) = setup.replay_row(&rows[0]).unwrap();
-    assert!(trace.times.len() > 10, "a whole episode is replayed");
+    let stored = experiment.genotype_kind().stored(&experiment).unwrap();
+    let robot = stored.robot(&rows[0].genotype).unwrap();
     let outcome = vsrlab_tasks::episode::run(
         robot.as_ref(),
         experiment.task.spec.task(),
         rows[0].seed,
-        TraceLevel::None,
+        TraceLevel::Full,
     )
     .unwrap();
+    assert!(outcome.trace.unwrap().times.len() > 10, "a whole episode is replayed");
     assert_eq!(
         outcome.fitness.first().copied(),
         rows[0].fitness,
         "the replay gives the logged fitness"
     );
     // a stored genotype of another kind is refused, not dropped
-    let mut wrong = rows[0].clone();
-    wrong.genotype = serde_json::json!({"neurons": []});
-    let err = setup.replay_row(&wrong).err().unwrap().to_string();
+    let err = stored
+        .robot(&serde_json::json!({"neurons": []}))
+        .err()
+        .unwrap()
+        .to_string();
     assert!(err.contains("not a genotype of this experiment"), "{err}");
 
     // the best robot is a robot file

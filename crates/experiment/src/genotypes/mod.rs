@@ -81,6 +81,8 @@ pub trait GenotypeCopy {
     fn clone_box(&self) -> Box<dyn GenotypeKind>;
     /// The table itself, for comparisons within its kind and downcasts.
     fn as_any(&self) -> &dyn Any;
+    /// The table itself, mutably (to edit an experiment through its kind's own type).
+    fn as_any_mut(&mut self) -> &mut dyn Any;
     /// Whether `other` is the same table.
     fn same_as(&self, other: &dyn GenotypeKind) -> bool;
 }
@@ -93,6 +95,9 @@ impl<T: GenotypeKind + Clone + PartialEq + Serialize + 'static> GenotypeCopy for
         Box::new(self.clone())
     }
     fn as_any(&self) -> &dyn Any {
+        self
+    }
+    fn as_any_mut(&mut self) -> &mut dyn Any {
         self
     }
     fn same_as(&self, other: &dyn GenotypeKind) -> bool {
@@ -113,6 +118,11 @@ impl GenotypeConfig {
     /// The kind's table as its own type, when it is `T`.
     pub fn downcast_ref<T: 'static>(&self) -> Option<&T> {
         self.0.as_any().downcast_ref()
+    }
+
+    /// The kind's table as its own type, mutably, when it is `T`.
+    pub fn downcast_mut<T: 'static>(&mut self) -> Option<&mut T> {
+        self.0.as_any_mut().downcast_mut()
     }
 
     /// The kind's table, mutably (to read files it names).

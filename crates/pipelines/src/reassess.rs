@@ -11,17 +11,17 @@
 //! and `reassess-velocity-over-time.png/.svg` (the centre's velocity over sliding windows, mean
 //! over episodes, median ± sd across runs: what happens around a damage).
 
-use super::settings::{settings_of, with_unit};
-use super::{read_setups, thread_pool};
 use crate::error::AnalysisError;
 use crate::output::{create_folder, write_output};
-use crate::plot::{self, BandChart, BandFigure, BandSeries, BoxFigure, BoxGroup};
-use crate::progress::Progress;
 use crate::replay::{ReplayError, SetupReader};
-use crate::results::{self, ExperimentData};
-use crate::stats::{mann_whitney_u, mean, median, quantile, std_dev};
+use crate::settings::{settings_of, with_unit};
+use crate::{read_setups, thread_pool};
 use rayon::prelude::*;
 use std::path::PathBuf;
+use vsrlab_analysis::plot::{self, BandChart, BandFigure, BandSeries, BoxFigure, BoxGroup};
+use vsrlab_analysis::progress::Progress;
+use vsrlab_analysis::results::{self, ExperimentData};
+use vsrlab_analysis::stats::{mann_whitney_u, mean, median, quantile, std_dev};
 use vsrlab_tasks::files::load_robot;
 use vsrlab_tasks::{episode, RobotSpec, TaskSpec, TraceLevel};
 
@@ -301,7 +301,7 @@ pub fn reassess(
             series,
         }],
         legend_title: "setting".into(),
-        note: crate::plot::band::median_sd_note(),
+        note: vsrlab_analysis::plot::band::median_sd_note(),
     };
     files.extend(plot::save(
         &over_time,

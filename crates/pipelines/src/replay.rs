@@ -1,12 +1,12 @@
 //! Replaying evolved robots: the one place where analysis runs episodes ([`replay`]), and the
 //! setup an experiment's individuals are replayed with ([`ReplaySetup`]).
 //!
-//! The experiment configuration belongs to the experiment crate, which comes after this one, so
-//! the caller reads it: a [`SetupReader`] turns an experiment folder into a [`ReplaySetup`].
+//! A [`SetupReader`] turns an experiment folder into a [`ReplaySetup`]: commands use
+//! [`crate::setup::read_setup`] (the experiment file, read by the experiment crate), tests their own.
 
-use crate::results::SnapshotRow;
-use crate::run_folder::RunFolder;
 use std::sync::Arc;
+use vsrlab_analysis::results::SnapshotRow;
+use vsrlab_analysis::run_folder::RunFolder;
 use vsrlab_tasks::Task;
 use vsrlab_tasks::{episode, EpisodeError, EvaluationError, Robot, StoredGenotypes, TaskSpec, Trace, TraceLevel};
 

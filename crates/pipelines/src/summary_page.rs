@@ -1,12 +1,12 @@
 //! `summary.md`: what was analysed, the summary table, the classifiers and the list of figures
 //! and tables.
 
-use super::analyze::FigureNote;
-use super::settings::Setting;
-use crate::report::Summary;
-use crate::results::ExperimentData;
+use crate::analyze::FigureNote;
+use crate::settings::Setting;
 use std::fmt::Write as _;
 use std::path::PathBuf;
+use vsrlab_analysis::report::Summary;
+use vsrlab_analysis::results::ExperimentData;
 
 /// What `summary.md` reports.
 pub(crate) struct SummaryPage<'a> {

@@ -17,16 +17,16 @@
 //! Files: `frozen.csv` (setting, run, protocol, time, seed, fitness), `frozen.png/.svg`,
 //! `weights.csv` (setting, time, bin centre, relative frequency) and `weights.png/.svg`.
 
-use super::reassess::{best_robots, BestRobot};
-use super::thread_pool;
 use crate::error::AnalysisError;
 use crate::output::{create_folder, write_output};
-use crate::plot::{self, BandChart, BandFigure, BandSeries};
-use crate::progress::Progress;
+use crate::reassess::{best_robots, BestRobot};
 use crate::replay::{ReplayError, SetupReader};
-use crate::stats::{mean, median, quantile, std_dev};
+use crate::thread_pool;
 use rayon::prelude::*;
 use std::path::PathBuf;
+use vsrlab_analysis::plot::{self, BandChart, BandFigure, BandSeries};
+use vsrlab_analysis::progress::Progress;
+use vsrlab_analysis::stats::{mean, median, quantile, std_dev};
 use vsrlab_tasks::episode::{self, run_observed};
 use vsrlab_tasks::{EpisodeError, RobotSpec, Task, TraceLevel};
 
@@ -374,7 +374,7 @@ fn frozen_figure(robots: &[BestRobot], frozen: &[FrozenScore], options: &Plastic
         ),
         panels,
         legend_title: "protocol".into(),
-        note: crate::plot::band::median_sd_note(),
+        note: vsrlab_analysis::plot::band::median_sd_note(),
     }
 }
 

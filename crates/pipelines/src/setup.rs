@@ -1,10 +1,11 @@
-//! How `analyze` and `label` replay an experiment's robots: its `experiment.toml`, read by the
-//! experiment crate (the analysis crate comes before it and cannot).
+//! How the pipelines replay an experiment's robots: its `experiment.toml`, read as the runner
+//! reads it, so that its genotype kind turns stored genotypes into robots.
 
-use vsrlab_analysis::replay::{BoxError, ReplaySetup};
+use crate::replay::{BoxError, ReplaySetup};
 use vsrlab_analysis::RunFolder;
 
-/// The replay setup of the experiment in `folder`.
+/// The replay setup of the experiment in `folder` (the [`crate::replay::SetupReader`] every
+/// command uses; tests hand the pipelines their own).
 pub fn read_setup(folder: &RunFolder) -> Result<ReplaySetup, BoxError> {
     let e = vsrlab_experiment::config::load(&folder.experiment_toml())?;
     Ok(ReplaySetup {

@@ -4,21 +4,21 @@
 //! picks a morphology and a behaviour class per robot and saves `labels.csv` for
 //! `vsrlab analyze --labels`.
 
-use super::candidates::{candidates, Candidate};
-use super::classes::{check_classes, nearest_class, THESIS_BEHAVIOURS, THESIS_SHAPES};
-use super::label_page::{manifest_csv, page, page_data, Evidence, PageRobot};
-use super::thread_pool;
-use crate::diversity::{propose_behaviour, propose_shape};
+use crate::candidates::{candidates, Candidate};
+use crate::classes::{check_classes, nearest_class, THESIS_BEHAVIOURS, THESIS_SHAPES};
 use crate::error::AnalysisError;
-use crate::features::{FeatureParams, RobotFeatures};
-use crate::labels::{write_labels, LabelRow};
+use crate::label_page::{manifest_csv, page, page_data, Evidence, PageRobot};
 use crate::output::{create_folder, write_output};
-use crate::progress::Progress;
 use crate::replay::{BoxError, ReplaySetup, SetupReader};
-use crate::results::{self, ExperimentData};
-use crate::sampling::stratified_sample;
+use crate::thread_pool;
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
+use vsrlab_analysis::diversity::{propose_behaviour, propose_shape};
+use vsrlab_analysis::features::{FeatureParams, RobotFeatures};
+use vsrlab_analysis::labels::{write_labels, LabelRow};
+use vsrlab_analysis::progress::Progress;
+use vsrlab_analysis::results::{self, ExperimentData};
+use vsrlab_analysis::sampling::stratified_sample;
 use vsrlab_tasks::files::write_text;
 use vsrlab_tasks::{TaskSpec, Trace};
 

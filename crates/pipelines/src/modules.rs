@@ -5,12 +5,12 @@
 //! Files: `modules.csv` (setting, run, module size, compactness, pieces, the partition as rows of
 //! digits: 0 = the module, 1… = the other pieces, `.` = no voxel).
 
-use super::settings::settings_of;
 use crate::error::AnalysisError;
 use crate::output::{create_folder, write_output};
-use crate::progress::Progress;
-use crate::results;
+use crate::settings::settings_of;
 use std::path::PathBuf;
+use vsrlab_analysis::progress::Progress;
+use vsrlab_analysis::results;
 use vsrlab_body::Morphology;
 use vsrlab_brain::graph_modules::{digit, discover, grid_rows, Cell, Partition, MAX_MODULE_SIZE};
 use vsrlab_brain::BrainSpec;

@@ -1,19 +1,19 @@
 //! Species over evolution: every snapshot's individuals (or an even sample of them) replayed,
 //! classified by shape and behaviour, and summarised by the Inverse Simpson Index.
 
-use super::classifiers::Classifiers;
-use super::settings::Setting;
-use crate::diversity::{inverse_simpson, species_index};
+use crate::classifiers::Classifiers;
 use crate::error::AnalysisError;
-use crate::features::{FeatureParams, RobotFeatures};
-use crate::progress::Progress;
 use crate::replay::ReplaySetup;
-use crate::report::csv_field;
-use crate::results::{self, ExperimentData, SnapshotRow};
-use crate::sampling::spread;
+use crate::settings::Setting;
 use rayon::prelude::*;
 use std::fmt::Write as _;
 use std::path::Path;
+use vsrlab_analysis::diversity::{inverse_simpson, species_index};
+use vsrlab_analysis::features::{FeatureParams, RobotFeatures};
+use vsrlab_analysis::progress::Progress;
+use vsrlab_analysis::report::csv_field;
+use vsrlab_analysis::results::{self, ExperimentData, SnapshotRow};
+use vsrlab_analysis::sampling::spread;
 
 /// The species of one replayed individual.
 #[derive(Debug, Clone, Copy, PartialEq)]

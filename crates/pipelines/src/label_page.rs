@@ -2,10 +2,10 @@
 //! descriptors and suggestions) and `index.html`, a self-contained page (no network, works
 //! from `file://`) that saves `labels.csv`.
 
-use super::candidates::Candidate;
-use crate::labels::LabelRow;
-use crate::report::csv_field;
+use crate::candidates::Candidate;
 use std::fmt::Write as _;
+use vsrlab_analysis::labels::LabelRow;
+use vsrlab_analysis::report::csv_field;
 
 /// The page; `/*DATA*/null`, `{{TITLE}}` and `{{KEY}}` are filled in by [`page`].
 const PAGE: &str = include_str!("label_page.html");
@@ -35,7 +35,7 @@ pub(crate) struct PageRobot {
     pub evidence: Evidence,
 }
 
-/// The features behind a behaviour proposal ([`crate::diversity::propose_behaviour`]).
+/// The features behind a behaviour proposal ([`vsrlab_analysis::diversity::propose_behaviour`]).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub(crate) struct Evidence {
     /// Fraction of steps with the whole body off the ground.

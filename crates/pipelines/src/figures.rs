@@ -1,18 +1,18 @@
 //! The figures of `analyze`, built from the runs, the best robots and the species (each is
 //! described in `summary.md` and docs/analysis.md).
 
-use super::best_robots::BestRobot;
-use super::classifiers::Classifiers;
-use super::settings::Setting;
-use super::species::{Labelled, RunSpecies, SnapshotIsi};
-use crate::curves::{band, grid_for};
-use crate::pca::Pca;
-use crate::plot::{
+use crate::best_robots::BestRobot;
+use crate::classifiers::Classifiers;
+use crate::settings::Setting;
+use crate::species::{Labelled, RunSpecies, SnapshotIsi};
+use vsrlab_analysis::curves::{band, grid_for};
+use vsrlab_analysis::pca::Pca;
+use vsrlab_analysis::plot::{
     BandChart, BandFigure, BandSeries, BoxFigure, BoxGroup, Bubble, BubbleFigure, BubblePanel, ScatterFigure,
     ScatterPoint,
 };
-use crate::report::pairwise;
-use crate::results::{ExperimentData, GenerationRow};
+use vsrlab_analysis::report::pairwise;
+use vsrlab_analysis::results::{ExperimentData, GenerationRow};
 
 /// Curves are resampled on a common grid of this many points before taking median and sd.
 const GRID_POINTS: usize = 200;
@@ -37,7 +37,7 @@ pub(crate) fn fitness_figure(settings: &[Setting], experiments: &[ExperimentData
         })
     };
     BandFigure {
-        note: crate::plot::band::median_sd_note(),
+        note: vsrlab_analysis::plot::band::median_sd_note(),
         title: format!("Fitness ({fitness}) during evolution"),
         legend_title: "setting".into(),
         panels: vec![
@@ -66,7 +66,7 @@ pub(crate) fn graph_size_figure(settings: &[Setting], experiments: &[ExperimentD
         return None;
     }
     Some(BandFigure {
-        note: crate::plot::band::median_sd_note(),
+        note: vsrlab_analysis::plot::band::median_sd_note(),
         title: "Size of the best controller graph during evolution".into(),
         legend_title: "setting".into(),
         panels: vec![evaluations_panel("|G| = neurons + edges", "|G|", settings, |s| {
@@ -86,7 +86,7 @@ pub(crate) fn isi_figure(settings: &[Setting], runs: &[RunSpecies]) -> BandFigur
         })
     };
     BandFigure {
-        note: crate::plot::band::median_sd_note(),
+        note: vsrlab_analysis::plot::band::median_sd_note(),
         title: "Diversity of the population (Inverse Simpson Index)".into(),
         legend_title: "setting".into(),
         panels: vec![

@@ -1,16 +1,16 @@
 //! The shape and behaviour classifiers of `analyze --labels`: random forests trained on the
 //! features of the hand-labelled robots, replayed as the labels file says.
 
-use crate::diversity::Classifier;
 use crate::error::AnalysisError;
-use crate::features::{FeatureParams, RobotFeatures};
-use crate::forest::{Folds, ForestParams};
-use crate::labels::{read_labels, LabelRow};
-use crate::progress::Progress;
 use crate::replay::replay;
 use rayon::prelude::*;
 use std::fmt::Write as _;
 use std::path::Path;
+use vsrlab_analysis::diversity::Classifier;
+use vsrlab_analysis::features::{FeatureParams, RobotFeatures};
+use vsrlab_analysis::forest::{Folds, ForestParams};
+use vsrlab_analysis::labels::{read_labels, LabelRow};
+use vsrlab_analysis::progress::Progress;
 use vsrlab_tasks::files::load_robot;
 use vsrlab_tasks::{Locomotion, Terrain, TraceLevel};
 

@@ -1,11 +1,11 @@
 //! [`AnalysisError`]: why an analysis pipeline (`analyze`, `label`) stopped. Every variant names
 //! the file, folder or robot at fault.
 
-use crate::labels::LabelsError;
-use crate::plot::PlotError;
 use crate::replay::{BoxError, ReplayError};
-use crate::results::ResultsError;
 use std::path::PathBuf;
+use vsrlab_analysis::labels::LabelsError;
+use vsrlab_analysis::plot::PlotError;
+use vsrlab_analysis::results::ResultsError;
 use vsrlab_tasks::files::FileError;
 
 /// Why an analysis pipeline stopped.

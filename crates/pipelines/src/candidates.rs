@@ -2,9 +2,9 @@
 //! per experiment, optionally without the slow ones.
 
 use crate::error::AnalysisError;
-use crate::morphology::MorphologyDescriptors;
-use crate::results::{self, ExperimentData, SnapshotRow};
 use std::collections::HashSet;
+use vsrlab_analysis::morphology::MorphologyDescriptors;
+use vsrlab_analysis::results::{self, ExperimentData, SnapshotRow};
 
 /// One individual that may be drawn for labelling.
 #[derive(Debug, Clone)]

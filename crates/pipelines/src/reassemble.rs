@@ -14,18 +14,20 @@
 //! the re-optimisation, with v̄ the best fitness so far of each run; it compares the settings'
 //! final ρ, η_num and η_weight with Mann–Whitney tests.
 
-use crate::curves::{band, grid_for};
 use crate::error::AnalysisError;
 use crate::output::{create_folder, write_output};
-use crate::plot::{self, BandChart, BandFigure, BandSeries, BoxFigure, BoxGroup};
-use crate::progress::Progress;
-use crate::results::{self, ExperimentData};
-use crate::stats::{mann_whitney_u, median};
 use std::path::{Path, PathBuf};
+use vsrlab_analysis::curves::{band, grid_for};
+use vsrlab_analysis::plot::{self, BandChart, BandFigure, BandSeries, BoxFigure, BoxGroup};
+use vsrlab_analysis::progress::Progress;
+use vsrlab_analysis::results::{self, ExperimentData};
+use vsrlab_analysis::stats::{mann_whitney_u, median};
 use vsrlab_body::Morphology;
 use vsrlab_brain::graph_modules::{discover, grid_rows, region, Cell};
 use vsrlab_brain::graph_transfer::reassemble as hybrid_of;
-use vsrlab_brain::BrainSpec;
+use vsrlab_brain::{BrainSpec, GraphSpec};
+use vsrlab_experiment::config::StopConfig;
+use vsrlab_experiment::genotypes::graph::{GraphGenotypeConfig, OperatorMix};
 use vsrlab_tasks::files::{load_robot, robot_to_json};
 use vsrlab_tasks::RobotSpec;
 
@@ -212,55 +214,58 @@ fn transfer_csv(setting: &str, pairs: &[Pair]) -> String {
 }
 
 /// The donors' resolved experiment, re-run from each hybrid: one run per pair, the thesis'
-/// re-optimisation operators, `generations` generations.
+/// re-optimisation operators, `generations` generations; written through the experiment's typed
+/// configuration, with a `[sweep]` over the hybrids.
 fn reoptimise_toml(
     donors: &ExperimentData,
     setting: &str,
     pairs: &[Pair],
     generations: u64,
 ) -> Result<String, AnalysisError> {
-    let mut t = donors.config.clone();
-    let not_graph = || {
-        option(
-            "donors",
-            format!("{}: not a graph-genotype experiment", donors.dir.display()),
-        )
+    let path = donors.folder().experiment_toml();
+    let mut e = vsrlab_experiment::config::load(&path).map_err(|err| option("donors", err.to_string()))?;
+    let graph = e
+        .genotype
+        .as_mut()
+        .and_then(|g| g.downcast_mut::<GraphGenotypeConfig>())
+        .ok_or_else(|| {
+            option(
+                "donors",
+                format!("{}: not a graph-genotype experiment", donors.dir.display()),
+            )
+        })?;
+    graph.seeded = false;
+    graph.initial = None;
+    graph.operators = OperatorMix::Named("weights-only".into());
+    graph.initial_operators = OperatorMix::Named("thesis".into());
+    e.representation.brain = BrainSpec::Graph(GraphSpec::default());
+    e.description = None;
+    e.name = Some(format!("{setting}-reassembled"));
+    e.setting = e.name.clone();
+    e.runs = 1;
+    e.stop = StopConfig {
+        generations: Some(generations),
+        ..StopConfig::default()
     };
-    t.remove("description");
-    t.insert("name".into(), format!("{setting}-reassembled").into());
-    t.insert("setting".into(), format!("{setting}-reassembled").into());
-    t.insert("runs".into(), 1.into());
-    let representation = t
-        .get_mut("representation")
-        .and_then(|v| v.as_table_mut())
-        .ok_or_else(not_graph)?;
-    let mut brain = toml::Table::new();
-    brain.insert("kind".into(), "graph".into());
-    representation.insert("brain".into(), brain.into());
-    let genotype = t
-        .get_mut("genotype")
-        .and_then(|v| v.as_table_mut())
-        .ok_or_else(not_graph)?;
-    genotype.remove("seeded");
-    genotype.remove("initial");
-    genotype.insert("operators".into(), "weights-only".into());
-    genotype.insert("initial_operators".into(), "thesis".into());
-    let mut stop = toml::Table::new();
-    stop.insert("generations".into(), (generations.min(i64::MAX as u64) as i64).into());
-    t.insert("stop".into(), stop.into());
-    let mut initial = toml::Table::new();
-    for p in pairs {
-        initial.insert(p.label.clone(), p.hybrid.display().to_string().into());
-    }
-    let mut sweep = toml::Table::new();
-    sweep.insert("genotype.initial".into(), initial.into());
-    t.insert("sweep".into(), sweep.into());
-    let body = toml::to_string(&t).map_err(|e| option("donors", format!("cannot write the experiment: {e}")))?;
+    let initial: toml::Table = pairs
+        .iter()
+        .map(|p| (p.label.clone(), p.hybrid.display().to_string().into()))
+        .collect();
+    let sweep = toml::Table::from_iter([(
+        "sweep".to_string(),
+        toml::Value::Table(toml::Table::from_iter([(
+            "genotype.initial".to_string(),
+            initial.into(),
+        )])),
+    )]);
+    let sweep =
+        toml::to_string(&sweep).map_err(|err| option("donors", format!("cannot write the experiment: {err}")))?;
     Ok(format!(
         "# Re-optimisation of the reassembled robots of {setting} (written by vsrlab reassemble):\n\
          # one run from each hybrid; the hybrid and mutants of it made with the five operators, then\n\
          # weights and biases only (thesis §4.1.5.3). Run it into the folder `transferability` reads:\n\
-         #   vsrlab run <this file> --out <this folder>/{REOPTIMISED_DIR}\n{body}"
+         #   vsrlab run <this file> --out <this folder>/{REOPTIMISED_DIR}\n{}\n{sweep}",
+        e.to_toml()
     ))
 }
 
@@ -481,7 +486,7 @@ pub fn transferability(
     let rho_figure = BandFigure {
         title: "Transferability ρ during re-optimisation (1 = the donors' mean velocity)".into(),
         legend_title: "donors".into(),
-        note: crate::plot::band::median_sd_note(),
+        note: vsrlab_analysis::plot::band::median_sd_note(),
         panels: vec![BandChart {
             title: "reassembled robots".into(),
             x_label: "fitness evaluations".into(),

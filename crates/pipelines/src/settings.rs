@@ -1,7 +1,7 @@
 //! Settings: experiments with the same name pool their runs into one setting, which keeps one
 //! colour in every figure.
 
-use crate::results::{self, ExperimentData, RunData};
+use vsrlab_analysis::results::{self, ExperimentData, RunData};
 
 /// One setting of an analysis.
 #[derive(Debug, Clone, PartialEq)]

@@ -3,24 +3,24 @@
 //! run is replayed for its features; with a labels file, the individuals of every snapshot are
 //! classified into species and their diversity measured.
 
-use super::best_robots::{best_csv, best_robots};
-use super::classifiers::{classifier_table, train_classifiers};
-use super::figures::{
+use crate::best_robots::{best_csv, best_robots};
+use crate::classifiers::{classifier_table, train_classifiers};
+use crate::error::AnalysisError;
+use crate::figures::{
     boxplot, descriptor_figure, fitness_figure, graph_size_figure, isi_figure, pca_figure, species_figure,
 };
-use super::settings::{fitness_label, per_setting, settings_of, with_unit, Setting};
-use super::species::{isi_csv, species_over_time};
-use super::summary_page::SummaryPage;
-use super::{read_setups, thread_pool};
-use crate::error::AnalysisError;
 use crate::output::{create_folder, write_output};
-use crate::plot::{self, Figure};
-use crate::progress::Progress;
 use crate::replay::{ReplaySetup, SetupReader};
-use crate::report::{SettingSummary, Summary};
-use crate::results::{self, ExperimentData, RunData};
-use crate::run_folder::{BEST_ROBOT_FILE, GENERATIONS_FILE, SUMMARY_FILE};
+use crate::settings::{fitness_label, per_setting, settings_of, with_unit, Setting};
+use crate::species::{isi_csv, species_over_time};
+use crate::summary_page::SummaryPage;
+use crate::{read_setups, thread_pool};
 use std::path::{Path, PathBuf};
+use vsrlab_analysis::plot::{self, Figure};
+use vsrlab_analysis::progress::Progress;
+use vsrlab_analysis::report::{SettingSummary, Summary};
+use vsrlab_analysis::results::{self, ExperimentData, RunData};
+use vsrlab_analysis::run_folder::{BEST_ROBOT_FILE, GENERATIONS_FILE, SUMMARY_FILE};
 
 /// What to analyse and how (the options of `vsrlab analyze`).
 #[derive(Debug, Clone, PartialEq)]

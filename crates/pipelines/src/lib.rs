@@ -1,30 +1,40 @@
-//! The analysis pipelines behind `vsrlab analyze` and `vsrlab label`: each takes an options
-//! struct, reads the output folders of `vsrlab run`, replays robots where features are needed,
-//! writes its files and returns a typed report.
+//! # vsrlab-pipelines
 //!
-//! The caller supplies what this crate cannot know: how to read an experiment's configuration
-//! ([`SetupReader`]), how to draw a video (for `label`, [`VideoWriter`]) and where progress
-//! goes ([`Progress`]).
+//! The analysis pipelines behind `vsrlab analyze`, `label`, `reassess`, `plasticity`,
+//! `modules`, `reassemble`, `transferability` and `inflate`: each takes an options struct, reads
+//! the output folders of `vsrlab run`, replays robots where features are needed, writes its files
+//! and returns a typed report. They come after `vsrlab-experiment`, so they read experiment files
+//! as the runner does ([`setup::read_setup`]: the task, seeds and genotype kind) and write them
+//! through its typed configuration (`reassemble`'s re-optimisation experiment).
+//!
+//! The caller supplies how a video is drawn (for `label`, [`VideoWriter`]) and where progress
+//! goes ([`Progress`]); tests may hand their own [`SetupReader`].
+#![warn(missing_docs)]
 
 pub mod analyze;
 mod best_robots;
 mod candidates;
 mod classes;
 mod classifiers;
+pub mod error;
 mod figures;
 pub mod inflation;
 pub mod label;
 mod label_page;
 pub mod modules;
+mod output;
 pub mod plasticity;
 pub mod reassemble;
 pub mod reassess;
+pub mod replay;
 mod settings;
+pub mod setup;
 mod species;
 mod summary_page;
 
 pub use analyze::{analyze, AnalysisReport, AnalyzeOptions, FigureNote};
 pub use classes::{parse_classes, THESIS_BEHAVIOURS, THESIS_SHAPES};
+pub use error::AnalysisError;
 pub use inflation::{inflation, InflationOptions, InflationReport, InflationSummary};
 pub use label::{label, LabelOptions, LabelReport, VideoSpec, VideoWriter, LABELLING_FILE};
 pub use modules::{modules, ModulesOptions, ModulesReport};
@@ -34,10 +44,9 @@ pub use reassemble::{
 };
 pub use reassess::{reassess, ReassessOptions, ReassessReport};
 
-use crate::error::AnalysisError;
-use crate::progress::Progress;
 use crate::replay::{ReplaySetup, SetupReader};
-use crate::results::ExperimentData;
+use vsrlab_analysis::progress::Progress;
+use vsrlab_analysis::results::ExperimentData;
 
 /// A thread pool of `threads` workers (None or 0: every core).
 fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, AnalysisError> {

@@ -4,9 +4,9 @@
 
 use crate::error::AnalysisError;
 use crate::output::{create_folder, write_output};
-use crate::plot::{self, BandChart, BandFigure, BandSeries};
 use std::fmt::Write as _;
 use std::path::PathBuf;
+use vsrlab_analysis::plot::{self, BandChart, BandFigure, BandSeries};
 use vsrlab_body::psa::{PsaParams, PsaSize};
 use vsrlab_physics::Vec2;
 use vsrlab_tasks::kinds::psa::inflation::{inflate, psa_physics, InflationPoint};

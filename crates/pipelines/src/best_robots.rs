@@ -1,16 +1,16 @@
 //! The best robot of every run: its morphology descriptors, and its features from a replay on
 //! the experiment's task (for the PCA and `best.csv`).
 
-use super::settings::Setting;
-use crate::features::{FeatureParams, RobotFeatures};
-use crate::morphology::MorphologyDescriptors;
-use crate::progress::Progress;
 use crate::replay::{replay, ReplaySetup};
-use crate::report::csv_field;
-use crate::results::ExperimentData;
+use crate::settings::Setting;
 use rayon::prelude::*;
 use std::fmt::Write as _;
 use std::path::PathBuf;
+use vsrlab_analysis::features::{FeatureParams, RobotFeatures};
+use vsrlab_analysis::morphology::MorphologyDescriptors;
+use vsrlab_analysis::progress::Progress;
+use vsrlab_analysis::report::csv_field;
+use vsrlab_analysis::results::ExperimentData;
 use vsrlab_tasks::files::load_robot;
 use vsrlab_tasks::TraceLevel;
 

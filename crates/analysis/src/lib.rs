@@ -18,6 +18,7 @@ pub mod pose;
 pub mod progress;
 pub mod report;
 pub mod results;
+pub mod rows;
 pub mod run_folder;
 pub mod sampling;
 pub mod spectrum;

@@ -3,14 +3,14 @@
 //! `snapshots/evaluations-NNNNNNN.jsonl`, `best.robot.json` and `summary.json` (the layout is
 //! [`RunFolder`]'s).
 //!
-//! Only file formats are read here (no dependency on the experiment crate): the configuration
-//! stays a TOML table, CSV columns are looked up by name, snapshot lines keep what analysis uses.
+//! The rows are the types the runner writes ([`crate::rows`]); CSV columns are looked up by
+//! name, so files that lack a column still read (NaN, or 0 for counts); the configuration stays
+//! a TOML table (group-by keys are its dotted paths).
 
+pub use crate::rows::{GenerationRow, SnapshotRow};
 use crate::run_folder::{RunFiles, RunFolder};
-use serde::Deserialize;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use vsrlab_body::Morphology;
 
 /// Why results could not be read; every variant names the file or folder.
 #[derive(Debug, thiserror::Error)]
@@ -92,68 +92,6 @@ fn csv_error(path: &Path) -> impl Fn(csv::Error) -> ResultsError + '_ {
     move |source| ResultsError::Csv {
         path: path.to_path_buf(),
         source,
-    }
-}
-
-/// One row of `generations.csv` (the columns analysis uses; NaN when absent).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct GenerationRow {
-    /// Generation number.
-    pub generation: u64,
-    /// Fitness evaluations so far.
-    pub evaluations: u64,
-    /// Best fitness so far.
-    pub best_fitness: f64,
-    /// Median fitness of the population after the generation.
-    pub population_median: f64,
-    /// Best fitness of the population after the generation.
-    pub population_best: f64,
-    /// Size |G| = neurons + edges of the best graph genotype (`best_size`; NaN for other
-    /// genotypes).
-    pub best_size: f64,
-}
-
-/// One population member of a snapshot.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-pub struct SnapshotRow {
-    /// Generation of the snapshot.
-    #[serde(default)]
-    pub generation: u64,
-    /// Evaluations at the snapshot.
-    #[serde(default)]
-    pub evaluations: u64,
-    /// Index in the population.
-    #[serde(default)]
-    pub index: usize,
-    /// Episode seed used to evaluate it.
-    #[serde(default)]
-    pub seed: u64,
-    /// Fitness (None when the evaluation failed).
-    #[serde(default)]
-    pub fitness: Option<f64>,
-    /// Average velocity.
-    #[serde(default)]
-    pub velocity: Option<f64>,
-    /// Number of voxels.
-    #[serde(default)]
-    pub voxels: Option<usize>,
-    /// Body as rows joined by `/`, top row first.
-    #[serde(default)]
-    pub body: Option<String>,
-    /// Why the evaluation failed.
-    #[serde(default)]
-    pub error: Option<String>,
-    /// The genotype as stored, of any genotype kind (a list of genes, a graph, …): the
-    /// experiment's genotype kind reads it (`vsrlab_pipelines::replay::ReplaySetup::replay_row`); null
-    /// when the row has none.
-    #[serde(default)]
-    pub genotype: serde_json::Value,
-}
-
-impl SnapshotRow {
-    /// The body, when the row has one that parses.
-    pub fn morphology(&self) -> Option<Morphology> {
-        self.body.as_deref().and_then(|b| Morphology::parse(b).ok())
     }
 }
 
@@ -268,13 +206,36 @@ pub fn read_generations(path: &Path) -> Result<Vec<GenerationRow>, ResultsError>
                     column,
                 })
         };
+        let count = |name: &str| {
+            col.get(name)
+                .and_then(|&i| rec.get(i))
+                .and_then(|v| v.trim().parse::<u64>().ok())
+        };
+        let best_stats = headers
+            .iter()
+            .enumerate()
+            .filter_map(|(i, h)| h.strip_prefix("best_").filter(|_| h != "best_fitness").map(|n| (i, n)))
+            .map(|(i, name)| {
+                let value = rec.get(i).and_then(|v| v.trim().parse::<f64>().ok());
+                (name.to_string(), value.unwrap_or(f64::NAN))
+            })
+            .collect();
         rows.push(GenerationRow {
             generation: int("generation")?,
             evaluations: int("evaluations")?,
+            births: count("births").unwrap_or(0),
+            failures: count("failures").unwrap_or(0),
             best_fitness: num("best_fitness"),
-            population_median: num("population_median"),
+            batch_best: num("batch_best"),
+            batch_median: num("batch_median"),
             population_best: num("population_best"),
-            best_size: num("best_size"),
+            population_median: num("population_median"),
+            population_size: count("population_size").unwrap_or(0),
+            distinct_bodies: count("distinct_bodies").unwrap_or(0),
+            mean_voxels: num("mean_voxels"),
+            species: count("species"),
+            archive_cells: count("archive_cells"),
+            best_stats,
         });
     }
     Ok(rows)
@@ -531,7 +492,7 @@ mod tests {
             );
             write(
                 &d.join("run-00/snapshots/evaluations-0000080.jsonl"),
-                "{\"generation\":2,\"evaluations\":80,\"index\":0,\"birth_generation\":1,\"seed\":3,\"fitness\":0.7,\"distance\":7.0,\"velocity\":0.7,\"voxels\":4,\"body\":\"##/##\",\"error\":null,\"genotype\":[0.1,-0.2]}\n",
+                "{\"generation\":2,\"evaluations\":80,\"index\":0,\"birth_generation\":1,\"seed\":3,\"fitness\":0.7,\"distance\":7.0,\"velocity\":0.7,\"voxels\":4,\"body\":\"##/##\",\"error\":null,\"descriptor\":[],\"genotype\":[0.1,-0.2]}\n",
             );
             write(&d.join("run-00/snapshots/evaluations-0000040.jsonl"), "");
             write(&d.join("run-00/summary.json"), "{\"best_fitness\": 0.7}");
@@ -551,9 +512,9 @@ mod tests {
         assert_eq!(run.snapshots.iter().map(|s| s.0).collect::<Vec<_>>(), vec![40, 80]);
         let rows = read_snapshot(&run.final_snapshot().unwrap().1).unwrap();
         assert_eq!(rows[0].genotype, serde_json::json!([0.1, -0.2]));
-        assert_eq!(rows[0].body.as_deref(), Some("##/##"));
+        assert_eq!(rows[0].body(), Some("##/##"));
         let graph = root.join("graph.jsonl");
-        let line = r#"{"generation": 3, "fitness": 0.5, "genotype": {"neurons": [], "edges": [], "parameters": []}}"#;
+        let line = r#"{"generation": 3, "evaluations": 9, "index": 0, "birth_generation": 2, "seed": 1, "fitness": 0.5, "distance": null, "velocity": null, "voxels": null, "body": null, "error": null, "descriptor": [], "genotype": {"neurons": [], "edges": [], "parameters": []}}"#;
         write(&graph, line);
         let rows = read_snapshot(&graph).unwrap();
         assert_eq!(
@@ -561,7 +522,7 @@ mod tests {
             serde_json::json!([]),
             "a graph genotype is read whole"
         );
-        assert_eq!(rows[0].fitness, Some(0.5));
+        assert_eq!(rows[0].fitness(), Some(0.5));
         assert_eq!(exps[0].fitness_kind(), "velocity");
         assert_eq!(exps[0].run_label(run), format!("{}/run-00", root.join("a").display()));
         assert_eq!(run.files().best_robot(), root.join("a/run-00/best.robot.json"));

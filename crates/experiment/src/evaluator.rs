@@ -16,28 +16,9 @@ use std::time::Instant;
 use vsrlab_body::Morphology;
 use vsrlab_tasks::{evaluate_traced, EvaluationError, Mapper, Representation, TaskSpec, TraceLevel};
 
-/// The summary of one evaluation that population snapshots carry (serialisable: checkpoints
-/// hold the records of the current population).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Record {
-    /// The episode seed used.
-    pub seed: u64,
-    /// The (first) fitness value (`None` when the evaluation failed).
-    pub fitness: Option<f64>,
-    /// Distance travelled.
-    pub distance: Option<f64>,
-    /// Average velocity.
-    pub velocity: Option<f64>,
-    /// Number of voxels.
-    pub voxels: Option<usize>,
-    /// The body as rows of `#` and `.`, top row first, joined by `/`.
-    pub body: Option<String>,
-    /// Why the evaluation failed.
-    pub error: Option<String>,
-    /// Every fitness value, for multi-objective tasks.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub objectives: Option<Vec<f64>>,
-}
+/// The summary of one evaluation that population snapshots carry (the row type the analyses read
+/// back, [`vsrlab_analysis::rows`]).
+pub use vsrlab_analysis::rows::Record;
 
 /// What one evaluation produced. Serialisable (non-finite values included), so that evaluations
 /// run on other machines (Ray workers) come back whole.

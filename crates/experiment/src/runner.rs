@@ -38,6 +38,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+use vsrlab_analysis::rows::{GenerationRow, SnapshotRow};
 use vsrlab_analysis::run_folder::{
     snapshot_file_name, RunFiles, RunFolder, BEST_ROBOT_FILE, GENERATIONS_FILE, SNAPSHOTS_DIR, SUMMARY_FILE,
     TIMINGS_FILE,
@@ -46,10 +47,6 @@ use vsrlab_evolution::{Evaluation, Individual, Sense, Told};
 use vsrlab_tasks::files::write_atomic;
 
 pub use crate::checkpoint::CHECKPOINT_FORMAT;
-
-/// Header of `generations.csv`.
-pub const GENERATIONS_HEADER: &str = "generation,evaluations,births,failures,best_fitness,batch_best,batch_median,\
-population_best,population_median,population_size,distinct_bodies,mean_voxels,species,archive_cells";
 
 /// Header of `timings.csv`.
 pub const TIMINGS_HEADER: &str =
@@ -194,19 +191,6 @@ pub struct RunSummary {
     pub files: BTreeMap<String, String>,
 }
 
-/// A snapshot line: one population member.
-#[derive(Serialize)]
-struct SnapshotLine<'a, G> {
-    generation: u64,
-    evaluations: u64,
-    index: usize,
-    birth_generation: u64,
-    #[serde(flatten)]
-    record: Option<&'a Record>,
-    descriptor: &'a [f64],
-    genotype: &'a G,
-}
-
 /// What the runner needs of an experiment besides its optimizer and evaluator.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Plan {
@@ -233,11 +217,6 @@ impl Plan {
             output: experiment.output.clone(),
         }
     }
-}
-
-/// Formats a float for the CSV: shortest round-trip form, `NaN` for failures.
-fn num(v: f64) -> String {
-    format!("{v}")
 }
 
 /// The element at index n/2 of the values sorted from worst to best (jgea's median), NaN
@@ -606,13 +585,8 @@ fn start_or_resume<G: Genotype, O: SearchOptimizer<G>>(
         next_snapshot: plan.output.snapshot_every,
         ..RunState::default()
     };
-    let extra: String = evaluator
-        .genotype_columns()
-        .iter()
-        .map(|c| format!(",best_{c}"))
-        .collect();
     let logs = RunLogs {
-        csv: format!("{GENERATIONS_HEADER}{extra}\n"),
+        csv: format!("{}\n", GenerationRow::header(evaluator.genotype_columns())),
         timings: format!("{TIMINGS_HEADER}\n"),
     };
     Ok((new_optimizer(slot.seed)?, state, logs))
@@ -696,36 +670,34 @@ fn log_generation<G: Genotype, O: SearchOptimizer<G>>(
     } else {
         voxels.iter().sum::<usize>() as f64 / voxels.len() as f64
     };
-    let best = optimizer.best().map_or(f64::NAN, |b| b.fitness());
-    let _ = write!(
-        csv,
-        "{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-        optimizer.generation(),
-        optimizer.evaluations(),
-        optimizer.births(),
-        batch.failures,
-        num(best),
-        num(best_of(&batch.fitness, sense)),
-        num(median(&batch.fitness, sense)),
-        num(best_of(&population_fitness, sense)),
-        num(median(&population_fitness, sense)),
-        population.len(),
-        bodies.len(),
-        num(mean_voxels),
-        optimizer.species().map_or(String::new(), |s| s.to_string()),
-        optimizer.archive_cells().map_or(String::new(), |s| s.to_string()),
-    );
-    // columns of the best genotype's own statistics (graph size, …), when it has any
-    let columns = evaluator.genotype_columns().len();
-    if columns > 0 {
-        let stats = optimizer
-            .best()
-            .map(|b| evaluator.genotype_stats(&b.genotype))
-            .unwrap_or_default();
-        for k in 0..columns {
-            let _ = write!(csv, ",{}", num(stats.get(k).copied().unwrap_or(f64::NAN)));
-        }
-    }
+    // the best genotype's own statistics (graph size, …), when its kind logs any
+    let names = evaluator.genotype_columns();
+    let stats = match optimizer.best() {
+        Some(b) if !names.is_empty() => evaluator.genotype_stats(&b.genotype),
+        _ => Vec::new(),
+    };
+    let row = GenerationRow {
+        generation: optimizer.generation(),
+        evaluations: optimizer.evaluations(),
+        births: optimizer.births(),
+        failures: batch.failures,
+        best_fitness: optimizer.best().map_or(f64::NAN, |b| b.fitness()),
+        batch_best: best_of(&batch.fitness, sense),
+        batch_median: median(&batch.fitness, sense),
+        population_best: best_of(&population_fitness, sense),
+        population_median: median(&population_fitness, sense),
+        population_size: population.len() as u64,
+        distinct_bodies: bodies.len() as u64,
+        mean_voxels,
+        species: optimizer.species().map(|s| s as u64),
+        archive_cells: optimizer.archive_cells().map(|s| s as u64),
+        best_stats: names
+            .iter()
+            .enumerate()
+            .map(|(k, name)| (name.to_string(), stats.get(k).copied().unwrap_or(f64::NAN)))
+            .collect(),
+    };
+    csv.push_str(&row.to_csv());
     csv.push('\n');
 }
 
@@ -1009,13 +981,13 @@ fn write_snapshot<G: Genotype, O: SearchOptimizer<G>>(
 ) -> Result<(), RunError> {
     let mut text = String::new();
     for (index, individual) in optimizer.population().into_iter().enumerate() {
-        let line = SnapshotLine {
+        let line = SnapshotRow {
             generation: optimizer.generation(),
             evaluations: optimizer.evaluations(),
             index,
             birth_generation: individual.birth_generation,
             record: state.records.get(&individual.genotype.key()),
-            descriptor: &individual.descriptor,
+            descriptor: individual.descriptor.clone(),
             genotype: &individual.genotype,
         };
         text.push_str(&serde_json::to_string(&line).map_err(|e| RunError::Other(format!("snapshot: {e}")))?);

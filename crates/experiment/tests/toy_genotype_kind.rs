@@ -229,14 +229,14 @@ fn a_toy_genotype_kind_runs_with_the_ga_and_its_snapshots_replay_in_the_analyses
     let outcome = vsrlab_tasks::episode::run(
         robot.as_ref(),
         experiment.task.spec.task(),
-        rows[0].seed,
+        rows[0].seed(),
         TraceLevel::Full,
     )
     .unwrap();
     assert!(outcome.trace.unwrap().times.len() > 10, "a whole episode is replayed");
     assert_eq!(
         outcome.fitness.first().copied(),
-        rows[0].fitness,
+        rows[0].fitness(),
         "the replay gives the logged fitness"
     );
     // a stored genotype of another kind is refused, not dropped

@@ -58,8 +58,8 @@ pub(crate) fn candidates(
 
 /// Whether a snapshot line was evaluated, has a genotype, and is fast enough.
 fn eligible(row: &SnapshotRow, min_velocity: Option<f64>) -> bool {
-    row.error.is_none()
-        && row.fitness.is_some()
+    row.error().is_none()
+        && row.fitness().is_some()
         && !row.genotype.is_null()
-        && !min_velocity.is_some_and(|v| row.velocity.unwrap_or(f64::NEG_INFINITY) < v)
+        && !min_velocity.is_some_and(|v| row.velocity().unwrap_or(f64::NEG_INFINITY) < v)
 }

@@ -55,7 +55,7 @@ pub(crate) fn graph_size_figure(settings: &[Setting], experiments: &[ExperimentD
             .map(|(_, r)| {
                 r.generations
                     .iter()
-                    .map(|g| (g.evaluations as f64, g.best_size))
+                    .map(|g| (g.evaluations as f64, g.best_stat("size")))
                     .filter(|p| p.1.is_finite())
                     .collect()
             })

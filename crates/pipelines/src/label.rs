@@ -276,7 +276,7 @@ impl PageRobotMaker<'_> {
             terrain: locomotion.terrain.to_string(),
             duration: locomotion.duration,
             transient: locomotion.transient,
-            seed: c.row.seed,
+            seed: c.row.seed(),
             candidate: i,
             proposal,
             evidence: Evidence {

@@ -84,7 +84,7 @@ pub(crate) fn manifest_csv(robots: &[PageRobot], pool: &[Candidate]) -> String {
             c.run,
             c.row.evaluations,
             c.row.index,
-            c.row.velocity.map_or(String::new(), |v| v.to_string()),
+            c.row.velocity().map_or(String::new(), |v| v.to_string()),
             c.descriptors.voxels,
             c.descriptors.elongation,
             c.descriptors.compactness,
@@ -118,9 +118,9 @@ pub(crate) fn page_data(
                 "id": e.id, "robot": e.robot, "video": e.video, "terrain": e.terrain,
                 "duration": e.duration, "transient": e.transient, "seed": e.seed,
                 "setting": c.setting, "run": c.run, "evaluations": c.row.evaluations,
-                "velocity": c.row.velocity, "voxels": c.descriptors.voxels,
+                "velocity": c.row.velocity(), "voxels": c.descriptors.voxels,
                 "elongation": c.descriptors.elongation, "compactness": c.descriptors.compactness,
-                "body": c.row.body, "proposal": [e.proposal.0, e.proposal.1],
+                "body": c.row.body(), "proposal": [e.proposal.0, e.proposal.1],
             })
         })
         .collect();

@@ -62,7 +62,7 @@ impl ReplaySetup {
     /// (the episode evolution saw).
     pub fn replay_row(&self, row: &SnapshotRow) -> Result<(Box<dyn Robot>, Trace), ReplayError> {
         let robot = self.genotypes.robot(&row.genotype)?;
-        let trace = replay(robot.as_ref(), self.task.task(), row.seed, TraceLevel::Full)?;
+        let trace = replay(robot.as_ref(), self.task.task(), row.seed(), TraceLevel::Full)?;
         Ok((robot, trace))
     }
 

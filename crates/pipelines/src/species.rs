@@ -108,7 +108,7 @@ fn label_snapshot(
     let rows = results::read_snapshot(path)?;
     let rows: Vec<&SnapshotRow> = rows
         .iter()
-        .filter(|x| x.error.is_none() && x.fitness.is_some())
+        .filter(|x| x.error().is_none() && x.fitness().is_some())
         .collect();
     let picked: Vec<&SnapshotRow> = spread(rows.len(), sample).into_iter().map(|i| rows[i]).collect();
     Ok(pool.install(|| {
@@ -123,7 +123,7 @@ fn label_snapshot(
                 Some(Labelled {
                     shape: cls.shape.predict_index(&f.morphology_vector()),
                     behaviour: cls.behaviour.predict_index(&f.behaviour_vector()),
-                    velocity: row.velocity.unwrap_or(f64::NAN),
+                    velocity: row.velocity().unwrap_or(f64::NAN),
                 })
             })
             .collect()

@@ -49,36 +49,69 @@ pub trait SearchOptimizer<G>: Serialize + DeserializeOwned {
 #[serde(transparent)]
 pub struct Searcher<T>(pub T);
 
-impl<G, T> SearchOptimizer<G> for Searcher<T>
+/// An optimizer the runner drives through the `vsrlab-evolution` optimizer inside it: every
+/// such wrapper is a [`SearchOptimizer`] by delegation, written once.
+pub trait WrapsOptimizer<G: Clone> {
+    /// The optimizer inside.
+    fn optimizer(&self) -> &dyn Tell<Vec<f64>, Genotype = G>;
+    /// The optimizer inside, mutably.
+    fn optimizer_mut(&mut self) -> &mut dyn Tell<Vec<f64>, Genotype = G>;
+    /// Number of species (speciated evolvers only).
+    fn species(&self) -> Option<usize> {
+        None
+    }
+    /// Number of filled cells (archive-based optimizers only).
+    fn archive_cells(&self) -> Option<usize> {
+        None
+    }
+}
+
+impl<G, T> SearchOptimizer<G> for T
 where
-    T: Tell<Vec<f64>, Genotype = G> + Serialize + DeserializeOwned,
+    G: Clone,
+    T: WrapsOptimizer<G> + Serialize + DeserializeOwned,
 {
     fn ask(&mut self) -> Vec<Candidate<G>> {
-        self.0.ask()
+        self.optimizer_mut().ask()
     }
     fn tell(&mut self, results: Vec<Told<Vec<f64>>>) -> Result<(), EvolutionError> {
-        self.0.tell(results)
+        self.optimizer_mut().tell(results)
     }
     fn generation(&self) -> u64 {
-        self.0.generation()
+        self.optimizer().generation()
     }
     fn evaluations(&self) -> u64 {
-        self.0.evaluations()
+        self.optimizer().evaluations()
     }
     fn births(&self) -> u64 {
-        self.0.births()
+        self.optimizer().births()
     }
     fn senses(&self) -> Vec<Sense> {
-        self.0.senses().to_vec()
+        self.optimizer().senses().to_vec()
     }
     fn best(&self) -> Option<&Individual<G>> {
-        self.0.best()
+        self.optimizer().best()
     }
     fn population(&self) -> Vec<&Individual<G>> {
-        self.0.population()
+        self.optimizer().population()
     }
     fn stop_reason(&self) -> Option<&'static str> {
-        self.0.stop_reason()
+        self.optimizer().stop_reason()
+    }
+    fn species(&self) -> Option<usize> {
+        WrapsOptimizer::species(self)
+    }
+    fn archive_cells(&self) -> Option<usize> {
+        WrapsOptimizer::archive_cells(self)
+    }
+}
+
+impl<G: Clone, T: Tell<Vec<f64>, Genotype = G>> WrapsOptimizer<G> for Searcher<T> {
+    fn optimizer(&self) -> &dyn Tell<Vec<f64>, Genotype = G> {
+        &self.0
+    }
+    fn optimizer_mut(&mut self) -> &mut dyn Tell<Vec<f64>, Genotype = G> {
+        &mut self.0
     }
 }
 
@@ -118,9 +151,8 @@ pub enum AnyOptimizer {
     Nsga2(Nsga2<RealVector>),
 }
 
-impl AnyOptimizer {
-    /// The optimizer inside, behind the common ask/tell interface.
-    fn inner(&self) -> &dyn Tell<Vec<f64>, Genotype = Vec<f64>> {
+impl WrapsOptimizer<Vec<f64>> for AnyOptimizer {
+    fn optimizer(&self) -> &dyn Tell<Vec<f64>, Genotype = Vec<f64>> {
         match self {
             AnyOptimizer::Ga(o) => o,
             AnyOptimizer::Es(o) => o,
@@ -131,8 +163,7 @@ impl AnyOptimizer {
         }
     }
 
-    /// The optimizer inside, mutably.
-    fn inner_mut(&mut self) -> &mut dyn Tell<Vec<f64>, Genotype = Vec<f64>> {
+    fn optimizer_mut(&mut self) -> &mut dyn Tell<Vec<f64>, Genotype = Vec<f64>> {
         match self {
             AnyOptimizer::Ga(o) => o,
             AnyOptimizer::Es(o) => o,
@@ -142,42 +173,14 @@ impl AnyOptimizer {
             AnyOptimizer::Nsga2(o) => o,
         }
     }
-}
 
-impl SearchOptimizer<Vec<f64>> for AnyOptimizer {
-    fn ask(&mut self) -> Vec<Candidate<Vec<f64>>> {
-        self.inner_mut().ask()
-    }
-    fn tell(&mut self, results: Vec<Told<Vec<f64>>>) -> Result<(), EvolutionError> {
-        self.inner_mut().tell(results)
-    }
-    fn generation(&self) -> u64 {
-        self.inner().generation()
-    }
-    fn evaluations(&self) -> u64 {
-        self.inner().evaluations()
-    }
-    fn births(&self) -> u64 {
-        self.inner().births()
-    }
-    fn senses(&self) -> Vec<Sense> {
-        self.inner().senses().to_vec()
-    }
-    fn best(&self) -> Option<&Individual<Vec<f64>>> {
-        self.inner().best()
-    }
-    fn population(&self) -> Vec<&Individual<Vec<f64>>> {
-        self.inner().population()
-    }
-    fn stop_reason(&self) -> Option<&'static str> {
-        self.inner().stop_reason()
-    }
     fn species(&self) -> Option<usize> {
         match self {
             AnyOptimizer::Se(se) => Some(se.species().len()),
             _ => None,
         }
     }
+
     fn archive_cells(&self) -> Option<usize> {
         match self {
             AnyOptimizer::MapElites(me) => Some(me.archive().count()),

@@ -19,7 +19,7 @@ mod nsga2;
 mod over_operators;
 mod se;
 
-pub use any::{AnyOptimizer, SearchOptimizer, Searcher, SpeciationFeatures};
+pub use any::{AnyOptimizer, SearchOptimizer, Searcher, SpeciationFeatures, WrapsOptimizer};
 pub use cma_es::CmaParams;
 pub use es::EsParams;
 pub use ga::GaParams;

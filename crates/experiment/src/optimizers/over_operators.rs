@@ -2,11 +2,10 @@
 //! NSGA-II, MAP-Elites), over any genotype kind: an [`OperatorPlan`] is what an `[optimizer]`
 //! table says, [`OperatorOptimizer`] the running optimizer over one kind's operators.
 
-use super::any::SearchOptimizer;
+use super::any::WrapsOptimizer;
 use serde::{Deserialize, Serialize};
 use vsrlab_evolution::{
-    Candidate, EvolutionError, GaConfig, GeneticAlgorithm, Individual, MapElites, MapElitesConfig, Nsga2, Nsga2Config,
-    Representation, Sense, Tell, Told,
+    EvolutionError, GaConfig, GeneticAlgorithm, MapElites, MapElitesConfig, Nsga2, Nsga2Config, Representation, Tell,
 };
 
 /// An optimizer's algorithm and settings, ready to run over any [`Representation`].
@@ -65,8 +64,8 @@ pub enum OperatorOptimizer<R: Representation> {
     MapElites(MapElites<R>),
 }
 
-impl<R: Representation> OperatorOptimizer<R> {
-    fn inner(&self) -> &dyn Tell<Vec<f64>, Genotype = R::Genotype> {
+impl<R: Representation> WrapsOptimizer<R::Genotype> for OperatorOptimizer<R> {
+    fn optimizer(&self) -> &dyn Tell<Vec<f64>, Genotype = R::Genotype> {
         match self {
             OperatorOptimizer::Ga(o) => o,
             OperatorOptimizer::Nsga2(o) => o,
@@ -74,47 +73,14 @@ impl<R: Representation> OperatorOptimizer<R> {
         }
     }
 
-    fn inner_mut(&mut self) -> &mut dyn Tell<Vec<f64>, Genotype = R::Genotype> {
+    fn optimizer_mut(&mut self) -> &mut dyn Tell<Vec<f64>, Genotype = R::Genotype> {
         match self {
             OperatorOptimizer::Ga(o) => o,
             OperatorOptimizer::Nsga2(o) => o,
             OperatorOptimizer::MapElites(o) => o,
         }
     }
-}
 
-impl<R> SearchOptimizer<R::Genotype> for OperatorOptimizer<R>
-where
-    R: Representation + Serialize + for<'de> Deserialize<'de>,
-    R::Genotype: Serialize + for<'de> Deserialize<'de>,
-{
-    fn ask(&mut self) -> Vec<Candidate<R::Genotype>> {
-        self.inner_mut().ask()
-    }
-    fn tell(&mut self, results: Vec<Told<Vec<f64>>>) -> Result<(), EvolutionError> {
-        self.inner_mut().tell(results)
-    }
-    fn generation(&self) -> u64 {
-        self.inner().generation()
-    }
-    fn evaluations(&self) -> u64 {
-        self.inner().evaluations()
-    }
-    fn births(&self) -> u64 {
-        self.inner().births()
-    }
-    fn senses(&self) -> Vec<Sense> {
-        self.inner().senses().to_vec()
-    }
-    fn best(&self) -> Option<&Individual<R::Genotype>> {
-        self.inner().best()
-    }
-    fn population(&self) -> Vec<&Individual<R::Genotype>> {
-        self.inner().population()
-    }
-    fn stop_reason(&self) -> Option<&'static str> {
-        self.inner().stop_reason()
-    }
     fn archive_cells(&self) -> Option<usize> {
         match self {
             OperatorOptimizer::MapElites(me) => Some(me.archive().count()),

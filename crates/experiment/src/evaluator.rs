@@ -333,6 +333,8 @@ impl<G, M: Mapper<G>> Evaluator<G> for RobotEvaluator<M> {
             title: title.to_string(),
             ..Default::default()
         };
-        vsrlab_render::replay::save_replay(&trace, &options, path).map(drop)
+        vsrlab_render::replay::save_replay(&trace, &options, path)
+            .map(drop)
+            .map_err(|e| e.to_string())
     }
 }

@@ -270,7 +270,7 @@ impl GenotypeKind for GraphGenotypeConfig {
             return err("sigma", format!("must be a finite number ≥ 0, got {}", self.sigma));
         }
         if let Err(m) = ModuleMap::parse(&self.modules, body) {
-            return err("modules", m);
+            return err("modules", m.to_string());
         }
         if let Err(m) = self.operators.resolve() {
             return err("operators", m);
@@ -385,7 +385,10 @@ pub const GRAPH_COLUMNS: [&str; 5] = ["neurons", "edges", "size", "connection_co
 impl Mapper<GraphSpec> for GraphMapper {
     fn robot(&self, genotype: &GraphSpec) -> Result<Box<dyn Robot>, EvaluationError> {
         let Some(body) = self.representation.body.fixed_grid() else {
-            return Err(EvaluationError::Representation("body: not fixed".into()));
+            return Err(EvaluationError::Representation(vsrlab_tasks::FieldError::new(
+                "body",
+                "not fixed",
+            )));
         };
         Ok(Box::new(RobotSpec {
             body: body.clone(),

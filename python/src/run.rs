@@ -6,7 +6,7 @@ use crate::value_error;
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use std::path::{Path, PathBuf};
-use vsrlab_experiment::evaluator::{Evaluated, Evaluator, RobotEvaluator};
+use vsrlab_experiment::evaluator::{Evaluated, Evaluator, EvaluatorError, RobotEvaluator};
 use vsrlab_experiment::genotypes::vector::run_vectors;
 use vsrlab_experiment::runner::{self, Flow, Observer, Progress, RunOptions, RunSummary};
 use vsrlab_experiment::{config, Experiment};
@@ -32,7 +32,7 @@ impl Evaluator<Vec<f64>> for Remote {
         Evaluator::<Vec<f64>>::failure(&self.local, seed, error)
     }
 
-    fn evaluate_batch(&self, genotypes: &[&Vec<f64>], seeds: &[u64]) -> Result<Vec<Evaluated>, String> {
+    fn evaluate_batch(&self, genotypes: &[&Vec<f64>], seeds: &[u64]) -> Result<Vec<Evaluated>, EvaluatorError> {
         let width = genotypes.first().map_or(0, |g| g.len());
         let genes: Vec<f64> = genotypes.iter().flat_map(|g| g.iter().copied()).collect();
         let text: String = Python::attach(|py| -> PyResult<String> {
@@ -40,24 +40,24 @@ impl Evaluator<Vec<f64>> for Remote {
             let seeds = PyArray1::from_slice(py, seeds);
             self.evaluate.call1(py, (matrix, seeds))?.extract(py)
         })
-        .map_err(|e| format!("the batch callable failed: {e}"))?;
-        let evaluated: Vec<Evaluated> =
-            serde_json::from_str(&text).map_err(|e| format!("the batch callable returned bad evaluations: {e}"))?;
+        .map_err(|e| EvaluatorError::Remote(format!("the batch callable failed: {e}")))?;
+        let evaluated: Vec<Evaluated> = serde_json::from_str(&text)
+            .map_err(|e| EvaluatorError::Remote(format!("the batch callable returned bad evaluations: {e}")))?;
         if evaluated.len() != genotypes.len() {
-            return Err(format!(
+            return Err(EvaluatorError::Remote(format!(
                 "the batch callable returned {} evaluations for {} genotypes",
                 evaluated.len(),
                 genotypes.len()
-            ));
+            )));
         }
         Ok(evaluated)
     }
 
-    fn save_robot(&self, genotype: &Vec<f64>, path: &Path, note: &str) -> Result<(), String> {
+    fn save_robot(&self, genotype: &Vec<f64>, path: &Path, note: &str) -> Result<(), EvaluatorError> {
         self.local.save_robot(genotype, path, note)
     }
 
-    fn save_replay(&self, genotype: &Vec<f64>, path: &Path, title: &str) -> Result<(), String> {
+    fn save_replay(&self, genotype: &Vec<f64>, path: &Path, title: &str) -> Result<(), EvaluatorError> {
         self.local.save_replay(genotype, path, title)
     }
 
@@ -69,7 +69,7 @@ impl Evaluator<Vec<f64>> for Remote {
         self.local.genotype_stats(genotype)
     }
 
-    fn check(&self, genotype: &Vec<f64>) -> Result<(), String> {
+    fn check(&self, genotype: &Vec<f64>) -> Result<(), EvaluatorError> {
         self.local.check(genotype)
     }
 }

@@ -1,6 +1,7 @@
 //! Physical constants of a voxel, with the two named presets of vsr-model.md §0.
 
 use serde::{Deserialize, Serialize};
+use vsrlab_field::FieldError;
 use vsrlab_physics::SpringMassModel;
 
 /// A named set of physical constants.
@@ -16,12 +17,14 @@ pub enum Preset {
 }
 
 impl std::str::FromStr for Preset {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = FieldError;
+    fn from_str(s: &str) -> Result<Self, FieldError> {
         match s {
             "2021" => Ok(Preset::Y2021),
             "2022" => Ok(Preset::Y2022),
-            other => Err(format!("unknown preset '{other}': expected 2021 or 2022")),
+            other => Err(FieldError::message(format!(
+                "unknown preset '{other}': expected 2021 or 2022"
+            ))),
         }
     }
 }
@@ -119,8 +122,14 @@ impl VoxelParams {
         self.mass_side_ratio * self.side_length
     }
 
-    /// Checks every field; the error names the field and the problem.
-    pub fn validate(&self) -> Result<(), String> {
+    /// Checks every field; the error names the field under `voxel` (`voxel.side_length must be
+    /// …`) and the problem.
+    pub fn validate(&self) -> Result<(), FieldError> {
+        self.check().map_err(|e| e.at("voxel"))
+    }
+
+    /// [`VoxelParams::validate`] with paths relative to the constants.
+    fn check(&self) -> Result<(), FieldError> {
         let positive = [
             ("side_length", self.side_length),
             ("voxel_mass", self.voxel_mass),
@@ -129,7 +138,10 @@ impl VoxelParams {
         ];
         for (name, v) in positive {
             if !(v.is_finite() && v > 0.0) {
-                return Err(format!("voxel.{name} must be a positive number, got {v}"));
+                return Err(FieldError::sentence(
+                    name,
+                    format!("must be a positive number, got {v}"),
+                ));
             }
         }
         let non_negative = [
@@ -141,27 +153,36 @@ impl VoxelParams {
         ];
         for (name, v) in non_negative {
             if !(v.is_finite() && v >= 0.0) {
-                return Err(format!("voxel.{name} must be a non-negative number, got {v}"));
+                return Err(FieldError::sentence(
+                    name,
+                    format!("must be a non-negative number, got {v}"),
+                ));
             }
         }
         if !(self.mass_side_ratio > 0.0 && self.mass_side_ratio < 0.5) {
-            return Err(format!(
-                "voxel.mass_side_ratio must be in (0, 0.5), got {}",
-                self.mass_side_ratio
+            return Err(FieldError::sentence(
+                "mass_side_ratio",
+                format!("must be in (0, 0.5), got {}", self.mass_side_ratio),
             ));
         }
         if !(self.max_area_ratio.is_finite() && self.min_area_ratio <= 1.0 && self.max_area_ratio >= 1.0) {
-            return Err(format!(
-                "voxel.min_area_ratio must be ≤ 1 ≤ voxel.max_area_ratio, got {} and {}",
-                self.min_area_ratio, self.max_area_ratio
+            return Err(FieldError::sentence(
+                "min_area_ratio",
+                format!(
+                    "must be ≤ 1 ≤ voxel.max_area_ratio, got {} and {}",
+                    self.min_area_ratio, self.max_area_ratio
+                ),
             ));
         }
         let min_side = (self.min_area_ratio).sqrt() * self.side_length;
         if min_side < 2.0 * self.corner_side() {
-            return Err(format!(
-                "voxel.min_area_ratio {} is too small: the corner squares would overlap (needs ≥ (2·mass_side_ratio)² = {})",
-                self.min_area_ratio,
-                (2.0 * self.mass_side_ratio).powi(2)
+            return Err(FieldError::sentence(
+                "min_area_ratio",
+                format!(
+                    "{} is too small: the corner squares would overlap (needs ≥ (2·mass_side_ratio)² = {})",
+                    self.min_area_ratio,
+                    (2.0 * self.mass_side_ratio).powi(2)
+                ),
             ));
         }
         Ok(())
@@ -197,11 +218,18 @@ mod tests {
             mass_side_ratio: 0.7,
             ..VoxelParams::default()
         };
-        assert!(p.validate().unwrap_err().contains("mass_side_ratio"));
+        let e = p.validate().unwrap_err();
+        assert_eq!(e.path, "voxel.mass_side_ratio");
+        assert_eq!(e.to_string(), "voxel.mass_side_ratio must be in (0, 0.5), got 0.7");
         let p = VoxelParams {
             min_area_ratio: 0.2,
             ..VoxelParams::default()
         };
-        assert!(p.validate().unwrap_err().contains("min_area_ratio"));
+        let e = p.validate().unwrap_err();
+        assert_eq!(e.path, "voxel.min_area_ratio");
+        assert!(
+            e.to_string().starts_with("voxel.min_area_ratio 0.2 is too small"),
+            "{e}"
+        );
     }
 }

@@ -13,6 +13,7 @@ use crate::controllers::graph::{GraphSpec, NeuronSpec};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeSet;
 use vsrlab_body::Morphology;
+use vsrlab_field::FieldError;
 
 /// A grid cell (x, y), y = 0 at the bottom.
 pub type Cell = (usize, usize);
@@ -47,8 +48,9 @@ impl ModuleMap {
     /// A map by name or as rows of digits, top row first, separated by `/` (`.` where the body
     /// has no voxel): `halves` (x < W/2 and the rest: the worm's back and front), `legs-torso`
     /// (the first column, the last column, the columns between: the thesis' biped), `voxels`
-    /// (every voxel its own module), or e.g. `0112/0112/0..2`.
-    pub fn parse(text: &str, morphology: &Morphology) -> Result<ModuleMap, String> {
+    /// (every voxel its own module), or e.g. `0112/0112/0..2`. The error is about the text as a
+    /// whole (no field path).
+    pub fn parse(text: &str, morphology: &Morphology) -> Result<ModuleMap, FieldError> {
         let w = morphology.width();
         match text {
             "halves" => Ok(Self::from_fn(morphology, |x, _| usize::from(2 * x >= w))),
@@ -59,19 +61,22 @@ impl ModuleMap {
             })),
             "voxels" => Ok(Self::from_fn(morphology, |x, y| y * w + x)),
             rows => Self::from_rows(rows, morphology).map_err(|e| {
-                format!(
+                FieldError::message(format!(
                     "{e} (a module map is one of {} or rows of digits such as \"0112/0112/0..2\")",
                     NAMED_MODULE_MAPS.join(", ")
-                )
+                ))
             }),
         }
     }
 
-    fn from_rows(text: &str, morphology: &Morphology) -> Result<ModuleMap, String> {
+    /// A map from rows of digits; the error says which row or cell is wrong.
+    fn from_rows(text: &str, morphology: &Morphology) -> Result<ModuleMap, FieldError> {
         let rows: Vec<&str> = text.split('/').collect();
         let (w, h) = (morphology.width(), morphology.height());
         if rows.len() != h || rows.iter().any(|r| r.chars().count() != w) {
-            return Err(format!("\"{text}\" is not a {w}×{h} grid like the body's"));
+            return Err(FieldError::message(format!(
+                "\"{text}\" is not a {w}×{h} grid like the body's"
+            )));
         }
         let mut cells = vec![usize::MAX; w * h];
         for (i, row) in rows.iter().enumerate() {
@@ -81,11 +86,15 @@ impl ModuleMap {
                     (Some(d), true) => cells[y * w + x] = d as usize,
                     (None, false) if c == '.' => {}
                     (_, true) => {
-                        return Err(format!(
+                        return Err(FieldError::message(format!(
                             "cell ({x}, {y}) holds a voxel: give it a module digit, not '{c}'"
-                        ))
+                        )))
                     }
-                    (_, false) => return Err(format!("cell ({x}, {y}) holds no voxel: write '.' there, not '{c}'")),
+                    (_, false) => {
+                        return Err(FieldError::message(format!(
+                            "cell ({x}, {y}) holds no voxel: write '.' there, not '{c}'"
+                        )))
+                    }
                 }
             }
         }
@@ -130,8 +139,9 @@ pub fn digit(n: usize) -> char {
 
 /// A body region by name or as rows, top row first (`#` in the region, `.` not): `legs` (the
 /// first and the last column: the thesis' biped cut), `back-half` (x < W/2: the worm's),
-/// `front-half` (the rest), or e.g. `#..#/#..#/#..#`. Cells without a voxel are left out.
-pub fn region(text: &str, morphology: &Morphology) -> Result<Vec<Cell>, String> {
+/// `front-half` (the rest), or e.g. `#..#/#..#/#..#`. Cells without a voxel are left out. The
+/// error is about the text as a whole (no field path).
+pub fn region(text: &str, morphology: &Morphology) -> Result<Vec<Cell>, FieldError> {
     let w = morphology.width();
     let pick = |f: &dyn Fn(usize) -> bool| morphology.voxels().filter(|&(x, _)| f(x)).collect::<Vec<_>>();
     let cells = match text {
@@ -145,9 +155,9 @@ pub fn region(text: &str, morphology: &Morphology) -> Result<Vec<Cell>, String> 
                 || lines.iter().any(|r| r.chars().count() != w)
                 || rows.contains(|c| c != '#' && c != '.' && c != '/')
             {
-                return Err(format!(
+                return Err(FieldError::message(format!(
                     "\"{text}\" is neither legs, back-half, front-half nor a {w}×{h} grid of '#' (in the region) and '.'"
-                ));
+                )));
             }
             morphology
                 .voxels()
@@ -156,9 +166,9 @@ pub fn region(text: &str, morphology: &Morphology) -> Result<Vec<Cell>, String> 
         }
     };
     if cells.is_empty() || cells.len() == morphology.voxel_count() {
-        return Err(format!(
+        return Err(FieldError::message(format!(
             "\"{text}\" must cover some of the body's voxels, not none or all"
-        ));
+        )));
     }
     Ok(cells)
 }
@@ -382,9 +392,11 @@ mod tests {
         let halves = ModuleMap::parse("halves", &worm).unwrap();
         assert!(halves.same((0, 0), (2, 1)) && !halves.same((2, 0), (3, 0)));
         let err = ModuleMap::parse("0221/0221/0221", &m).unwrap_err();
-        assert!(err.contains("cell (1, 0) holds no voxel"), "{err}");
+        assert!(err.message.starts_with("cell (1, 0) holds no voxel"), "{err}");
+        assert_eq!(err.path, "");
         assert!(ModuleMap::parse("tripartite", &m)
             .unwrap_err()
+            .to_string()
             .contains("halves, legs-torso, voxels"));
     }
 
@@ -395,7 +407,10 @@ mod tests {
         assert_eq!(region("legs", &m).unwrap().len(), 6);
         let worm = Morphology::named("worm-6x2").unwrap();
         assert_eq!(region("back-half", &worm).unwrap().len(), 6);
-        assert!(region("####/####/#..#", &m).unwrap_err().contains("not none or all"));
+        assert!(region("####/####/#..#", &m)
+            .unwrap_err()
+            .to_string()
+            .contains("not none or all"));
         assert!(region("head", &m).is_err());
     }
 

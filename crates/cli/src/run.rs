@@ -237,7 +237,7 @@ fn run_one(experiment: &Experiment, out: &Path, a: &RunArgs) -> Result<(), Strin
         memory_limit: Some((a.max_memory_gib * (1u64 << 30) as f64).min(u64::MAX as f64) as u64),
     };
     let threads = worker_threads(options.threads);
-    let size = experiment.genotype_kind().size(experiment)?;
+    let size = experiment.genotype_kind().size(experiment).map_err(|e| e.to_string())?;
     let (genes, genotype) = (size.genes, size.text);
     let estimate = MemoryEstimate::of(experiment, genes, threads);
     eprintln!(

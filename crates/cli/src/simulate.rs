@@ -263,7 +263,7 @@ pub fn damage_value(text: &str) -> Result<serde_json::Value, String> {
     if text.trim() == "none" {
         return Ok(serde_json::Value::Null);
     }
-    let d = vsrlab_tasks::Damage::parse(text)?;
+    let d = vsrlab_tasks::Damage::parse(text).map_err(|e| e.to_string())?;
     Ok(json!({"at": d.at, "probability": d.probability}))
 }
 

@@ -63,7 +63,7 @@ fn robot_entry(path: &Path, name: String, shown: bool) -> Result<ViewerEntry, St
     };
     Ok(ViewerEntry {
         name,
-        source: ReplaySource::Make(Box::new(make)),
+        source: ReplaySource::Make(Box::new(move || make().map_err(Into::into))),
         shown,
     })
 }

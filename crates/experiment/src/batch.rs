@@ -101,7 +101,9 @@ impl BatchEvaluator {
         self.check(genes, seeds)?;
         let rows: Vec<Vec<f64>> = genes.chunks(self.genes).map(<[f64]>::to_vec).collect();
         let refs: Vec<&Vec<f64>> = rows.iter().collect();
-        self.evaluator.evaluate_batch(&refs, seeds).map_err(BatchError)
+        self.evaluator
+            .evaluate_batch(&refs, seeds)
+            .map_err(|e| BatchError(e.to_string()))
     }
 
     /// The first fitness value of every row (NaN for an evaluation that failed), on the current

@@ -294,7 +294,9 @@ impl<'a> Case<'a> {
         })?;
         let physics = (robot.kind().physics)();
         let mut task = Locomotion {
-            terrain: terrain.parse().map_err(BenchError::Terrain)?,
+            terrain: terrain
+                .parse()
+                .map_err(|e: vsrlab_tasks::FieldError| BenchError::Terrain(e.to_string()))?,
             duration: options.duration,
             physics,
             ..Default::default()

@@ -51,6 +51,35 @@ impl Evaluated {
     }
 }
 
+/// Why an evaluator could not evaluate a batch, check a genotype or save a robot.
+#[derive(Debug, thiserror::Error)]
+pub enum EvaluatorError {
+    /// The genotype does not make a robot, or its episode failed.
+    #[error(transparent)]
+    Robot(#[from] EvaluationError),
+    /// This kind of robot has no robot file.
+    #[error("this kind of robot has no robot file")]
+    NoRobotFile,
+    /// A file could not be written.
+    #[error("{}: {source}", path.display())]
+    File {
+        /// The file.
+        path: std::path::PathBuf,
+        /// The OS error.
+        source: std::io::Error,
+    },
+    /// The replay could not be written.
+    #[error(transparent)]
+    Replay(#[from] vsrlab_render::replay::SaveReplayError),
+    /// The episode recorded no trace.
+    #[error("the episode recorded no trace")]
+    NoTrace,
+    /// Evaluations sent elsewhere (Ray workers, a Python callable) came back with an error: what
+    /// that side reported.
+    #[error("{0}")]
+    Remote(String),
+}
+
 /// Evaluates genotypes of type `G`. Implementations must be deterministic in (genotype, seed).
 pub trait Evaluator<G>: Sync {
     /// Evaluates a genotype; `candidate_seed` is the optimizer's per-candidate seed.
@@ -83,7 +112,7 @@ pub trait Evaluator<G>: Sync {
     /// genotype on the current rayon pool, each guarded against panics
     /// ([`evaluate_guarded`]). Evaluators that send the work elsewhere (Ray workers) override
     /// it; an error (the workers are gone) stops the run at its last checkpoint.
-    fn evaluate_batch(&self, genotypes: &[&G], seeds: &[u64]) -> Result<Vec<Evaluated>, String>
+    fn evaluate_batch(&self, genotypes: &[&G], seeds: &[u64]) -> Result<Vec<Evaluated>, EvaluatorError>
     where
         G: Sync,
     {
@@ -94,12 +123,12 @@ pub trait Evaluator<G>: Sync {
             .collect())
     }
     /// Saves the robot of a genotype to a file (the best of a run); a no-op by default.
-    fn save_robot(&self, _genotype: &G, _path: &Path, _note: &str) -> Result<(), String> {
+    fn save_robot(&self, _genotype: &G, _path: &Path, _note: &str) -> Result<(), EvaluatorError> {
         Ok(())
     }
     /// Saves the episode of a genotype's robot as a replay file for the browser viewer (the best
     /// of a run); a no-op by default.
-    fn save_replay(&self, _genotype: &G, _path: &Path, _title: &str) -> Result<(), String> {
+    fn save_replay(&self, _genotype: &G, _path: &Path, _title: &str) -> Result<(), EvaluatorError> {
         Ok(())
     }
     /// Names of the per-genotype statistics logged for the best genotype of every generation
@@ -113,7 +142,7 @@ pub trait Evaluator<G>: Sync {
     }
     /// Checks that a genotype read from a file (a checkpoint) fits the representation, without
     /// evaluating it; accepts everything by default.
-    fn check(&self, _genotype: &G) -> Result<(), String> {
+    fn check(&self, _genotype: &G) -> Result<(), EvaluatorError> {
         Ok(())
     }
 }
@@ -284,36 +313,34 @@ impl<G, M: Mapper<G>> Evaluator<G> for RobotEvaluator<M> {
     }
 
     /// The genotype must become a robot (right length, finite genes, a body).
-    fn check(&self, genotype: &G) -> Result<(), String> {
-        self.mapper.robot(genotype).map(drop).map_err(|e| e.to_string())
+    fn check(&self, genotype: &G) -> Result<(), EvaluatorError> {
+        Ok(self.mapper.robot(genotype).map(drop)?)
     }
 
-    fn save_robot(&self, genotype: &G, path: &Path, note: &str) -> Result<(), String> {
-        let robot = self.mapper.robot(genotype).map_err(|e| e.to_string())?;
-        let text = robot
-            .robot_file(Some(note))
-            .ok_or_else(|| "this kind of robot has no robot file".to_string())?;
-        vsrlab_tasks::files::write_atomic(path, text.as_bytes()).map_err(|e| format!("{}: {e}", path.display()))
+    fn save_robot(&self, genotype: &G, path: &Path, note: &str) -> Result<(), EvaluatorError> {
+        let robot = self.mapper.robot(genotype)?;
+        let text = robot.robot_file(Some(note)).ok_or(EvaluatorError::NoRobotFile)?;
+        vsrlab_tasks::files::write_atomic(path, text.as_bytes()).map_err(|source| EvaluatorError::File {
+            path: path.to_path_buf(),
+            source,
+        })
     }
 
     /// The episode with the experiment's episode seed (what `vsrlab simulate --robot
     /// best.robot.json --task-of OUT --seed <episode seed>` shows).
-    fn save_replay(&self, genotype: &G, path: &Path, title: &str) -> Result<(), String> {
+    fn save_replay(&self, genotype: &G, path: &Path, title: &str) -> Result<(), EvaluatorError> {
         let (outcome, _) = evaluate_traced(
             &self.mapper,
             genotype,
             self.task.task(),
             self.episode_seed,
             TraceLevel::Full,
-        )
-        .map_err(|e| e.to_string())?;
-        let trace = outcome
-            .trace
-            .ok_or_else(|| "the episode recorded no trace".to_string())?;
+        )?;
+        let trace = outcome.trace.ok_or(EvaluatorError::NoTrace)?;
         let options = vsrlab_render::replay::ReplayOptions {
             title: title.to_string(),
             ..Default::default()
         };
-        vsrlab_render::replay::save_replay(&trace, &options, path).map(drop)
+        Ok(vsrlab_render::replay::save_replay(&trace, &options, path).map(drop)?)
     }
 }

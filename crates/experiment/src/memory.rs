@@ -52,11 +52,11 @@ impl MemoryEstimate {
     }
 
     /// Refuses an estimate above `limit` bytes, saying what to change.
-    pub fn check(&self, limit: u64) -> Result<(), String> {
+    pub fn check(&self, limit: u64) -> Result<(), MemoryLimit> {
         if self.bytes <= u128::from(limit) {
             return Ok(());
         }
-        Err(format!(
+        Err(MemoryLimit(format!(
             "this experiment needs about {} per run ({} genotypes of {} genes held at once), above the \
              memory limit of {}: lower the optimizer's population/offspring sizes or the brain's size, or raise \
              the limit with --max-memory-gib",
@@ -64,9 +64,15 @@ impl MemoryEstimate {
             self.genotypes,
             self.genes,
             gib(u128::from(limit))
-        ))
+        )))
     }
 }
+
+/// An experiment whose memory estimate is above the limit: the message says by how much and
+/// what to change.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{0}")]
+pub struct MemoryLimit(pub String);
 
 /// Bytes as GiB, for messages.
 pub fn gib(bytes: u128) -> String {
@@ -102,7 +108,7 @@ mod tests {
         let quick = MemoryEstimate::of(&experiment("kind = \"ga\""), 45, 16);
         quick.check(DEFAULT_MEMORY_LIMIT).unwrap();
         let huge = MemoryEstimate::of(&experiment("kind = \"ga\"\npopulation_size = 1000000"), 50_000, 2);
-        let message = huge.check(DEFAULT_MEMORY_LIMIT).unwrap_err();
+        let message = huge.check(DEFAULT_MEMORY_LIMIT).unwrap_err().to_string();
         assert!(message.contains("--max-memory-gib"), "{message}");
         assert!(message.contains("50000 genes"), "{message}");
         // CMA-ES's matrices alone: 3·n² floats

@@ -4,6 +4,7 @@
 
 use crate::config::Experiment;
 use crate::memory::MemoryEstimate;
+use crate::optimizers::FieldError;
 use std::time::Instant;
 
 /// Initial genotypes timed for the estimate.
@@ -33,7 +34,7 @@ pub struct Validation {
 
 /// Checks an experiment (already parsed and validated) and estimates its cost on `threads`
 /// threads (0: every core). Runs a few evaluations of initial genotypes.
-pub fn validate(experiment: &Experiment, threads: usize) -> Result<Validation, String> {
+pub fn validate(experiment: &Experiment, threads: usize) -> Result<Validation, FieldError> {
     let threads = crate::runner::worker_threads(threads);
     let start = Instant::now();
     let kind = experiment.genotype_kind();

@@ -220,7 +220,11 @@ fn mistakes_name_their_field() {
             "genotype.operators",
             "unknown operator 'fly'",
         ),
-        (text("operators = { add_node = -1.0 }"), "genotype.operators", "≥ 0"),
+        (
+            text("operators = { add_node = -1.0 }"),
+            "genotype.operators.add_node",
+            "≥ 0",
+        ),
         (
             text("initial_operators = \"many\""),
             "genotype.initial_operators",

@@ -122,7 +122,9 @@ fn bad_psa_tables_name_their_field() {
     for (body, brain, extra, expected) in cases {
         let err = match experiment(body, brain, extra) {
             Ok(e) => {
-                let (field, message) = e.validate().unwrap_err();
+                let vsrlab_experiment::optimizers::FieldError {
+                    path: field, message, ..
+                } = e.validate().unwrap_err();
                 format!("{field}: {message}")
             }
             Err(e) => e,

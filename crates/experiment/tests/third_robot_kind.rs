@@ -18,7 +18,7 @@ use vsrlab_tasks::kinds::{AnyRobot, RobotArgs, RobotDescription, RobotKind};
 use vsrlab_tasks::{
     channels, episode, Agent, EpisodeError, Robot, RobotArgsError, RobotPart, TaskSpec, Trace, TraceLevel,
 };
-use vsrlab_tasks::{evaluate, BodyPart, BodySource, EvaluationError, Representation};
+use vsrlab_tasks::{evaluate, BodyPart, BodySource, EvaluationError, FieldError, Representation};
 
 /// The chain's registry entry.
 const KIND: RobotKind = RobotKind {
@@ -41,10 +41,10 @@ struct ChainForm {
     links: usize,
 }
 
-fn decode_body(value: serde_json::Value) -> Result<BodyPart, String> {
-    let body: ChainForm = serde_json::from_value(value).map_err(|e| e.to_string())?;
+fn decode_body(value: serde_json::Value) -> Result<BodyPart, FieldError> {
+    let body: ChainForm = serde_json::from_value(value).map_err(|e| FieldError::message(e.to_string()))?;
     if !(3..=50).contains(&body.links) {
-        return Err(format!("links: 3 to 50, got {}", body.links));
+        return Err(FieldError::new("links", format!("3 to 50, got {}", body.links)));
     }
     Ok(BodyPart::new(body))
 }
@@ -64,7 +64,7 @@ impl BodySource for ChainForm {
         chain
             .brain
             .parameter_count(&chain.shape())
-            .map_err(|e| EvaluationError::Representation(e.to_string()))
+            .map_err(|e| EvaluationError::Representation(e.into()))
     }
     fn robot(&self, _: &Representation, _genes: &[f64], brain: BrainSpec) -> Result<AnyRobot, EvaluationError> {
         Ok(AnyRobot::new(Chain {

@@ -21,6 +21,7 @@ use vsrlab_experiment::genotype::fnv1a;
 use vsrlab_experiment::genotypes::{
     check_operators, run_with_operators, time_with_operators, GenotypeConfig, GenotypeKind, GenotypeSize,
 };
+use vsrlab_experiment::optimizers::FieldError;
 use vsrlab_experiment::runner::{run_dir, Observer, RunError, RunOptions, RunSummary, Silent};
 use vsrlab_experiment::{run_configured, Genotype};
 use vsrlab_tasks::{EvaluationError, Mapper, Robot, RobotSpec, Stored, StoredGenotypes, TraceLevel};
@@ -121,18 +122,18 @@ impl GenotypeKind for QuantisedPhases {
         "quantised-phases"
     }
 
-    fn validate(&self, experiment: &Experiment) -> Result<(), (String, String)> {
+    fn validate(&self, experiment: &Experiment) -> Result<(), FieldError> {
         check_operators(experiment, true)?;
         if !(1..=16).contains(&self.levels) {
-            return Err((
-                "genotype.levels".into(),
+            return Err(FieldError::new(
+                "genotype.levels",
                 format!("must be in 1..=16, got {}", self.levels),
             ));
         }
         Ok(())
     }
 
-    fn size(&self, _experiment: &Experiment) -> Result<GenotypeSize, String> {
+    fn size(&self, _experiment: &Experiment) -> Result<GenotypeSize, FieldError> {
         Ok(GenotypeSize {
             genes: CELLS,
             text: format!("{CELLS} phase levels"),
@@ -150,13 +151,13 @@ impl GenotypeKind for QuantisedPhases {
         run_with_operators(experiment, ops, mapper, CELLS, out, options, observer)
     }
 
-    fn time_evaluations(&self, experiment: &Experiment, count: usize) -> Result<(), String> {
+    fn time_evaluations(&self, experiment: &Experiment, count: usize) -> Result<(), FieldError> {
         let ops = PhaseOps { levels: self.levels };
         time_with_operators(experiment, &ops, PhaseMapper { levels: self.levels }, count);
         Ok(())
     }
 
-    fn stored(&self, _experiment: &Experiment) -> Result<Arc<dyn StoredGenotypes>, String> {
+    fn stored(&self, _experiment: &Experiment) -> Result<Arc<dyn StoredGenotypes>, FieldError> {
         Ok(Arc::new(Stored::<Phases, _>::new(PhaseMapper { levels: self.levels })))
     }
 }
@@ -276,7 +277,9 @@ fn nsga2_and_map_elites_evolve_it_and_flat_vector_optimizers_are_refused_by_fiel
         );
     }
     for optimizer in ["kind = \"cma-es\"", "kind = \"es\"", "kind = \"se\""] {
-        let (field, message) = experiment(optimizer).validate().unwrap_err();
+        let FieldError {
+            path: field, message, ..
+        } = experiment(optimizer).validate().unwrap_err();
         assert_eq!(field, "optimizer.kind", "{optimizer}");
         assert!(
             message.contains("a quantised-phases genotype evolves with"),
@@ -288,7 +291,7 @@ fn nsga2_and_map_elites_evolve_it_and_flat_vector_optimizers_are_refused_by_fiel
         kind: Tag::QuantisedPhases,
         levels: 0,
     }));
-    assert_eq!(bad.validate().unwrap_err().0, "genotype.levels");
+    assert_eq!(bad.validate().unwrap_err().path, "genotype.levels");
 }
 
 #[test]

@@ -78,10 +78,10 @@ pub(crate) fn train_classifiers(
 /// The features of one labelled robot, replayed on the episode its row names.
 fn labelled_features(row: &LabelRow, labels: &Path) -> Result<RobotFeatures, AnalysisError> {
     let robot = load_robot(&row.robot_path(labels))?;
-    let terrain: Terrain = row.terrain.parse().map_err(|message| AnalysisError::Terrain {
+    let terrain = row.terrain.parse::<Terrain>().map_err(|e| AnalysisError::Terrain {
         robot: row.robot.clone(),
         terrain: row.terrain.clone(),
-        message,
+        message: e.to_string(),
     })?;
     let task = Locomotion {
         terrain,

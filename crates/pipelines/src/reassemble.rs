@@ -153,7 +153,7 @@ pub fn reassemble(options: &ReassembleOptions, progress: &dyn Progress) -> Resul
                 .ok_or_else(|| option("cut", "the body is too small to hold a module of 2 to 5 voxels".into()))?
                 .module
         } else {
-            region(&options.cut, body).map_err(|m| option("cut", m))?
+            region(&options.cut, body).map_err(|e| option("cut", e.to_string()))?
         };
         let r = hybrid_of(a, b, &cells);
         let label = format!("pair-{i:02}");

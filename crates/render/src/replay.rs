@@ -359,12 +359,31 @@ impl Replay {
     }
 }
 
+/// Why a replay could not be saved.
+#[derive(Debug, thiserror::Error)]
+pub enum SaveReplayError {
+    /// The trace could not be encoded.
+    #[error(transparent)]
+    Encode(#[from] ReplayError),
+    /// The file could not be written.
+    #[error("{}: {source}", path.display())]
+    Write {
+        /// The replay file.
+        path: std::path::PathBuf,
+        /// The operating system's error.
+        source: std::io::Error,
+    },
+}
+
 /// Writes the replay of `trace` to `path` atomically (temporary file, then rename); returns its
 /// size in bytes.
-pub fn save_replay(trace: &Trace, options: &ReplayOptions, path: &std::path::Path) -> Result<u64, String> {
-    let replay = Replay::from_trace(trace, options).map_err(|e| e.to_string())?;
+pub fn save_replay(trace: &Trace, options: &ReplayOptions, path: &std::path::Path) -> Result<u64, SaveReplayError> {
+    let replay = Replay::from_trace(trace, options)?;
     let text = replay.to_json();
-    vsrlab_tasks::files::write_atomic(path, text.as_bytes()).map_err(|e| format!("{}: {e}", path.display()))?;
+    vsrlab_tasks::files::write_atomic(path, text.as_bytes()).map_err(|source| SaveReplayError::Write {
+        path: path.to_path_buf(),
+        source,
+    })?;
     Ok(text.len() as u64)
 }
 

@@ -13,6 +13,7 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
+use vsrlab_tasks::files::FileError;
 
 /// The page.
 pub const INDEX_HTML: &str = include_str!("../web/index.html");
@@ -24,11 +25,15 @@ pub const VIEWER_CSS: &str = include_str!("../web/viewer.css");
 /// Longest request head read (bytes).
 const MAX_REQUEST: u64 = 16 * 1024;
 
+/// Why a replay maker failed: its own error (an episode that blew up, a trace that cannot be
+/// encoded), shown to the page as text.
+pub type MakeError = Box<dyn std::error::Error + Send + Sync>;
+
 /// Makes a replay's JSON text on demand (e.g. by simulating a robot file).
-pub type ReplayMaker = Box<dyn Fn() -> Result<Vec<u8>, String> + Send + Sync>;
+pub type ReplayMaker = Box<dyn Fn() -> Result<Vec<u8>, MakeError> + Send + Sync>;
 
 /// A replay's bytes, or why it could not be made; made once and shared by every request.
-type Made = Result<Arc<Vec<u8>>, String>;
+type Made = Result<Arc<Vec<u8>>, Arc<dyn std::error::Error + Send + Sync>>;
 
 /// Where a listed replay comes from.
 pub enum ReplaySource {
@@ -114,9 +119,14 @@ impl Viewer {
         if let Some(done) = self.cache.lock().ok()?.get(&index) {
             return Some(done.clone());
         }
-        let made = match &entry.source {
-            ReplaySource::File(path) => std::fs::read(path).map_err(|e| format!("{}: {e}", path.display())),
-            ReplaySource::Make(make) => make(),
+        let made: Made = match &entry.source {
+            ReplaySource::File(path) => std::fs::read(path).map_err(|source| {
+                Arc::new(FileError::Io {
+                    path: path.display().to_string(),
+                    source,
+                }) as _
+            }),
+            ReplaySource::Make(make) => make().map_err(Arc::from),
         }
         .map(Arc::new);
         self.cache.lock().ok()?.insert(index, made.clone());
@@ -142,7 +152,7 @@ impl Viewer {
                         content_type: "application/json",
                         body: bytes,
                     },
-                    Some(Err(e)) => Response::text("500 Internal Server Error", e),
+                    Some(Err(e)) => Response::text("500 Internal Server Error", e.to_string()),
                     None => Response::text("404 Not Found", format!("no replay {i}")),
                 },
                 None => Response::text(

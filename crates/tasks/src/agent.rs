@@ -66,8 +66,9 @@ pub trait Agent: Send {
     /// actuation stays 0 from the next step on ([`crate::Damage`]). Default: an error, for bodies
     /// that cannot be damaged.
     fn break_actuators(&mut self, _broken: &[bool]) -> Result<(), EpisodeError> {
-        Err(EpisodeError::Invalid(
-            "task.damage: this robot's body cannot be damaged".into(),
-        ))
+        Err(EpisodeError::Field(vsrlab_field::FieldError::new(
+            "task.damage",
+            "this robot's body cannot be damaged",
+        )))
     }
 }

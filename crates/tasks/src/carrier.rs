@@ -9,9 +9,12 @@
 use crate::episode::EpisodeError;
 use crate::fitness::Fitness;
 use crate::locomotion::place_on_ground;
-use crate::task::{check_episode, Flow, Metrics, Objective, Scene, SceneObject, StepView, Task, TaskEpisode};
+use crate::task::{
+    check_episode, task_field, Flow, Metrics, Objective, Scene, SceneObject, StepView, Task, TaskEpisode,
+};
 use crate::terrain::{add_ground, height_at};
 use serde::{Deserialize, Serialize};
+use vsrlab_field::FieldError;
 use vsrlab_physics::{PartDesc, Polygon, Vec2, WorldBuilder, WorldSettings};
 
 /// The metrics of a carrier episode.
@@ -87,23 +90,29 @@ impl Task for Carrier {
     fn validate(&self) -> Result<(), EpisodeError> {
         check_episode(self.duration, &self.fitness.0, METRICS, &self.physics)?;
         let b = &self.ball;
-        let bad = |m: String| Err(EpisodeError::Invalid(m));
+        let ball = |e: FieldError| Err(task_field(e.at("ball")));
         for (name, v) in [("radius", b.radius), ("density", b.density)] {
             if !(v.is_finite() && v > 0.0) {
-                return bad(format!("task.ball.{name} must be finite and > 0, got {v}"));
+                return ball(FieldError::sentence(name, format!("must be finite and > 0, got {v}")));
             }
         }
         if !(b.friction.is_finite() && b.friction >= 0.0) {
-            return bad(format!("task.ball.friction must be finite and ≥ 0, got {}", b.friction));
-        }
-        if !(b.x.is_finite() && b.y.is_finite() && b.y > b.radius) {
-            return bad(format!(
-                "task.ball: x and y must be finite and the ball above the ground (y > radius), got ({}, {})",
-                b.x, b.y
+            return ball(FieldError::sentence(
+                "friction",
+                format!("must be finite and ≥ 0, got {}", b.friction),
             ));
         }
+        if !(b.x.is_finite() && b.y.is_finite() && b.y > b.radius) {
+            return ball(FieldError::message(format!(
+                "x and y must be finite and the ball above the ground (y > radius), got ({}, {})",
+                b.x, b.y
+            )));
+        }
         if !(self.initial_x.is_finite() && self.initial_gap.is_finite() && self.initial_gap >= 0.0) {
-            return bad("task.initial_x and task.initial_gap must be finite (gap ≥ 0)".into());
+            return Err(task_field(FieldError::sentence(
+                "initial_x",
+                "and task.initial_gap must be finite (gap ≥ 0)",
+            )));
         }
         Ok(())
     }

@@ -12,6 +12,7 @@ use crate::episode::EpisodeError;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
+use vsrlab_field::FieldError;
 
 /// Mixed into the episode seed so that the damage draw is a stream of its own.
 const DAMAGE_STREAM: u64 = 0xda4a_6e5e_ed00_0001;
@@ -29,17 +30,27 @@ pub struct Damage {
 impl Damage {
     /// Checks the fields; the error names them under `task.damage`.
     pub fn validate(&self) -> Result<(), EpisodeError> {
+        self.check_under_task().map_err(EpisodeError::Field)
+    }
+
+    /// [`Damage::validate`] as a field error (`task.damage.at must be …`).
+    fn check_under_task(&self) -> Result<(), FieldError> {
+        self.check().map_err(|e| e.at("damage").at("task"))
+    }
+
+    /// The checks of [`Damage::validate`], with paths relative to the damage table.
+    fn check(&self) -> Result<(), FieldError> {
         if !(self.at.is_finite() && self.at >= 0.0) {
-            return Err(EpisodeError::Invalid(format!(
-                "task.damage.at must be a time ≥ 0 seconds, got {}",
-                self.at
-            )));
+            return Err(FieldError::sentence(
+                "at",
+                format!("must be a time ≥ 0 seconds, got {}", self.at),
+            ));
         }
         if !(0.0..=1.0).contains(&self.probability) {
-            return Err(EpisodeError::Invalid(format!(
-                "task.damage.probability must be in [0, 1], got {}",
-                self.probability
-            )));
+            return Err(FieldError::sentence(
+                "probability",
+                format!("must be in [0, 1], got {}", self.probability),
+            ));
         }
         Ok(())
     }
@@ -50,21 +61,22 @@ impl Damage {
         (0..units).map(|_| rng.random::<f64>() < self.probability).collect()
     }
 
-    /// Parses the command-line form `<at>:<probability>` (e.g. `30:0.5`), checked.
-    pub fn parse(text: &str) -> Result<Damage, String> {
-        let (at, p) = text
-            .split_once(':')
-            .ok_or_else(|| format!("damage '{text}': expected <time s>:<probability>, e.g. 30:0.5"))?;
+    /// Parses the command-line form `<at>:<probability>` (e.g. `30:0.5`), checked; a value out
+    /// of range is an error on its field under `task.damage`.
+    pub fn parse(text: &str) -> Result<Damage, FieldError> {
+        let (at, p) = text.split_once(':').ok_or_else(|| {
+            FieldError::message(format!("damage '{text}': expected <time s>:<probability>, e.g. 30:0.5"))
+        })?;
         let number = |s: &str| {
             s.trim()
                 .parse::<f64>()
-                .map_err(|_| format!("damage '{text}': '{s}' is not a number"))
+                .map_err(|_| FieldError::message(format!("damage '{text}': '{s}' is not a number")))
         };
         let damage = Damage {
             at: number(at)?,
             probability: number(p)?,
         };
-        damage.validate().map_err(|e| e.to_string())?;
+        damage.check_under_task()?;
         Ok(damage)
     }
 }
@@ -98,9 +110,13 @@ mod tests {
                 probability: 0.5
             })
         );
-        assert!(Damage::parse("30").unwrap_err().contains("<time s>:<probability>"));
-        assert!(Damage::parse("30:1.5").unwrap_err().contains("task.damage.probability"));
-        assert!(Damage::parse("-1:0.5").unwrap_err().contains("task.damage.at"));
-        assert!(Damage::parse("x:0.5").unwrap_err().contains("'x'"));
+        let e = Damage::parse("30").unwrap_err();
+        assert!(e.to_string().contains("<time s>:<probability>"), "{e}");
+        let e = Damage::parse("30:1.5").unwrap_err();
+        assert_eq!(e.path, "task.damage.probability");
+        assert_eq!(e.to_string(), "task.damage.probability must be in [0, 1], got 1.5");
+        let e = Damage::parse("-1:0.5").unwrap_err();
+        assert_eq!(e.path, "task.damage.at");
+        assert!(Damage::parse("x:0.5").unwrap_err().to_string().contains("'x'"));
     }
 }

@@ -7,12 +7,17 @@ use crate::channels::{BALL_ANGLE, BALL_RADII, BALL_XY, OBSTACLES, OBSTACLE_CORNE
 use crate::outcome::{DamageRecord, Outcome, Trace, TraceLevel};
 use crate::task::{fitness_values, Flow, Objective, Scene, StepView, Task, TaskEpisode};
 use vsrlab_body::Probe;
+use vsrlab_field::FieldError;
 use vsrlab_physics::{PhysicsError, Vec2, World, WorldBuilder};
 
 /// Why an episode could not be run or completed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum EpisodeError {
-    /// The description is invalid; the message names the field.
+    /// A field of the task or the robot holds a wrong value (`task.physics.dt`, `robot.brain.…`);
+    /// shown as the [`FieldError`].
+    #[error(transparent)]
+    Field(#[from] FieldError),
+    /// The description is invalid in a way no single field names (a world the engine refuses).
     #[error("{0}")]
     Invalid(String),
     /// The simulation produced non-finite values.
@@ -102,10 +107,13 @@ impl Episode {
     pub fn step(&mut self, actions: Option<&[f64]>) -> Result<Flow, EpisodeError> {
         if let Some(a) = actions {
             if a.len() != self.agent.action_count() {
-                return Err(EpisodeError::Invalid(format!(
-                    "actions: {} values for a robot with {} actuators",
-                    a.len(),
-                    self.agent.action_count()
+                return Err(EpisodeError::Field(FieldError::new(
+                    "actions",
+                    format!(
+                        "{} values for a robot with {} actuators",
+                        a.len(),
+                        self.agent.action_count()
+                    ),
                 )));
             }
             self.agent.actuate(&mut self.world, a);

@@ -13,9 +13,10 @@
 
 use crate::episode::EpisodeError;
 use crate::fitness::Fitness;
-use crate::task::{check_episode, Flow, Metrics, Objective, Scene, StepView, Task, TaskEpisode};
+use crate::task::{check_episode, task_field, Flow, Metrics, Objective, Scene, StepView, Task, TaskEpisode};
 use crate::terrain::add_ground;
 use serde::{Deserialize, Serialize};
+use vsrlab_field::FieldError;
 use vsrlab_physics::{Polygon, Vec2, WorldBuilder, WorldSettings};
 
 /// The metrics of an escape episode.
@@ -92,17 +93,17 @@ impl Task for Escape {
 
     fn validate(&self) -> Result<(), EpisodeError> {
         check_episode(self.duration, &self.fitness.0, METRICS, &self.physics)?;
-        let bad = |m: String| Err(EpisodeError::Invalid(m));
+        let bad = |field: &str, message: String| Err(task_field(FieldError::sentence(field, message)));
         if !(self.side.is_finite() && self.side > 0.0 && self.side <= 1000.0) {
-            return bad(format!("task.side must be in (0, 1000], got {}", self.side));
+            return bad("side", format!("must be in (0, 1000], got {}", self.side));
         }
         let a = self.aperture();
         if !(a.is_finite() && a > 0.0 && a < self.side) {
-            return bad(format!("task.aperture must be in (0, side = {}), got {a}", self.side));
+            return bad("aperture", format!("must be in (0, side = {}), got {a}", self.side));
         }
         let h = self.start_height();
         if !(h.is_finite() && h >= 0.0) {
-            return bad(format!("task.start_height must be finite and ≥ 0, got {h}"));
+            return bad("start_height", format!("must be finite and ≥ 0, got {h}"));
         }
         Ok(())
     }

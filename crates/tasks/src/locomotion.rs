@@ -8,9 +8,10 @@
 use crate::damage::Damage;
 use crate::episode::EpisodeError;
 use crate::fitness::Fitness;
-use crate::task::{check_episode, Flow, Metrics, Objective, Scene, StepView, Task, TaskEpisode};
+use crate::task::{check_episode, task_field, Flow, Metrics, Objective, Scene, StepView, Task, TaskEpisode};
 use crate::terrain::{add_ground, height_at, Terrain};
 use serde::{Deserialize, Serialize};
+use vsrlab_field::FieldError;
 use vsrlab_physics::{Vec2, WorldBuilder, WorldSettings};
 
 /// The metrics of a locomotion episode.
@@ -61,16 +62,21 @@ impl Task for Locomotion {
     }
 
     fn validate(&self) -> Result<(), EpisodeError> {
-        let bad = |m: String| Err(EpisodeError::Invalid(m));
         check_episode(self.duration, &self.fitness.0, METRICS, &self.physics)?;
         if !(self.transient.is_finite() && self.transient >= 0.0 && self.transient < self.duration) {
-            return bad(format!(
-                "task.transient must be ≥ 0 and shorter than the duration ({}), got {}",
-                self.duration, self.transient
-            ));
+            return Err(task_field(FieldError::sentence(
+                "transient",
+                format!(
+                    "must be ≥ 0 and shorter than the duration ({}), got {}",
+                    self.duration, self.transient
+                ),
+            )));
         }
         if !(self.initial_x.is_finite() && self.initial_gap.is_finite() && self.initial_gap >= 0.0) {
-            return bad("task.initial_x and task.initial_gap must be finite (gap ≥ 0)".into());
+            return Err(task_field(FieldError::sentence(
+                "initial_x",
+                "and task.initial_gap must be finite (gap ≥ 0)",
+            )));
         }
         self.damage.as_ref().map_or(Ok(()), Damage::validate)
     }

@@ -13,6 +13,7 @@ use crate::task::Task;
 use crate::terrain::Terrain;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
+pub use vsrlab_field::FieldError;
 
 /// A task of any registered kind, tagged by `kind` in configs.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -34,16 +35,6 @@ impl Default for TaskSpec {
     }
 }
 
-/// An error inside a task's settings: the dotted path of the field and what is wrong.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{}{message}", if path.is_empty() { String::new() } else { format!("{path}: ") })]
-pub struct FieldError {
-    /// Dotted path of the field inside the task's table (empty: the table itself).
-    pub path: String,
-    /// What is wrong.
-    pub message: String,
-}
-
 /// Why a command-line task could not be parsed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum TaskParseError {
@@ -56,12 +47,13 @@ pub enum TaskParseError {
         expected: String,
     },
     /// The kind is known but its argument is not.
-    #[error("{kind}: {message}")]
+    #[error("{kind}: {error}")]
     Argument {
         /// The task kind.
         kind: &'static str,
         /// What is wrong with the argument.
-        message: String,
+        #[source]
+        error: FieldError,
     },
 }
 
@@ -71,8 +63,9 @@ pub struct TaskKind {
     pub name: &'static str,
     /// Its command-line short form, for help and error messages.
     pub usage: &'static str,
-    /// Builds the task from the argument after `kind:` (absent when there is none).
-    pub parse: fn(Option<&str>) -> Result<TaskSpec, String>,
+    /// Builds the task from the argument after `kind:` (absent when there is none); the error is
+    /// about the argument as a whole.
+    pub parse: fn(Option<&str>) -> Result<TaskSpec, FieldError>,
     /// Builds the task from its config table (without `kind`), naming the field on error.
     pub decode: fn(serde_json::Value) -> Result<TaskSpec, FieldError>,
 }
@@ -105,26 +98,28 @@ pub const TASKS: &[TaskKind] = &[
     },
 ];
 
-fn parse_escape(arg: Option<&str>) -> Result<TaskSpec, String> {
+fn parse_escape(arg: Option<&str>) -> Result<TaskSpec, FieldError> {
     let mut escape = Escape::default();
     if let Some(a) = arg {
         escape.side = a
             .parse()
             .ok()
             .filter(|s: &f64| s.is_finite() && *s > 0.0)
-            .ok_or_else(|| format!("expected the cage's side (a number > 0), got '{a}'"))?;
+            .ok_or_else(|| FieldError::message(format!("expected the cage's side (a number > 0), got '{a}'")))?;
     }
     Ok(TaskSpec::Escape(escape))
 }
 
-fn parse_carrier(arg: Option<&str>) -> Result<TaskSpec, String> {
+fn parse_carrier(arg: Option<&str>) -> Result<TaskSpec, FieldError> {
     match arg {
         None => Ok(TaskSpec::Carrier(Carrier::default())),
-        Some(a) => Err(format!("the carrier task takes no argument, got '{a}'")),
+        Some(a) => Err(FieldError::message(format!(
+            "the carrier task takes no argument, got '{a}'"
+        ))),
     }
 }
 
-fn parse_locomotion(arg: Option<&str>) -> Result<TaskSpec, String> {
+fn parse_locomotion(arg: Option<&str>) -> Result<TaskSpec, FieldError> {
     let terrain: Terrain = arg.unwrap_or("flat").parse()?;
     Ok(TaskSpec::Locomotion(Locomotion {
         terrain,
@@ -132,15 +127,19 @@ fn parse_locomotion(arg: Option<&str>) -> Result<TaskSpec, String> {
     }))
 }
 
-fn parse_jump(arg: Option<&str>) -> Result<TaskSpec, String> {
+fn parse_jump(arg: Option<&str>) -> Result<TaskSpec, FieldError> {
     match arg {
         None => Ok(TaskSpec::Jump(Jump::default())),
-        Some(a) => Err(format!("the jump task takes no argument, got '{a}'")),
+        Some(a) => Err(FieldError::message(format!(
+            "the jump task takes no argument, got '{a}'"
+        ))),
     }
 }
 
 /// Deserializes a settings struct from its table, keeping the dotted path of a failing field
-/// (serde alone loses it inside tagged tables). Registries of other kinds use it too.
+/// (serde alone loses it inside tagged tables). Registries of other kinds use it too. serde
+/// reports an unknown field only in its message, so that message is read here, once, to put the
+/// field's name at the end of the path.
 pub fn decode<T: DeserializeOwned>(value: serde_json::Value) -> Result<T, FieldError> {
     serde_path_to_error::deserialize(value).map_err(|e| {
         let mut path = e.path().to_string();
@@ -160,7 +159,7 @@ pub fn decode<T: DeserializeOwned>(value: serde_json::Value) -> Result<T, FieldE
                 };
             }
         }
-        FieldError { path, message }
+        FieldError::new(path, message)
     })
 }
 
@@ -195,33 +194,29 @@ impl TaskSpec {
                 name: name.to_string(),
                 expected: TASKS.iter().map(|k| k.usage).collect::<Vec<_>>().join(" or "),
             })?;
-        (kind.parse)(arg).map_err(|message| TaskParseError::Argument {
-            kind: kind.name,
-            message,
-        })
+        (kind.parse)(arg).map_err(|error| TaskParseError::Argument { kind: kind.name, error })
     }
 
     /// Builds a task from its config table; `kind` defaults to `locomotion`.
     pub fn from_json(value: serde_json::Value) -> Result<TaskSpec, FieldError> {
         let serde_json::Value::Object(mut table) = value else {
-            return Err(FieldError {
-                path: String::new(),
-                message: "expected a table of task settings".into(),
-            });
+            return Err(FieldError::message("expected a table of task settings"));
         };
         let name = match table.remove("kind") {
             None => "locomotion".to_string(),
             Some(serde_json::Value::String(s)) => s,
             Some(other) => {
-                return Err(FieldError {
-                    path: "kind".into(),
-                    message: format!("expected a task name ({}), got {other}", kind_names()),
-                })
+                return Err(FieldError::new(
+                    "kind",
+                    format!("expected a task name ({}), got {other}", kind_names()),
+                ))
             }
         };
-        let kind = TASKS.iter().find(|k| k.name == name).ok_or_else(|| FieldError {
-            path: "kind".into(),
-            message: format!("unknown task '{name}': expected one of {}", kind_names()),
+        let kind = TASKS.iter().find(|k| k.name == name).ok_or_else(|| {
+            FieldError::new(
+                "kind",
+                format!("unknown task '{name}': expected one of {}", kind_names()),
+            )
         })?;
         (kind.decode)(serde_json::Value::Object(table))
     }
@@ -229,39 +224,64 @@ impl TaskSpec {
     /// The same task with some settings replaced, by dotted path (`duration`,
     /// `physics.substeps`); an error names a setting this kind of task does not have.
     pub fn with_settings(&self, settings: &[(&str, serde_json::Value)]) -> Result<TaskSpec, FieldError> {
-        let mut value = serde_json::to_value(self).map_err(|e| FieldError {
-            path: String::new(),
-            message: e.to_string(),
-        })?;
+        let mut value = serde_json::to_value(self).map_err(|e| FieldError::message(e.to_string()))?;
         for (path, v) in settings {
-            let no_such = || FieldError {
-                path: path.to_string(),
-                message: format!("a {} task has no such setting", self.kind()),
-            };
-            let (parents, last) = path.rsplit_once('.').map_or(("", *path), |(p, l)| (p, l));
-            let mut table = &mut value;
-            for key in parents.split('.').filter(|k| !k.is_empty()) {
-                table = table.as_object_mut().and_then(|t| t.get_mut(key)).ok_or_else(no_such)?;
-            }
+            let (parents, last) = split_last(path);
             // an optional setting left out of the serialised form (`damage`) is added; the
             // decoder refuses names the task does not have
-            let table = table.as_object_mut().ok_or_else(no_such)?;
+            let table = table_at(&mut value, parents).ok_or_else(|| self.no_such_setting(path))?;
             table.insert(last.to_string(), v.clone());
         }
         TaskSpec::from_json(value).map_err(|e| {
-            let unknown = settings.iter().find(|(p, _)| {
-                let last = p.rsplit('.').next().unwrap_or(p);
-                e.message.contains(&format!("unknown field `{last}`"))
-            });
+            let unknown = settings
+                .iter()
+                .find(|(path, _)| e.path == *path && !self.has_setting(path));
             match unknown {
-                Some((path, _)) => FieldError {
-                    path: path.to_string(),
-                    message: format!("a {} task has no such setting", self.kind()),
-                },
+                Some((path, _)) => self.no_such_setting(path),
                 None => e,
             }
         })
     }
+
+    /// Whether this kind of task has the setting at dotted `path`: its serialised form holds it,
+    /// or (an optional setting left out while unset, such as `damage`) it decodes with the setting
+    /// set to null.
+    fn has_setting(&self, path: &str) -> bool {
+        let Ok(mut value) = serde_json::to_value(self) else {
+            return false;
+        };
+        let (parents, last) = split_last(path);
+        match table_at(&mut value, parents) {
+            None => false,
+            Some(table) if table.contains_key(last) => true,
+            Some(table) => {
+                table.insert(last.to_string(), serde_json::Value::Null);
+                TaskSpec::from_json(value).is_ok()
+            }
+        }
+    }
+
+    /// The error for a setting this kind of task does not have.
+    fn no_such_setting(&self, path: &str) -> FieldError {
+        FieldError::new(path, format!("a {} task has no such setting", self.kind()))
+    }
+}
+
+/// A dotted path as its parents and its last key (`physics.substeps` → `physics`, `substeps`).
+fn split_last(path: &str) -> (&str, &str) {
+    path.rsplit_once('.').unwrap_or(("", path))
+}
+
+/// The table at dotted path `parents` inside `value` (`value` itself for an empty path).
+fn table_at<'a>(
+    value: &'a mut serde_json::Value,
+    parents: &str,
+) -> Option<&'a mut serde_json::Map<String, serde_json::Value>> {
+    let mut table = value;
+    for key in parents.split('.').filter(|k| !k.is_empty()) {
+        table = table.as_object_mut()?.get_mut(key)?;
+    }
+    table.as_object_mut()
 }
 
 #[cfg(test)]

@@ -22,6 +22,7 @@ use serde::{Deserialize, Serialize};
 use vsrlab_body::sensors::SensorConfig;
 use vsrlab_body::Preset;
 use vsrlab_brain::BrainSpec;
+use vsrlab_field::FieldError;
 
 /// A genotype → robot mapping: body part, sensors, brain template and preset.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -43,15 +44,28 @@ pub struct Representation {
 /// Why a genotype could not become a robot, or an evaluation failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum EvaluationError {
-    /// The representation itself is unusable; the message names the field.
+    /// The representation itself is unusable; the error's path is relative to the
+    /// representation (`body.masses`; see [`EvaluationError::field_error`]).
     #[error("representation.{0}")]
-    Representation(String),
+    Representation(FieldError),
     /// The genotype does not fit the representation.
     #[error("genotype: {0}")]
     Genotype(String),
     /// The episode could not be run or blew up.
     #[error(transparent)]
     Episode(#[from] EpisodeError),
+}
+
+impl EvaluationError {
+    /// A representation error as an error on its field of an experiment file
+    /// (`representation.body.masses`, or `representation` alone for the whole table); `None` for
+    /// errors of a genotype or an episode.
+    pub fn field_error(&self) -> Option<FieldError> {
+        match self {
+            EvaluationError::Representation(e) => Some(e.clone().at("representation")),
+            _ => None,
+        }
+    }
 }
 
 impl Representation {
@@ -63,7 +77,10 @@ impl Representation {
     /// The voxel sensors; an error for a voxel body without them.
     pub fn sensors(&self) -> Result<&SensorConfig, EvaluationError> {
         self.sensors.as_ref().ok_or_else(|| {
-            EvaluationError::Representation("sensors: missing: voxel bodies need a sensor placement".into())
+            EvaluationError::Representation(FieldError::new(
+                "sensors",
+                "missing: voxel bodies need a sensor placement",
+            ))
         })
     }
 
@@ -77,7 +94,7 @@ impl Representation {
     pub fn genotype_length(&self) -> Result<usize, EvaluationError> {
         self.body_genes()
             .checked_add(self.brain_genes()?)
-            .ok_or_else(|| EvaluationError::Representation("too many genes to count".to_string()))
+            .ok_or_else(|| EvaluationError::Representation(FieldError::message("too many genes to count")))
     }
 
     /// Checks that the representation is usable (body encoding, sensors and brain fit together).
@@ -108,9 +125,12 @@ impl Representation {
     pub fn robot(&self, genotype: &[f64]) -> Result<RobotSpec, EvaluationError> {
         let robot = self.any_robot(genotype)?;
         robot.downcast_ref::<RobotSpec>().cloned().ok_or_else(|| {
-            EvaluationError::Representation(format!(
-                "body: a {} robot is not a voxel robot (this analysis reads voxel robots only)",
-                robot.kind().name
+            EvaluationError::Representation(FieldError::new(
+                "body",
+                format!(
+                    "a {} robot is not a voxel robot (this analysis reads voxel robots only)",
+                    robot.kind().name
+                ),
             ))
         })
     }
@@ -166,12 +186,6 @@ impl<G: serde::de::DeserializeOwned, M: Mapper<G>> StoredGenotypes for Stored<G,
             .map_err(|e| EvaluationError::Genotype(format!("not a genotype of this experiment: {e}")))?;
         self.mapper.robot(&genotype)
     }
-}
-
-/// An episode error's message ("robot.brain.x: …") as a representation error ("brain.x: …").
-pub(crate) fn representation_message(e: EpisodeError) -> EvaluationError {
-    let text = e.to_string();
-    EvaluationError::Representation(text.strip_prefix("robot.").unwrap_or(&text).to_string())
 }
 
 /// Evaluates a genotype on a task: pure, thread-safe, summary outcome only (no trace). The one

@@ -10,6 +10,7 @@ use crate::episode::EpisodeError;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use vsrlab_body::Body;
+use vsrlab_field::FieldError;
 use vsrlab_physics::{PartHandle, Vec2, World, WorldBuilder, WorldSettings};
 
 /// Named figures a task measured in one episode (e.g. `distance`, `velocity`).
@@ -146,18 +147,14 @@ pub fn fitness_values(objectives: &[Objective], metrics: &Metrics) -> Vec<f64> {
 
 /// Checks that every objective names one of `names`; the error names the field.
 pub fn check_objectives(objectives: &[Objective], names: &[&str]) -> Result<(), EpisodeError> {
+    let at_fitness = |e: FieldError| task_field(e.at("fitness"));
     if objectives.is_empty() {
-        return Err(EpisodeError::Invalid(
-            "task.fitness: give at least one objective".into(),
-        ));
+        return Err(at_fitness(FieldError::message("give at least one objective")));
     }
     for (i, o) in objectives.iter().enumerate() {
         if !names.contains(&o.metric.as_str()) {
-            return Err(EpisodeError::Invalid(format!(
-                "task.fitness[{i}]: unknown metric '{}': expected one of {}",
-                o.metric,
-                names.join(", ")
-            )));
+            let message = format!("unknown metric '{}': expected one of {}", o.metric, names.join(", "));
+            return Err(at_fitness(FieldError::message(message).at_index(i)));
         }
     }
     Ok(())
@@ -172,12 +169,16 @@ pub fn check_episode(
     physics: &WorldSettings,
 ) -> Result<(), EpisodeError> {
     if !(duration.is_finite() && duration > 0.0 && duration <= 1e5) {
-        return Err(EpisodeError::Invalid(format!(
-            "task.duration must be in (0, 100000] seconds, got {duration}"
+        return Err(task_field(FieldError::sentence(
+            "duration",
+            format!("must be in (0, 100000] seconds, got {duration}"),
         )));
     }
     check_objectives(objectives, metrics)?;
-    physics
-        .validate()
-        .map_err(|m| EpisodeError::Invalid(format!("task.physics.{m}")))
+    physics.validate().map_err(|e| task_field(e.at("physics")))
+}
+
+/// An error on a field of the task's table, placed under `task`.
+pub fn task_field(error: FieldError) -> EpisodeError {
+    EpisodeError::Field(error.at("task"))
 }

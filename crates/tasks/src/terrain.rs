@@ -2,6 +2,7 @@
 
 use crate::java_random::JavaRandom;
 use serde::{Deserialize, Serialize};
+use vsrlab_field::FieldError;
 use vsrlab_physics::{Polygon, Vec2, WorldBuilder};
 
 /// Length of every terrain (world units).
@@ -68,8 +69,8 @@ pub enum Terrain {
 pub const PSA_HILLS: (f64, f64) = (-20.0, 400.0);
 
 impl TryFrom<String> for Terrain {
-    type Error = String;
-    fn try_from(s: String) -> Result<Self, String> {
+    type Error = FieldError;
+    fn try_from(s: String) -> Result<Self, FieldError> {
         s.parse()
     }
 }
@@ -95,67 +96,76 @@ impl std::fmt::Display for Terrain {
 }
 
 impl std::str::FromStr for Terrain {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        let bad = || {
-            format!(
-                "unknown terrain '{s}': expected flat, hilly-H-W[-SEED], steppy-H-W[-SEED], uphill-DEG, downhill-DEG or psa-hilly-H-W[-SEED]"
-            )
-        };
-        if let Some(rest) = s.strip_prefix("psa-") {
-            if !rest.starts_with("hilly-") {
-                return Err(bad());
-            }
-            return match rest.parse::<Terrain>() {
-                Ok(Terrain::Hilly { height, width, seed }) => Ok(Terrain::PsaHilly { height, width, seed }),
-                Ok(_) => Err(bad()),
-                Err(e) => Err(e.replace(rest, s)),
-            };
+    type Err = FieldError;
+    /// Parses a terrain name; the error is about the name as a whole (no field path).
+    fn from_str(s: &str) -> Result<Self, FieldError> {
+        match s.strip_prefix("psa-") {
+            Some(rest) if rest.starts_with("hilly-") => match parse_plain(rest, s)? {
+                Terrain::Hilly { height, width, seed } => Ok(Terrain::PsaHilly { height, width, seed }),
+                _ => Err(unknown_terrain(s)),
+            },
+            Some(_) => Err(unknown_terrain(s)),
+            None => parse_plain(s, s),
         }
-        let parts: Vec<&str> = s.split('-').collect();
-        let num = |i: usize| -> Result<f64, String> {
-            let v: f64 = parts.get(i).ok_or_else(bad)?.parse().map_err(|_| bad())?;
-            if v.is_finite() && v >= 0.0 {
-                Ok(v)
+    }
+}
+
+/// The error for a name that is no terrain.
+fn unknown_terrain(name: &str) -> FieldError {
+    FieldError::message(format!(
+        "unknown terrain '{name}': expected flat, hilly-H-W[-SEED], steppy-H-W[-SEED], uphill-DEG, downhill-DEG or psa-hilly-H-W[-SEED]"
+    ))
+}
+
+/// Parses a terrain of the original's forms (`flat`, `hilly-…`, `steppy-…`, `uphill-…`,
+/// `downhill-…`); errors quote `name`, the whole name the user wrote (`psa-hilly-…` for the
+/// PSA hills, which share the hilly form).
+fn parse_plain(s: &str, name: &str) -> Result<Terrain, FieldError> {
+    let bad = || unknown_terrain(name);
+    let parts: Vec<&str> = s.split('-').collect();
+    let num = |i: usize| -> Result<f64, FieldError> {
+        let v: f64 = parts.get(i).ok_or_else(bad)?.parse().map_err(|_| bad())?;
+        if v.is_finite() && v >= 0.0 {
+            Ok(v)
+        } else {
+            Err(bad())
+        }
+    };
+    let seed = |i: usize| -> Result<Option<i64>, FieldError> {
+        match parts.get(i) {
+            None => Ok(None),
+            Some(p) => p.parse().map(Some).map_err(|_| bad()),
+        }
+    };
+    let out_of_range = |what: &str| FieldError::message(format!("terrain '{name}': {what}"));
+    match parts[0] {
+        "flat" if parts.len() == 1 => Ok(Terrain::Flat),
+        "hilly" | "steppy" if (3..=4).contains(&parts.len()) => {
+            let (height, width, seed) = (num(1)?, num(2)?, seed(3)?);
+            if width <= 0.0 || width > MAX_STEP_WIDTH {
+                return Err(out_of_range(&format!("width must be in (0, {MAX_STEP_WIDTH}]")));
+            }
+            if height > MAX_STEP_HEIGHT {
+                return Err(out_of_range(&format!("height must be at most {MAX_STEP_HEIGHT}")));
+            }
+            Ok(if parts[0] == "hilly" {
+                Terrain::Hilly { height, width, seed }
             } else {
-                Err(bad())
-            }
-        };
-        let seed = |i: usize| -> Result<Option<i64>, String> {
-            match parts.get(i) {
-                None => Ok(None),
-                Some(p) => p.parse().map(Some).map_err(|_| bad()),
-            }
-        };
-        match parts[0] {
-            "flat" if parts.len() == 1 => Ok(Terrain::Flat),
-            "hilly" | "steppy" if (3..=4).contains(&parts.len()) => {
-                let (height, width, seed) = (num(1)?, num(2)?, seed(3)?);
-                if width <= 0.0 || width > MAX_STEP_WIDTH {
-                    return Err(format!("terrain '{s}': width must be in (0, {MAX_STEP_WIDTH}]"));
-                }
-                if height > MAX_STEP_HEIGHT {
-                    return Err(format!("terrain '{s}': height must be at most {MAX_STEP_HEIGHT}"));
-                }
-                Ok(if parts[0] == "hilly" {
-                    Terrain::Hilly { height, width, seed }
-                } else {
-                    Terrain::Steppy { height, width, seed }
-                })
-            }
-            "uphill" | "downhill" if parts.len() == 2 => {
-                let angle = num(1)?;
-                if angle >= 90.0 {
-                    return Err(format!("terrain '{s}': angle must be below 90 degrees"));
-                }
-                Ok(if parts[0] == "uphill" {
-                    Terrain::Uphill { angle }
-                } else {
-                    Terrain::Downhill { angle }
-                })
-            }
-            _ => Err(bad()),
+                Terrain::Steppy { height, width, seed }
+            })
         }
+        "uphill" | "downhill" if parts.len() == 2 => {
+            let angle = num(1)?;
+            if angle >= 90.0 {
+                return Err(out_of_range("angle must be below 90 degrees"));
+            }
+            Ok(if parts[0] == "uphill" {
+                Terrain::Uphill { angle }
+            } else {
+                Terrain::Downhill { angle }
+            })
+        }
+        _ => Err(bad()),
     }
 }
 
@@ -274,9 +284,22 @@ mod tests {
         }
         assert!("hilly-1".parse::<Terrain>().is_err());
         assert!("bumpy".parse::<Terrain>().is_err());
-        assert!("hilly-1e9-10".parse::<Terrain>().unwrap_err().contains("height"));
-        assert!("steppy-1-1e9".parse::<Terrain>().unwrap_err().contains("width"));
+        assert!("hilly-1e9-10"
+            .parse::<Terrain>()
+            .unwrap_err()
+            .message
+            .contains("height"));
+        assert!("steppy-1-1e9".parse::<Terrain>().unwrap_err().message.contains("width"));
         assert!("uphill-95".parse::<Terrain>().is_err());
+        // the PSA hills quote the whole name
+        let e = "psa-hilly-1e9-10".parse::<Terrain>().unwrap_err();
+        assert_eq!(e.to_string(), "terrain 'psa-hilly-1e9-10': height must be at most 100");
+        let e = "psa-hilly-x-10".parse::<Terrain>().unwrap_err();
+        assert!(
+            e.to_string().starts_with("unknown terrain 'psa-hilly-x-10': expected"),
+            "{e}"
+        );
+        assert_eq!(e.path, "");
     }
 
     #[test]
@@ -340,7 +363,11 @@ mod tests {
         let mean = p[1..p.len() - 1].iter().map(|v| v.y).sum::<f64>() / (p.len() - 2) as f64;
         // E|N(0, 3²)| = 3·√(2/π) ≈ 2.39
         assert!((mean - 2.39).abs() < 0.6, "mean height {mean}");
-        assert!("psa-hilly-1e9-10".parse::<Terrain>().unwrap_err().contains("height"));
+        assert!("psa-hilly-1e9-10"
+            .parse::<Terrain>()
+            .unwrap_err()
+            .message
+            .contains("height"));
         assert!("psa-flat".parse::<Terrain>().is_err());
     }
 }

@@ -9,6 +9,7 @@
 //! available as [`GasAmount::TimesMolarMass`] (then `gas_mass` is in the original's units).
 
 use serde::{Deserialize, Serialize};
+use vsrlab_field::FieldError;
 
 /// The three morphologies of the thesis (§6.3): masses, radius and gas.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -199,12 +200,18 @@ impl PsaParams {
     }
 
     /// Checks every field; the error names it (`masses`, `radius`, `gas_mass`, …).
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> Result<(), FieldError> {
         if self.masses < 3 {
-            return Err(format!("masses must be at least 3, got {}", self.masses));
+            return Err(FieldError::sentence(
+                "masses",
+                format!("must be at least 3, got {}", self.masses),
+            ));
         }
         if self.masses > MAX_MASSES {
-            return Err(format!("masses must be at most {MAX_MASSES}, got {}", self.masses));
+            return Err(FieldError::sentence(
+                "masses",
+                format!("must be at most {MAX_MASSES}, got {}", self.masses),
+            ));
         }
         let positive = [
             ("radius", self.radius),
@@ -222,7 +229,7 @@ impl PsaParams {
         ];
         for (name, v) in positive {
             if !(v.is_finite() && v > 0.0) {
-                return Err(format!("{name} must be finite and > 0, got {v}"));
+                return Err(FieldError::sentence(name, format!("must be finite and > 0, got {v}")));
             }
         }
         let non_negative = [
@@ -232,39 +239,51 @@ impl PsaParams {
         ];
         for (name, v) in non_negative {
             if !(v.is_finite() && v >= 0.0) {
-                return Err(format!("{name} must be finite and ≥ 0, got {v}"));
+                return Err(FieldError::sentence(name, format!("must be finite and ≥ 0, got {v}")));
             }
         }
         if !(self.min_pressure_fraction.is_finite() && (0.0..=1.0).contains(&self.min_pressure_fraction)) {
-            return Err(format!(
-                "min_pressure_fraction must be in [0, 1] (p_min ≤ p_max), got {}",
-                self.min_pressure_fraction
+            return Err(FieldError::sentence(
+                "min_pressure_fraction",
+                format!("must be in [0, 1] (p_min ≤ p_max), got {}", self.min_pressure_fraction),
             ));
         }
         if !(self.min_length <= 1.0 && self.max_length.is_finite() && self.max_length >= 1.0) {
-            return Err(format!(
-                "min_length ≤ 1 ≤ max_length required, got min_length {} and max_length {}",
-                self.min_length, self.max_length
+            return Err(FieldError::sentence(
+                "min_length",
+                format!(
+                    "≤ 1 ≤ max_length required, got min_length {} and max_length {}",
+                    self.min_length, self.max_length
+                ),
             ));
         }
         if self.mass_side >= self.rest_length() {
-            return Err(format!(
-                "mass_side ({}) must be smaller than the spacing of the masses ({:.3} for {} masses on radius {})",
-                self.mass_side,
-                self.rest_length(),
-                self.masses,
-                self.radius
+            return Err(FieldError::sentence(
+                "mass_side",
+                format!(
+                    "({}) must be smaller than the spacing of the masses ({:.3} for {} masses on radius {})",
+                    self.mass_side,
+                    self.rest_length(),
+                    self.masses,
+                    self.radius
+                ),
             ));
         }
         if !(self.max_pressure().is_finite() && (self.n_r_t() / self.initial_area()).is_finite()) {
-            return Err(format!(
-                "gas_mass: {} kg gives a pressure too large to represent (nRT = {})",
-                self.gas_mass,
-                self.n_r_t()
+            return Err(FieldError::new(
+                "gas_mass",
+                format!(
+                    "{} kg gives a pressure too large to represent (nRT = {})",
+                    self.gas_mass,
+                    self.n_r_t()
+                ),
             ));
         }
         if !self.spring_control && !self.pressure_control {
-            return Err("spring_control and pressure_control are both off: the brain would control nothing".into());
+            return Err(FieldError::sentence(
+                "spring_control",
+                "and pressure_control are both off: the brain would control nothing",
+            ));
         }
         Ok(())
     }
@@ -312,7 +331,8 @@ mod tests {
             let mut p = PsaParams::of_size(PsaSize::Small);
             f(&mut p);
             let e = p.validate().unwrap_err();
-            assert!(e.starts_with(field), "{e}");
+            assert_eq!(e.path, field, "{e}");
+            assert!(e.to_string().starts_with(field), "{e}");
         };
         bad(|p| p.masses = 2, "masses");
         bad(|p| p.radius = 0.0, "radius");

@@ -8,6 +8,7 @@
 
 use super::params::{PsaParams, PsaSize};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use vsrlab_field::FieldError;
 
 /// A PSA body description: a size preset and the constants in force.
 #[derive(Debug, Clone, PartialEq)]
@@ -46,43 +47,48 @@ impl Serialize for PsaBody {
 }
 
 impl<'de> Deserialize<'de> for PsaBody {
+    /// [`PsaBody::from_table`], with its error as serde's.
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let value = serde_json::Value::deserialize(deserializer)?;
+        PsaBody::from_table(value).map_err(serde::de::Error::custom)
+    }
+}
+
+impl PsaBody {
     /// Reads `size` (default medium), fills every constant from it, then applies the other
     /// fields by name; an unknown or mistyped field is an error naming it. The constants are
-    /// then checked ([`PsaParams::validate`]).
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        use serde::de::Error;
-        let mut fields = match serde_json::Value::deserialize(deserializer)? {
+    /// then checked ([`PsaParams::validate`]). The error's path is relative to the table.
+    pub fn from_table(value: serde_json::Value) -> Result<PsaBody, FieldError> {
+        let mut fields = match value {
             serde_json::Value::Object(fields) => fields,
             other => {
-                return Err(D::Error::custom(format!(
+                return Err(FieldError::message(format!(
                     "expected a table of PSA constants, got {other}"
                 )))
             }
         };
         fields.remove("kind");
         let size: PsaSize = match fields.remove("size") {
-            Some(v) => serde_json::from_value(v).map_err(|e| D::Error::custom(format!("size: {e}")))?,
+            Some(v) => serde_json::from_value(v).map_err(|e| FieldError::new("size", e.to_string()))?,
             None => PsaSize::default(),
         };
         let mut merged = match serde_json::to_value(PsaParams::of_size(size)) {
             Ok(serde_json::Value::Object(map)) => map,
-            _ => return Err(D::Error::custom("PSA constants serialise to a table")),
+            _ => return Err(FieldError::message("PSA constants serialise to a table")),
         };
         for (k, v) in fields {
             if !merged.contains_key(&k) {
                 let known: Vec<&str> = merged.keys().map(String::as_str).collect();
-                return Err(D::Error::custom(format!(
+                return Err(FieldError::message(format!(
                     "unknown field `{k}`, expected size or one of {}",
                     known.join(", ")
                 )));
             }
             merged.insert(k, v);
         }
-        let params: PsaParams = serde_path_to_error::deserialize(serde_json::Value::Object(merged)).map_err(|e| {
-            let path = e.path().to_string();
-            D::Error::custom(format!("{path}: {}", e.into_inner()))
-        })?;
-        params.validate().map_err(D::Error::custom)?;
+        let params: PsaParams = serde_path_to_error::deserialize(serde_json::Value::Object(merged))
+            .map_err(|e| FieldError::new(e.path().to_string(), e.into_inner().to_string()))?;
+        params.validate()?;
         Ok(PsaBody { size, params })
     }
 }
@@ -121,5 +127,10 @@ mod tests {
         );
         assert!(err(r#"{"radios": 3}"#).contains("unknown field `radios`"));
         assert!(err(r#"{"size": "huge"}"#).starts_with("size: unknown variant"));
+        let path = |value: serde_json::Value| PsaBody::from_table(value).unwrap_err().path;
+        assert_eq!(path(serde_json::json!({"masses": 2})), "masses");
+        assert_eq!(path(serde_json::json!({"radius": "big"})), "radius");
+        assert_eq!(path(serde_json::json!({"size": "huge"})), "size");
+        assert_eq!(path(serde_json::json!({"radios": 3})), "");
     }
 }

@@ -8,6 +8,7 @@ use super::spec::SensorSpec;
 use super::window::{check_window, TimeWindow};
 use super::wrapper::{Transform, Wrapped, WrapperKind};
 use serde::{Deserialize, Serialize};
+use vsrlab_field::FieldError;
 
 /// Running mean over a time window.
 #[derive(Debug, Clone)]
@@ -83,7 +84,7 @@ impl WrapperKind for AverageSpec {
         inner
     }
 
-    fn check(&self) -> Result<(), String> {
+    fn check(&self) -> Result<(), FieldError> {
         check_window(self.window)
     }
 

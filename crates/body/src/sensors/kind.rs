@@ -7,6 +7,7 @@
 //! it builds [`Node`]s, the statically dispatched running sensors of the simulation's hot loop.
 
 use super::node::{Node, Site};
+use vsrlab_field::FieldError;
 
 /// One kind of sensor: its readings, their domains, its checks and its running form.
 pub(crate) trait SensorKind {
@@ -19,8 +20,9 @@ pub(crate) trait SensorKind {
     fn domains(&self) -> Vec<(f64, f64)>;
 
     /// Checks every parameter of the tree below; `noisy_depth` counts the `Noisy` wrappers above.
-    /// The message names the parameter and the accepted range. Default: nothing to check.
-    fn validate(&self, noisy_depth: usize) -> Result<(), String> {
+    /// The error's path is the parameter's in this description (`window`, `inner.range`); its
+    /// message names the parameter in words and the accepted range. Default: nothing to check.
+    fn validate(&self, noisy_depth: usize) -> Result<(), FieldError> {
         let _ = noisy_depth;
         Ok(())
     }
@@ -48,11 +50,15 @@ impl SensorKind for Parameterless {
     }
 }
 
-/// Errors unless `v` is finite and > 0, naming the parameter.
-pub(crate) fn check_positive(name: &str, v: f64) -> Result<(), String> {
+/// Errors unless `v` is finite and > 0: the error is on `field`, its message calls the
+/// parameter `label` (`lidar range`).
+pub(crate) fn check_positive(field: &str, label: &str, v: f64) -> Result<(), FieldError> {
     if v.is_finite() && v > 0.0 {
         Ok(())
     } else {
-        Err(format!("{name} must be a finite number > 0, got {v}"))
+        Err(FieldError::new(
+            field,
+            format!("{label} must be a finite number > 0, got {v}"),
+        ))
     }
 }

@@ -20,6 +20,7 @@ use super::kind::{check_positive, SensorKind};
 use super::node::{Frame, Node, Site};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::FRAC_PI_4;
+use vsrlab_field::FieldError;
 use vsrlab_physics::Vec2;
 
 /// Most rays one lidar may cast.
@@ -175,12 +176,15 @@ impl SensorKind for LidarSpec {
         vec![domain(self.range); self.rays]
     }
 
-    fn validate(&self, _noisy_depth: usize) -> Result<(), String> {
-        check_positive("lidar range", self.range)?;
+    fn validate(&self, _noisy_depth: usize) -> Result<(), FieldError> {
+        check_positive("range", "lidar range", self.range)?;
         if (1..=MAX_RAYS).contains(&self.rays) {
             Ok(())
         } else {
-            Err(format!("lidar rays must be 1 to {MAX_RAYS}, got {}", self.rays))
+            Err(FieldError::new(
+                "rays",
+                format!("lidar rays must be 1 to {MAX_RAYS}, got {}", self.rays),
+            ))
         }
     }
 

@@ -67,6 +67,7 @@ use constant::relative_position;
 use node::{Frame, Node, Site};
 use noise::{NoiseKey, MAX_SENSORS_PER_VOXEL};
 use std::ops::Range;
+use vsrlab_field::FieldError;
 use vsrlab_physics::World;
 
 /// The sampling interval the suite plans its windows for unless told otherwise: one physics step of
@@ -102,15 +103,16 @@ pub enum SensorError {
         /// Lists given.
         got: usize,
     },
-    /// A sensor parameter is out of range.
-    #[error("voxel {voxel}, sensor {sensor}: {msg}")]
+    /// A sensor parameter is out of range; shown with the error's message, which names the
+    /// parameter in words (its path locates it in the sensor's description).
+    #[error("voxel {voxel}, sensor {sensor}: {}", .error.message)]
     InvalidSensor {
         /// Voxel (grid order).
         voxel: usize,
         /// Position of the sensor in the voxel's list.
         sensor: usize,
-        /// What is wrong.
-        msg: String,
+        /// What is wrong, and where in the sensor's description ([`SensorSpec::validate`]).
+        error: FieldError,
     },
     /// The planned sampling interval is not a positive number.
     #[error("the sensor time step must be a finite number > 0, got {0}")]
@@ -208,14 +210,17 @@ impl SensorSuite {
                 return Err(SensorError::InvalidSensor {
                     voxel: v,
                     sensor: MAX_SENSORS_PER_VOXEL,
-                    msg: format!("at most {MAX_SENSORS_PER_VOXEL} sensors per voxel, got {}", list.len()),
+                    error: FieldError::message(format!(
+                        "at most {MAX_SENSORS_PER_VOXEL} sensors per voxel, got {}",
+                        list.len()
+                    )),
                 });
             }
             for (k, spec) in list.iter().enumerate() {
-                spec.validate().map_err(|msg| SensorError::InvalidSensor {
+                spec.validate().map_err(|error| SensorError::InvalidSensor {
                     voxel: v,
                     sensor: k,
-                    msg,
+                    error,
                 })?;
                 let site = Site {
                     rel: (relative_position(x, w), relative_position(y, h)),

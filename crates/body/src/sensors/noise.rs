@@ -18,6 +18,7 @@ use super::wrapper::{Transform, Wrapped};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
+use vsrlab_field::FieldError;
 
 /// Bits of the stream number given to the voxel index.
 const VOXEL_BITS: u32 = 32;
@@ -146,15 +147,21 @@ impl SensorKind for NoisySpec {
         self.inner.domains()
     }
 
-    fn validate(&self, noisy_depth: usize) -> Result<(), String> {
+    fn validate(&self, noisy_depth: usize) -> Result<(), FieldError> {
         let sigma = self.sigma;
         if !(sigma.is_finite() && sigma >= 0.0) {
-            return Err(format!("noise sigma must be a finite number ≥ 0, got {sigma}"));
+            return Err(FieldError::new(
+                "sigma",
+                format!("noise sigma must be a finite number ≥ 0, got {sigma}"),
+            ));
         }
         if noisy_depth + 1 >= MAX_NOISY_DEPTH {
-            return Err(format!("at most {} nested noisy wrappers", MAX_NOISY_DEPTH - 1));
+            return Err(FieldError::message(format!(
+                "at most {} nested noisy wrappers",
+                MAX_NOISY_DEPTH - 1
+            )));
         }
-        self.inner.validate_at(noisy_depth + 1)
+        self.inner.validate_at(noisy_depth + 1).map_err(|e| e.at("inner"))
     }
 
     fn build(&self, site: Site) -> Node {

@@ -18,6 +18,7 @@ use super::touch;
 use super::trend::TrendSpec;
 use super::velocity::VelocitySpec;
 use serde::{Deserialize, Serialize};
+use vsrlab_field::FieldError;
 
 /// A sensor, raw or wrapped. Wrappers hold the sensor they transform in `inner`, so a spec is a
 /// small tree, e.g. `SoftNormalization(Average(Velocity))` for `vxy`.
@@ -125,13 +126,15 @@ impl SensorSpec {
         self.as_kind().domains()
     }
 
-    /// Checks every parameter of the tree; the message names the parameter and the accepted range.
-    pub fn validate(&self) -> Result<(), String> {
+    /// Checks every parameter of the tree. The error's path locates the parameter in this
+    /// description (`window`, `inner.range`: a wrapped sensor's); its message names the parameter
+    /// in words (`lidar range must be …`) and the accepted range.
+    pub fn validate(&self) -> Result<(), FieldError> {
         self.validate_at(0)
     }
 
     /// [`SensorSpec::validate`] below `noisy_depth` `Noisy` wrappers.
-    pub(crate) fn validate_at(&self, noisy_depth: usize) -> Result<(), String> {
+    pub(crate) fn validate_at(&self, noisy_depth: usize) -> Result<(), FieldError> {
         self.as_kind().validate(noisy_depth)
     }
 }
@@ -169,21 +172,27 @@ mod tests {
     #[test]
     fn validation_names_the_bad_parameter() {
         let e = SensorSpec::Touch.averaged(-1.0).validate().unwrap_err();
-        assert!(e.contains("window") && e.contains("-1"), "{e}");
+        assert_eq!(e.path, "window");
+        assert_eq!(e.message, "window must be a finite number > 0, got -1");
         let e = SensorSpec::Lidar(LidarSpec {
             range: 10.0,
             rays: 0,
             layout: RayLayout::Ends,
         })
+        .trend(1.0)
         .validate()
         .unwrap_err();
-        assert!(e.contains("rays"), "{e}");
+        assert_eq!(
+            (e.path.as_str(), e.message.as_str()),
+            ("inner.rays", "lidar rays must be 1 to 1024, got 0")
+        );
         let e = SensorSpec::AreaRatio
             .noisy(f64::NAN)
             .normalized()
             .validate()
             .unwrap_err();
-        assert!(e.contains("sigma"), "{e}");
+        assert_eq!(e.path, "inner.sigma");
+        assert!(e.message.starts_with("noise sigma must be"), "{e}");
         let e = SensorSpec::Velocity(VelocitySpec {
             rotated: true,
             vmax: 0.0,
@@ -191,7 +200,10 @@ mod tests {
         })
         .validate()
         .unwrap_err();
-        assert!(e.contains("vmax"), "{e}");
+        assert_eq!(
+            (e.path.as_str(), e.message.as_str()),
+            ("vmax", "velocity vmax must be a finite number > 0, got 0")
+        );
         assert!(SensorSpec::Touch.averaged(0.25).noisy(0.0).validate().is_ok());
     }
 

@@ -8,6 +8,7 @@ use super::spec::SensorSpec;
 use super::window::{check_window, TimeWindow};
 use super::wrapper::{Transform, Wrapped, WrapperKind};
 use serde::{Deserialize, Serialize};
+use vsrlab_field::FieldError;
 
 /// Declared domain for an inner domain `(lo, hi)` over `window` seconds.
 pub(crate) fn domain((lo, hi): (f64, f64), window: f64) -> (f64, f64) {
@@ -72,7 +73,7 @@ impl WrapperKind for TrendSpec {
         domain(inner, self.window)
     }
 
-    fn check(&self) -> Result<(), String> {
+    fn check(&self) -> Result<(), FieldError> {
         check_window(self.window)
     }
 

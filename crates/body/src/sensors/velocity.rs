@@ -4,6 +4,7 @@
 use super::kind::{check_positive, SensorKind};
 use super::node::{Frame, Node, Site};
 use serde::{Deserialize, Serialize};
+use vsrlab_field::FieldError;
 use vsrlab_physics::Vec2;
 
 /// Which velocity components a velocity sensor reports.
@@ -85,8 +86,8 @@ impl SensorKind for VelocitySpec {
         vec![domain(self.vmax); self.dimension()]
     }
 
-    fn validate(&self, _noisy_depth: usize) -> Result<(), String> {
-        check_positive("velocity vmax", self.vmax)
+    fn validate(&self, _noisy_depth: usize) -> Result<(), FieldError> {
+        check_positive("vmax", "velocity vmax", self.vmax)
     }
 
     fn build(&self, _site: Site) -> Node {

@@ -8,15 +8,20 @@
 //! then grows once to fit, which is the only allocation it ever makes.
 
 use super::kind::check_positive;
+use vsrlab_field::FieldError;
 
 /// Longest accepted window of `Average` and `Trend` (s).
 pub const MAX_WINDOW: f64 = 3600.0;
 
-/// Errors unless `window` is finite, > 0 and at most [`MAX_WINDOW`] seconds.
-pub(crate) fn check_window(window: f64) -> Result<(), String> {
-    check_positive("window", window)?;
+/// Errors unless `window` is finite, > 0 and at most [`MAX_WINDOW`] seconds; the error is on the
+/// field `window`.
+pub(crate) fn check_window(window: f64) -> Result<(), FieldError> {
+    check_positive("window", "window", window)?;
     if window > MAX_WINDOW {
-        return Err(format!("window must be at most {MAX_WINDOW} s, got {window}"));
+        return Err(FieldError::new(
+            "window",
+            format!("window must be at most {MAX_WINDOW} s, got {window}"),
+        ));
     }
     Ok(())
 }

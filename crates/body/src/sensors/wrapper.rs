@@ -10,6 +10,7 @@
 use super::kind::SensorKind;
 use super::node::{Frame, Node, Site};
 use super::spec::SensorSpec;
+use vsrlab_field::FieldError;
 
 /// What a wrapper does to its inner sensor's readings at each step.
 pub(crate) trait Transform {
@@ -61,7 +62,7 @@ pub(crate) trait WrapperKind {
     fn domain(&self, inner: (f64, f64)) -> (f64, f64);
 
     /// Checks this wrapper's own parameters (default: it has none to check).
-    fn check(&self) -> Result<(), String> {
+    fn check(&self) -> Result<(), FieldError> {
         Ok(())
     }
 
@@ -80,9 +81,9 @@ impl<W: WrapperKind> SensorKind for W {
     }
 
     /// This wrapper's parameters, then the inner sensor's.
-    fn validate(&self, noisy_depth: usize) -> Result<(), String> {
+    fn validate(&self, noisy_depth: usize) -> Result<(), FieldError> {
         self.check()?;
-        self.inner().validate_at(noisy_depth)
+        self.inner().validate_at(noisy_depth).map_err(|e| e.at("inner"))
     }
 
     fn build(&self, site: Site) -> Node {

@@ -15,7 +15,7 @@ pub use sweep::{expand, MAX_SETTINGS};
 pub use task::TaskConfig;
 
 use crate::genotypes::{self, GenotypeConfig, GenotypeKind};
-use crate::optimizers::{self, OptimizerConfig};
+use crate::optimizers::{self, FieldError, OptimizerConfig};
 use error::{dotted, line_column, locate, Step};
 use serde::{Deserialize, Serialize};
 use vsrlab_tasks::Representation;
@@ -211,14 +211,8 @@ pub fn parse(text: &str, origin: &str) -> Result<Experiment, ConfigError> {
             message,
         }
     })?;
-    let in_table = |table: &str, (field, message): (String, String)| {
-        let field = if field.is_empty() {
-            table.to_string()
-        } else {
-            format!("{table}.{field}")
-        };
-        ConfigError::at_field(origin, text, &field, message)
-    };
+    let at_field = |e: FieldError| ConfigError::at_field(origin, text, &e.path, e.message);
+    let in_table = |table: &str, e: FieldError| at_field(e.at(table));
     let task = TaskConfig::decode(file.task).map_err(|e| in_table("task", e))?;
     let mut representation = file.representation;
     if let Some(transfer) = &file.transfer {
@@ -236,9 +230,7 @@ pub fn parse(text: &str, origin: &str) -> Result<Experiment, ConfigError> {
         .transpose()
         .map_err(|e| in_table("genotype", e))?;
     if let Some(kind) = &mut genotype {
-        kind.kind_mut()
-            .load_files(&mut representation)
-            .map_err(|(field, message)| ConfigError::at_field(origin, text, &field, message))?;
+        kind.kind_mut().load_files(&mut representation).map_err(at_field)?;
     }
     let optimizer = optimizers::decode_table(file.optimizer).map_err(|e| in_table("optimizer", e))?;
     let experiment = Experiment {
@@ -255,9 +247,7 @@ pub fn parse(text: &str, origin: &str) -> Result<Experiment, ConfigError> {
         output: file.output,
     }
     .resolve();
-    experiment
-        .validate()
-        .map_err(|(field, message)| ConfigError::at_field(origin, text, &field, message))?;
+    experiment.validate().map_err(at_field)?;
     Ok(experiment)
 }
 
@@ -274,7 +264,7 @@ pub fn load(path: &std::path::Path) -> Result<Experiment, ConfigError> {
     let mut experiment = parse(&text, &origin)?;
     if experiment.name.is_none() {
         let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned());
-        if let Some(Err(message)) = stem.as_deref().map(check_name) {
+        if let Some(Err(FieldError { message, .. })) = stem.as_deref().map(check_name) {
             return Err(ConfigError {
                 origin,
                 line: None,
@@ -333,18 +323,22 @@ pub const MAX_NAME_LENGTH: usize = 100;
 /// Checks an experiment name, which becomes a folder (`out/<name>`): one path component of
 /// letters, digits, `-`, `_`, `.` and `+`, not starting with `.`, at most [`MAX_NAME_LENGTH`]
 /// characters. So a name can never point outside the output folder (`..`, `/`, `\\`).
-pub fn check_name(name: &str) -> Result<(), String> {
+pub fn check_name(name: &str) -> Result<(), FieldError> {
     let allowed = |c: char| c.is_alphanumeric() || matches!(c, '-' | '_' | '.' | '+');
     if name.is_empty() || name.chars().count() > MAX_NAME_LENGTH {
-        return Err(format!("must have 1 to {MAX_NAME_LENGTH} characters"));
+        return Err(FieldError::message(format!(
+            "must have 1 to {MAX_NAME_LENGTH} characters"
+        )));
     }
     if name.starts_with('.') {
-        return Err(format!("'{name}' must not start with '.' (it becomes a folder name)"));
+        return Err(FieldError::message(format!(
+            "'{name}' must not start with '.' (it becomes a folder name)"
+        )));
     }
     match name.chars().find(|&c| !allowed(c)) {
-        Some(c) => Err(format!(
+        Some(c) => Err(FieldError::message(format!(
             "'{name}' holds {c:?}: use letters, digits, '-', '_', '.' and '+' only (it becomes a folder name)"
-        )),
+        ))),
         None => Ok(()),
     }
 }
@@ -360,22 +354,18 @@ impl Experiment {
     }
 
     /// Checks values that the types cannot: returns the dotted field path and the message.
-    pub fn validate(&self) -> Result<(), (String, String)> {
-        let err = |field: &str, msg: String| Err((field.to_string(), msg));
+    pub fn validate(&self) -> Result<(), FieldError> {
+        let err = |field: &str, msg: String| Err(FieldError::new(field.to_string(), msg));
         if self.runs == 0 || self.runs > MAX_RUNS {
             return err("runs", format!("must be in 1..={MAX_RUNS}, got {}", self.runs));
         }
-        if let Some(Err(message)) = self.name.as_deref().map(check_name) {
-            return err("name", message);
+        if let Some(Err(e)) = self.name.as_deref().map(check_name) {
+            return Err(e.at("name"));
         }
         if let Err(e) = self.representation.validate() {
-            // Messages read "representation.<field>: …".
-            let text = e.to_string();
-            let (field, msg) = match text.split_once(": ") {
-                Some((f, m)) if f.starts_with("representation.") => (f.to_string(), m.to_string()),
-                _ => ("representation".to_string(), text.clone()),
-            };
-            return err(&field, msg);
+            return Err(e
+                .field_error()
+                .unwrap_or_else(|| FieldError::new("representation", e.to_string())));
         }
         self.genotype_kind().validate(self)?;
         self.task.validate()?;
@@ -408,7 +398,7 @@ impl Experiment {
             return err("output.checkpoint_interval", "must be ≥ 0 seconds".into());
         }
         let kind = self.optimizer.kind();
-        kind.validate().map_err(|(f, m)| (format!("optimizer.{f}"), m))?;
+        kind.validate().map_err(|e| e.at("optimizer"))?;
         let objectives = self.task.spec.task().objectives().len();
         if objectives > 1 && !kind.multi_objective() {
             return err(

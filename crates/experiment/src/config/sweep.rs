@@ -9,6 +9,7 @@
 //! its own; errors name the combination.
 
 use super::{check_name, parse, ConfigError, Experiment};
+use vsrlab_field::FieldError;
 
 /// Most settings one sweep may expand into.
 pub const MAX_SETTINGS: usize = 10_000;
@@ -38,7 +39,7 @@ fn label_of(value: &toml::Value) -> String {
 }
 
 /// The axes of a `[sweep]` table, in the order their keys appear in `text`.
-fn axes(sweep: toml::Table, text: &str) -> Result<Vec<Axis>, (String, String)> {
+fn axes(sweep: toml::Table, text: &str) -> Result<Vec<Axis>, FieldError> {
     let mut axes = Vec::new();
     for (key, spec) in sweep {
         let field = format!("sweep.\"{key}\"");
@@ -46,17 +47,20 @@ fn axes(sweep: toml::Table, text: &str) -> Result<Vec<Axis>, (String, String)> {
             toml::Value::Array(items) => items.into_iter().map(|v| (label_of(&v), v)).collect(),
             toml::Value::Table(named) => named.into_iter().collect(),
             other => {
-                return Err((
+                return Err(FieldError::new(
                     field,
                     format!("expected a list of values or a table of named values, got {other}"),
                 ))
             }
         };
         if values.is_empty() {
-            return Err((field, "needs at least one value".into()));
+            return Err(FieldError::new(field, "needs at least one value"));
         }
         if let Some((label, _)) = values.iter().find(|(label, _)| check_name(label).is_err()) {
-            return Err((field, format!("label '{label}' cannot be part of a folder name")));
+            return Err(FieldError::new(
+                field,
+                format!("label '{label}' cannot be part of a folder name"),
+            ));
         }
         axes.push(Axis { key, values });
     }
@@ -99,7 +103,7 @@ pub fn expand(text: &str, origin: &str, stem: &str) -> Result<Vec<Experiment>, C
         toml::Value::Table(t) => t,
         other => return Err(whole_file("sweep", format!("expected a table, got {other}"))),
     };
-    let axes = axes(sweep, text).map_err(|(field, message)| whole_file(&field, message))?;
+    let axes = axes(sweep, text).map_err(|e| whole_file(&e.path, e.message))?;
     let count = axes
         .iter()
         .try_fold(1usize, |n, a| n.checked_mul(a.values.len()))

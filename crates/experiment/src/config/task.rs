@@ -2,6 +2,7 @@
 //! kind's settings), plus how the experiment seeds its episodes.
 
 use serde::{Serialize, Serializer};
+use vsrlab_field::FieldError;
 use vsrlab_tasks::{EpisodeError, TaskSpec};
 
 /// The task of an experiment.
@@ -18,13 +19,13 @@ pub struct TaskConfig {
 
 impl TaskConfig {
     /// Decodes the table; on error, the field inside `task` and the message.
-    pub fn decode(mut table: toml::Table) -> Result<Self, (String, String)> {
+    pub fn decode(mut table: toml::Table) -> Result<Self, FieldError> {
         let random_terrain_per_evaluation = match table.remove("random_terrain_per_evaluation") {
             None => false,
             Some(toml::Value::Boolean(b)) => b,
             Some(other) => {
-                return Err((
-                    "random_terrain_per_evaluation".into(),
+                return Err(FieldError::new(
+                    "random_terrain_per_evaluation",
                     format!("expected true or false, got {other}"),
                 ))
             }
@@ -32,10 +33,15 @@ impl TaskConfig {
         let episode_seed = match table.remove("episode_seed") {
             None => 0,
             Some(toml::Value::Integer(i)) if i >= 0 => i as u64,
-            Some(other) => return Err(("episode_seed".into(), format!("expected an integer ≥ 0, got {other}"))),
+            Some(other) => {
+                return Err(FieldError::new(
+                    "episode_seed",
+                    format!("expected an integer ≥ 0, got {other}"),
+                ))
+            }
         };
-        let value = serde_json::to_value(&table).map_err(|e| (String::new(), e.to_string()))?;
-        let spec = TaskSpec::from_json(value).map_err(|e| (e.path, e.message))?;
+        let value = serde_json::to_value(&table).map_err(|e| FieldError::message(e.to_string()))?;
+        let spec = TaskSpec::from_json(value)?;
         Ok(TaskConfig {
             spec,
             random_terrain_per_evaluation,
@@ -44,18 +50,11 @@ impl TaskConfig {
     }
 
     /// Checks the task's settings: the dotted field and the message on error.
-    pub fn validate(&self) -> Result<(), (String, String)> {
-        self.spec.task().validate().map_err(|e| {
-            let text = match e {
-                EpisodeError::Invalid(m) => m,
-                other => other.to_string(),
-            };
-            match text.split_once(' ') {
-                Some((field, rest)) if field.starts_with("task.") => {
-                    (field.trim_end_matches(':').to_string(), rest.to_string())
-                }
-                _ => ("task".to_string(), text),
-            }
+    pub fn validate(&self) -> Result<(), FieldError> {
+        self.spec.task().validate().map_err(|e| match e {
+            EpisodeError::Field(e) => e,
+            EpisodeError::Invalid(m) => FieldError::new("task", m),
+            other => FieldError::new("task", other.to_string()),
         })
     }
 }

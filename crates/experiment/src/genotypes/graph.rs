@@ -106,14 +106,14 @@ impl Default for OperatorMix {
 
 impl OperatorMix {
     /// The operators with their weights.
-    pub fn resolve(&self) -> Result<Vec<(Operator, f64)>, String> {
+    pub fn resolve(&self) -> Result<Vec<(Operator, f64)>, FieldError> {
         match self {
             OperatorMix::Named(name) => match name.as_str() {
                 "thesis" => Ok(THESIS_OPERATORS.to_vec()),
                 "weights-only" => Ok(vec![(Operator::MutateEdge, 1.0)]),
-                other => Err(format!(
+                other => Err(FieldError::message(format!(
                     "unknown operator mix '{other}': expected thesis, weights-only or a table of weights by operator"
-                )),
+                ))),
             },
             OperatorMix::Weights(table) => {
                 let mut mix = Vec::new();
@@ -124,15 +124,21 @@ impl OperatorMix {
                         .map(|n| n.1)
                         .ok_or_else(|| {
                             let names: Vec<&str> = Operator::NAMED.iter().map(|n| n.0).collect();
-                            format!("unknown operator '{name}': expected one of {}", names.join(", "))
+                            FieldError::message(format!(
+                                "unknown operator '{name}': expected one of {}",
+                                names.join(", ")
+                            ))
                         })?;
                     if !(weight.is_finite() && weight >= 0.0) {
-                        return Err(format!("{name}: a weight must be a finite number ≥ 0, got {weight}"));
+                        return Err(FieldError::new(
+                            name.as_str(),
+                            format!("a weight must be a finite number ≥ 0, got {weight}"),
+                        ));
                     }
                     mix.push((op, weight));
                 }
                 if mix.iter().map(|m| m.1).sum::<f64>() <= 0.0 {
-                    return Err("give at least one operator a positive weight".into());
+                    return Err(FieldError::message("give at least one operator a positive weight"));
                 }
                 Ok(mix)
             }
@@ -188,21 +194,21 @@ fn default_sigma() -> f64 {
 }
 
 /// The fixed body of a representation, or the field and message.
-fn fixed_body(representation: &Representation) -> Result<&Morphology, (String, String)> {
+fn fixed_body(representation: &Representation) -> Result<&Morphology, FieldError> {
     representation.body.fixed_grid().ok_or_else(|| {
-        (
-            "representation.body".into(),
-            "a graph genotype places neurons in voxels: give a fixed voxel body (a shape name or rows)".into(),
+        FieldError::new(
+            "representation.body",
+            "a graph genotype places neurons in voxels: give a fixed voxel body (a shape name or rows)",
         )
     })
 }
 
 /// The graph brain of a representation, or the field and message.
-fn graph_brain(representation: &Representation) -> Result<&GraphSpec, (String, String)> {
+fn graph_brain(representation: &Representation) -> Result<&GraphSpec, FieldError> {
     match &representation.brain {
         BrainSpec::Graph(g) => Ok(g),
-        other => Err((
-            "representation.brain".into(),
+        other => Err(FieldError::new(
+            "representation.brain",
             format!(
                 "a graph genotype needs brain = {{ kind = \"graph\" }}, not {}",
                 other.as_kind().name()
@@ -220,7 +226,7 @@ impl GenotypeKind for GraphGenotypeConfig {
     /// `discovered` module map by its rows.
     fn load_files(&mut self, representation: &mut Representation) -> Result<(), FieldError> {
         if let Some(path) = self.initial.take() {
-            let field = |m: String| ("genotype.initial".to_string(), format!("{}: {m}", path.display()));
+            let field = |m: String| FieldError::new("genotype.initial", format!("{}: {m}", path.display()));
             let robot = vsrlab_tasks::files::load_robot(&path).map_err(|e| field(e.to_string()))?;
             let BrainSpec::Graph(graph) = robot.brain else {
                 return Err(field(format!(
@@ -243,7 +249,7 @@ impl GenotypeKind for GraphGenotypeConfig {
             self.seeded = true;
         }
         if self.modules == "discovered" {
-            let field = |m: String| ("genotype.modules".to_string(), m);
+            let field = |m: String| FieldError::new("genotype.modules", m);
             if !self.seeded {
                 return Err(field(
                     "\"discovered\" needs a seed graph to discover the module in: set genotype.initial".into(),
@@ -262,7 +268,7 @@ impl GenotypeKind for GraphGenotypeConfig {
         let body = fixed_body(&experiment.representation)?;
         let graph = graph_brain(&experiment.representation)?;
         check_operators(experiment, false)?;
-        let err = |field: &str, m: String| Err((format!("genotype.{field}"), m));
+        let err = |field: &str, m: String| Err(FieldError::new(format!("genotype.{field}"), m));
         if !(self.omega.is_finite() && self.omega > 0.0) {
             return err("omega", format!("must be a positive number, got {}", self.omega));
         }
@@ -270,24 +276,22 @@ impl GenotypeKind for GraphGenotypeConfig {
             return err("sigma", format!("must be a finite number ≥ 0, got {}", self.sigma));
         }
         if let Err(m) = ModuleMap::parse(&self.modules, body) {
-            return err("modules", m);
+            return err("modules", m.to_string());
         }
-        if let Err(m) = self.operators.resolve() {
-            return err("operators", m);
-        }
-        if let Err(m) = self.initial_operators.resolve() {
-            return err("initial_operators", m);
-        }
+        self.operators.resolve().map_err(|e| e.at("genotype.operators"))?;
+        self.initial_operators
+            .resolve()
+            .map_err(|e| e.at("genotype.initial_operators"))?;
         if self.seeded && (graph.neurons.is_empty() || graph.parameters.len() != 2 * graph.edges.len()) {
-            return Err((
-                "representation.brain".into(),
-                "seeded = true needs the seed graph in the brain: neurons, edges and 2 parameters per edge".into(),
+            return Err(FieldError::new(
+                "representation.brain",
+                "seeded = true needs the seed graph in the brain: neurons, edges and 2 parameters per edge",
             ));
         }
         Ok(())
     }
 
-    fn size(&self, experiment: &Experiment) -> Result<GenotypeSize, String> {
+    fn size(&self, experiment: &Experiment) -> Result<GenotypeSize, FieldError> {
         let (variation, _) = build(experiment, self)?;
         let (neurons, edges) = (variation.start.neurons.len(), variation.start.edges.len());
         Ok(GenotypeSize {
@@ -303,18 +307,18 @@ impl GenotypeKind for GraphGenotypeConfig {
         options: &RunOptions,
         observer: &mut dyn Observer,
     ) -> Result<Vec<RunSummary>, RunError> {
-        let (variation, mapper) = build(experiment, self).map_err(RunError::Other)?;
+        let (variation, mapper) = build(experiment, self).map_err(|e| RunError::Other(e.to_string()))?;
         let genes = 2 * variation.start.edges.len();
         run_with_operators(experiment, variation, mapper, genes, out, options, observer)
     }
 
-    fn time_evaluations(&self, experiment: &Experiment, count: usize) -> Result<(), String> {
+    fn time_evaluations(&self, experiment: &Experiment, count: usize) -> Result<(), FieldError> {
         let (variation, mapper) = build(experiment, self)?;
         time_with_operators(experiment, &variation, mapper, count);
         Ok(())
     }
 
-    fn stored(&self, experiment: &Experiment) -> Result<Arc<dyn StoredGenotypes>, String> {
+    fn stored(&self, experiment: &Experiment) -> Result<Arc<dyn StoredGenotypes>, FieldError> {
         let (_, mapper) = build(experiment, self)?;
         Ok(Arc::new(Stored::<GraphSpec, _>::new(mapper)))
     }
@@ -385,7 +389,10 @@ pub const GRAPH_COLUMNS: [&str; 5] = ["neurons", "edges", "size", "connection_co
 impl Mapper<GraphSpec> for GraphMapper {
     fn robot(&self, genotype: &GraphSpec) -> Result<Box<dyn Robot>, EvaluationError> {
         let Some(body) = self.representation.body.fixed_grid() else {
-            return Err(EvaluationError::Representation("body: not fixed".into()));
+            return Err(EvaluationError::Representation(vsrlab_tasks::FieldError::new(
+                "body",
+                "not fixed",
+            )));
         };
         Ok(Box::new(RobotSpec {
             body: body.clone(),
@@ -413,13 +420,19 @@ impl Mapper<GraphSpec> for GraphMapper {
 }
 
 /// The variation operators and the mapper of a graph experiment (validated).
-pub fn build(experiment: &Experiment, config: &GraphGenotypeConfig) -> Result<(GraphVariation, GraphMapper), String> {
-    let named = |(f, m): (String, String)| format!("{f}: {m}");
+pub fn build(
+    experiment: &Experiment,
+    config: &GraphGenotypeConfig,
+) -> Result<(GraphVariation, GraphMapper), FieldError> {
     let representation = &experiment.representation;
-    let body = fixed_body(representation).map_err(named)?;
-    let brain = graph_brain(representation).map_err(named)?;
-    let suite = SensorSuite::new(representation.sensors().map_err(|e| e.to_string())?, body, 0)
-        .map_err(|e| format!("representation.sensors: {e}"))?;
+    let body = fixed_body(representation)?;
+    let brain = graph_brain(representation)?;
+    let sensors = representation.sensors().map_err(|e| {
+        e.field_error()
+            .unwrap_or_else(|| FieldError::new("representation", e.to_string()))
+    })?;
+    let suite =
+        SensorSuite::new(sensors, body, 0).map_err(|e| FieldError::new("representation.sensors", e.to_string()))?;
     let per_voxel: Vec<usize> = (0..body.voxel_count()).map(|v| suite.readings_per_voxel(v)).collect();
     let (neurons, edges) = brain.topology(&BrainShape::grid(body, &per_voxel));
     let start = GraphSpec {
@@ -432,7 +445,8 @@ pub fn build(experiment: &Experiment, config: &GraphGenotypeConfig) -> Result<(G
         },
         grow: 0,
     };
-    let modules = ModuleMap::parse(&config.modules, body).map_err(|m| format!("genotype.modules: {m}"))?;
+    let modules =
+        ModuleMap::parse(&config.modules, body).map_err(|m| FieldError::new("genotype.modules", m.to_string()))?;
     let omega = match config.modularity {
         Modularity::Plain => [1.0, 1.0],
         Modularity::Modular => [config.omega, 1.0],
@@ -447,14 +461,11 @@ pub fn build(experiment: &Experiment, config: &GraphGenotypeConfig) -> Result<(G
             modules: Some(modules.clone()),
             sigma: config.sigma,
         },
-        operators: config
-            .operators
-            .resolve()
-            .map_err(|m| format!("genotype.operators: {m}"))?,
+        operators: config.operators.resolve().map_err(|e| e.at("genotype.operators"))?,
         initial_operators: config
             .initial_operators
             .resolve()
-            .map_err(|m| format!("genotype.initial_operators: {m}"))?,
+            .map_err(|e| e.at("genotype.initial_operators"))?,
     };
     let mapper = GraphMapper {
         representation: representation.clone(),

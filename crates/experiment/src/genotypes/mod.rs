@@ -51,7 +51,7 @@ pub trait GenotypeKind: Debug + Send + Sync + GenotypeCopy {
     /// Checks the table against the rest of the experiment; errors name the field.
     fn validate(&self, experiment: &Experiment) -> Result<(), FieldError>;
     /// The size of its genotypes in this experiment.
-    fn size(&self, experiment: &Experiment) -> Result<GenotypeSize, String>;
+    fn size(&self, experiment: &Experiment) -> Result<GenotypeSize, FieldError>;
     /// Runs every run of the experiment into `out`.
     fn run(
         &self,
@@ -61,10 +61,10 @@ pub trait GenotypeKind: Debug + Send + Sync + GenotypeCopy {
         observer: &mut dyn Observer,
     ) -> Result<Vec<RunSummary>, RunError>;
     /// Evaluates `count` initial genotypes (the time estimate of `vsrlab validate`).
-    fn time_evaluations(&self, experiment: &Experiment, count: usize) -> Result<(), String>;
+    fn time_evaluations(&self, experiment: &Experiment, count: usize) -> Result<(), FieldError>;
     /// Its genotypes as snapshots and checkpoints store them → robots: how analyses replay the
     /// individuals of a run.
-    fn stored(&self, experiment: &Experiment) -> Result<Arc<dyn StoredGenotypes>, String>;
+    fn stored(&self, experiment: &Experiment) -> Result<Arc<dyn StoredGenotypes>, FieldError>;
     /// Whether its genotypes are rows of numbers, which batch evaluation (`vsrlab evaluate`,
     /// Python, Ray workers) sends.
     fn rows(&self) -> bool {
@@ -172,12 +172,17 @@ pub fn decode_table(table: toml::Table) -> Result<GenotypeConfig, FieldError> {
     let names = || GENOTYPES.iter().map(|g| g.name).collect::<Vec<_>>().join(", ");
     let kind = match table.get("kind") {
         Some(toml::Value::String(s)) => s.clone(),
-        Some(other) => return Err(("kind".into(), format!("expected one of {}, got {other}", names()))),
-        None => return Err(("kind".into(), format!("missing: give one of {}", names()))),
+        Some(other) => {
+            return Err(FieldError::new(
+                "kind",
+                format!("expected one of {}, got {other}", names()),
+            ))
+        }
+        None => return Err(FieldError::new("kind", format!("missing: give one of {}", names()))),
     };
     let entry = GENOTYPES.iter().find(|g| g.name == kind).ok_or_else(|| {
-        (
-            "kind".to_string(),
+        FieldError::new(
+            "kind",
             format!("unknown genotype kind '{kind}': expected one of {}", names()),
         )
     })?;

@@ -23,8 +23,8 @@ pub fn check_operators(experiment: &Experiment, crossover: bool) -> Result<Opera
     let kind = experiment.genotype_kind().name();
     let optimizer = experiment.optimizer.kind();
     let plan = optimizer.over_operators(&experiment.senses()).ok_or_else(|| {
-        (
-            "optimizer.kind".to_string(),
+        FieldError::new(
+            "optimizer.kind",
             format!(
                 "a {kind} genotype evolves with an optimizer over variation operators ({}), not {}",
                 operator_optimizers().join(", "),
@@ -34,8 +34,8 @@ pub fn check_operators(experiment: &Experiment, crossover: bool) -> Result<Opera
     })?;
     let p = plan.mutation_probability();
     if !crossover && p != 1.0 {
-        return Err((
-            "optimizer.mutation_probability".into(),
+        return Err(FieldError::new(
+            "optimizer.mutation_probability",
             format!("{kind} genotypes have no crossover: set 1.0, got {p}"),
         ));
     }
@@ -74,7 +74,7 @@ where
 {
     MemoryEstimate::of(experiment, genes, worker_threads(options.threads))
         .check(options.memory_limit.unwrap_or(DEFAULT_MEMORY_LIMIT))
-        .map_err(RunError::Mismatch)?;
+        .map_err(|e| RunError::Mismatch(e.to_string()))?;
     let senses = experiment.senses();
     let optimizer = experiment.optimizer.kind();
     let plan = optimizer.over_operators(&senses).ok_or_else(|| {

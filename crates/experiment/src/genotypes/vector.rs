@@ -36,8 +36,11 @@ pub static VECTOR: VectorGenotype = VectorGenotype {
     kind: VectorTag::Vector,
 };
 
-fn genes(experiment: &Experiment) -> Result<usize, String> {
-    experiment.representation.genotype_length().map_err(|e| e.to_string())
+fn genes(experiment: &Experiment) -> Result<usize, FieldError> {
+    experiment.representation.genotype_length().map_err(|e| {
+        e.field_error()
+            .unwrap_or_else(|| FieldError::new("representation", e.to_string()))
+    })
 }
 
 impl GenotypeKind for VectorGenotype {
@@ -50,7 +53,7 @@ impl GenotypeKind for VectorGenotype {
         Ok(())
     }
 
-    fn size(&self, experiment: &Experiment) -> Result<GenotypeSize, String> {
+    fn size(&self, experiment: &Experiment) -> Result<GenotypeSize, FieldError> {
         let genes = genes(experiment)?;
         Ok(GenotypeSize {
             genes,
@@ -70,8 +73,11 @@ impl GenotypeKind for VectorGenotype {
     }
 
     /// Genotypes with genes uniform in [-1, 1), seeded.
-    fn time_evaluations(&self, experiment: &Experiment, count: usize) -> Result<(), String> {
-        let evaluator = RobotEvaluator::new(experiment).map_err(|e| e.to_string())?;
+    fn time_evaluations(&self, experiment: &Experiment, count: usize) -> Result<(), FieldError> {
+        let evaluator = RobotEvaluator::new(experiment).map_err(|e| {
+            e.field_error()
+                .unwrap_or_else(|| FieldError::new("representation", e.to_string()))
+        })?;
         let genes = evaluator.genotype_length();
         let mut rng = ChaCha8Rng::seed_from_u64(0);
         for _ in 0..count {
@@ -81,7 +87,7 @@ impl GenotypeKind for VectorGenotype {
         Ok(())
     }
 
-    fn stored(&self, experiment: &Experiment) -> Result<Arc<dyn StoredGenotypes>, String> {
+    fn stored(&self, experiment: &Experiment) -> Result<Arc<dyn StoredGenotypes>, FieldError> {
         Ok(Arc::new(Stored::<Vec<f64>, _>::new(experiment.representation.clone())))
     }
 
@@ -100,12 +106,12 @@ pub fn run_vectors(
     options: &RunOptions,
     observer: &mut dyn Observer,
 ) -> Result<Vec<RunSummary>, RunError> {
-    let dimension = genes(experiment).map_err(RunError::Other)?;
+    let dimension = genes(experiment).map_err(|e| RunError::Other(e.to_string()))?;
     let senses = experiment.senses();
     check_threads(options)?;
     MemoryEstimate::of(experiment, dimension, worker_threads(options.threads))
         .check(options.memory_limit.unwrap_or(DEFAULT_MEMORY_LIMIT))
-        .map_err(RunError::Mismatch)?;
+        .map_err(|e| RunError::Mismatch(e.to_string()))?;
     let new_optimizer = |seed: u64| -> Result<AnyOptimizer, RunError> {
         Ok(experiment.optimizer.kind().build(dimension, &senses, seed)?)
     };

@@ -4,6 +4,7 @@ use super::check::range;
 use super::{decode, single, AnyOptimizer, OptimizerConfig, OptimizerEntry, OptimizerKind};
 use serde::{Deserialize, Serialize};
 use vsrlab_evolution::{CmaEs, CmaEsConfig, CmaTermination, EvolutionError, RestartStrategy, Sense};
+use vsrlab_field::FieldError;
 
 /// Parameters of CMA-ES.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -120,29 +121,29 @@ impl OptimizerKind for CmaParams {
         "cma-es"
     }
 
-    fn validate(&self) -> Result<(), (String, String)> {
+    fn validate(&self) -> Result<(), FieldError> {
         if self.population_size == Some(0) || self.population_size == Some(1) {
-            return Err(("population_size".into(), "must be at least 2".into()));
+            return Err(FieldError::new("population_size", "must be at least 2"));
         }
         if !(self.sigma0.is_finite() && self.sigma0 > 0.0) {
-            return Err(("sigma0".into(), format!("must be > 0, got {}", self.sigma0)));
+            return Err(FieldError::new("sigma0", format!("must be > 0, got {}", self.sigma0)));
         }
         range("init_range", self.init_range)?;
         if !(self.increase().is_finite() && self.increase() >= 1.0) {
-            return Err((
-                "restart_increase".into(),
+            return Err(FieldError::new(
+                "restart_increase",
                 format!("must be ≥ 1, got {}", self.increase()),
             ));
         }
         if self.restarts > 0 && !self.termination {
-            return Err((
-                "restarts".into(),
-                "restarts follow the termination criteria: set termination = true".into(),
+            return Err(FieldError::new(
+                "restarts",
+                "restarts follow the termination criteria: set termination = true",
             ));
         }
         self.termination_criteria()
             .validate()
-            .map_err(|(field, why)| (field.to_string(), why))
+            .map_err(|(field, why)| FieldError::new(field, why))
     }
 
     /// λ = 4 + ⌊3 ln n⌋ written out when not given.

@@ -4,6 +4,7 @@ use super::check::{positive, range};
 use super::{decode, single, AnyOptimizer, OptimizerConfig, OptimizerEntry, OptimizerKind};
 use serde::{Deserialize, Serialize};
 use vsrlab_evolution::{CanonicalEs, CanonicalEsConfig, EvolutionError, Sense};
+use vsrlab_field::FieldError;
 
 /// Parameters of the canonical ES.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -36,17 +37,17 @@ impl OptimizerKind for EsParams {
         "es"
     }
 
-    fn validate(&self) -> Result<(), (String, String)> {
+    fn validate(&self) -> Result<(), FieldError> {
         positive("population_size", self.population_size)?;
         let parents = self.parents.unwrap_or(1);
         if parents == 0 || parents > self.population_size {
-            return Err((
-                "parents".into(),
+            return Err(FieldError::new(
+                "parents",
                 format!("must be in 1..=population_size, got {parents}"),
             ));
         }
         if !(self.sigma.is_finite() && self.sigma > 0.0) {
-            return Err(("sigma".into(), format!("must be > 0, got {}", self.sigma)));
+            return Err(FieldError::new("sigma", format!("must be > 0, got {}", self.sigma)));
         }
         range("init_range", self.init_range)
     }

@@ -6,6 +6,7 @@ use super::{
 };
 use serde::{Deserialize, Serialize};
 use vsrlab_evolution::{EvolutionError, GaConfig, GeneticAlgorithm, Sense};
+use vsrlab_field::FieldError;
 
 /// Parameters of the GA.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -61,7 +62,7 @@ impl OptimizerKind for GaParams {
         "ga"
     }
 
-    fn validate(&self) -> Result<(), (String, String)> {
+    fn validate(&self) -> Result<(), FieldError> {
         positive("population_size", self.population_size)?;
         positive("offspring_size", self.offspring_size)?;
         positive("tournament_size", self.tournament_size)?;

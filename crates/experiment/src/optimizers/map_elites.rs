@@ -4,6 +4,7 @@ use super::check::{positive, range, sigma};
 use super::{decode, real_vector, single, AnyOptimizer, OperatorPlan, OptimizerConfig, OptimizerEntry, OptimizerKind};
 use serde::{Deserialize, Serialize};
 use vsrlab_evolution::{EvolutionError, GridAxis, MapElites, MapElitesConfig, Sense};
+use vsrlab_field::FieldError;
 
 /// A morphology descriptor usable as a MAP-Elites axis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -91,22 +92,22 @@ impl OptimizerKind for MapElitesParams {
         "map-elites"
     }
 
-    fn validate(&self) -> Result<(), (String, String)> {
+    fn validate(&self) -> Result<(), FieldError> {
         positive("initial_population", self.initial_population)?;
         positive("batch_size", self.batch_size)?;
         range("init_range", self.init_range)?;
         sigma("mutation_sigma", self.mutation_sigma)?;
         for (i, axis) in self.axes.iter().enumerate() {
             if !(axis.min.is_finite() && axis.max.is_finite() && axis.min < axis.max) {
-                return Err((format!("axes[{i}]"), "needs finite min < max".into()));
+                return Err(FieldError::new(format!("axes[{i}]"), "needs finite min < max"));
             }
             positive(&format!("axes[{i}].bins"), axis.bins)?;
         }
         let cells = self.axes.iter().try_fold(1u64, |acc, a| acc.checked_mul(a.bins as u64));
         if cells.is_none() {
-            return Err((
-                "axes".into(),
-                "the product of the bins is too large to index the archive".into(),
+            return Err(FieldError::new(
+                "axes",
+                "the product of the bins is too large to index the archive",
             ));
         }
         Ok(())

@@ -49,7 +49,7 @@ pub trait OptimizerKind {
     /// The `kind` tag.
     fn name(&self) -> &'static str;
     /// Checks the parameters: the field (inside `optimizer`) and the message on error.
-    fn validate(&self) -> Result<(), (String, String)>;
+    fn validate(&self) -> Result<(), FieldError>;
     /// The same config with the defaults that depend on the representation filled in (`cells`:
     /// W·H of the body grid; `genes`: the genotype length, when the representation is valid), or
     /// `None` when there are none to fill.
@@ -129,8 +129,9 @@ impl OptimizerConfig {
     }
 }
 
-/// An error inside the `[optimizer]` table: the dotted path inside it and what is wrong.
-pub type FieldError = (String, String);
+/// An error on a field of an experiment file (inside the `[optimizer]` table: the dotted path
+/// inside it and what is wrong).
+pub use vsrlab_field::FieldError;
 
 /// One registered optimizer kind: its tag and its decoder from a TOML table (without `kind`).
 pub struct OptimizerEntry {
@@ -155,12 +156,17 @@ pub fn decode_table(mut table: toml::Table) -> Result<OptimizerConfig, FieldErro
     let names = || OPTIMIZERS.iter().map(|o| o.name).collect::<Vec<_>>().join(", ");
     let kind = match table.remove("kind") {
         Some(toml::Value::String(s)) => s,
-        Some(other) => return Err(("kind".into(), format!("expected one of {}, got {other}", names()))),
-        None => return Err(("kind".into(), format!("missing: give one of {}", names()))),
+        Some(other) => {
+            return Err(FieldError::new(
+                "kind",
+                format!("expected one of {}, got {other}", names()),
+            ))
+        }
+        None => return Err(FieldError::new("kind", format!("missing: give one of {}", names()))),
     };
     let entry = OPTIMIZERS.iter().find(|o| o.name == kind).ok_or_else(|| {
-        (
-            "kind".to_string(),
+        FieldError::new(
+            "kind",
             format!("unknown optimizer '{kind}': expected one of {}", names()),
         )
     })?;
@@ -170,8 +176,8 @@ pub fn decode_table(mut table: toml::Table) -> Result<OptimizerConfig, FieldErro
 /// Deserializes a parameter struct, keeping the path of a failing field (the tasks' decoder,
 /// over the table as JSON).
 pub(crate) fn decode<T: DeserializeOwned>(value: toml::Value) -> Result<T, FieldError> {
-    let json = serde_json::to_value(&value).map_err(|e| (String::new(), e.to_string()))?;
-    vsrlab_tasks::registry::decode(json).map_err(|e| (e.path, e.message))
+    let json = serde_json::to_value(&value).map_err(|e| FieldError::message(e.to_string()))?;
+    vsrlab_tasks::registry::decode(json)
 }
 
 /// The thesis' real-vector operators with an experiment's parameters.
@@ -250,7 +256,7 @@ pub(crate) fn decode_flat<T: DeserializeOwned + Serialize>(value: toml::Value) -
         .map(|t| t.keys().cloned().collect())
         .unwrap_or_default();
     let decoded: T = decode(value)?;
-    let known = serde_json::to_value(&decoded).map_err(|e| (String::new(), e.to_string()))?;
+    let known = serde_json::to_value(&decoded).map_err(|e| FieldError::message(e.to_string()))?;
     let known = known
         .as_object()
         .map(|o| o.keys().cloned().collect::<Vec<_>>())
@@ -260,7 +266,7 @@ pub(crate) fn decode_flat<T: DeserializeOwned + Serialize>(value: toml::Value) -
         Some(unknown) => {
             let expected: Vec<String> = known.iter().map(|k| format!("`{k}`")).collect();
             let message = format!("unknown field `{unknown}`, expected one of {}", expected.join(", "));
-            Err((unknown, message))
+            Err(FieldError::new(unknown, message))
         }
     }
 }
@@ -272,41 +278,46 @@ pub(crate) fn single(senses: &[Sense]) -> Sense {
 
 /// Shared checks of parameter values; each returns the field and message on error.
 pub(crate) mod check {
+    use super::FieldError;
+
     /// Largest population, batch, tournament or species count.
     pub const MAX_SIZE: usize = 1_000_000;
 
     /// `1 ≤ v ≤` [`MAX_SIZE`].
-    pub fn positive(field: &str, v: usize) -> Result<(), (String, String)> {
+    pub fn positive(field: &str, v: usize) -> Result<(), FieldError> {
         if v == 0 {
-            Err((field.into(), "must be at least 1".into()))
+            Err(FieldError::new(field, "must be at least 1"))
         } else if v > MAX_SIZE {
-            Err((field.into(), format!("must be at most {MAX_SIZE}, got {v}")))
+            Err(FieldError::new(field, format!("must be at most {MAX_SIZE}, got {v}")))
         } else {
             Ok(())
         }
     }
     /// `p ∈ [0, 1]`.
-    pub fn probability(field: &str, p: f64) -> Result<(), (String, String)> {
+    pub fn probability(field: &str, p: f64) -> Result<(), FieldError> {
         if (0.0..=1.0).contains(&p) {
             Ok(())
         } else {
-            Err((field.into(), format!("must be in [0, 1], got {p}")))
+            Err(FieldError::new(field, format!("must be in [0, 1], got {p}")))
         }
     }
     /// A finite `[min, max]` with min ≤ max.
-    pub fn range(field: &str, r: [f64; 2]) -> Result<(), (String, String)> {
+    pub fn range(field: &str, r: [f64; 2]) -> Result<(), FieldError> {
         if r[0].is_finite() && r[1].is_finite() && r[0] <= r[1] {
             Ok(())
         } else {
-            Err((field.into(), format!("must be [min, max] with min ≤ max, got {r:?}")))
+            Err(FieldError::new(
+                field,
+                format!("must be [min, max] with min ≤ max, got {r:?}"),
+            ))
         }
     }
     /// A finite `s ≥ 0`.
-    pub fn sigma(field: &str, s: f64) -> Result<(), (String, String)> {
+    pub fn sigma(field: &str, s: f64) -> Result<(), FieldError> {
         if s.is_finite() && s >= 0.0 {
             Ok(())
         } else {
-            Err((field.into(), format!("must be ≥ 0, got {s}")))
+            Err(FieldError::new(field, format!("must be ≥ 0, got {s}")))
         }
     }
 }

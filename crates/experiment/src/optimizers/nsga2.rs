@@ -9,6 +9,7 @@ use super::check::{positive, probability};
 use super::{decode_flat, AnyOptimizer, OperatorPlan, Operators, OptimizerConfig, OptimizerEntry, OptimizerKind};
 use serde::{Deserialize, Serialize};
 use vsrlab_evolution::{EvolutionError, Nsga2, Nsga2Config, Sense};
+use vsrlab_field::FieldError;
 
 /// Parameters of NSGA-II.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -59,7 +60,7 @@ impl OptimizerKind for Nsga2Params {
         "nsga2"
     }
 
-    fn validate(&self) -> Result<(), (String, String)> {
+    fn validate(&self) -> Result<(), FieldError> {
         positive("population_size", self.population_size)?;
         positive("offspring_size", self.offspring_size)?;
         probability("mutation_probability", self.mutation_probability)?;

@@ -7,6 +7,7 @@ use super::{
 };
 use serde::{Deserialize, Serialize};
 use vsrlab_evolution::{EvolutionError, SeConfig, Sense, SpeciatedEvolver};
+use vsrlab_field::FieldError;
 
 /// What the speciated evolver clusters on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -65,12 +66,12 @@ impl OptimizerKind for SeParams {
         "se"
     }
 
-    fn validate(&self) -> Result<(), (String, String)> {
+    fn validate(&self) -> Result<(), FieldError> {
         positive("population_size", self.population_size)?;
         positive("species", self.species)?;
         if self.species > self.population_size {
-            return Err((
-                "species".into(),
+            return Err(FieldError::new(
+                "species",
                 format!(
                     "{} species cannot be made of a population of {}: at most population_size",
                     self.species, self.population_size
@@ -78,7 +79,10 @@ impl OptimizerKind for SeParams {
             ));
         }
         if !(self.alpha > 0.0 && self.alpha <= 1.0) {
-            return Err(("alpha".into(), format!("must be in (0, 1], got {}", self.alpha)));
+            return Err(FieldError::new(
+                "alpha",
+                format!("must be in (0, 1], got {}", self.alpha),
+            ));
         }
         probability("mutation_probability", self.mutation_probability)?;
         self.operators.validate()

@@ -237,7 +237,9 @@ impl WorldBuilder {
 
     /// Validates the description and builds the world.
     pub fn build(self) -> Result<World, PhysicsError> {
-        self.settings.validate().map_err(PhysicsError::Invalid)?;
+        self.settings
+            .validate()
+            .map_err(|e| PhysicsError::Invalid(e.to_string()))?;
         let n = self.parts.len() as u32;
         let check = |h: PartHandle, what: &str| {
             if h.0 < n {

@@ -2,16 +2,19 @@
 
 use crate::math::Vec2;
 use serde::{Deserialize, Serialize};
+use vsrlab_field::FieldError;
 
 impl std::str::FromStr for Solver {
-    type Err = String;
+    type Err = FieldError;
     /// Parses a solver's name as experiment files write it (`soft-substeps`,
     /// `sequential-impulses`).
-    fn from_str(name: &str) -> Result<Solver, String> {
+    fn from_str(name: &str) -> Result<Solver, FieldError> {
         match name {
             "soft-substeps" => Ok(Solver::SoftSubsteps),
             "sequential-impulses" => Ok(Solver::SequentialImpulses),
-            _ => Err(format!("expected soft-substeps or sequential-impulses, got '{name}'")),
+            _ => Err(FieldError::message(format!(
+                "expected soft-substeps or sequential-impulses, got '{name}'"
+            ))),
         }
     }
 }
@@ -148,8 +151,8 @@ impl WorldSettings {
         self.dyn4j.unwrap_or(Dyn4jVersion::V3_3_0)
     }
 
-    /// Checks that every field is in range; the error names the field.
-    pub fn validate(&self) -> Result<(), String> {
+    /// Checks that every field is in range; the error names the field (`dt must be …`).
+    pub fn validate(&self) -> Result<(), FieldError> {
         let positive = [
             ("dt", self.dt),
             ("max_translation", self.max_translation),
@@ -162,7 +165,10 @@ impl WorldSettings {
         ];
         for (name, v) in positive {
             if !(v.is_finite() && v > 0.0) {
-                return Err(format!("{name} must be a positive number, got {v}"));
+                return Err(FieldError::sentence(
+                    name,
+                    format!("must be a positive number, got {v}"),
+                ));
             }
         }
         let non_negative = [
@@ -175,29 +181,38 @@ impl WorldSettings {
         ];
         for (name, v) in non_negative {
             if !(v.is_finite() && v >= 0.0) {
-                return Err(format!("{name} must be a non-negative number, got {v}"));
+                return Err(FieldError::sentence(
+                    name,
+                    format!("must be a non-negative number, got {v}"),
+                ));
             }
         }
         if self.substeps == 0 || self.substeps > 64 {
-            return Err(format!("substeps must be in 1..=64, got {}", self.substeps));
+            return Err(FieldError::sentence(
+                "substeps",
+                format!("must be in 1..=64, got {}", self.substeps),
+            ));
         }
         if self.iterations == 0 || self.iterations > 64 {
-            return Err(format!("iterations must be in 1..=64, got {}", self.iterations));
+            return Err(FieldError::sentence(
+                "iterations",
+                format!("must be in 1..=64, got {}", self.iterations),
+            ));
         }
         if self.velocity_iterations == 0 || self.velocity_iterations > 1000 {
-            return Err(format!(
-                "velocity_iterations must be in 1..=1000, got {}",
-                self.velocity_iterations
+            return Err(FieldError::sentence(
+                "velocity_iterations",
+                format!("must be in 1..=1000, got {}", self.velocity_iterations),
             ));
         }
         if self.position_iterations > 1000 {
-            return Err(format!(
-                "position_iterations must be in 0..=1000, got {}",
-                self.position_iterations
+            return Err(FieldError::sentence(
+                "position_iterations",
+                format!("must be in 0..=1000, got {}", self.position_iterations),
             ));
         }
         if !self.gravity.is_finite() {
-            return Err("gravity must be finite".into());
+            return Err(FieldError::sentence("gravity", "must be finite"));
         }
         Ok(())
     }

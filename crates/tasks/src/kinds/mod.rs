@@ -45,8 +45,8 @@ pub struct RobotKind {
     pub physics: fn() -> vsrlab_physics::WorldSettings,
     /// Reads one of its `[representation] body` forms (a table with one of its
     /// [`RobotKind::body_tables`] tags; the default kind also gets every form that is not a
-    /// table); the message names what is wrong.
-    pub decode_body: fn(serde_json::Value) -> Result<crate::BodyPart, String>,
+    /// table); the error's path is relative to the body's table (empty: the form as a whole).
+    pub decode_body: fn(serde_json::Value) -> Result<crate::BodyPart, vsrlab_field::FieldError>,
 }
 
 /// The command line's description of a robot: a body, and optionally a brain, sensors and a

@@ -4,10 +4,11 @@
 use super::robot::PsaRobot;
 use crate::body_part::{BodyPart, BodySource};
 use crate::kinds::{AnyRobot, RobotKind};
-use crate::representation::{representation_message, EvaluationError, Representation};
-use serde::{Deserialize, Serialize};
+use crate::representation::{EvaluationError, Representation};
+use serde::Serialize;
 use vsrlab_body::psa::PsaBody;
 use vsrlab_brain::BrainSpec;
+use vsrlab_field::FieldError;
 
 /// A PSA body in an experiment file: `{ kind = "psa", size = …, … }` (see [`PsaBody`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -27,9 +28,9 @@ pub enum PsaKind {
     Psa,
 }
 
-/// Reads a PSA body table.
-pub(crate) fn decode(value: serde_json::Value) -> Result<BodyPart, String> {
-    let body = PsaBody::deserialize(value).map_err(|e| e.to_string())?;
+/// Reads a PSA body table; the error's path is relative to the table.
+pub(crate) fn decode(value: serde_json::Value) -> Result<BodyPart, FieldError> {
+    let body = PsaBody::from_table(value)?;
     Ok(BodyPart::new(PsaTable {
         kind: PsaKind::Psa,
         body,
@@ -40,9 +41,10 @@ impl PsaTable {
     /// The PSA robot (brain as given) of a representation; an error if it lists sensors.
     fn robot_with(&self, representation: &Representation, brain: BrainSpec) -> Result<PsaRobot, EvaluationError> {
         if representation.sensors.is_some() {
-            return Err(EvaluationError::Representation(
-                "sensors: a PSA has its own sensors (3 per mass and 3 for the whole); remove this field".into(),
-            ));
+            return Err(EvaluationError::Representation(FieldError::new(
+                "sensors",
+                "a PSA has its own sensors (3 per mass and 3 for the whole); remove this field",
+            )));
         }
         Ok(PsaRobot {
             body: self.body.clone(),
@@ -62,8 +64,8 @@ impl BodySource for PsaTable {
 
     fn brain_genes(&self, representation: &Representation) -> Result<usize, EvaluationError> {
         let robot = self.robot_with(representation, representation.brain.clone())?;
-        robot.validate_body().map_err(representation_message)?;
-        robot.brain_parameters().map_err(representation_message)
+        robot.validate_body().map_err(EvaluationError::Representation)?;
+        robot.brain_parameters().map_err(EvaluationError::Representation)
     }
 
     fn robot(

@@ -33,9 +33,7 @@ pub fn psa_physics() -> WorldSettings {
 
 /// Runs the protocol for `steps` steps (the pressure reaches p_max after 100).
 pub fn inflate(params: &PsaParams, physics: &WorldSettings, steps: usize) -> Result<Vec<InflationPoint>, EpisodeError> {
-    params
-        .validate()
-        .map_err(|e| EpisodeError::Invalid(format!("robot.body.{e}")))?;
+    params.validate().map_err(|e| e.at("body").at("robot"))?;
     let mut builder = WorldBuilder::new(physics.clone());
     let terrain = Terrain::Flat.profile(0);
     add_ground(&mut builder, &terrain);

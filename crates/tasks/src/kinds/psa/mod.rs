@@ -61,7 +61,7 @@ fn from_file(text: &str, origin: &str) -> Result<AnyRobot, FileError> {
     files::check_format(&file.format, origin)?;
     file.psa.validate().map_err(|e| FileError::Invalid {
         path: origin.to_string(),
-        msg: e.to_string(),
+        msg: e.at("robot").to_string(),
     })?;
     Ok(AnyRobot::new(file.psa))
 }

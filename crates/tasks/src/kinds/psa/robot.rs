@@ -19,6 +19,7 @@ use serde::{Deserialize, Serialize};
 use vsrlab_body::psa::{Psa, PsaBody, PsaSensors};
 use vsrlab_body::{Body, Channel, Probe};
 use vsrlab_brain::{BrainShape, BrainSpec, Controller, HeadsSpec, RingLayout};
+use vsrlab_field::FieldError;
 use vsrlab_physics::{Vec2, World, WorldBuilder};
 
 /// Collision group of the agent (touch sensing).
@@ -61,40 +62,43 @@ impl PsaRobot {
         BrainShape::new(layout, readings)
     }
 
-    /// Number of brain parameters for this body.
-    pub fn brain_parameters(&self) -> Result<usize, EpisodeError> {
-        self.brain
-            .parameter_count(&self.brain_shape())
-            .map_err(|e| EpisodeError::Invalid(format!("robot.{e}")))
+    /// Number of brain parameters for this body; an error names the brain's field (`brain.…`).
+    pub fn brain_parameters(&self) -> Result<usize, FieldError> {
+        Ok(self.brain.parameter_count(&self.brain_shape())?)
     }
 
     /// Checks the body's constants and that a `heads` brain's linear outputs fit the treatment;
-    /// errors name the field.
-    pub fn validate_body(&self) -> Result<(), EpisodeError> {
+    /// the error's path is relative to the robot (`body.masses`, `brain.linear_outputs`).
+    pub fn validate_body(&self) -> Result<(), FieldError> {
         let p = &self.body.params;
-        p.validate()
-            .map_err(|e| EpisodeError::Invalid(format!("robot.body.{e}")))?;
+        p.validate().map_err(|e| e.at("body"))?;
         if let BrainSpec::Heads(h) = &self.brain {
             let expected = usize::from(p.pressure_control);
             if h.linear_outputs != expected {
-                return Err(EpisodeError::Invalid(format!(
-                    "robot.brain.linear_outputs: {} with pressure control {}; the last output is {} here, so set {expected}",
-                    h.linear_outputs,
-                    if p.pressure_control { "on" } else { "off" },
-                    if p.pressure_control { "Δp (linear)" } else { "a spring (tanh)" }
-                )));
+                return Err(FieldError::new(
+                    "brain.linear_outputs",
+                    format!(
+                        "{} with pressure control {}; the last output is {} here, so set {expected}",
+                        h.linear_outputs,
+                        if p.pressure_control { "on" } else { "off" },
+                        if p.pressure_control {
+                            "Δp (linear)"
+                        } else {
+                            "a spring (tanh)"
+                        }
+                    ),
+                ));
             }
         }
         Ok(())
     }
 
-    /// Checks that body and brain fit together, parameters included; errors name the field.
-    pub fn validate(&self) -> Result<(), EpisodeError> {
+    /// Checks that body and brain fit together, parameters included; the error's path is
+    /// relative to the robot, as for [`PsaRobot::validate_body`].
+    pub fn validate(&self) -> Result<(), FieldError> {
         self.validate_body()?;
-        self.brain
-            .build(&self.brain_shape())
-            .map(|_| ())
-            .map_err(|e| EpisodeError::Invalid(format!("robot.{e}")))
+        self.brain.build(&self.brain_shape()).map(|_| ())?;
+        Ok(())
     }
 }
 
@@ -117,15 +121,12 @@ impl Robot for PsaRobot {
 
     fn assemble(&self, builder: &mut WorldBuilder, origin: Vec2, _seed: u64) -> Result<Box<dyn Agent>, EpisodeError> {
         // the brain is built once, below (validate() would build it a second time)
-        self.validate_body()?;
+        self.validate_body().map_err(|e| e.at("robot"))?;
         let p = &self.body.params;
         let centre = origin + Vec2::new(p.radius, p.radius);
         let psa = Psa::assemble(builder, p, centre, PSA_GROUP);
         let shape = self.brain_shape();
-        let mut brain = self
-            .brain
-            .build(&shape)
-            .map_err(|e| EpisodeError::Invalid(format!("robot.{e}")))?;
+        let mut brain = self.brain.build(&shape).map_err(|e| FieldError::from(e).at("robot"))?;
         brain.reset();
         let sensors = PsaSensors::new(&psa, builder.settings().dt);
         Ok(Box::new(PsaAgent::new(psa, sensors, brain, shape.units())))
@@ -303,13 +304,12 @@ impl PsaRobot {
                 .map_err(RobotArgsError::Brain)?;
         }
         robot.validate().map_err(|e| {
-            let text = e.to_string();
-            let part = if text.starts_with("robot.brain") {
+            let part = if e.path == "brain" || e.path.starts_with("brain.") {
                 RobotPart::Brain
             } else {
                 RobotPart::Body
             };
-            kind_error(part, text)
+            kind_error(part, e.at("robot").to_string())
         })?;
         Ok(robot)
     }

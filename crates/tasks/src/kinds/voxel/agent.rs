@@ -11,6 +11,7 @@ use vsrlab_body::sensors::SensorSuite;
 use vsrlab_body::{Body, Channel, Morphology, Probe, VoxelState, Vsr};
 use vsrlab_brain::BrainShape;
 use vsrlab_brain::Controller;
+use vsrlab_field::FieldError;
 use vsrlab_physics::{Vec2, World, WorldBuilder};
 
 /// Grid cell (x, y) of each voxel, grid order (fixed).
@@ -38,17 +39,17 @@ impl Robot for RobotSpec {
 
     fn assemble(&self, builder: &mut WorldBuilder, origin: Vec2, seed: u64) -> Result<Box<dyn Agent>, EpisodeError> {
         let params = self.voxel_params();
-        params.validate().map_err(EpisodeError::Invalid)?;
+        params.validate()?;
         let vsr = Vsr::assemble(builder, &self.body, &params, origin, ROBOT_GROUP);
         let sensors = SensorSuite::for_preset(&self.sensors, &self.body, seed, self.preset)
-            .map_err(|e| EpisodeError::Invalid(format!("robot.sensors: {e}")))?;
+            .map_err(|e| FieldError::new("sensors", e.to_string()).at("robot"))?;
         let per_voxel: Vec<usize> = (0..self.body.voxel_count())
             .map(|v| sensors.readings_per_voxel(v))
             .collect();
         let mut brain = self
             .brain
             .build(&BrainShape::grid(&self.body, &per_voxel))
-            .map_err(|e| EpisodeError::Invalid(format!("robot.{e}")))?;
+            .map_err(|e| FieldError::from(e).at("robot"))?;
         brain.reset();
         Ok(Box::new(VoxelAgent::new(vsr, sensors, brain)))
     }
@@ -142,10 +143,9 @@ impl Agent for VoxelAgent {
 
     fn break_actuators(&mut self, broken: &[bool]) -> Result<(), EpisodeError> {
         if broken.len() != self.actuations.len() {
-            return Err(EpisodeError::Invalid(format!(
-                "task.damage: {} flags for a body of {} voxels",
-                broken.len(),
-                self.actuations.len()
+            return Err(EpisodeError::Field(FieldError::new(
+                "task.damage",
+                format!("{} flags for a body of {} voxels", broken.len(), self.actuations.len()),
             )));
         }
         self.broken = broken.to_vec();

@@ -10,6 +10,7 @@ use vsrlab_body::encodings::BodyEncoding;
 use vsrlab_body::sensors::SensorSuite;
 use vsrlab_body::Morphology;
 use vsrlab_brain::{BrainShape, BrainSpec};
+use vsrlab_field::FieldError;
 
 /// Where a voxel robot's body comes from.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -21,20 +22,21 @@ pub enum VoxelBody {
     Encoded(BodyEncoding),
 }
 
-/// Reads a voxel body form: a table is a body encoding, anything else a fixed body.
-pub(crate) fn decode(value: serde_json::Value) -> Result<BodyPart, String> {
+/// Reads a voxel body form: a table is a body encoding, anything else a fixed body. The error
+/// is about the form as a whole.
+pub(crate) fn decode(value: serde_json::Value) -> Result<BodyPart, FieldError> {
+    let invalid = |e: &dyn std::fmt::Display| FieldError::message(e.to_string());
     let body = match value {
-        serde_json::Value::String(s) => VoxelBody::Fixed(Morphology::parse(&s).map_err(|e| e.to_string())?),
-        serde_json::Value::Object(_) => {
-            VoxelBody::Encoded(BodyEncoding::deserialize(value).map_err(|e| e.to_string())?)
-        }
-        other => VoxelBody::Fixed(Morphology::deserialize(other).map_err(|e| e.to_string())?),
+        serde_json::Value::String(s) => VoxelBody::Fixed(Morphology::parse(&s).map_err(|e| invalid(&e))?),
+        serde_json::Value::Object(_) => VoxelBody::Encoded(BodyEncoding::deserialize(value).map_err(|e| invalid(&e))?),
+        other => VoxelBody::Fixed(Morphology::deserialize(other).map_err(|e| invalid(&e))?),
     };
     Ok(BodyPart::new(body))
 }
 
+/// An error of a part of the representation, as a representation error on `field`.
 fn representation_error<E: std::fmt::Display>(field: &'static str) -> impl Fn(E) -> EvaluationError {
-    move |e| EvaluationError::Representation(format!("{field}: {e}"))
+    move |e| EvaluationError::Representation(FieldError::new(field, e.to_string()))
 }
 
 /// Brain parameters for the representation's sensors and brain on `body`.
@@ -44,7 +46,7 @@ fn brain_parameters_for(representation: &Representation, body: &Morphology) -> R
     representation
         .brain
         .parameter_count(&BrainShape::grid(body, &per_voxel))
-        .map_err(|e| EvaluationError::Representation(e.to_string()))
+        .map_err(|e| EvaluationError::Representation(e.into()))
 }
 
 impl BodySource for VoxelBody {
@@ -72,11 +74,11 @@ impl BodySource for VoxelBody {
                     Morphology::from_fn(w, h, |x, y| x == 0 && y == 0).map_err(representation_error("body"))?;
                 let count = brain_parameters_for(representation, &full)?;
                 if brain_parameters_for(representation, &single)? != count {
-                    return Err(EvaluationError::Representation(
-                        "brain: its parameter count depends on the body's voxels, so it cannot be used with an \
-                         evolved body; use a fixed body or a distributed brain"
-                            .to_string(),
-                    ));
+                    return Err(EvaluationError::Representation(FieldError::new(
+                        "brain",
+                        "its parameter count depends on the body's voxels, so it cannot be used with an evolved \
+                         body; use a fixed body or a distributed brain",
+                    )));
                 }
                 Ok(count)
             }

@@ -5,6 +5,7 @@ use vsrlab_body::sensors::{SensorConfig, SensorSuite};
 use vsrlab_body::{Morphology, Preset, VoxelParams};
 use vsrlab_brain::BrainShape;
 use vsrlab_brain::BrainSpec;
+use vsrlab_field::FieldError;
 
 /// Everything needed to build a robot in a world.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -62,22 +63,22 @@ impl RobotSpec {
 
     /// Checks that body, constants, sensors and brain fit together; the error names the field.
     pub fn validate(&self) -> Result<(), RobotError> {
-        self.voxel_params().validate().map_err(|e| split_field(&e))?;
+        self.voxel_params().validate()?;
         let per_voxel = self.readings_per_voxel()?;
         self.brain
             .build(&BrainShape::grid(&self.body, &per_voxel))
             .map(|_| ())
-            .map_err(|e| split_field(&e.to_string()))
+            .map_err(|e| RobotError::from(FieldError::from(e)))
     }
 }
 
-/// `"brain.field: message"` (brain errors) or `"voxel.field must …"` (voxel constants) as a
-/// [`RobotError`].
-fn split_field(text: &str) -> RobotError {
-    let field_like = |f: &str| !f.is_empty() && !f.contains(' ');
-    match (text.split_once(": "), text.split_once(' ')) {
-        (Some((field, message)), _) if field_like(field) => RobotError::at(field, message),
-        (_, Some((field, message))) if field.contains('.') => RobotError::at(field, message),
-        _ => RobotError::at("", text),
+impl From<FieldError> for RobotError {
+    /// An error on a field of the robot (`voxel.side_length`, `brain.hidden`), shown as
+    /// `robot.<field>: <message>`.
+    fn from(e: FieldError) -> Self {
+        RobotError {
+            field: e.path,
+            message: e.message,
+        }
     }
 }

@@ -54,7 +54,7 @@ pub enum RobotArgsError {
     Body(#[source] MorphologyError),
     /// The preset is unknown.
     #[error("preset: {0}")]
-    Preset(String),
+    Preset(#[source] vsrlab_field::FieldError),
     /// The sensors' short form is not understood.
     #[error("sensors: {0}")]
     Sensors(#[source] SensorError),
@@ -90,7 +90,7 @@ impl RobotArgsError {
     pub fn message(&self) -> String {
         match self {
             RobotArgsError::Body(e) => e.to_string(),
-            RobotArgsError::Preset(e) => e.clone(),
+            RobotArgsError::Preset(e) => e.to_string(),
             RobotArgsError::Sensors(e) => e.to_string(),
             RobotArgsError::SensorsOnBody(e) => e.to_string(),
             RobotArgsError::Brain(e) => e.to_string(),

@@ -7,9 +7,6 @@ mod common;
 
 use common::Killer;
 use serde::{Deserialize, Serialize};
-use vsrlab_body::sensors::SensorConfig;
-use vsrlab_body::{Morphology, Preset};
-use vsrlab_brain::BrainSpec;
 use vsrlab_evolution::rng::SeededRng;
 use vsrlab_evolution::{GaConfig, GeneticAlgorithm, Representation, Sense};
 use vsrlab_experiment::config::{self, Experiment};
@@ -17,7 +14,7 @@ use vsrlab_experiment::genotype::fnv1a;
 use vsrlab_experiment::optimizers::Searcher;
 use vsrlab_experiment::runner::{run_dir, run_search, Plan, RunError, Silent};
 use vsrlab_experiment::{Genotype, RobotEvaluator};
-use vsrlab_tasks::{EvaluationError, Mapper, Robot, RobotSpec};
+use vsrlab_tasks::{EvaluationError, Mapper, Robot};
 
 /// Cells of the biped-4x3 grid.
 const CELLS: usize = 12;
@@ -97,16 +94,7 @@ impl Mapper<Graph> for GraphMapper {
                 .sum();
             phases[cell] += phase + 0.5 * pull;
         }
-        let brain = BrainSpec::parse("phase-grid")
-            .and_then(|b| b.with_parameters(&phases))
-            .map_err(|e| EvaluationError::Genotype(e.to_string()))?;
-        Ok(Box::new(RobotSpec {
-            body: Morphology::parse("biped-4x3").unwrap(),
-            preset: Preset::Y2021,
-            voxel: None,
-            sensors: SensorConfig::parse("empty").unwrap(),
-            brain,
-        }))
+        common::phase_biped(&phases)
     }
 }
 

@@ -11,9 +11,6 @@ mod common;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::sync::Arc;
-use vsrlab_body::sensors::SensorConfig;
-use vsrlab_body::{Morphology, Preset};
-use vsrlab_brain::BrainSpec;
 use vsrlab_evolution::rng::SeededRng;
 use vsrlab_evolution::Representation as Variation;
 use vsrlab_experiment::config::{self, Experiment};
@@ -24,7 +21,7 @@ use vsrlab_experiment::genotypes::{
 use vsrlab_experiment::optimizers::FieldError;
 use vsrlab_experiment::runner::{run_dir, Observer, RunError, RunOptions, RunSummary, Silent};
 use vsrlab_experiment::{run_configured, Genotype};
-use vsrlab_tasks::{EvaluationError, Mapper, Robot, RobotSpec, Stored, StoredGenotypes, TraceLevel};
+use vsrlab_tasks::{EvaluationError, Mapper, Robot, Stored, StoredGenotypes, TraceLevel};
 
 /// Cells of the biped-4x3 grid.
 const CELLS: usize = 12;
@@ -89,16 +86,7 @@ impl Mapper<Phases> for PhaseMapper {
             )));
         }
         let phases: Vec<f64> = g.0.iter().map(|&v| f64::from(v) / f64::from(self.levels)).collect();
-        let brain = BrainSpec::parse("phase-grid")
-            .and_then(|b| b.with_parameters(&phases))
-            .map_err(|e| EvaluationError::Genotype(e.to_string()))?;
-        Ok(Box::new(RobotSpec {
-            body: Morphology::parse("biped-4x3").unwrap(),
-            preset: Preset::Y2021,
-            voxel: None,
-            sensors: SensorConfig::parse("empty").unwrap(),
-            brain,
-        }))
+        common::phase_biped(&phases)
     }
 }
 

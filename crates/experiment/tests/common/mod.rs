@@ -28,3 +28,20 @@ pub fn two_threads(resume: bool) -> RunOptions {
         ..RunOptions::default()
     }
 }
+
+/// A 2021 biped-4x3 without sensors whose phase-grid brain has these per-cell phases: the robot
+/// the test genotypes (graphs of phase neurons, quantised phases) map to. Not every test binary
+/// that includes this module uses it.
+#[allow(dead_code)]
+pub fn phase_biped(phases: &[f64]) -> Result<Box<dyn vsrlab_tasks::Robot>, vsrlab_tasks::EvaluationError> {
+    let brain = vsrlab_brain::BrainSpec::parse("phase-grid")
+        .and_then(|b| b.with_parameters(phases))
+        .map_err(|e| vsrlab_tasks::EvaluationError::Genotype(e.to_string()))?;
+    Ok(Box::new(vsrlab_tasks::RobotSpec {
+        body: vsrlab_body::Morphology::parse("biped-4x3").unwrap(),
+        preset: vsrlab_body::Preset::Y2021,
+        voxel: None,
+        sensors: vsrlab_body::sensors::SensorConfig::parse("empty").unwrap(),
+        brain,
+    }))
+}

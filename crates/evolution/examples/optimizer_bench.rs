@@ -22,8 +22,8 @@ use std::time::Instant;
 use vsrlab_evolution::pareto::hypervolume_2d;
 use vsrlab_evolution::test_functions::{rastrigin, rosenbrock, sphere, zdt1, zdt2, zdt3};
 use vsrlab_evolution::{
-    run_to_budget, CmaEs, CmaEsConfig, Evaluation, Nsga2, Nsga2Config, Optimizer, SbxPolynomial, Sense, Stop,
-    StopReason,
+    run_to_budget, CmaEs, CmaEsConfig, CmaSettings, Evaluation, Nsga2, Nsga2Config, Optimizer, SbxPolynomial, Sense,
+    Stop, StopReason,
 };
 
 /// (name, function, dimension, evaluation budget)
@@ -73,7 +73,10 @@ fn termination_rows(seeds: u64, as_json: bool) -> Vec<serde_json::Value> {
         let (mut evaluations, mut reasons, mut best, mut seconds) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for seed in 0..seeds {
             let config = CmaEsConfig {
-                sigma0,
+                settings: CmaSettings {
+                    sigma0,
+                    ..CmaSettings::default()
+                },
                 init_min: -half_width,
                 init_max: half_width,
                 sense: Sense::Minimize,

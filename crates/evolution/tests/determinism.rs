@@ -146,11 +146,13 @@ fn genetic_algorithm() {
         check_all(
             |seed| {
                 let config = GaConfig {
-                    population_size: 20,
-                    offspring_size: 15,
-                    reevaluate_survivors,
+                    settings: GaSettings {
+                        population_size: 20,
+                        offspring_size: 15,
+                        reevaluate_survivors,
+                        ..GaSettings::default()
+                    },
                     sense: Sense::Minimize,
-                    ..GaConfig::default()
                 };
                 GeneticAlgorithm::new(config, RealVector::thesis(6), seed).unwrap()
             },
@@ -179,7 +181,10 @@ fn cma_es() {
         check_all(
             |seed| {
                 let config = CmaEsConfig {
-                    active,
+                    settings: CmaSettings {
+                        active,
+                        ..CmaSettings::default()
+                    },
                     sense: Sense::Minimize,
                     ..CmaEsConfig::default()
                 };
@@ -203,10 +208,12 @@ impl FeatureProvider<Vec<f64>, [f64; 2]> for OutcomeFeatures {
 #[test]
 fn speciated_evolver() {
     let config = || SeConfig {
-        population_size: 30,
-        species: 4,
+        settings: SeSettings {
+            population_size: 30,
+            species: 4,
+            ..SeSettings::default()
+        },
         sense: Sense::Minimize,
-        ..SeConfig::default()
     };
     check_all(
         |seed| SpeciatedEvolver::new(config(), RealVector::thesis(6), GenotypeFeatures, seed).unwrap(),
@@ -242,8 +249,11 @@ fn nsga2() {
     check_all(
         |seed| {
             let config = Nsga2Config {
-                population_size: 20,
-                offspring_size: 20,
+                settings: Nsga2Settings {
+                    population_size: 20,
+                    offspring_size: 20,
+                    ..Nsga2Config::new(vec![Sense::Minimize; 2]).settings
+                },
                 ..Nsga2Config::new(vec![Sense::Minimize; 2])
             };
             Nsga2::new(config, SbxPolynomial::new(8, 0.0, 1.0), seed).unwrap()
@@ -253,9 +263,11 @@ fn nsga2() {
     check_all(
         |seed| {
             let config = Nsga2Config {
-                population_size: 20,
-                offspring_size: 10,
-                mutation_probability: 1.0,
+                settings: Nsga2Settings {
+                    population_size: 20,
+                    offspring_size: 10,
+                    mutation_probability: 1.0,
+                },
                 ..Nsga2Config::new(vec![Sense::Minimize; 2])
             };
             let rep = RealVector::thesis(8)
@@ -304,8 +316,11 @@ fn run_to_budget_resumes_towards_the_same_budget() {
 #[test]
 fn checkpoints_survive_non_finite_fitness() {
     let config = GaConfig {
-        population_size: 6,
-        offspring_size: 6,
+        settings: GaSettings {
+            population_size: 6,
+            offspring_size: 6,
+            ..GaSettings::default()
+        },
         ..GaConfig::default()
     };
     let mut ga = GeneticAlgorithm::new(config, RealVector::thesis(2), 3).unwrap();

@@ -325,3 +325,43 @@ fn nsga2_duplicate_elimination_is_read_and_written_only_when_set() {
     let err = config::parse(&bad, "two.toml").unwrap_err().to_string();
     assert!(err.contains("optimizer.eliminate_duplicates"), "{err}");
 }
+
+/// Optimizer tables are decoded from flattened parts (the optimizer's settings, the operators):
+/// a field written at its default, which the resolved file leaves out, is still a known field,
+/// and a misspelt one is still refused, naming it, for every optimizer.
+#[test]
+fn optimizer_fields_written_at_their_default_are_known_and_misspelt_ones_refused() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../experiments/two-objectives.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    let explicit = text.replace("kind = \"nsga2\"", "kind = \"nsga2\"\neliminate_duplicates = false");
+    assert!(config::parse(&explicit, "two.toml").is_ok());
+    let quick = concat!(env!("CARGO_MANIFEST_DIR"), "/../../experiments/quickstart.toml");
+    let quick = std::fs::read_to_string(quick).unwrap();
+    let optimizer = |table: &str| {
+        let start = quick.find("[optimizer]").unwrap();
+        let end = quick[start + 1..].find("\n[").map_or(quick.len(), |e| start + 1 + e);
+        format!("{}[optimizer]\n{table}\n{}", &quick[..start], &quick[end..])
+    };
+    let cases = [
+        ("kind = \"cma-es\"\nrestarts = 0\nrestart_strategy = \"ipop\"", None),
+        ("kind = \"es\"\nsigma = 0.35", None),
+        ("kind = \"map-elites\"\nbatch_size = 20", None),
+        ("kind = \"se\"\nalpha = 0.75", None),
+        ("kind = \"ga\"\nreevaluate_survivors = false", None),
+        ("kind = \"cma-es\"\nrestart = 1", Some("optimizer.restart")),
+        ("kind = \"es\"\nparent = 3", Some("optimizer.parent")),
+        ("kind = \"map-elites\"\nbatch = 3", Some("optimizer.batch")),
+        ("kind = \"se\"\nalfa = 0.5", Some("optimizer.alfa")),
+        ("kind = \"ga\"\npopulation = 3", Some("optimizer.population")),
+    ];
+    for (table, refused) in cases {
+        let parsed = config::parse(&optimizer(table), "q.toml");
+        match refused {
+            None => assert!(parsed.is_ok(), "{table}: {:?}", parsed.err()),
+            Some(field) => {
+                let err = parsed.expect_err(table).to_string();
+                assert!(err.contains(field) && err.contains("unknown field"), "{table}: {err}");
+            }
+        }
+    }
+}

@@ -8,7 +8,7 @@ mod common;
 use common::Killer;
 use serde::{Deserialize, Serialize};
 use vsrlab_evolution::rng::SeededRng;
-use vsrlab_evolution::{GaConfig, GeneticAlgorithm, Representation, Sense};
+use vsrlab_evolution::{GaConfig, GaSettings, GeneticAlgorithm, Representation, Sense};
 use vsrlab_experiment::config::{self, Experiment};
 use vsrlab_experiment::genotype::fnv1a;
 use vsrlab_experiment::optimizers::Searcher;
@@ -127,10 +127,12 @@ snapshot_every = 12
 
 fn new_optimizer(seed: u64) -> Result<Searcher<GeneticAlgorithm<GraphOps>>, RunError> {
     let config = GaConfig {
-        population_size: 6,
-        offspring_size: 6,
+        settings: GaSettings {
+            population_size: 6,
+            offspring_size: 6,
+            ..GaSettings::default()
+        },
         sense: Sense::Maximize,
-        ..GaConfig::default()
     };
     Ok(Searcher(GeneticAlgorithm::new(config, GraphOps, seed)?))
 }

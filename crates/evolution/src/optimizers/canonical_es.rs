@@ -21,15 +21,44 @@ use crate::search_state::SearchState;
 use crate::selection::rank_best_first;
 use serde::{Deserialize, Serialize};
 
-/// Parameters of [`CanonicalEs`]. `CanonicalEsConfig::thesis(λ)` gives the thesis settings.
+/// The canonical ES's settings as a user writes them in an experiment's `[optimizer]` table (and
+/// as checkpoints keep them). `Default` gives the thesis settings.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct CanonicalEsConfig {
-    /// λ: samples per generation (thesis: 40).
+#[serde(default)]
+pub struct EsSettings {
+    /// λ: samples per generation (thesis text and code: 40; its Table 3.2 says 30).
     pub population_size: usize,
-    /// μ: best samples that move the mean (thesis: ⌊λ/4⌋).
-    pub parents: usize,
+    /// μ: best samples that move the mean (`None`: the thesis' ⌊λ/4⌋, at least 1).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub parents: Option<usize>,
     /// Fixed mutation strength σ (thesis: 0.35).
     pub sigma: f64,
+}
+
+impl Default for EsSettings {
+    fn default() -> Self {
+        Self {
+            population_size: 40,
+            parents: None,
+            sigma: 0.35,
+        }
+    }
+}
+
+impl EsSettings {
+    /// μ: as given, else ⌊λ/4⌋ (at least 1).
+    pub fn parents(&self) -> usize {
+        self.parents.unwrap_or((self.population_size / 4).max(1))
+    }
+}
+
+/// Parameters of [`CanonicalEs`]: its settings, the initial mean's range and the sense.
+/// `Default` gives the thesis settings, the initial mean in [−1, 1], maximising.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CanonicalEsConfig {
+    /// λ, μ and σ, written flat beside the rest.
+    #[serde(flatten)]
+    pub settings: EsSettings,
     /// Lower end of the uniform initial mean.
     pub init_min: f64,
     /// Upper end of the uniform initial mean.
@@ -39,12 +68,9 @@ pub struct CanonicalEsConfig {
 }
 
 impl Default for CanonicalEsConfig {
-    /// λ = 40, μ = 10, σ = 0.35, initial mean in [−1, 1], maximisation.
     fn default() -> Self {
         Self {
-            population_size: 40,
-            parents: 10,
-            sigma: 0.35,
+            settings: EsSettings::default(),
             init_min: -1.0,
             init_max: 1.0,
             sense: Sense::Maximize,
@@ -74,13 +100,17 @@ impl CanonicalEs {
     /// A new run in `dimension` dimensions with the given run seed.
     pub fn new(config: CanonicalEsConfig, dimension: usize, seed: u64) -> Result<Self, EvolutionError> {
         ensure(dimension > 0, || "ES: dimension must be > 0".into())?;
-        ensure(config.parents >= 1 && config.parents <= config.population_size, || {
-            format!(
-                "ES: parents ({}) must be in 1..=population_size ({})",
-                config.parents, config.population_size
-            )
-        })?;
-        ensure(config.sigma > 0.0, || "ES: sigma must be > 0".into())?;
+        ensure(
+            config.settings.parents() >= 1 && config.settings.parents() <= config.settings.population_size,
+            || {
+                format!(
+                    "ES: parents ({}) must be in 1..=population_size ({})",
+                    config.settings.parents(),
+                    config.settings.population_size
+                )
+            },
+        )?;
+        ensure(config.settings.sigma > 0.0, || "ES: sigma must be > 0".into())?;
         ensure(config.init_min <= config.init_max, || "ES: init range is empty".into())?;
         let mut rng = SeededRng::derive(seed, 0, 0, Stream::Initialisation);
         let mean = rng.uniform_vec(dimension, config.init_min, config.init_max);
@@ -115,8 +145,8 @@ impl Optimizer for CanonicalEs {
         if let Some(pending) = self.state.pending_batch() {
             return pending;
         }
-        let sigma = self.config.sigma;
-        let genotypes: Vec<Vec<f64>> = (0..self.config.population_size)
+        let sigma = self.config.settings.sigma;
+        let genotypes: Vec<Vec<f64>> = (0..self.config.settings.population_size)
             .map(|i| {
                 let eps = self.noise(i);
                 self.mean.iter().zip(eps).map(|(m, e)| m + sigma * e).collect()
@@ -146,7 +176,7 @@ impl<O> Tell<O> for CanonicalEs {
             .state
             .born_all(&batch, evaluations, std::slice::from_ref(&self.config.sense));
         let order = rank_best_first(&self.last, self.config.sense);
-        let weights = log_rank_weights(self.config.parents);
+        let weights = log_rank_weights(self.config.settings.parents());
         let mut step = vec![0.0; self.mean.len()];
         for (&index, w) in order.iter().zip(&weights) {
             for (s, e) in step.iter_mut().zip(self.noise(index)) {
@@ -154,7 +184,7 @@ impl<O> Tell<O> for CanonicalEs {
             }
         }
         for (m, s) in self.mean.iter_mut().zip(step) {
-            *m += self.config.sigma * s;
+            *m += self.config.settings.sigma * s;
         }
         self.state.advance(&batch);
         Ok(())
@@ -170,11 +200,13 @@ mod tests {
 
     fn run(f: fn(&[f64]) -> f64, sigma: f64, init: f64, seed: u64, evaluations: u64) -> (f64, f64) {
         let config = CanonicalEsConfig {
-            sigma,
+            settings: EsSettings {
+                sigma,
+                ..EsSettings::default()
+            },
             init_min: -init,
             init_max: init,
             sense: Sense::Minimize,
-            ..CanonicalEsConfig::default()
         };
         let mut es = CanonicalEs::new(config, 10, seed).unwrap();
         run_to_budget(

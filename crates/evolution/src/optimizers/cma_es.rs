@@ -45,40 +45,78 @@ use crate::search_state::SearchState;
 use crate::selection::rank_best_first;
 use serde::{Deserialize, Serialize};
 
-/// Parameters of [`CmaEs`]. Everything not listed uses the tutorial's defaults.
+/// CMA-ES's settings as a user writes them in an experiment's `[optimizer]` table (and as
+/// checkpoints keep them). `Default` gives the default λ, σ0 = 0.5, the active update and no
+/// restarts.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct CmaEsConfig {
+#[serde(default)]
+pub struct CmaSettings {
     /// λ; `None` = 4 + ⌊3 ln n⌋.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub population_size: Option<usize>,
     /// Initial step size σ0 (thesis ch. 6: 0.5).
     pub sigma0: f64,
-    /// Lower end of the uniform initial mean.
-    pub init_min: f64,
-    /// Upper end of the uniform initial mean.
-    pub init_max: f64,
     /// Use negative weights for the worst half in the covariance update (active CMA).
     pub active: bool,
-    /// Whether fitness is maximised or minimised.
-    pub sense: Sense,
-    /// Termination criteria (pycma's defaults; absent in older configs and checkpoints).
-    #[serde(default)]
-    pub termination: CmaTermination,
     /// IPOP restarts: when a termination criterion holds, start again this many times from a new
     /// random mean with σ0, C = I and λ multiplied by `restart_increase` (Auger & Hansen 2005).
-    #[serde(default)]
+    #[serde(skip_serializing_if = "is_zero")]
     pub restarts: usize,
     /// λ's factor at every restart (IPOP: 2).
-    #[serde(default = "two")]
+    #[serde(skip_serializing_if = "is_two")]
     pub restart_increase: f64,
     /// How restarts choose λ and σ: IPOP (every restart a larger population) or BIPOP (Hansen
     /// 2009: large-population restarts as IPOP's, interleaved with small-population ones
     /// λ = ⌊λ_def·(½·λ_large/λ_def)^(u²)⌋, σ = σ0·10^(−2u'), u, u' uniform in [0, 1), run
     /// whenever the small regime has used fewer evaluations than the large one).
-    #[serde(default)]
+    #[serde(skip_serializing_if = "is_ipop")]
     pub restart_strategy: RestartStrategy,
 }
 
-/// How CMA-ES restarts ([`CmaEsConfig::restart_strategy`]).
+impl Default for CmaSettings {
+    fn default() -> Self {
+        Self {
+            population_size: None,
+            sigma0: 0.5,
+            active: true,
+            restarts: 0,
+            restart_increase: 2.0,
+            restart_strategy: RestartStrategy::Ipop,
+        }
+    }
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
+}
+
+fn is_two(x: &f64) -> bool {
+    *x == 2.0
+}
+
+fn is_ipop(s: &RestartStrategy) -> bool {
+    *s == RestartStrategy::Ipop
+}
+
+/// Parameters of [`CmaEs`]: its settings, the initial mean's range, the sense and the termination
+/// criteria. Everything not listed uses the tutorial's defaults.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CmaEsConfig {
+    /// λ, σ0, the active update and the restarts, written flat beside the rest.
+    #[serde(flatten)]
+    pub settings: CmaSettings,
+    /// Lower end of the uniform initial mean.
+    pub init_min: f64,
+    /// Upper end of the uniform initial mean.
+    pub init_max: f64,
+    /// Whether fitness is maximised or minimised.
+    pub sense: Sense,
+    /// Termination criteria (pycma's defaults; absent in older configs and checkpoints).
+    #[serde(default)]
+    pub termination: CmaTermination,
+}
+
+/// How CMA-ES restarts ([`CmaSettings::restart_strategy`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum RestartStrategy {
@@ -87,10 +125,6 @@ pub enum RestartStrategy {
     Ipop,
     /// Bi-population (Hansen 2009): large and small populations in turn, by budget.
     Bipop,
-}
-
-fn two() -> f64 {
-    2.0
 }
 
 /// The n × n identity matrix, row-major.
@@ -116,16 +150,11 @@ impl Default for CmaEsConfig {
     /// Default λ, σ0 = 0.5, initial mean in [−1, 1], active update, maximisation.
     fn default() -> Self {
         Self {
-            population_size: None,
-            sigma0: 0.5,
+            settings: CmaSettings::default(),
             init_min: -1.0,
             init_max: 1.0,
-            active: true,
             sense: Sense::Maximize,
             termination: CmaTermination::default(),
-            restarts: 0,
-            restart_increase: 2.0,
-            restart_strategy: RestartStrategy::Ipop,
         }
     }
 }
@@ -271,10 +300,14 @@ impl CmaEs {
     pub fn with_mean(config: CmaEsConfig, mean: Vec<f64>, seed: u64) -> Result<Self, EvolutionError> {
         let n = mean.len();
         ensure(n > 0, || "CMA-ES: dimension must be > 0".into())?;
-        ensure(config.sigma0 > 0.0 && config.sigma0.is_finite(), || {
-            "CMA-ES: sigma0 must be finite and > 0".into()
-        })?;
-        let lambda = config.population_size.unwrap_or(CmaEs::default_population_size(n));
+        ensure(
+            config.settings.sigma0 > 0.0 && config.settings.sigma0.is_finite(),
+            || "CMA-ES: sigma0 must be finite and > 0".into(),
+        )?;
+        let lambda = config
+            .settings
+            .population_size
+            .unwrap_or(CmaEs::default_population_size(n));
         ensure(lambda >= 2, || "CMA-ES: population_size must be >= 2".into())?;
         if let Err((field, why)) = config.termination.validate() {
             return Err(EvolutionError::InvalidConfig(format!(
@@ -282,12 +315,12 @@ impl CmaEs {
             )));
         }
         ensure(
-            config.restart_increase.is_finite() && config.restart_increase >= 1.0,
+            config.settings.restart_increase.is_finite() && config.settings.restart_increase >= 1.0,
             || "CMA-ES: restart_increase must be a finite number ≥ 1".into(),
         )?;
         let identity = identity(n);
         Ok(Self {
-            sigma: config.sigma0,
+            sigma: config.settings.sigma0,
             config,
             state: SearchState::new(seed),
             lambda,
@@ -342,19 +375,19 @@ impl CmaEs {
             r.large_lambda = self.lambda;
             r.default_lambda = self.lambda;
         }
-        let bipop = self.config.restart_strategy == RestartStrategy::Bipop;
+        let bipop = self.config.settings.restart_strategy == RestartStrategy::Bipop;
         r.small = bipop && r.small_evaluations < r.large_evaluations;
         if r.small {
             let (u, v) = (rng.uniform(), rng.uniform());
             let ratio = 0.5 * r.large_lambda as f64 / r.default_lambda as f64;
             let lambda = (r.default_lambda as f64 * ratio.powf(u * u)).floor() as usize;
             self.lambda = lambda.clamp(2, MAX_LAMBDA);
-            self.sigma = self.config.sigma0 * 10f64.powf(-2.0 * v);
+            self.sigma = self.config.settings.sigma0 * 10f64.powf(-2.0 * v);
         } else {
-            let grown = (r.large_lambda as f64 * self.config.restart_increase).round() as usize;
+            let grown = (r.large_lambda as f64 * self.config.settings.restart_increase).round() as usize;
             r.large_lambda = grown.clamp(r.large_lambda, MAX_LAMBDA);
             self.lambda = r.large_lambda;
-            self.sigma = self.config.sigma0;
+            self.sigma = self.config.settings.sigma0;
         }
         self.covariance = identity(n);
         self.basis = identity(n);
@@ -368,7 +401,7 @@ impl CmaEs {
 
     /// The strategy parameters in use.
     pub fn parameters(&self) -> CmaParameters {
-        CmaParameters::new(self.mean.len(), self.lambda, self.config.active)
+        CmaParameters::new(self.mean.len(), self.lambda, self.config.settings.active)
     }
 
     /// The current mean.
@@ -483,7 +516,7 @@ impl CmaEs {
             generation,
             lambda: self.lambda,
             sigma: self.sigma,
-            sigma0: self.config.sigma0,
+            sigma0: self.config.settings.sigma0,
             mean: &self.mean,
             covariance: &self.covariance,
             path_c: &self.path_c,
@@ -637,7 +670,7 @@ impl<O> Tell<O> for CmaEs {
             self.decompose();
         }
         self.check_termination(&order);
-        if self.monitor.stopped().is_some() && self.restarts_done < self.config.restarts {
+        if self.monitor.stopped().is_some() && self.restarts_done < self.config.settings.restarts {
             self.restart();
         }
         Ok(())
@@ -699,7 +732,10 @@ mod tests {
             let r = evaluations_to_target(rosenbrock, CmaEsConfig::default(), 10, seed, 1e-8, 20_000);
             assert!(r.is_some_and(|e| e <= 10_000), "rosenbrock seed {seed}: {r:?}");
             let classic = CmaEsConfig {
-                active: false,
+                settings: CmaSettings {
+                    active: false,
+                    ..CmaSettings::default()
+                },
                 ..CmaEsConfig::default()
             };
             let c = evaluations_to_target(sphere, classic, 10, seed, 1e-8, 10_000);
@@ -718,8 +754,11 @@ mod tests {
         let mut solved = 0;
         for seed in 0..5 {
             let config = CmaEsConfig {
-                population_size: Some(400),
-                sigma0: 2.0,
+                settings: CmaSettings {
+                    population_size: Some(400),
+                    sigma0: 2.0,
+                    ..CmaSettings::default()
+                },
                 init_min: -5.12,
                 init_max: 5.12,
                 sense: Sense::Minimize,
@@ -792,10 +831,13 @@ mod tests {
     fn ipop_restarts_double_lambda_and_keep_the_best() {
         for seed in 0..3 {
             let single = CmaEsConfig {
+                settings: CmaSettings {
+                    sigma0: 2.0,
+                    ..CmaSettings::default()
+                },
                 sense: Sense::Minimize,
                 init_min: -5.12,
                 init_max: 5.12,
-                sigma0: 2.0,
                 ..CmaEsConfig::default()
             };
             let f = |c: &Candidate<Vec<f64>>| Evaluation::single(rastrigin(&c.genotype));
@@ -806,7 +848,13 @@ mod tests {
                 "seed {seed}: {:?}",
                 first.reason
             );
-            let ipop = CmaEsConfig { restarts: 3, ..single };
+            let ipop = CmaEsConfig {
+                settings: CmaSettings {
+                    restarts: 3,
+                    ..single.settings
+                },
+                ..single
+            };
             let mut cma = CmaEs::new(ipop, 10, seed).unwrap();
             let summary = run_to_budget(&mut cma, f, &Stop::evaluations(1_000_000)).unwrap();
             assert!(
@@ -836,12 +884,15 @@ mod tests {
         // λ and regime of every descent, the evaluations per regime, the best f
         let descend = |seed: u64| {
             let config = CmaEsConfig {
+                settings: CmaSettings {
+                    sigma0: 2.0,
+                    restarts: 6,
+                    restart_strategy: RestartStrategy::Bipop,
+                    ..CmaSettings::default()
+                },
                 sense: Sense::Minimize,
                 init_min: -5.12,
                 init_max: 5.12,
-                sigma0: 2.0,
-                restarts: 6,
-                restart_strategy: RestartStrategy::Bipop,
                 ..CmaEsConfig::default()
             };
             let mut cma = CmaEs::new(config, 10, seed).unwrap();
@@ -888,8 +939,11 @@ mod tests {
     #[test]
     fn an_older_checkpoint_without_regimes_restarts_with_a_doubled_lambda() {
         let config = CmaEsConfig {
+            settings: CmaSettings {
+                restarts: 1,
+                ..CmaSettings::default()
+            },
             sense: Sense::Minimize,
-            restarts: 1,
             ..CmaEsConfig::default()
         };
         let cma = CmaEs::new(config, 4, 1).unwrap();
@@ -945,8 +999,11 @@ mod tests {
     fn criteria_name_what_held() {
         let run = |f: fn(&[f64]) -> f64, sigma0: f64| {
             let config = CmaEsConfig {
+                settings: CmaSettings {
+                    sigma0,
+                    ..CmaSettings::default()
+                },
                 sense: Sense::Minimize,
-                sigma0,
                 ..CmaEsConfig::default()
             };
             let mut cma = CmaEs::new(config, 5, 3).unwrap();
@@ -970,12 +1027,14 @@ mod tests {
     #[test]
     fn a_million_evaluations_without_termination_stay_finite() {
         let config = CmaEsConfig {
-            sigma0: 2.0,
+            settings: CmaSettings {
+                sigma0: 2.0,
+                ..CmaSettings::default()
+            },
             init_min: -5.12,
             init_max: 5.12,
             sense: Sense::Minimize,
             termination: CmaTermination::off(),
-            ..CmaEsConfig::default()
         };
         let mut cma = CmaEs::new(config, 10, 7).unwrap();
         run_checked(&mut cma, rastrigin, 100_000, 997, "rastrigin");
@@ -1037,17 +1096,33 @@ mod tests {
             active in proptest::bool::ANY,
             sigma0 in 1e-3f64..10.0,
         ) {
-            let config = CmaEsConfig {
-                population_size: lambda,
-                sigma0,
-                active,
-                sense: Sense::Minimize,
-                termination: CmaTermination::off(),
-                ..CmaEsConfig::default()
-            };
+            let config = CmaEsConfig { settings: CmaSettings { population_size: lambda, sigma0, active, ..CmaSettings::default() }, sense: Sense::Minimize, termination: CmaTermination::off(), ..CmaEsConfig::default() };
             let mut cma = CmaEs::new(config, n, seed).unwrap();
             let f = if rastrigin_landscape { rastrigin } else { ellipsoid };
             run_checked(&mut cma, f, 3_000, 101, "proptest");
         }
+    }
+
+    /// Checkpoints written before the settings were shared held the termination switch as
+    /// `enabled` and every restart field; they still read.
+    #[test]
+    fn config_reads_the_old_checkpoint_form() {
+        let old = serde_json::json!({
+            "population_size": 12, "sigma0": 0.3, "init_min": -2.0, "init_max": 2.0,
+            "active": false, "sense": "Minimize",
+            "termination": {"enabled": false, "tolx": 1e-9, "tolfun": 1e-11, "tolfunhist": 1e-12,
+                "tolconditioncov": 1e14, "tolfacupx": 1e3, "tolupsigma": 1e20, "tolstagnation": null,
+                "tolxstagnation": 1e-9, "noeffectaxis": true, "noeffectcoord": true},
+            "restarts": 2, "restart_increase": 3.0, "restart_strategy": "bipop"
+        });
+        let config: CmaEsConfig = serde_json::from_value(old).unwrap();
+        assert_eq!(config.settings.population_size, Some(12));
+        assert!(!config.settings.active);
+        assert_eq!(config.settings.restart_increase, 3.0);
+        assert_eq!(config.settings.restart_strategy, RestartStrategy::Bipop);
+        assert!(!config.termination.enabled);
+        assert_eq!(config.termination.tolx, 1e-9);
+        let again: CmaEsConfig = serde_json::from_value(serde_json::to_value(&config).unwrap()).unwrap();
+        assert_eq!(again, config);
     }
 }

@@ -16,9 +16,12 @@ use serde::{Deserialize, Serialize};
 
 /// Thresholds of the termination criteria (0 turns one off). Defaults are pycma 4.5.0's.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+#[serde(default)]
 pub struct CmaTermination {
     /// Master switch: `false` turns every criterion off (the run then ends only by its budget).
+    /// Written `termination` (an experiment's `[optimizer]` table holds the criteria flat, beside
+    /// the switch); checkpoints before 2026-11-28 wrote `enabled`, still read.
+    #[serde(rename = "termination", alias = "enabled")]
     pub enabled: bool,
     /// `tolx`: stop when σ·√C_ii and σ·|p_c,i| are below this in every coordinate (pycma 1e-11).
     pub tolx: f64,
@@ -39,6 +42,7 @@ pub struct CmaTermination {
     pub tolupsigma: f64,
     /// `tolstagnation`: generations without improvement of the median of the best and of the
     /// median values (pycma's test, 0 = off). `None` = pycma's ⌊100 + 100·n^1.5/λ⌋.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub tolstagnation: Option<u64>,
     /// `tolxstagnation`: stop when the mean moved less than this (growing with √time) over
     /// 20 + 0.1·g generations (pycma 4.x `tolxstagnation = [1e-9, 20, 0.1]`).

@@ -26,9 +26,11 @@ use crate::search_state::SearchState;
 use crate::selection::{sort_best_first, tournament};
 use serde::{Deserialize, Serialize};
 
-/// Parameters of the [`GeneticAlgorithm`]. `Default` gives the thesis settings.
+/// The GA's settings as a user writes them in an experiment's `[optimizer]` table (and as
+/// checkpoints keep them). `Default` gives the thesis settings.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct GaConfig {
+#[serde(default)]
+pub struct GaSettings {
     /// μ: individuals kept each generation (thesis: 100).
     pub population_size: usize,
     /// λ: children per generation (thesis: 100).
@@ -39,11 +41,9 @@ pub struct GaConfig {
     pub mutation_probability: f64,
     /// Re-evaluate the survivors every generation (noisy tasks).
     pub reevaluate_survivors: bool,
-    /// Whether fitness is maximised or minimised.
-    pub sense: Sense,
 }
 
-impl Default for GaConfig {
+impl Default for GaSettings {
     fn default() -> Self {
         Self {
             population_size: 100,
@@ -51,9 +51,19 @@ impl Default for GaConfig {
             tournament_size: 5,
             mutation_probability: 0.2,
             reevaluate_survivors: false,
-            sense: Sense::Maximize,
         }
     }
+}
+
+/// Parameters of the [`GeneticAlgorithm`]: its settings and the sense of the objective.
+/// `Default` gives the thesis settings, maximising.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct GaConfig {
+    /// The settings, written flat beside `sense`.
+    #[serde(flatten)]
+    pub settings: GaSettings,
+    /// Whether fitness is maximised or minimised.
+    pub sense: Sense,
 }
 
 /// The μ + λ genetic algorithm over any [`Representation`] (see the module docs).
@@ -74,10 +84,16 @@ pub struct GeneticAlgorithm<R: Representation> {
 impl<R: Representation> GeneticAlgorithm<R> {
     /// A new run with the given run seed.
     pub fn new(config: GaConfig, representation: R, seed: u64) -> Result<Self, EvolutionError> {
-        ensure(config.population_size > 0, || "GA: population_size must be > 0".into())?;
-        ensure(config.offspring_size > 0, || "GA: offspring_size must be > 0".into())?;
-        ensure(config.tournament_size > 0, || "GA: tournament_size must be > 0".into())?;
-        ensure((0.0..=1.0).contains(&config.mutation_probability), || {
+        ensure(config.settings.population_size > 0, || {
+            "GA: population_size must be > 0".into()
+        })?;
+        ensure(config.settings.offspring_size > 0, || {
+            "GA: offspring_size must be > 0".into()
+        })?;
+        ensure(config.settings.tournament_size > 0, || {
+            "GA: tournament_size must be > 0".into()
+        })?;
+        ensure((0.0..=1.0).contains(&config.settings.mutation_probability), || {
             "GA: mutation_probability must be in [0, 1]".into()
         })?;
         representation.validate()?;
@@ -97,10 +113,10 @@ impl<R: Representation> GeneticAlgorithm<R> {
     fn child(&self, index: usize) -> R::Genotype {
         let mut rng = self.state.rng(index, Stream::Variation);
         let n = self.population.len();
-        let k = self.config.tournament_size;
+        let k = self.config.settings.tournament_size;
         mutate_or_crossover(
             &self.representation,
-            self.config.mutation_probability,
+            self.config.settings.mutation_probability,
             &mut rng,
             |rng| &self.population[tournament(n, k, rng)].genotype,
         )
@@ -115,13 +131,15 @@ impl<R: Representation> Optimizer for GeneticAlgorithm<R> {
             return pending;
         }
         let (genotypes, first_reevaluation) = if self.population.is_empty() {
-            let genotypes = random_genotypes(&self.representation, &self.state, self.config.population_size);
+            let genotypes = random_genotypes(&self.representation, &self.state, self.config.settings.population_size);
             let n = genotypes.len();
             (genotypes, n)
         } else {
-            let mut genotypes: Vec<_> = (0..self.config.offspring_size).map(|i| self.child(i)).collect();
+            let mut genotypes: Vec<_> = (0..self.config.settings.offspring_size)
+                .map(|i| self.child(i))
+                .collect();
             let n = genotypes.len();
-            if self.config.reevaluate_survivors {
+            if self.config.settings.reevaluate_survivors {
                 genotypes.extend(self.population.iter().map(|p| p.genotype.clone()));
             }
             (genotypes, n)
@@ -150,7 +168,7 @@ impl<R: Representation, O> Tell<O> for GeneticAlgorithm<R> {
         let mut survivors = std::mem::take(&mut self.population);
         for (candidate, evaluation) in batch.iter().zip(evaluations) {
             if candidate.reevaluation {
-                let survivor = &mut survivors[candidate.id - self.config.offspring_size];
+                let survivor = &mut survivors[candidate.id - self.config.settings.offspring_size];
                 survivor.objectives = evaluation.objectives;
                 continue;
             }
@@ -159,14 +177,14 @@ impl<R: Representation, O> Tell<O> for GeneticAlgorithm<R> {
         // Children first, so that on equal fitness the stable sort keeps them ahead of parents.
         merged.extend(survivors);
         let senses = std::slice::from_ref(&self.config.sense);
-        if !self.config.reevaluate_survivors {
+        if !self.config.settings.reevaluate_survivors {
             for individual in merged.iter().filter(|i| i.birth_generation == generation) {
                 self.state.offer(individual, senses);
             }
         }
         sort_best_first(&mut merged, self.config.sense);
-        merged.truncate(self.config.population_size);
-        if self.config.reevaluate_survivors {
+        merged.truncate(self.config.settings.population_size);
+        if self.config.settings.reevaluate_survivors {
             // every member was just evaluated: the best is the population's, not the luckiest
             // draw of the noise so far
             self.state.replace_best(merged.first());
@@ -223,10 +241,12 @@ mod tests {
     #[test]
     fn population_is_truncated_to_the_best_and_counts_births() {
         let config = GaConfig {
-            population_size: 10,
-            offspring_size: 7,
+            settings: GaSettings {
+                population_size: 10,
+                offspring_size: 7,
+                ..GaSettings::default()
+            },
             sense: Sense::Minimize,
-            ..GaConfig::default()
         };
         let mut ga = GeneticAlgorithm::new(config, RealVector::thesis(3), 1).unwrap();
         let sphere = |c: &Candidate<Vec<f64>>| crate::Evaluation::single(sphere(&c.genotype));
@@ -242,9 +262,12 @@ mod tests {
     #[test]
     fn survivors_are_reevaluated_when_asked() {
         let config = GaConfig {
-            population_size: 5,
-            offspring_size: 3,
-            reevaluate_survivors: true,
+            settings: GaSettings {
+                population_size: 5,
+                offspring_size: 3,
+                reevaluate_survivors: true,
+                ..GaSettings::default()
+            },
             ..GaConfig::default()
         };
         let mut ga = GeneticAlgorithm::new(config, RealVector::thesis(2), 1).unwrap();
@@ -271,9 +294,12 @@ mod tests {
     #[test]
     fn with_reevaluation_the_best_is_the_populations_not_the_luckiest_draw() {
         let config = GaConfig {
-            population_size: 4,
-            offspring_size: 4,
-            reevaluate_survivors: true,
+            settings: GaSettings {
+                population_size: 4,
+                offspring_size: 4,
+                reevaluate_survivors: true,
+                ..GaSettings::default()
+            },
             ..GaConfig::default()
         };
         let mut ga = GeneticAlgorithm::new(config, RealVector::thesis(2), 1).unwrap();
@@ -298,7 +324,10 @@ mod tests {
     #[test]
     fn invalid_configurations_are_rejected() {
         let bad = GaConfig {
-            mutation_probability: 1.5,
+            settings: GaSettings {
+                mutation_probability: 1.5,
+                ..GaSettings::default()
+            },
             ..GaConfig::default()
         };
         assert!(GeneticAlgorithm::new(bad, RealVector::thesis(2), 0).is_err());

@@ -44,15 +44,34 @@ impl GridAxis {
     }
 }
 
-/// Parameters of [`MapElites`].
+/// MAP-Elites' batch sizes as a user writes them in an experiment's `[optimizer]` table (and as
+/// checkpoints keep them). `Default` gives the thesis' n_parents = 20 for both.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct MapElitesConfig {
-    /// The grid, one axis per descriptor dimension.
-    pub axes: Vec<GridAxis>,
+#[serde(default)]
+pub struct MapElitesSettings {
     /// Random genotypes evaluated in the first generation (thesis: n_parents = 20).
     pub initial_population: usize,
     /// Children per later generation (thesis: n_parents = 20).
     pub batch_size: usize,
+}
+
+impl Default for MapElitesSettings {
+    fn default() -> Self {
+        Self {
+            initial_population: 20,
+            batch_size: 20,
+        }
+    }
+}
+
+/// Parameters of [`MapElites`]: the grid, the batch sizes and the sense of the objective.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MapElitesConfig {
+    /// The grid, one axis per descriptor dimension.
+    pub axes: Vec<GridAxis>,
+    /// The batch sizes, written flat beside `axes` and `sense`.
+    #[serde(flatten)]
+    pub settings: MapElitesSettings,
     /// Whether fitness is maximised or minimised.
     pub sense: Sense,
 }
@@ -62,8 +81,7 @@ impl MapElitesConfig {
     pub fn new(axes: Vec<GridAxis>) -> Self {
         Self {
             axes,
-            initial_population: 20,
-            batch_size: 20,
+            settings: MapElitesSettings::default(),
             sense: Sense::Maximize,
         }
     }
@@ -98,9 +116,10 @@ impl<R: Representation> MapElites<R> {
             .iter()
             .try_fold(1u64, |acc, a| acc.checked_mul(a.bins as u64));
         ensure(cells.is_some(), || "MAP-Elites: too many cells".into())?;
-        ensure(config.initial_population > 0 && config.batch_size > 0, || {
-            "MAP-Elites: initial_population and batch_size must be > 0".into()
-        })?;
+        ensure(
+            config.settings.initial_population > 0 && config.settings.batch_size > 0,
+            || "MAP-Elites: initial_population and batch_size must be > 0".into(),
+        )?;
         representation.validate()?;
         Ok(Self {
             config,
@@ -160,10 +179,14 @@ impl<R: Representation> Optimizer for MapElites<R> {
             return pending;
         }
         let genotypes: Vec<R::Genotype> = if self.archive.is_empty() {
-            random_genotypes(&self.representation, &self.state, self.config.initial_population)
+            random_genotypes(
+                &self.representation,
+                &self.state,
+                self.config.settings.initial_population,
+            )
         } else {
             let elites: Vec<&Individual<R::Genotype>> = self.archive.values().collect();
-            (0..self.config.batch_size)
+            (0..self.config.settings.batch_size)
                 .map(|i| {
                     let mut rng = self.state.rng(i, Stream::Variation);
                     let parent = elites[rng.below(elites.len())];
@@ -291,10 +314,8 @@ mod tests {
             max: 1.0,
             bins: 2,
         }];
-        let config = MapElitesConfig {
-            initial_population: 3,
-            ..MapElitesConfig::new(axes)
-        };
+        let mut config = MapElitesConfig::new(axes);
+        config.settings.initial_population = 3;
         let mut me = MapElites::new(config, RealVector::thesis(1), 0).unwrap();
         let batch = me.ask();
         let told: Vec<_> = batch

@@ -39,15 +39,36 @@ use crate::rng::{SeededRng, Stream};
 use crate::search_state::SearchState;
 use serde::{Deserialize, Serialize};
 
-/// Parameters of [`Nsga2`].
+/// NSGA-II's settings as a user writes them in an experiment's `[optimizer]` table (and as
+/// checkpoints keep them). `Default` gives N = 100, 100 children, mutation alone for a child with
+/// probability 0.2.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Nsga2Config {
+#[serde(default)]
+pub struct Nsga2Settings {
     /// N: population size (thesis and Deb et al.: 100).
     pub population_size: usize,
     /// Children per generation (Deb et al.: N; thesis affordance runs: N/2).
     pub offspring_size: usize,
     /// Probability of building a child by the mutation operator alone instead of crossover.
     pub mutation_probability: f64,
+}
+
+impl Default for Nsga2Settings {
+    fn default() -> Self {
+        Self {
+            population_size: 100,
+            offspring_size: 100,
+            mutation_probability: 0.2,
+        }
+    }
+}
+
+/// Parameters of [`Nsga2`]: its settings and the sense of each objective.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Nsga2Config {
+    /// The settings, written flat beside `senses`.
+    #[serde(flatten)]
+    pub settings: Nsga2Settings,
     /// Sense of each objective (its length is the number of objectives).
     pub senses: Vec<Sense>,
 }
@@ -56,9 +77,10 @@ impl Nsga2Config {
     /// N = 100, 100 children, always crossover (+ the representation's mutation).
     pub fn new(senses: Vec<Sense>) -> Self {
         Self {
-            population_size: 100,
-            offspring_size: 100,
-            mutation_probability: 0.0,
+            settings: Nsga2Settings {
+                mutation_probability: 0.0,
+                ..Nsga2Settings::default()
+            },
             senses,
         }
     }
@@ -90,11 +112,12 @@ const DUPLICATE_ATTEMPTS: usize = 100;
 impl<R: Representation> Nsga2<R> {
     /// A new run with the given run seed.
     pub fn new(config: Nsga2Config, representation: R, seed: u64) -> Result<Self, EvolutionError> {
-        ensure(config.population_size > 0 && config.offspring_size > 0, || {
-            "NSGA-II: population_size and offspring_size must be > 0".into()
-        })?;
+        ensure(
+            config.settings.population_size > 0 && config.settings.offspring_size > 0,
+            || "NSGA-II: population_size and offspring_size must be > 0".into(),
+        )?;
         ensure(!config.senses.is_empty(), || "NSGA-II: at least one objective".into())?;
-        ensure((0.0..=1.0).contains(&config.mutation_probability), || {
+        ensure((0.0..=1.0).contains(&config.settings.mutation_probability), || {
             "NSGA-II: mutation_probability must be in [0, 1]".into()
         })?;
         representation.validate()?;
@@ -161,7 +184,7 @@ impl<R: Representation> Nsga2<R> {
         let mut order = Vec::with_capacity(individuals.len());
         let mut ranks = Vec::with_capacity(individuals.len());
         for (rank, front) in non_dominated_sort(&objectives, senses).into_iter().enumerate() {
-            if order.len() >= self.config.population_size {
+            if order.len() >= self.config.settings.population_size {
                 break;
             }
             let crowding = crowding_distances(&front, &objectives, senses);
@@ -172,8 +195,8 @@ impl<R: Representation> Nsga2<R> {
                 ranks.push(rank);
             }
         }
-        order.truncate(self.config.population_size);
-        ranks.truncate(self.config.population_size);
+        order.truncate(self.config.settings.population_size);
+        ranks.truncate(self.config.settings.population_size);
         let mut slots: Vec<Option<Individual<R::Genotype>>> = individuals.into_iter().map(Some).collect();
         self.population = order
             .into_iter()
@@ -191,16 +214,16 @@ impl<R: Representation> Optimizer for Nsga2<R> {
             return pending;
         }
         let genotypes: Vec<R::Genotype> = if self.population.is_empty() {
-            random_genotypes(&self.representation, &self.state, self.config.population_size)
+            random_genotypes(&self.representation, &self.state, self.config.settings.population_size)
         } else {
-            let mut children: Vec<R::Genotype> = Vec::with_capacity(self.config.offspring_size);
-            for i in 0..self.config.offspring_size {
+            let mut children: Vec<R::Genotype> = Vec::with_capacity(self.config.settings.offspring_size);
+            for i in 0..self.config.settings.offspring_size {
                 let mut rng = self.state.rng(i, Stream::Variation);
                 let mut attempts = 0;
                 let child = loop {
                     let child = mutate_or_crossover(
                         &self.representation,
-                        self.config.mutation_probability,
+                        self.config.settings.mutation_probability,
                         &mut rng,
                         |rng| &self.population[self.tournament(rng)].genotype,
                     );
@@ -354,9 +377,11 @@ mod tests {
     fn population_is_in_crowded_order_and_mixed_senses_work() {
         // Maximise x0, minimise x1 on [0,1]^2: the front is the single point (1, 0).
         let config = Nsga2Config {
-            population_size: 20,
-            offspring_size: 10,
-            mutation_probability: 1.0,
+            settings: Nsga2Settings {
+                population_size: 20,
+                offspring_size: 10,
+                mutation_probability: 1.0,
+            },
             senses: vec![Sense::Maximize, Sense::Minimize],
         };
         let rep = RealVector::thesis(2).with_mutation_sigma(0.1);

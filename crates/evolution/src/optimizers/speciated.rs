@@ -59,27 +59,31 @@ impl<G: AsRef<[f64]>, O> FeatureProvider<G, O> for GenotypeFeatures {
     }
 }
 
-/// Parameters of the [`SpeciatedEvolver`]. `Default` gives the thesis settings.
+/// The speciated evolver's settings as a user writes them in an experiment's `[optimizer]`
+/// table (and as checkpoints keep them; checkpoints written before 2026-11-28 named `alpha`
+/// `rank_base` and `elite_min_species_size` `min_species_size_for_elitism`, still read). `Default`
+/// gives the thesis settings.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct SeConfig {
+#[serde(default)]
+pub struct SeSettings {
     /// n_pop (thesis: 100).
     pub population_size: usize,
     /// k of k-means (thesis: 10).
     pub species: usize,
     /// α: slot share of a species ∝ α^rank (thesis: 0.75; closer to 1 = less preference for
     /// fit species).
+    #[serde(rename = "alpha", alias = "rank_base")]
     pub rank_base: f64,
     /// n_elite: species at least this large keep their best (thesis: 5).
+    #[serde(rename = "elite_min_species_size", alias = "min_species_size_for_elitism")]
     pub min_species_size_for_elitism: usize,
     /// p_mut: probability of mutation instead of crossover (thesis: 0.2).
     pub mutation_probability: f64,
     /// Maximum Lloyd iterations of k-means (jgea: 200).
     pub kmeans_iterations: usize,
-    /// Whether fitness is maximised or minimised.
-    pub sense: Sense,
 }
 
-impl Default for SeConfig {
+impl Default for SeSettings {
     fn default() -> Self {
         Self {
             population_size: 100,
@@ -88,9 +92,19 @@ impl Default for SeConfig {
             min_species_size_for_elitism: 5,
             mutation_probability: 0.2,
             kmeans_iterations: 200,
-            sense: Sense::Maximize,
         }
     }
+}
+
+/// Parameters of the [`SpeciatedEvolver`]: its settings and the sense of the objective.
+/// `Default` gives the thesis settings, maximising.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct SeConfig {
+    /// The settings, written flat beside `sense`.
+    #[serde(flatten)]
+    pub settings: SeSettings,
+    /// Whether fitness is maximised or minimised.
+    pub sense: Sense,
 }
 
 /// One species of the current population.
@@ -130,12 +144,15 @@ pub struct SpeciatedEvolver<R: Representation, P> {
 impl<R: Representation, P> SpeciatedEvolver<R, P> {
     /// A new run with the given run seed.
     pub fn new(config: SeConfig, representation: R, provider: P, seed: u64) -> Result<Self, EvolutionError> {
-        ensure(config.population_size > 0, || "SE: population_size must be > 0".into())?;
-        ensure(config.species > 0, || "SE: species (k) must be > 0".into())?;
-        ensure(config.rank_base > 0.0 && config.rank_base <= 1.0, || {
-            "SE: rank_base (alpha) must be in (0, 1]".into()
+        ensure(config.settings.population_size > 0, || {
+            "SE: population_size must be > 0".into()
         })?;
-        ensure((0.0..=1.0).contains(&config.mutation_probability), || {
+        ensure(config.settings.species > 0, || "SE: species (k) must be > 0".into())?;
+        ensure(
+            config.settings.rank_base > 0.0 && config.settings.rank_base <= 1.0,
+            || "SE: rank_base (alpha) must be in (0, 1]".into(),
+        )?;
+        ensure((0.0..=1.0).contains(&config.settings.mutation_probability), || {
             "SE: mutation_probability must be in [0, 1]".into()
         })?;
         representation.validate()?;
@@ -174,8 +191,8 @@ impl<R: Representation, P> SpeciatedEvolver<R, P> {
         let sense = self.config.sense;
         let points = normalise(&self.population.iter().map(|m| m.features.clone()).collect::<Vec<_>>());
         let mut rng = self.state.rng(0, Stream::Speciation);
-        let k = self.config.species.min(points.len());
-        let (assignment, centroids) = kmeans(&points, k, self.config.kmeans_iterations, &mut rng);
+        let k = self.config.settings.species.min(points.len());
+        let (assignment, centroids) = kmeans(&points, k, self.config.settings.kmeans_iterations, &mut rng);
         self.species = centroids
             .iter()
             .enumerate()
@@ -209,12 +226,12 @@ impl<R: Representation, P> SpeciatedEvolver<R, P> {
         let mut elites = vec![global_best];
         for species in &self.species {
             let best = species.members[0];
-            if species.members.len() >= self.config.min_species_size_for_elitism && !elites.contains(&best) {
+            if species.members.len() >= self.config.settings.min_species_size_for_elitism && !elites.contains(&best) {
                 elites.push(best);
             }
         }
-        elites.truncate(self.config.population_size);
-        let remaining = self.config.population_size - elites.len();
+        elites.truncate(self.config.settings.population_size);
+        let remaining = self.config.settings.population_size - elites.len();
         // Rank species by their representative's fitness (rank 0 = best; ties by list order).
         let mut by_rank: Vec<usize> = (0..self.species.len()).collect();
         by_rank.sort_by(|&a, &b| {
@@ -225,7 +242,7 @@ impl<R: Representation, P> SpeciatedEvolver<R, P> {
         });
         let mut weights = vec![0.0; self.species.len()];
         for (rank, &s) in by_rank.iter().enumerate() {
-            weights[s] = self.config.rank_base.powi(rank as i32);
+            weights[s] = self.config.settings.rank_base.powi(rank as i32);
         }
         let total: f64 = weights.iter().sum();
         let mut slots: Vec<usize> = weights
@@ -253,7 +270,7 @@ impl<R: Representation, P> Optimizer for SpeciatedEvolver<R, P> {
         }
         let genotypes: Vec<R::Genotype> = if self.population.is_empty() {
             self.pending_elites.clear();
-            random_genotypes(&self.representation, &self.state, self.config.population_size)
+            random_genotypes(&self.representation, &self.state, self.config.settings.population_size)
         } else {
             let (elites, slots) = self.plan();
             let mut children = Vec::new();
@@ -270,7 +287,7 @@ impl<R: Representation, P> Optimizer for SpeciatedEvolver<R, P> {
                     let mut rng = self.state.rng(children.len(), Stream::Variation);
                     let child = mutate_or_crossover(
                         &self.representation,
-                        self.config.mutation_probability,
+                        self.config.settings.mutation_probability,
                         &mut rng,
                         &mut next_parent,
                     );
@@ -413,8 +430,11 @@ mod tests {
         // SE-b style: features from the outcome, not the genotype.
         let provider = |_: &Vec<f64>, outcome: &[f64; 2]| outcome.to_vec();
         let config = SeConfig {
-            population_size: 20,
-            species: 3,
+            settings: SeSettings {
+                population_size: 20,
+                species: 3,
+                ..SeSettings::default()
+            },
             ..SeConfig::default()
         };
         let mut s = SpeciatedEvolver::new(config, RealVector::thesis(4), provider, 1).unwrap();
@@ -433,5 +453,24 @@ mod tests {
             let sides: Vec<bool> = sp.members.iter().map(|&i| s.features(i)[0] > 0.0).collect();
             assert!(sides.iter().all(|&x| x == sides[0]));
         }
+    }
+
+    /// Checkpoints written before the settings were shared named α `rank_base` and n_elite
+    /// `min_species_size_for_elitism`; they still read, and new ones use the file's names.
+    #[test]
+    fn settings_read_the_old_checkpoint_names() {
+        let old = serde_json::json!({
+            "population_size": 30, "species": 4, "rank_base": 0.5,
+            "min_species_size_for_elitism": 3, "mutation_probability": 0.1,
+            "kmeans_iterations": 50, "sense": "Minimize"
+        });
+        let config: SeConfig = serde_json::from_value(old).unwrap();
+        assert_eq!(config.settings.rank_base, 0.5);
+        assert_eq!(config.settings.min_species_size_for_elitism, 3);
+        assert_eq!(config.sense, Sense::Minimize);
+        let written = serde_json::to_value(&config).unwrap();
+        assert_eq!(written["alpha"], 0.5);
+        assert_eq!(written["elite_min_species_size"], 3);
+        assert!(written.get("rank_base").is_none());
     }
 }

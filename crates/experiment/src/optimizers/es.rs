@@ -1,22 +1,19 @@
 //! The canonical evolution strategy of the thesis (§3.3.5.2).
 
 use super::check::{positive, range};
-use super::{decode, single, AnyOptimizer, OptimizerConfig, OptimizerEntry, OptimizerKind};
+use super::{decode_flat, single, AnyOptimizer, OptimizerConfig, OptimizerEntry, OptimizerKind};
 use serde::{Deserialize, Serialize};
-use vsrlab_evolution::{CanonicalEs, CanonicalEsConfig, EvolutionError, Sense};
+use vsrlab_evolution::{CanonicalEs, CanonicalEsConfig, EsSettings, EvolutionError, Sense};
 use vsrlab_field::FieldError;
 
-/// Parameters of the canonical ES.
+/// Parameters of the canonical ES: its settings ([`EsSettings`], declared once, in the
+/// optimizer's crate) and the initial mean's range, written flat in the table.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+#[serde(default)]
 pub struct EsParams {
-    /// λ, samples per generation (thesis text and code 40; Table 3.2 says 30).
-    pub population_size: usize,
-    /// μ, best samples moving the mean (default ⌊λ/4⌋).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub parents: Option<usize>,
-    /// Fixed σ (thesis 0.35).
-    pub sigma: f64,
+    /// λ, μ and σ (thesis 40, ⌊λ/4⌋, 0.35).
+    #[serde(flatten)]
+    pub es: EsSettings,
     /// Initial mean uniform in [min, max) (thesis [−1, 1]).
     pub init_range: [f64; 2],
 }
@@ -24,9 +21,7 @@ pub struct EsParams {
 impl Default for EsParams {
     fn default() -> Self {
         Self {
-            population_size: 40,
-            parents: None,
-            sigma: 0.35,
+            es: EsSettings::default(),
             init_range: [-1.0, 1.0],
         }
     }
@@ -38,35 +33,34 @@ impl OptimizerKind for EsParams {
     }
 
     fn validate(&self) -> Result<(), FieldError> {
-        positive("population_size", self.population_size)?;
-        let parents = self.parents.unwrap_or(1);
-        if parents == 0 || parents > self.population_size {
+        positive("population_size", self.es.population_size)?;
+        let parents = self.es.parents.unwrap_or(1);
+        if parents == 0 || parents > self.es.population_size {
             return Err(FieldError::new(
                 "parents",
                 format!("must be in 1..=population_size, got {parents}"),
             ));
         }
-        if !(self.sigma.is_finite() && self.sigma > 0.0) {
-            return Err(FieldError::new("sigma", format!("must be > 0, got {}", self.sigma)));
+        if !(self.es.sigma.is_finite() && self.es.sigma > 0.0) {
+            return Err(FieldError::new("sigma", format!("must be > 0, got {}", self.es.sigma)));
         }
         range("init_range", self.init_range)
     }
 
     /// μ defaults to ⌊λ/4⌋.
     fn resolved(&self, _cells: usize, _genes: Option<usize>) -> Option<OptimizerConfig> {
-        let parents = Some(self.parents.unwrap_or((self.population_size / 4).max(1)));
-        Some(OptimizerConfig::Es(EsParams {
-            parents,
-            ..self.clone()
-        }))
+        let mut resolved = self.clone();
+        resolved.es.parents = Some(self.es.parents());
+        Some(OptimizerConfig::Es(resolved))
     }
 
     fn build(&self, dimension: usize, senses: &[Sense], seed: u64) -> Result<AnyOptimizer, EvolutionError> {
         Ok(AnyOptimizer::Es(CanonicalEs::new(
             CanonicalEsConfig {
-                population_size: self.population_size,
-                parents: self.parents.unwrap_or((self.population_size / 4).max(1)),
-                sigma: self.sigma,
+                settings: EsSettings {
+                    parents: Some(self.es.parents()),
+                    ..self.es.clone()
+                },
                 init_min: self.init_range[0],
                 init_max: self.init_range[1],
                 sense: single(senses),
@@ -77,16 +71,16 @@ impl OptimizerKind for EsParams {
     }
 
     fn held_genotypes(&self, _dimension: usize, _budget: Option<u64>) -> u128 {
-        3 * self.population_size as u128 + 1
+        3 * self.es.population_size as u128 + 1
     }
 
     fn batch_size(&self, _dimension: usize) -> usize {
-        self.population_size
+        self.es.population_size
     }
 }
 
 /// The registry entry of `kind = "es"`.
 pub(crate) const ENTRY: OptimizerEntry = OptimizerEntry {
     name: "es",
-    decode: |v| decode::<EsParams>(v).map(OptimizerConfig::Es),
+    decode: |v| decode_flat::<EsParams>(v).map(OptimizerConfig::Es),
 };

@@ -5,53 +5,28 @@ use super::{
     decode_flat, single, AnyOptimizer, OperatorPlan, Operators, OptimizerConfig, OptimizerEntry, OptimizerKind,
 };
 use serde::{Deserialize, Serialize};
-use vsrlab_evolution::{EvolutionError, GaConfig, GeneticAlgorithm, Sense};
+use vsrlab_evolution::{EvolutionError, GaConfig, GaSettings, GeneticAlgorithm, Sense};
 use vsrlab_field::FieldError;
 
-/// Parameters of the GA.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// Parameters of the GA: its settings ([`GaSettings`], declared once, in the optimizer's crate)
+/// and the real-vector operators', both written flat in the `[optimizer]` table.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(default)]
 pub struct GaParams {
-    /// μ (thesis 100).
-    pub population_size: usize,
-    /// λ (thesis 100).
-    pub offspring_size: usize,
-    /// Tournament size (thesis 5).
-    pub tournament_size: usize,
-    /// p_mut: mutation instead of crossover (thesis 0.2).
-    pub mutation_probability: f64,
-    /// Re-evaluate survivors every generation (noisy tasks).
-    pub reevaluate_survivors: bool,
+    /// μ, λ, tournament size, p_mut and re-evaluation (thesis 100, 100, 5, 0.2, off).
+    #[serde(flatten)]
+    pub ga: GaSettings,
     /// The operators' parameters (`init_range`, `mutation_sigma`, `crossover_range`,
     /// `crossover_sigma`), written flat in the table.
     #[serde(flatten)]
     pub operators: Operators,
 }
 
-impl Default for GaParams {
-    /// The thesis settings, as the optimizer's own defaults ([`GaConfig::default`]).
-    fn default() -> Self {
-        let ga = GaConfig::default();
-        Self {
-            population_size: ga.population_size,
-            offspring_size: ga.offspring_size,
-            tournament_size: ga.tournament_size,
-            mutation_probability: ga.mutation_probability,
-            reevaluate_survivors: ga.reevaluate_survivors,
-            operators: Operators::default(),
-        }
-    }
-}
-
 impl GaParams {
     /// The GA's settings for an objective of this sense.
     fn config(&self, senses: &[Sense]) -> GaConfig {
         GaConfig {
-            population_size: self.population_size,
-            offspring_size: self.offspring_size,
-            tournament_size: self.tournament_size,
-            mutation_probability: self.mutation_probability,
-            reevaluate_survivors: self.reevaluate_survivors,
+            settings: self.ga.clone(),
             sense: single(senses),
         }
     }
@@ -63,10 +38,11 @@ impl OptimizerKind for GaParams {
     }
 
     fn validate(&self) -> Result<(), FieldError> {
-        positive("population_size", self.population_size)?;
-        positive("offspring_size", self.offspring_size)?;
-        positive("tournament_size", self.tournament_size)?;
-        probability("mutation_probability", self.mutation_probability)?;
+        let ga = &self.ga;
+        positive("population_size", ga.population_size)?;
+        positive("offspring_size", ga.offspring_size)?;
+        positive("tournament_size", ga.tournament_size)?;
+        probability("mutation_probability", ga.mutation_probability)?;
         self.operators.validate()
     }
 
@@ -83,14 +59,14 @@ impl OptimizerKind for GaParams {
     }
 
     fn held_genotypes(&self, _dimension: usize, _budget: Option<u64>) -> u128 {
-        self.population_size as u128 + 2 * self.offspring_size as u128
+        self.ga.population_size as u128 + 2 * self.ga.offspring_size as u128
     }
 
     fn batch_size(&self, _dimension: usize) -> usize {
         // re-evaluated survivors are evaluated in the same batch as the children
-        self.offspring_size
-            + if self.reevaluate_survivors {
-                self.population_size
+        self.ga.offspring_size
+            + if self.ga.reevaluate_survivors {
+                self.ga.population_size
             } else {
                 0
             }

@@ -1,9 +1,11 @@
 //! MAP-Elites over the thesis' morphology descriptors (ME, §3.3.5.2).
 
 use super::check::{positive, range, sigma};
-use super::{decode, real_vector, single, AnyOptimizer, OperatorPlan, OptimizerConfig, OptimizerEntry, OptimizerKind};
+use super::{
+    decode_flat, real_vector, single, AnyOptimizer, OperatorPlan, OptimizerConfig, OptimizerEntry, OptimizerKind,
+};
 use serde::{Deserialize, Serialize};
-use vsrlab_evolution::{EvolutionError, GridAxis, MapElites, MapElitesConfig, Sense};
+use vsrlab_evolution::{EvolutionError, GridAxis, MapElites, MapElitesConfig, MapElitesSettings, Sense};
 use vsrlab_field::FieldError;
 
 /// A morphology descriptor usable as a MAP-Elites axis.
@@ -37,18 +39,20 @@ fn ten() -> usize {
     10
 }
 
-/// Parameters of MAP-Elites.
+/// Parameters of MAP-Elites: the descriptor axes, its batch sizes ([`MapElitesSettings`],
+/// declared once, in the optimizer's crate) and the mutation's parameters, written flat in the
+/// table.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+#[serde(default)]
 pub struct MapElitesParams {
     /// The grid (default: the thesis' d_num over [0, W·H], d_elong and d_compact over [0, 1],
     /// 10 bins each).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub axes: Vec<Axis>,
-    /// Random genotypes of the first generation (thesis n_parents = 20).
-    pub initial_population: usize,
-    /// Children per generation (thesis n_parents = 20).
-    pub batch_size: usize,
+    /// Random genotypes of the first generation and children per generation (thesis
+    /// n_parents = 20 each).
+    #[serde(flatten)]
+    pub map_elites: MapElitesSettings,
     /// Initial genes uniform in [min, max).
     pub init_range: [f64; 2],
     /// σ of the Gaussian mutation (thesis 0.35).
@@ -59,8 +63,7 @@ impl Default for MapElitesParams {
     fn default() -> Self {
         Self {
             axes: Vec::new(),
-            initial_population: 20,
-            batch_size: 20,
+            map_elites: MapElitesSettings::default(),
             init_range: [-1.0, 1.0],
             mutation_sigma: 0.35,
         }
@@ -80,8 +83,7 @@ impl MapElitesParams {
                     bins: a.bins,
                 })
                 .collect(),
-            initial_population: self.initial_population,
-            batch_size: self.batch_size,
+            settings: self.map_elites.clone(),
             sense: single(senses),
         }
     }
@@ -93,8 +95,8 @@ impl OptimizerKind for MapElitesParams {
     }
 
     fn validate(&self) -> Result<(), FieldError> {
-        positive("initial_population", self.initial_population)?;
-        positive("batch_size", self.batch_size)?;
+        positive("initial_population", self.map_elites.initial_population)?;
+        positive("batch_size", self.map_elites.batch_size)?;
         range("init_range", self.init_range)?;
         sigma("mutation_sigma", self.mutation_sigma)?;
         for (i, axis) in self.axes.iter().enumerate() {
@@ -156,16 +158,16 @@ impl OptimizerKind for MapElitesParams {
             .iter()
             .fold(1u128, |acc, a| acc.saturating_mul(a.bins as u128));
         let archive = budget.map_or(cells, |b| cells.min(b as u128));
-        archive + 2 * self.initial_population.max(self.batch_size) as u128
+        archive + 2 * self.map_elites.initial_population.max(self.map_elites.batch_size) as u128
     }
 
     fn batch_size(&self, _dimension: usize) -> usize {
-        self.batch_size
+        self.map_elites.batch_size
     }
 }
 
 /// The registry entry of `kind = "map-elites"`.
 pub(crate) const ENTRY: OptimizerEntry = OptimizerEntry {
     name: "map-elites",
-    decode: |v| decode::<MapElitesParams>(v).map(OptimizerConfig::MapElites),
+    decode: |v| decode_flat::<MapElitesParams>(v).map(OptimizerConfig::MapElites),
 };

@@ -1,7 +1,11 @@
 //! The optimizers an experiment file can name, as a registry.
 //!
-//! Each kind is one file here: its `[optimizer]` parameters (thesis defaults) and an
-//! [`OptimizerKind`] implementation that validates them, fills defaults that depend on the
+//! Each kind is one file here: its `[optimizer]` parameters and an [`OptimizerKind`]
+//! implementation. The parameters are the optimizer's own settings struct from
+//! `vsrlab-evolution` (`GaSettings`, `CmaSettings`, …, with the thesis defaults: declared once,
+//! read from experiment files and kept in checkpoints), flattened beside what only experiment
+//! files have (the operators' parameters, initial ranges, MAP-Elites descriptors). The
+//! [`OptimizerKind`] implementation validates them, fills defaults that depend on the
 //! representation, and builds the optimizer. [`OptimizerConfig`] is the registration list, matched
 //! only in [`OptimizerConfig::kind`] and [`OPTIMIZERS`].
 //!
@@ -248,26 +252,53 @@ impl Operators {
     }
 }
 
-/// [`decode`] for parameter structs with flattened [`Operators`], which serde cannot check for
-/// unknown fields: a field of the table that the decoded struct does not write back is unknown.
+/// [`decode`] for parameter structs with flattened parts (an optimizer's settings, the
+/// [`Operators`]), which serde cannot check for unknown fields: serde ignores a key no part
+/// reads. A key the decoded struct writes back is known; any other key is probed: the table is
+/// decoded again with that key set to a value no parameter accepts (a table with an unlikely key),
+/// and a key whose probe still decodes was ignored, so it is unknown. The probe also recognises
+/// known fields that are not written back at their default (`eliminate_duplicates = false`).
 pub(crate) fn decode_flat<T: DeserializeOwned + Serialize>(value: toml::Value) -> Result<T, FieldError> {
-    let given: Vec<String> = value
-        .as_table()
-        .map(|t| t.keys().cloned().collect())
-        .unwrap_or_default();
-    let decoded: T = decode(value)?;
+    let decoded: T = decode(value.clone()).map_err(|e| name_flattened_field::<T>(&value, e))?;
     let known = serde_json::to_value(&decoded).map_err(|e| FieldError::message(e.to_string()))?;
-    let known = known
+    let known: Vec<String> = known
         .as_object()
-        .map(|o| o.keys().cloned().collect::<Vec<_>>())
+        .map(|o| o.keys().cloned().collect())
         .unwrap_or_default();
-    match given.into_iter().find(|k| !known.contains(k)) {
+    let Some(table) = value.as_table() else {
+        return Ok(decoded);
+    };
+    let ignored = |key: &str| {
+        let mut probe = table.clone();
+        let mut odd = toml::Table::new();
+        odd.insert("__vsrlab_probe__".to_string(), toml::Value::Boolean(true));
+        probe.insert(key.to_string(), toml::Value::Table(odd));
+        decode::<T>(toml::Value::Table(probe)).is_ok()
+    };
+    match table.keys().find(|k| !known.contains(k) && ignored(k)) {
         None => Ok(decoded),
         Some(unknown) => {
             let expected: Vec<String> = known.iter().map(|k| format!("`{k}`")).collect();
             let message = format!("unknown field `{unknown}`, expected one of {}", expected.join(", "));
-            Err(FieldError::new(unknown, message))
+            Err(FieldError::new(unknown.clone(), message))
         }
+    }
+}
+
+/// A wrong value inside a flattened part reaches serde without its field's name (the error
+/// names the table as a whole); the field is the one key whose removal lets the table decode.
+fn name_flattened_field<T: DeserializeOwned>(value: &toml::Value, error: FieldError) -> FieldError {
+    let Some(table) = value.as_table().filter(|_| error.path.is_empty()) else {
+        return error;
+    };
+    let culprit = table.keys().find(|key| {
+        let mut rest = table.clone();
+        rest.remove(key.as_str());
+        decode::<T>(toml::Value::Table(rest)).is_ok()
+    });
+    match culprit {
+        Some(key) => FieldError::new(key.clone(), error.message),
+        None => error,
     }
 }
 

@@ -8,19 +8,17 @@
 use super::check::{positive, probability};
 use super::{decode_flat, AnyOptimizer, OperatorPlan, Operators, OptimizerConfig, OptimizerEntry, OptimizerKind};
 use serde::{Deserialize, Serialize};
-use vsrlab_evolution::{EvolutionError, Nsga2, Nsga2Config, Sense};
+use vsrlab_evolution::{EvolutionError, Nsga2, Nsga2Config, Nsga2Settings, Sense};
 use vsrlab_field::FieldError;
 
-/// Parameters of NSGA-II.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// Parameters of NSGA-II: its settings ([`Nsga2Settings`], declared once, in the optimizer's
+/// crate), duplicate elimination and the real-vector operators', written flat in the table.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(default)]
 pub struct Nsga2Params {
-    /// N, the population size (Deb et al. and thesis 100).
-    pub population_size: usize,
-    /// Children per generation (Deb et al.: N; thesis affordance runs: N/2).
-    pub offspring_size: usize,
-    /// Probability of a child by mutation alone instead of crossover.
-    pub mutation_probability: f64,
+    /// N, children per generation and p_mut (defaults 100, 100, 0.2).
+    #[serde(flatten)]
+    pub nsga2: Nsga2Settings,
     /// Redraw children whose genes equal a population member's or an earlier child's (pymoo's
     /// `eliminate_duplicates`; default false, as Deb et al.).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
@@ -31,25 +29,11 @@ pub struct Nsga2Params {
     pub operators: Operators,
 }
 
-impl Default for Nsga2Params {
-    fn default() -> Self {
-        Self {
-            population_size: 100,
-            offspring_size: 100,
-            mutation_probability: 0.2,
-            eliminate_duplicates: false,
-            operators: Operators::default(),
-        }
-    }
-}
-
 impl Nsga2Params {
     /// NSGA-II's settings for objectives of these senses.
     fn config(&self, senses: &[Sense]) -> Nsga2Config {
         Nsga2Config {
-            population_size: self.population_size,
-            offspring_size: self.offspring_size,
-            mutation_probability: self.mutation_probability,
+            settings: self.nsga2.clone(),
             senses: senses.to_vec(),
         }
     }
@@ -61,9 +45,9 @@ impl OptimizerKind for Nsga2Params {
     }
 
     fn validate(&self) -> Result<(), FieldError> {
-        positive("population_size", self.population_size)?;
-        positive("offspring_size", self.offspring_size)?;
-        probability("mutation_probability", self.mutation_probability)?;
+        positive("population_size", self.nsga2.population_size)?;
+        positive("offspring_size", self.nsga2.offspring_size)?;
+        probability("mutation_probability", self.nsga2.mutation_probability)?;
         self.operators.validate()
     }
 
@@ -83,11 +67,11 @@ impl OptimizerKind for Nsga2Params {
     }
 
     fn held_genotypes(&self, _dimension: usize, _budget: Option<u64>) -> u128 {
-        self.population_size as u128 + 2 * self.offspring_size as u128
+        self.nsga2.population_size as u128 + 2 * self.nsga2.offspring_size as u128
     }
 
     fn batch_size(&self, _dimension: usize) -> usize {
-        self.offspring_size
+        self.nsga2.offspring_size
     }
 }
 

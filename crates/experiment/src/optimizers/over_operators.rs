@@ -24,8 +24,8 @@ impl OperatorPlan {
     /// over): a genotype kind without crossover needs 1.
     pub fn mutation_probability(&self) -> f64 {
         match self {
-            OperatorPlan::Ga(c) => c.mutation_probability,
-            OperatorPlan::Nsga2(c, _) => c.mutation_probability,
+            OperatorPlan::Ga(c) => c.settings.mutation_probability,
+            OperatorPlan::Nsga2(c, _) => c.settings.mutation_probability,
             OperatorPlan::MapElites(_) => 1.0,
         }
     }

@@ -6,7 +6,7 @@ use super::{
     SpeciationFeatures,
 };
 use serde::{Deserialize, Serialize};
-use vsrlab_evolution::{EvolutionError, SeConfig, Sense, SpeciatedEvolver};
+use vsrlab_evolution::{EvolutionError, SeConfig, SeSettings, Sense, SpeciatedEvolver};
 use vsrlab_field::FieldError;
 
 /// What the speciated evolver clusters on.
@@ -22,43 +22,21 @@ pub enum SeFeatures {
     Behaviour,
 }
 
-/// Parameters of the speciated evolver.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// Parameters of the speciated evolver: the speciation features, its settings ([`SeSettings`],
+/// declared once, in the optimizer's crate) and the real-vector operators', written flat in the
+/// table.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(default)]
 pub struct SeParams {
     /// Speciation features: `genotype` (SE-g), `shape` (SE-s), `behaviour` (SE-b).
     pub features: SeFeatures,
-    /// n_pop (thesis 100).
-    pub population_size: usize,
-    /// k of k-means (thesis 10).
-    pub species: usize,
-    /// α, species preference (thesis 0.75).
-    pub alpha: f64,
-    /// n_elite, minimum species size whose best survives (thesis 5).
-    pub elite_min_species_size: usize,
-    /// p_mut (thesis 0.2).
-    pub mutation_probability: f64,
-    /// Maximum Lloyd iterations of k-means.
-    pub kmeans_iterations: usize,
+    /// n_pop, k, α, n_elite, p_mut and k-means iterations (thesis 100, 10, 0.75, 5, 0.2, 200).
+    #[serde(flatten)]
+    pub se: SeSettings,
     /// The operators' parameters (`init_range`, `mutation_sigma`, `crossover_range`,
     /// `crossover_sigma`), written flat in the table.
     #[serde(flatten)]
     pub operators: Operators,
-}
-
-impl Default for SeParams {
-    fn default() -> Self {
-        Self {
-            features: SeFeatures::Genotype,
-            population_size: 100,
-            species: 10,
-            alpha: 0.75,
-            elite_min_species_size: 5,
-            mutation_probability: 0.2,
-            kmeans_iterations: 200,
-            operators: Operators::default(),
-        }
-    }
 }
 
 impl OptimizerKind for SeParams {
@@ -67,24 +45,25 @@ impl OptimizerKind for SeParams {
     }
 
     fn validate(&self) -> Result<(), FieldError> {
-        positive("population_size", self.population_size)?;
-        positive("species", self.species)?;
-        if self.species > self.population_size {
+        let se = &self.se;
+        positive("population_size", se.population_size)?;
+        positive("species", se.species)?;
+        if se.species > se.population_size {
             return Err(FieldError::new(
                 "species",
                 format!(
                     "{} species cannot be made of a population of {}: at most population_size",
-                    self.species, self.population_size
+                    se.species, se.population_size
                 ),
             ));
         }
-        if !(self.alpha > 0.0 && self.alpha <= 1.0) {
+        if !(se.rank_base > 0.0 && se.rank_base <= 1.0) {
             return Err(FieldError::new(
                 "alpha",
-                format!("must be in (0, 1], got {}", self.alpha),
+                format!("must be in (0, 1], got {}", se.rank_base),
             ));
         }
-        probability("mutation_probability", self.mutation_probability)?;
+        probability("mutation_probability", se.mutation_probability)?;
         self.operators.validate()
     }
 
@@ -99,12 +78,7 @@ impl OptimizerKind for SeParams {
     fn build(&self, dimension: usize, senses: &[Sense], seed: u64) -> Result<AnyOptimizer, EvolutionError> {
         Ok(AnyOptimizer::Se(SpeciatedEvolver::new(
             SeConfig {
-                population_size: self.population_size,
-                species: self.species,
-                rank_base: self.alpha,
-                min_species_size_for_elitism: self.elite_min_species_size,
-                mutation_probability: self.mutation_probability,
-                kmeans_iterations: self.kmeans_iterations,
+                settings: self.se.clone(),
                 sense: single(senses),
             },
             self.operators.real_vector(dimension),
@@ -117,11 +91,11 @@ impl OptimizerKind for SeParams {
     }
 
     fn held_genotypes(&self, _dimension: usize, _budget: Option<u64>) -> u128 {
-        3 * self.population_size as u128
+        3 * self.se.population_size as u128
     }
 
     fn batch_size(&self, _dimension: usize) -> usize {
-        self.population_size
+        self.se.population_size
     }
 }
 

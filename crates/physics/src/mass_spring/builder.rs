@@ -184,6 +184,14 @@ impl MassSpringBuilder {
         SpringId(self.springs.len() as u32 - 1)
     }
 
+    /// Changes the stiffness of a spring already added (EvoGym gives a side shared by two cells
+    /// the stiffness of the cell built last). An unknown spring is left alone.
+    pub fn set_stiffness(&mut self, spring: SpringId, stiffness: f64) {
+        if let Some(s) = self.springs.get_mut(spring.index()) {
+            s.stiffness = stiffness;
+        }
+    }
+
     /// Adds a tight limit: after the loose pass, `spring`'s length is put back into
     /// `rest × [1 - band, 1 + band]`, limits one after another in the order added (EvoGym: band
     /// 0.03 on the four sides of each rigid cell, a side shared by two rigid cells twice).

@@ -192,8 +192,9 @@ impl MassSpringBuilder {
         }
     }
 
-    /// Adds a tight limit: after the loose pass, `spring`'s length is put back into
-    /// `rest × [1 - band, 1 + band]`, limits one after another in the order added (EvoGym: band
+    /// Adds a tight limit: after the loose pass, `spring`'s length is pulled back toward
+    /// `rest × [1 - band, 1 + band]` (half the excess removed), limits one after another in the
+    /// order added (EvoGym: band
     /// 0.03 on the four sides of each rigid cell, a side shared by two rigid cells twice).
     pub fn limit_length(&mut self, spring: SpringId, band: f64) {
         self.limits.push((spring, band));

@@ -1,6 +1,6 @@
 //! Length projection after each substep: springs are pushed back toward a band around their
-//! initial length, first all at once with a partial correction (loose bands), then one after
-//! another with a full correction (tight limits).
+//! initial length, first all at once (loose bands), then one after another (tight limits), each
+//! removing a fraction of the excess.
 
 use super::points::Points;
 use super::springs::Springs;
@@ -63,9 +63,9 @@ impl Projection {
         }
     }
 
-    /// Tight pass: each limit in turn moves each free end of its spring by half the excess over
-    /// its band, using the positions the previous limits left.
-    pub fn project_limits(&self, springs: &Springs, points: &mut Points) {
+    /// Tight pass: each limit in turn moves each free end of its spring by `correction / 2` of
+    /// the excess over its band, using the positions the previous limits left.
+    pub fn project_limits(&self, springs: &Springs, points: &mut Points, correction: f64) {
         for (&s, &band) in self.limit_spring.iter().zip(&self.limit_band) {
             let s = s as usize;
             let (a, b) = (springs.a[s] as usize, springs.b[s] as usize);
@@ -75,7 +75,7 @@ impl Projection {
             if e == 0.0 || len == 0.0 {
                 continue;
             }
-            let k = e / (2.0 * len);
+            let k = e / (2.0 * len) * correction;
             if !points.fixed[a] {
                 points.x[a] -= dx * k;
                 points.y[a] -= dy * k;

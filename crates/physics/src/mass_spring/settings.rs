@@ -22,6 +22,8 @@ pub struct MassSpringSettings {
     pub target_range: (f64, f64),
     /// Fraction of a spring's excess over its loose band removed per substep (EvoGym: 0.8).
     pub band_correction: f64,
+    /// Fraction of a spring's excess over a tight limit removed by that limit (EvoGym: 0.5).
+    pub limit_correction: f64,
     /// The half-plane below `y = height`, if any.
     pub ground: Option<GroundPlane>,
     /// Point-against-boundary contacts between quads.
@@ -59,7 +61,7 @@ pub struct ContactSettings {
 
 impl MassSpringSettings {
     /// EvoGym's constants: dt 1e-4, 30 substeps, gravity 110, drag 0.1, tracking 0.006, targets in
-    /// [0.6, 1.6], 80 % band correction, ground plane at y = 0.
+    /// [0.6, 1.6], 80 % band and 50 % limit correction, ground plane at y = 0.
     pub fn evogym() -> Self {
         Self {
             dt: 1e-4,
@@ -69,6 +71,7 @@ impl MassSpringSettings {
             tracking_rate: 0.006,
             target_range: (0.6, 1.6),
             band_correction: 0.8,
+            limit_correction: 0.5,
             ground: Some(GroundPlane::evogym()),
             contact: ContactSettings::evogym(),
         }

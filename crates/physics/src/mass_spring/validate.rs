@@ -35,6 +35,7 @@ pub(crate) fn settings(s: &MassSpringSettings) -> Result<(), MassSpringError> {
     non_negative("settings.drag", s.drag)?;
     positive("settings.tracking_rate", s.tracking_rate)?;
     non_negative("settings.band_correction", s.band_correction)?;
+    non_negative("settings.limit_correction", s.limit_correction)?;
     let (lo, hi) = s.target_range;
     if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
         return Err(invalid(format!(

@@ -86,7 +86,8 @@ impl MassSpringWorld {
         self.rk4.step(&mut self.points, &self.springs, &self.settings);
         self.projection
             .project_bands(&self.springs, &mut self.points, self.settings.band_correction);
-        self.projection.project_limits(&self.springs, &mut self.points);
+        self.projection
+            .project_limits(&self.springs, &mut self.points, self.settings.limit_correction);
         if let Some(point) = self.points.first_non_finite() {
             self.points.restore();
             return Err(MassSpringError::NonFinite { substep: n, point });

@@ -14,12 +14,16 @@
 //! way gives bit-identical states (no hashing, no threads, fixed iteration order); a state that
 //! becomes non-finite is reported as [`PhysicsError::NonFinite`] instead of propagating NaNs.
 //!
+//! Beside it, [`mass_spring`] is a separate point-mass and spring engine that reproduces EvoGym's
+//! soft-voxel physics (RK4, tracked rest lengths, penalty contacts) without knowing about voxels.
+//!
 //! Layout follows the rapier/parry seam: [`geometry`] answers "where do shapes touch, where does a
 //! ray hit"; [`dynamics`] answers "how do bodies move".
 #![warn(missing_docs)]
 
 pub mod dynamics;
 pub mod geometry;
+pub mod mass_spring;
 mod math;
 
 pub use dynamics::{

@@ -1,0 +1,102 @@
+//! Springs: Hooke forces along the line between two points, with rest lengths that track a goal.
+
+/// Spring data, one entry per spring.
+#[derive(Debug, Clone)]
+pub(crate) struct Springs {
+    pub a: Vec<u32>,
+    pub b: Vec<u32>,
+    pub stiffness: Vec<f64>,
+    /// Rest length used by the force in the current substep.
+    pub rest: Vec<f64>,
+    /// Rest length given at build time: the reference of goals and bands.
+    pub initial: Vec<f64>,
+    /// Length the rest length tracks (initial length × actuation).
+    pub goal: Vec<f64>,
+    /// Loose band: lengths are pushed back into `initial × [1 - band, 1 + band]`.
+    pub band: Vec<f64>,
+    /// Springs with at least one moving end, ascending; the others never matter.
+    pub active: Vec<u32>,
+}
+
+impl Springs {
+    /// Sets every active spring's rest length to its current length plus `rate` × (goal − current
+    /// length), EvoGym's rule before each substep.
+    pub fn track_goals(&mut self, x: &[f64], y: &[f64], rate: f64) {
+        for &s in &self.active {
+            let s = s as usize;
+            let len = length(x, y, self.a[s] as usize, self.b[s] as usize);
+            self.rest[s] = len + (self.goal[s] - len) * rate;
+        }
+    }
+
+    /// Adds every active spring's force to `fx`, `fy` for the positions `x`, `y`. A spring of zero
+    /// length has no direction and pushes nothing.
+    pub fn add_forces(&self, x: &[f64], y: &[f64], fx: &mut [f64], fy: &mut [f64]) {
+        for &s in &self.active {
+            let s = s as usize;
+            let (a, b) = (self.a[s] as usize, self.b[s] as usize);
+            let (dx, dy) = (x[a] - x[b], y[a] - y[b]);
+            let len = dx.hypot(dy);
+            if len == 0.0 {
+                continue;
+            }
+            let k = (len - self.rest[s]) * self.stiffness[s] / len;
+            fx[a] -= dx * k;
+            fy[a] -= dy * k;
+            fx[b] += dx * k;
+            fy[b] += dy * k;
+        }
+    }
+}
+
+/// Distance between points `a` and `b`.
+pub(crate) fn length(x: &[f64], y: &[f64], a: usize, b: usize) -> f64 {
+    (x[a] - x[b]).hypot(y[a] - y[b])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn one(rest: f64, goal: f64) -> Springs {
+        Springs {
+            a: vec![0],
+            b: vec![1],
+            stiffness: vec![10.0],
+            rest: vec![rest],
+            initial: vec![rest],
+            goal: vec![goal],
+            band: vec![0.25],
+            active: vec![0],
+        }
+    }
+
+    #[test]
+    fn a_stretched_spring_pulls_its_ends_together_with_k_times_stretch() {
+        let s = one(1.0, 1.0);
+        let (x, y) = ([0.0, 0.6], [0.0, 0.8]); // length 1 → stretch 0 → no force
+        let (mut fx, mut fy) = ([0.0; 2], [0.0; 2]);
+        s.add_forces(&x, &y, &mut fx, &mut fy);
+        assert!(fx.iter().chain(&fy).all(|f| f.abs() < 1e-12));
+        let (x, y) = ([0.0, 1.2], [0.0, 1.6]); // length 2 → force 10 toward each other
+        s.add_forces(&x, &y, &mut fx, &mut fy);
+        assert!((fx[0] - 6.0).abs() < 1e-12 && (fy[0] - 8.0).abs() < 1e-12);
+        assert!((fx[1] + 6.0).abs() < 1e-12 && (fy[1] + 8.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn tracking_moves_the_rest_length_a_fraction_of_the_way_from_the_current_length() {
+        let mut s = one(1.0, 1.5);
+        // Current length 2 (not the old rest length 1): 2 + 0.1 * (1.5 - 2) = 1.95.
+        s.track_goals(&[0.0, 2.0], &[0.0, 0.0], 0.1);
+        assert!((s.rest[0] - 1.95).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_zero_length_spring_gives_no_force_instead_of_nan() {
+        let s = one(1.0, 1.0);
+        let (mut fx, mut fy) = ([0.0; 2], [0.0; 2]);
+        s.add_forces(&[0.5, 0.5], &[0.5, 0.5], &mut fx, &mut fy);
+        assert_eq!((fx, fy), ([0.0; 2], [0.0; 2]));
+    }
+}

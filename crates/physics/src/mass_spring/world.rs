@@ -1,0 +1,210 @@
+//! The world and its step: a pipeline of named stages per substep.
+
+use super::actuators::Actuators;
+use super::bodies::Bodies;
+use super::contact::compute_contact_forces;
+use super::handles::{BodyId, PointId, SpringId};
+use super::integrator::Rk4;
+use super::overlap::{check_self_overlap, overlapping_pairs};
+use super::points::Points;
+use super::projection::Projection;
+use super::springs::{length, Springs};
+use super::{MassSpringError, MassSpringSettings};
+
+/// What a successful [`MassSpringWorld::step`] did.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct StepReport {
+    /// Substeps run.
+    pub substeps: u32,
+    /// Point-in-quad contacts that pushed, summed over the substeps.
+    pub contacts: usize,
+}
+
+/// A built mass-spring world. Positions and velocities are readable as slices indexed by
+/// [`PointId::index`].
+#[derive(Debug, Clone)]
+pub struct MassSpringWorld {
+    settings: MassSpringSettings,
+    points: Points,
+    springs: Springs,
+    actuators: Actuators,
+    bodies: Bodies,
+    projection: Projection,
+    rk4: Rk4,
+    substeps_done: u64,
+}
+
+impl MassSpringWorld {
+    pub(crate) fn assemble(
+        settings: MassSpringSettings,
+        points: Points,
+        springs: Springs,
+        actuators: Actuators,
+        bodies: Bodies,
+        projection: Projection,
+        rk4: Rk4,
+    ) -> Self {
+        Self {
+            settings,
+            points,
+            springs,
+            actuators,
+            bodies,
+            projection,
+            rk4,
+            substeps_done: 0,
+        }
+    }
+
+    /// Runs `settings.substeps` substeps with `targets` (one per actuator, clipped into
+    /// `settings.target_range`, as fractions of the driven springs' initial rest lengths).
+    ///
+    /// Each substep: contact forces from the current state; rest lengths track their goals; one
+    /// RK4 step; loose bands then tight limits; non-finite check; displacement velocities and
+    /// boxes; self-overlap check. On an error the remaining substeps are skipped. Allocates
+    /// nothing.
+    pub fn step(&mut self, targets: &[f64]) -> Result<StepReport, MassSpringError> {
+        self.actuators.check(targets)?;
+        self.actuators
+            .set_goals(targets, self.settings.target_range, &mut self.springs);
+        let mut report = StepReport::default();
+        for _ in 0..self.settings.substeps {
+            report.contacts += self.substep()?;
+            report.substeps += 1;
+        }
+        Ok(report)
+    }
+
+    /// One substep; returns the number of contacts.
+    fn substep(&mut self) -> Result<usize, MassSpringError> {
+        let n = self.substeps_done;
+        self.substeps_done += 1;
+        let contacts = compute_contact_forces(&self.bodies, &mut self.points, &self.settings.contact);
+        self.springs
+            .track_goals(&self.points.x, &self.points.y, self.settings.tracking_rate);
+        self.points.remember();
+        self.rk4.step(&mut self.points, &self.springs, &self.settings);
+        self.projection
+            .project_bands(&self.springs, &mut self.points, self.settings.band_correction);
+        self.projection
+            .project_limits(&self.springs, &mut self.points, self.settings.limit_correction);
+        if let Some(point) = self.points.first_non_finite() {
+            self.points.restore();
+            return Err(MassSpringError::NonFinite { substep: n, point });
+        }
+        self.points.update_moved_velocity(self.settings.dt);
+        self.bodies.update_boxes(&self.points.x, &self.points.y, false);
+        check_self_overlap(&self.bodies, n)?;
+        Ok(contacts)
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &MassSpringSettings {
+        &self.settings
+    }
+
+    /// Number of points.
+    pub fn point_count(&self) -> usize {
+        self.points.x.len()
+    }
+
+    /// Number of springs.
+    pub fn spring_count(&self) -> usize {
+        self.springs.a.len()
+    }
+
+    /// Number of actuators (the length `step` expects of its targets).
+    pub fn actuator_count(&self) -> usize {
+        self.actuators.len()
+    }
+
+    /// x of every point.
+    pub fn positions_x(&self) -> &[f64] {
+        &self.points.x
+    }
+
+    /// y of every point.
+    pub fn positions_y(&self) -> &[f64] {
+        &self.points.y
+    }
+
+    /// Velocity along x of every point (the integrator's state).
+    pub fn velocities_x(&self) -> &[f64] {
+        &self.points.vx
+    }
+
+    /// Velocity along y of every point.
+    pub fn velocities_y(&self) -> &[f64] {
+        &self.points.vy
+    }
+
+    /// Mass of every point.
+    pub fn masses(&self) -> &[f64] {
+        &self.points.mass
+    }
+
+    /// Whether a point is fixed.
+    pub fn is_fixed(&self, p: PointId) -> bool {
+        self.points.fixed[p.index()]
+    }
+
+    /// Rest length of every spring as used in the last substep.
+    pub fn rest_lengths(&self) -> &[f64] {
+        &self.springs.rest
+    }
+
+    /// Rest length of every spring given at build time.
+    pub fn initial_rest_lengths(&self) -> &[f64] {
+        &self.springs.initial
+    }
+
+    /// Current goal length of every spring.
+    pub fn goal_lengths(&self) -> &[f64] {
+        &self.springs.goal
+    }
+
+    /// The two ends of a spring.
+    pub fn spring_ends(&self, s: SpringId) -> (PointId, PointId) {
+        (PointId(self.springs.a[s.index()]), PointId(self.springs.b[s.index()]))
+    }
+
+    /// Current length of a spring.
+    pub fn spring_length(&self, s: SpringId) -> f64 {
+        let (a, b) = (self.springs.a[s.index()] as usize, self.springs.b[s.index()] as usize);
+        length(&self.points.x, &self.points.y, a, b)
+    }
+
+    /// Substeps run since the world was built.
+    pub fn substeps_done(&self) -> u64 {
+        self.substeps_done
+    }
+
+    /// Simulated time in seconds.
+    pub fn time(&self) -> f64 {
+        self.substeps_done as f64 * self.settings.dt
+    }
+
+    /// Ordered pairs of a body's non-neighbouring boundary quads whose boxes overlap now (the
+    /// quantity the self-overlap check compares with the body's boundary-quad count).
+    pub fn self_overlap_pairs(&self, b: BodyId) -> usize {
+        overlapping_pairs(&self.bodies, b.index())
+    }
+
+    /// Moves a point (its displacement velocity is left as it was).
+    pub fn set_position(&mut self, p: PointId, x: f64, y: f64) {
+        self.points.x[p.index()] = x;
+        self.points.y[p.index()] = y;
+        self.bodies.update_boxes(&self.points.x, &self.points.y, true);
+    }
+
+    /// Sets a free point's velocity, both the integrated one and the displacement velocity that
+    /// contacts damp; a fixed point stays at rest.
+    pub fn set_velocity(&mut self, p: PointId, vx: f64, vy: f64) {
+        let i = p.index();
+        if self.points.fixed[i] {
+            return;
+        }
+        (self.points.vx[i], self.points.vy[i]) = (vx, vy);
+        (self.points.moved_vx[i], self.points.moved_vy[i]) = (vx, vy);
+    }
+}

@@ -228,6 +228,31 @@ check("labels.csv has the labelling page's columns", csv[0] === "robot,terrain,d
 const row = csv.find((l) => l.endsWith(`,${firstId}`)) || "";
 check("labels.csv holds the choice for the robot", row.includes(",limbed,walking,") && csv.length === 5, row);
 lab.proc.kill("SIGINT");
+
+// A kind that colours its own units (channel unit_fill, e.g. one colour per material): the page
+// fills every voxel of the 10×10 block with the replay's colour instead of the area colours.
+const coloured = JSON.parse(readFileSync(box, "utf8"));
+coloured.body.unit_fill = coloured.body.corners.map(() => 0x2060d0);
+writeFileSync(join(work, "coloured.replay.json"), JSON.stringify(coloured));
+const paint = await startViewer([join(work, "coloured.replay.json")]);
+const paintPage = await browser.newPage({ viewport: { width: 1300, height: 1000 } });
+paintPage.on("pageerror", (e) => consoleErrors.push(String(e)));
+await paintPage.goto(paint.url);
+await paintPage.waitForFunction(() => window.viewer && window.viewer.ready, null, { timeout: 30000 });
+const fills = await paintPage.evaluate(() => {
+  const c = document.querySelector(".pane canvas");
+  const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+  let kind = 0, area = 0;
+  for (let p = 0; p < d.length; p += 4) {
+    const [r, g, b] = [d[p], d[p + 1], d[p + 2]];
+    if (Math.abs(r - 0x20) < 12 && Math.abs(g - 0x60) < 12 && Math.abs(b - 0xd0) < 12) kind++;
+    if (b < 150 && Math.max(r, g) >= 200) area++;
+  }
+  return { kind, area };
+});
+check("a replay's unit_fill colours its units instead of the area colours", fills.kind > 2000 && fills.area < 50, JSON.stringify(fills));
+await paintPage.screenshot({ path: join(shots, "unit-fill.png") });
+paint.proc.kill("SIGINT");
 await browser.close();
 
 // Ctrl-C stops the server cleanly.

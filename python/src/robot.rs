@@ -77,7 +77,7 @@ impl PyRobot {
     /// The body as rows of `#` and `.` (voxel robots), `None` for a PSA.
     #[getter]
     fn body(&self) -> Option<String> {
-        self.robot.as_robot().grid().map(|g| g.to_rows().join("/"))
+        self.robot.as_robot().summary().map(|s| s.text)
     }
 
     fn __repr__(&self) -> String {

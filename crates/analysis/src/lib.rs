@@ -11,7 +11,9 @@ pub mod features;
 pub mod footprint;
 pub mod forest;
 pub mod labels;
-pub mod morphology;
+/// The morphology descriptors (d_num, d_elong, d_compact), defined with the body grid in
+/// `vsrlab-body` so that robot kinds compute them.
+pub use vsrlab_body::descriptors as morphology;
 pub mod pca;
 pub mod plot;
 pub mod pose;

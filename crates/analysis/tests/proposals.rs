@@ -25,7 +25,7 @@ fn the_evolved_biped_is_a_planted_walker() {
         .unwrap();
     let trace = replay(&robot, task.task(), 0, TraceLevel::Full).unwrap();
     let f = RobotFeatures::from_trace(&trace, &FeatureParams::default());
-    let d = MorphologyDescriptors::of(robot.grid().unwrap());
+    let d = MorphologyDescriptors::of(&robot.body);
     assert!(f.gait.touch_area > 0.0, "feet are planted: {:?}", f.gait);
     assert!(f.airborne < 0.15, "{}", f.airborne);
     assert_eq!(propose_shape(&d), "limbed");

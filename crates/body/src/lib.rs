@@ -8,6 +8,7 @@
 #![warn(missing_docs)]
 
 pub mod body;
+pub mod descriptors;
 pub mod encodings;
 pub mod morphology;
 pub mod params;
@@ -18,6 +19,7 @@ pub mod sensors;
 pub mod voxel;
 
 pub use body::Body;
+pub use descriptors::MorphologyDescriptors;
 pub use morphology::{Morphology, MorphologyError};
 pub use params::{Preset, VoxelParams};
 pub use probe::{Capture, Channel, Probe};

@@ -13,7 +13,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::time::Instant;
-use vsrlab_body::Morphology;
+use vsrlab_tasks::BodySummary;
 use vsrlab_tasks::{evaluate_traced, EvaluationError, Mapper, Representation, TaskSpec, TraceLevel};
 
 /// The summary of one evaluation that population snapshots carry (the row type the analyses read
@@ -207,7 +207,7 @@ impl<M> RobotEvaluator<M> {
         self.task.task().objectives().len()
     }
 
-    fn failed_with(&self, seed: u64, body: Option<&Morphology>, error: String, start: Instant) -> Evaluated {
+    fn failed_with(&self, seed: u64, body: Option<&BodySummary>, error: String, start: Instant) -> Evaluated {
         let features_len = match self.extract {
             Extract::Nothing => 0,
             Extract::Pose => features::POSE_LEN,
@@ -225,8 +225,8 @@ impl<M> RobotEvaluator<M> {
                 fitness: None,
                 distance: None,
                 velocity: None,
-                voxels: body.map(|b| b.voxel_count()),
-                body: body.map(|b| b.to_rows().join("/")),
+                voxels: body.map(|b| b.units),
+                body: body.map(|b| b.text.clone()),
                 error: Some(error),
                 objectives: None,
             },
@@ -234,15 +234,12 @@ impl<M> RobotEvaluator<M> {
         }
     }
 
-    fn descriptor(&self, body: &Morphology) -> Vec<f64> {
-        let [voxels, elongation, compactness] = features::morphology_descriptors(body);
+    /// The MAP-Elites descriptor of a body, from its kind's named descriptors (0 for one the
+    /// kind does not give).
+    fn descriptor(&self, body: &BodySummary) -> Vec<f64> {
         self.descriptors
             .iter()
-            .map(|d| match d {
-                Descriptor::Voxels => voxels,
-                Descriptor::Elongation => elongation,
-                Descriptor::Compactness => compactness,
-            })
+            .map(|d| body.descriptor(d.name()).unwrap_or(0.0))
             .collect()
     }
 }
@@ -268,13 +265,13 @@ impl<G, M: Mapper<G>> Evaluator<G> for RobotEvaluator<M> {
             Ok(done) => done,
             Err(e) => {
                 // the body of a robot whose episode failed still goes into the record
-                let robot = self.mapper.robot(genotype).ok();
-                return self.failed_with(seed, robot.as_ref().and_then(|r| r.grid()), e.to_string(), start);
+                let body = self.mapper.robot(genotype).ok().and_then(|r| r.summary());
+                return self.failed_with(seed, body.as_ref(), e.to_string(), start);
             }
         };
-        let grid = robot.grid();
+        let body = robot.summary();
         if let Some(bad) = outcome.fitness.iter().find(|f| !f.is_finite()) {
-            return self.failed_with(seed, grid, format!("non-finite fitness {bad}"), start);
+            return self.failed_with(seed, body.as_ref(), format!("non-finite fitness {bad}"), start);
         }
         let features = match (&self.extract, &outcome.trace) {
             (Extract::Pose, Some(trace)) => features::dynamic_pose(trace),
@@ -283,7 +280,9 @@ impl<G, M: Mapper<G>> Evaluator<G> for RobotEvaluator<M> {
         };
         let metric = |name: &str| outcome.metrics.get(name).copied();
         Evaluated {
-            descriptor: grid.map_or_else(|| vec![0.0; self.descriptors.len()], |g| self.descriptor(g)),
+            descriptor: body
+                .as_ref()
+                .map_or_else(|| vec![0.0; self.descriptors.len()], |b| self.descriptor(b)),
             features,
             record: Record {
                 seed,
@@ -291,7 +290,7 @@ impl<G, M: Mapper<G>> Evaluator<G> for RobotEvaluator<M> {
                 distance: metric("distance"),
                 velocity: metric("velocity"),
                 voxels: Some(outcome.units),
-                body: grid.map(|g| g.to_rows().join("/")),
+                body: body.map(|b| b.text),
                 error: None,
                 objectives: (outcome.fitness.len() > 1).then(|| outcome.fitness.clone()),
             },

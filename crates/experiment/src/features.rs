@@ -1,8 +1,10 @@
-//! The shape and behaviour features the runner hands to the speciated evolver (SE-s, SE-b) and
-//! MAP-Elites, computed by `vsrlab-analysis` so that evolution and analysis see the same numbers
-//! (thesis §3.3.2–3.3.3; docs/analysis.md has every definition and its departures from the thesis).
+//! The shape and behaviour features the runner hands to the speciated evolver (SE-s, SE-b), computed
+//! by `vsrlab-analysis` so that evolution and analysis see the same numbers (thesis §3.3.2–3.3.3;
+//! docs/analysis.md has every definition and its departures from the thesis). MAP-Elites'
+//! morphology descriptors come from the robot's kind (`vsrlab_tasks::BodySummary`; the grid kinds
+//! compute them with `vsrlab_body::descriptors`, which analyses use too).
 //!
-//! | feature | definition (from `vsrlab-analysis`) |
+//! | feature | definition |
 //! | --- | --- |
 //! | d_num | voxels of the decoded body |
 //! | d_elong | eccentricity of the moment-equivalent ellipse of the voxel cells |
@@ -10,8 +12,7 @@
 //! | SE-s | 16×16 dynamic pose (element-wise mode of the per-step poses), as 0/1 values |
 //! | SE-b | spectrum of \|Δy\| of the robot's centre, 100 bins over (0, 10] Hz (2D-VSR-Sim's \|Δy\|, exact bin frequencies) |
 
-use vsrlab_analysis::{morphology, pose, spectrum, Axis, SpectrumParams};
-use vsrlab_body::Morphology;
+use vsrlab_analysis::{pose, spectrum, Axis, SpectrumParams};
 use vsrlab_tasks::Trace;
 
 /// Number of values of the SE-s feature vector.
@@ -28,15 +29,6 @@ fn se_b_spectrum() -> SpectrumParams {
 /// Number of values of the SE-b feature vector.
 pub fn spectrum_len() -> usize {
     se_b_spectrum().bins
-}
-
-/// The three MAP-Elites descriptors (d_num, d_elong, d_compact).
-pub fn morphology_descriptors(body: &Morphology) -> [f64; 3] {
-    [
-        body.voxel_count() as f64,
-        morphology::elongation(body),
-        morphology::compactness(body),
-    ]
 }
 
 /// SE-s: the dynamic pose of a full trace, 1.0 for an occupied cell.
@@ -56,17 +48,6 @@ pub fn center_spectrum(trace: &Trace) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn descriptors_of_a_square_and_a_line() {
-        let square = Morphology::parse("box-3x3").unwrap();
-        assert_eq!(morphology_descriptors(&square), [9.0, 0.0, 1.0]);
-        let line = Morphology::parse("worm-5x1").unwrap();
-        let [n, elong, compact] = morphology_descriptors(&line);
-        assert_eq!(n, 5.0);
-        assert!(elong > 0.9, "a line is elongated: {elong}");
-        assert_eq!(compact, 1.0);
-    }
 
     #[test]
     fn feature_lengths_are_the_thesis_ones() {

@@ -46,6 +46,16 @@ pub(crate) const TIME_BAR: Rgba = [90, 90, 90, 255];
 /// Height of the time bar in pixels.
 const TIME_BAR_HEIGHT: f32 = 3.0;
 
+/// An opaque colour from `0xRRGGBB` held in a channel value (out-of-range values are clamped).
+pub(crate) fn packed_rgb(value: f64) -> Rgba {
+    let c = if value.is_finite() {
+        value.clamp(0.0, 16_777_215.0) as u32
+    } else {
+        0
+    };
+    [(c >> 16) as u8, (c >> 8 & 0xff) as u8, (c & 0xff) as u8, 255]
+}
+
 /// Voxel fill for an area ratio: piecewise linear red (≤ 0.75) → yellow (1) → green (≥ 1.25).
 pub(crate) fn area_color(ratio: f64) -> Rgba {
     let ratio = if ratio.is_finite() { ratio } else { 1.0 };
@@ -106,6 +116,8 @@ pub(crate) struct Scene<'a> {
     attention_side: usize,
     /// The polygon of each brain unit, where it is not the unit's own index.
     unit_polygons: Vec<usize>,
+    /// The kind's fill colour of each polygon (channel `unit_fill`), where it gives one.
+    unit_fill: Vec<Rgba>,
     anti_alias: bool,
 }
 
@@ -142,6 +154,11 @@ impl<'a> Scene<'a> {
                 .next()
                 .unwrap_or(0),
             unit_polygons: unit_polygons.clone(),
+            unit_fill: trace
+                .fixed_values(channels::UNIT_FILL.name)
+                .iter()
+                .map(|&c| packed_rgb(c))
+                .collect(),
             anti_alias,
         }
     }
@@ -186,7 +203,7 @@ impl<'a> Scene<'a> {
                 // a PSA: the membrane (polygon 0) shows the pressure
                 Some(p) if v == 0 => pressure_color(p),
                 _ if broken => BROKEN,
-                _ => area_color(ratio),
+                _ => self.unit_fill.get(v).copied().unwrap_or_else(|| area_color(ratio)),
             };
             pm.fill_path(&path, &paint(fill), FillRule::Winding, Transform::identity(), None);
             if broken && poly.len() == 4 {
@@ -548,6 +565,22 @@ mod tests {
         assert_eq!(area_color(0.875), [255, 128, 0, 128]);
         assert_eq!(area_color(1.125), [128, 255, 0, 128]);
         assert_eq!(area_color(f64::NAN), YELLOW);
+    }
+
+    #[test]
+    fn a_kind_colours_its_units_with_unit_fill() {
+        let opts = plain();
+        let mid = Vec2::new(11.5, 6.5);
+        let mut t = square_trace(0.75);
+        t.fixed(&channels::UNIT_FILL, 1, &[f64::from(0x2060d0)]);
+        let pm = render_frame(&t, 0, &opts);
+        assert_eq!(
+            at(&t, 0, &opts, &pm, mid),
+            [0x20, 0x60, 0xd0],
+            "the kind's colour, opaque"
+        );
+        assert_eq!(packed_rgb(f64::NAN), [0, 0, 0, 255]);
+        assert_eq!(packed_rgb(1e12), [255, 255, 255, 255]);
     }
 
     #[test]

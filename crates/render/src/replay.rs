@@ -110,6 +110,10 @@ pub struct Body {
     pub rays: Vec<Ray>,
     /// Side of each unit's attention matrix (channel `attention`), 0 without one.
     pub attention_side: usize,
+    /// The kind's fill colour of each polygon as `0xRRGGBB` (channel `unit_fill`); empty: coloured
+    /// by area ratio.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub unit_fill: Vec<u32>,
 }
 
 /// A lidar ray: the voxel it starts from, its direction relative to the voxel, its range.
@@ -343,6 +347,10 @@ impl Replay {
                     .first()
                     .copied()
                     .unwrap_or(0),
+                unit_fill: counts(trace.fixed_values(channels::UNIT_FILL.name))
+                    .into_iter()
+                    .map(|c| c.min(0xff_ffff) as u32)
+                    .collect(),
             },
             channels,
             damage: trace.damage.as_ref().map(|d| Damage {
@@ -418,6 +426,22 @@ mod tests {
                 assert!((outline[j + 1] - p.y).abs() <= replay.quantum / 2.0 + 1e-12);
             }
         }
+    }
+
+    #[test]
+    fn unit_fill_travels_only_when_the_kind_gives_it() {
+        use vsrlab_tasks::Probe;
+        let mut trace = moving_square(5, 1.0);
+        let plain = Replay::from_trace(&trace, &ReplayOptions::default()).unwrap();
+        assert!(
+            !plain.to_json().contains("unit_fill"),
+            "replays without it are unchanged"
+        );
+        trace.fixed(&channels::UNIT_FILL, 1, &[f64::from(0x2060d0)]);
+        let coloured = Replay::from_trace(&trace, &ReplayOptions::default()).unwrap();
+        assert_eq!(coloured.body.unit_fill, vec![0x2060d0]);
+        let back: Replay = serde_json::from_str(&coloured.to_json()).unwrap();
+        assert_eq!(back.body.unit_fill, vec![0x2060d0]);
     }
 
     #[test]

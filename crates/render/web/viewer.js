@@ -79,6 +79,8 @@ function readReplay(json, name) {
   const cells = body.cells || [];
   need(Array.isArray(cells), name, "field 'body.cells' must be a list");
   const rays = body.rays || [];
+  const unitFill = body.unit_fill || [];
+  need(Array.isArray(unitFill) && unitFill.every((c) => Number.isInteger(c) && c >= 0 && c <= 0xffffff), name, "field 'body.unit_fill' must be a list of 0xRRGGBB colours");
   need(json.channels && typeof json.channels === "object", name, "field 'channels' is missing");
   const ch = {};
   for (const [key, channel] of Object.entries(json.channels)) ch[key] = decodeChannel(name, key, channel, frames);
@@ -98,7 +100,7 @@ function readReplay(json, name) {
   for (const n of body.corners) { polygonStart.push(s); s += n; }
   const r = {
     name, title: json.title || name, frames, t0: json.t0, dt: json.frame_dt, side: json.side,
-    terrain: world.terrain, obstacles, balls, cells, rays, corners: body.corners, polygonStart, ch,
+    terrain: world.terrain, obstacles, balls, cells, rays, corners: body.corners, polygonStart, ch, unitFill,
     damage: json.damage || null, graph: json.graph || null,
   };
   derive(r);
@@ -485,6 +487,8 @@ function drawBody(ctx, cam, r, k, a, pane) {
     if (units === 0) {
       const p = pressure === null ? 0 : Math.min(1, Math.max(0, pressure));
       fill = ov.colours ? `rgba(${Math.round(40 + 190 * p)},${Math.round(90 - 50 * p)},${Math.round(230 - 190 * p)},0.45)` : "rgba(160,160,220,0.5)";
+    } else if (ov.colours && u < r.unitFill.length) {
+      fill = "#" + r.unitFill[u].toString(16).padStart(6, "0");
     } else {
       fill = ov.colours && r.ch.area_ratio ? areaColour(value(r.ch.area_ratio, k, a, u)) : "rgba(170,170,255,0.5)";
     }

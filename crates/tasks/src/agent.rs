@@ -2,9 +2,10 @@
 //! world. The voxel robot of a robot file ([`crate::RobotSpec`]) is one implementation; a body
 //! that is not a voxel grid is another type implementing these two traits.
 
+use crate::body_summary::BodySummary;
 use crate::episode::EpisodeError;
 use crate::outcome::Trace;
-use vsrlab_body::{Body, Morphology};
+use vsrlab_body::Body;
 use vsrlab_brain::Controller;
 use vsrlab_physics::{Vec2, World, WorldBuilder};
 
@@ -16,8 +17,9 @@ pub trait Robot: Send + Sync {
     /// Adds the body to `builder` with its origin at `origin`, and builds its sensors and brain.
     /// `seed` is the episode seed (sensor noise).
     fn assemble(&self, builder: &mut WorldBuilder, origin: Vec2, seed: u64) -> Result<Box<dyn Agent>, EpisodeError>;
-    /// The voxel grid of the body, for bodies that are grids (descriptors, records).
-    fn grid(&self) -> Option<&Morphology> {
+    /// The body summarised by its kind (its text form for records, its morphology descriptors),
+    /// `None` when the kind has none.
+    fn summary(&self) -> Option<BodySummary> {
         None
     }
     /// The robot as a robot file (JSON), when its kind has one.

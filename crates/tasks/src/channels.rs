@@ -27,6 +27,10 @@ pub const READINGS_PER_UNIT: Channel = Channel::traced("readings_per_unit");
 /// PSA: its masses are polygons 1…n and its gas unit the membrane, polygon 0); absent, unit i is
 /// polygon i (fixed).
 pub const UNIT_POLYGONS: Channel = Channel::traced("unit_polygons");
+/// The fill colour of each outline polygon, `0xRRGGBB` as a number, chosen by the robot's kind
+/// (a multi-material body: one colour per material); polygons without one are coloured by their
+/// area ratio (fixed).
+pub const UNIT_FILL: Channel = Channel::traced("unit_fill");
 /// Static polygons besides the ground (a cage): their corners as x, y pairs (fixed).
 pub const OBSTACLES: Channel = Channel::traced("obstacles");
 /// Corner count of each polygon of [`OBSTACLES`] (fixed).

@@ -16,6 +16,7 @@
 
 pub mod agent;
 pub mod body_part;
+pub mod body_summary;
 pub mod carrier;
 pub mod channels;
 pub mod damage;
@@ -35,6 +36,7 @@ pub mod task;
 pub mod terrain;
 
 pub use agent::{Agent, Robot};
+pub use body_summary::BodySummary;
 pub use carrier::Carrier;
 pub use damage::Damage;
 pub use episode::{Episode, EpisodeError};

@@ -20,6 +20,17 @@ pub enum Descriptor {
     Compactness,
 }
 
+impl Descriptor {
+    /// Its name among a robot kind's descriptors ([`vsrlab_tasks::BodySummary`]).
+    pub fn name(self) -> &'static str {
+        match self {
+            Descriptor::Voxels => "voxels",
+            Descriptor::Elongation => "elongation",
+            Descriptor::Compactness => "compactness",
+        }
+    }
+}
+
 /// One MAP-Elites axis.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

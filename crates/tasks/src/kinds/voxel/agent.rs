@@ -3,12 +3,13 @@
 //! controls and actuates, in that order (vsr-model.md §2.2).
 
 use crate::agent::{Agent, Robot};
+use crate::body_summary::BodySummary;
 use crate::channels::{ACTUATION, AREA_RATIO, READINGS, READINGS_PER_UNIT, TOUCH};
 use crate::episode::EpisodeError;
 use crate::kinds::voxel::robot::RobotSpec;
 use crate::outcome::Trace;
 use vsrlab_body::sensors::SensorSuite;
-use vsrlab_body::{Body, Channel, Morphology, Probe, VoxelState, Vsr};
+use vsrlab_body::{Body, Channel, Probe, VoxelState, Vsr};
 use vsrlab_brain::BrainShape;
 use vsrlab_brain::Controller;
 use vsrlab_field::FieldError;
@@ -54,8 +55,8 @@ impl Robot for RobotSpec {
         Ok(Box::new(VoxelAgent::new(vsr, sensors, brain)))
     }
 
-    fn grid(&self) -> Option<&Morphology> {
-        Some(&self.body)
+    fn summary(&self) -> Option<BodySummary> {
+        Some(BodySummary::of_grid(&self.body))
     }
 
     fn robot_file(&self, note: Option<&str>) -> Option<String> {

@@ -9,8 +9,8 @@
 //! - [`compactness`] is voxels ÷ grid cells whose centre lies inside or on the convex hull of the
 //!   voxel centres (TELO notebook); 1 when the hull is degenerate (a single voxel or a line).
 
+use crate::morphology::Morphology;
 use serde::{Deserialize, Serialize};
-use vsrlab_body::Morphology;
 
 /// The three morphology descriptors of a body.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

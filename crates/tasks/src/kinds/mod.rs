@@ -10,6 +10,7 @@
 //! [`RobotDescription`]), its agent, and a `pub const KIND: RobotKind`; one line in
 //! [`ROBOT_KINDS`] and one `pub mod` line here.
 
+pub mod evogym;
 pub mod psa;
 pub mod voxel;
 

@@ -1,0 +1,455 @@
+//! [`EvoGymEnv`]: one of EvoGym's tasks with one robot, stepped with actions and answering with
+//! observations and rewards as EvoGym's Python environments do (`evogym/envs/base.py`,
+//! `walk.py`, `manipulate.py`, commit `f63c649`), over [`vsrlab_physics::mass_spring`].
+
+use super::assemble::plan_object;
+use super::error::EvoGymError;
+use super::grid::MaterialGrid;
+use super::observe::{mean, relative_positions, terrain_distances, Look, Orientation};
+use super::rewards::{self, RobotAndBeam};
+use super::tasks::{EvoGymTask, CAVE_SIGHT};
+use super::worlds::WorldObject;
+use std::ops::Range;
+use vsrlab_physics::mass_spring::{MassSpringBuilder, MassSpringError, MassSpringSettings, MassSpringWorld};
+
+/// What one [`EvoGymEnv::step`] returns.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepResult<'a> {
+    /// The observation after the step (after an unstable step, the one before it, as EvoGym
+    /// reads the last stable snapshot).
+    pub observation: &'a [f64],
+    /// The step's reward.
+    pub reward: f64,
+    /// The episode ended: goal reached or unstable (gym's `terminated`).
+    pub done: bool,
+    /// The episode reached its length (gym's `truncated` from `max_episode_steps`).
+    pub truncated: bool,
+    /// The robot folded into itself or the state became non-finite; the reward carries the
+    /// −3 penalty.
+    pub unstable: bool,
+}
+
+/// An EvoGym task with one robot. Deterministic: the same robot and actions give the same
+/// observations and rewards, bit for bit. `step` allocates nothing.
+#[derive(Debug, Clone)]
+pub struct EvoGymEnv {
+    task: EvoGymTask,
+    start: MassSpringWorld,
+    world: MassSpringWorld,
+    robot: Range<usize>,
+    beam: Range<usize>,
+    terrain: Range<usize>,
+    orientation: Option<Orientation>,
+    actions: usize,
+    observation: Vec<f64>,
+    steps: usize,
+    over: bool,
+}
+
+impl EvoGymEnv {
+    /// The task's world with `robot` at the task's start cell. Refuses an invalid robot
+    /// (naming the field), one that overlaps the world, or a world the engine refuses.
+    pub fn new(task: EvoGymTask, robot: &MaterialGrid) -> Result<EvoGymEnv, EvoGymError> {
+        robot.validate_robot().map_err(EvoGymError::Robot)?;
+        let mut world = task.world();
+        world
+            .add(WorldObject::new("robot", task.robot_origin(), robot.clone()))
+            .map_err(EvoGymError::World)?;
+        let mut builder = MassSpringBuilder::new(MassSpringSettings::evogym());
+        // EvoGym loads robots first, then the other objects by name (`evogym/sim.py:49-59`).
+        let placed_robot = plan_object(robot, task.robot_origin()).add_to(&mut builder, true);
+        let (mut beam, mut terrain) = (0..0, 0..0);
+        for object in world.objects().iter().filter(|o| o.name != "robot") {
+            let placed = plan_object(&object.grid, object.origin).add_to(&mut builder, false);
+            match object.name.as_str() {
+                "beam" => beam = placed.points(),
+                "terrain" => terrain = placed.points(),
+                _ => {}
+            }
+        }
+        let start = builder.build().map_err(EvoGymError::Physics)?;
+        let robot_points = placed_robot.points();
+        let orientation = match task {
+            EvoGymTask::BridgeWalker => Some(robot_points.clone()),
+            EvoGymTask::BeamToppler => Some(beam.clone()),
+            _ => None,
+        }
+        .map(|points| Orientation::new(start.positions_x(), start.positions_y(), points));
+        let mut env = EvoGymEnv {
+            task,
+            world: start.clone(),
+            start,
+            actions: robot.actuator_count(),
+            observation: vec![0.0; task.observation_size(robot_points.len())],
+            robot: robot_points,
+            beam,
+            terrain,
+            orientation,
+            steps: 0,
+            over: false,
+        };
+        env.reset(0);
+        Ok(env)
+    }
+
+    /// Back to the start; returns the first observation. EvoGym's four tasks have no randomness:
+    /// `seed` changes nothing and is taken for the gym-like signature.
+    pub fn reset(&mut self, seed: u64) -> &[f64] {
+        let _ = seed;
+        self.world.clone_from(&self.start);
+        self.steps = 0;
+        self.over = false;
+        self.write_observation();
+        &self.observation
+    }
+
+    /// One step of 30 physics substeps with `actions` (one per actuator voxel, in the robot's
+    /// cell order: row-major from the top row; EvoGym's units, clipped into [0.6, 1.6]).
+    pub fn step(&mut self, actions: &[f64]) -> Result<StepResult<'_>, EvoGymError> {
+        if self.over {
+            return Err(EvoGymError::EpisodeOver);
+        }
+        self.check(actions)?;
+        let before = self.centres();
+        let unstable = match self.world.step(actions) {
+            Ok(_) => false,
+            Err(MassSpringError::SelfOverlap { .. } | MassSpringError::NonFinite { .. }) => true,
+            Err(e) => return Err(EvoGymError::Physics(e)),
+        };
+        // EvoGym reads the snapshot of the last stable step: nothing moved when unstable.
+        let after = if unstable { before } else { self.centres() };
+        let reward = match self.task.goal_x() {
+            Some(goal) => rewards::forward(before.robot.0, after.robot.0, goal, unstable),
+            None => rewards::topple(before, after, unstable),
+        };
+        if !unstable {
+            self.write_observation();
+        }
+        self.steps += 1;
+        let truncated = self.steps >= self.task.episode_steps();
+        let done = unstable || reward.goal;
+        self.over = done || truncated;
+        Ok(StepResult {
+            observation: &self.observation,
+            reward: reward.value,
+            done,
+            truncated,
+            unstable,
+        })
+    }
+
+    fn check(&self, actions: &[f64]) -> Result<(), EvoGymError> {
+        if actions.len() != self.actions {
+            return Err(EvoGymError::ActionCount {
+                expected: self.actions,
+                got: actions.len(),
+            });
+        }
+        match actions.iter().position(|a| !a.is_finite()) {
+            Some(index) => Err(EvoGymError::NonFiniteAction {
+                index,
+                value: actions[index],
+            }),
+            None => Ok(()),
+        }
+    }
+
+    /// Centres of the robot and (BeamToppler) the beam now.
+    fn centres(&self) -> RobotAndBeam {
+        let (xs, ys) = (self.world.positions_x(), self.world.positions_y());
+        let centre = |r: &Range<usize>| {
+            if r.is_empty() {
+                (0.0, 0.0)
+            } else {
+                (mean(xs, r.clone()), mean(ys, r.clone()))
+            }
+        };
+        RobotAndBeam {
+            robot: centre(&self.robot),
+            beam: centre(&self.beam),
+        }
+    }
+
+    /// Writes the task's observation of the current state.
+    fn write_observation(&mut self) {
+        let (xs, ys) = (self.world.positions_x(), self.world.positions_y());
+        let (vx, vy) = (self.world.velocities_x(), self.world.velocities_y());
+        let r = self.robot.clone();
+        let velocity = (mean(vx, r.clone()), mean(vy, r.clone()));
+        let o = &mut self.observation;
+        let positions = 2 * r.len();
+        let head = match self.task {
+            EvoGymTask::Walker | EvoGymTask::CaveCrawler => {
+                o[..2].copy_from_slice(&[velocity.0, velocity.1]);
+                2
+            }
+            EvoGymTask::BridgeWalker => {
+                let angle = self.orientation.as_ref().map_or(0.0, |a| a.angle(xs, ys, r.clone()));
+                o[..3].copy_from_slice(&[velocity.0, velocity.1, angle]);
+                3
+            }
+            EvoGymTask::BeamToppler => {
+                let b = self.beam.clone();
+                let (rc, bc) = (
+                    (mean(xs, r.clone()), mean(ys, r.clone())),
+                    (mean(xs, b.clone()), mean(ys, b.clone())),
+                );
+                let angle = self.orientation.as_ref().map_or(0.0, |a| a.angle(xs, ys, b.clone()));
+                let (bvx, bvy) = (mean(vx, b.clone()), mean(vy, b));
+                o[..7].copy_from_slice(&[bc.0 - rc.0, bc.1 - rc.1, velocity.0, velocity.1, bvx, bvy, angle]);
+                7
+            }
+        };
+        relative_positions(xs, ys, r.clone(), &mut o[head..head + positions]);
+        if self.task == EvoGymTask::CaveCrawler {
+            let centre = (mean(xs, r.clone()), mean(ys, r));
+            let bins = 2 * CAVE_SIGHT.0 + 1;
+            let rest = &mut o[head + positions..];
+            let (floor, ceiling) = rest.split_at_mut(bins);
+            let t = self.terrain.clone();
+            terrain_distances(xs, ys, t.clone(), centre, CAVE_SIGHT, Look::Floor, floor);
+            terrain_distances(xs, ys, t, centre, CAVE_SIGHT, Look::Ceiling, ceiling);
+        }
+    }
+
+    /// The task.
+    pub fn task(&self) -> EvoGymTask {
+        self.task
+    }
+
+    /// Number of actions `step` takes: the robot's actuator voxels.
+    pub fn action_count(&self) -> usize {
+        self.actions
+    }
+
+    /// Length of the observation.
+    pub fn observation_size(&self) -> usize {
+        self.observation.len()
+    }
+
+    /// The current observation.
+    pub fn observation(&self) -> &[f64] {
+        &self.observation
+    }
+
+    /// Steps taken since the last reset.
+    pub fn steps(&self) -> usize {
+        self.steps
+    }
+
+    /// The physics world (positions, velocities, springs).
+    pub fn world(&self) -> &MassSpringWorld {
+        &self.world
+    }
+
+    /// World indices of the robot's points, in EvoGym's order.
+    pub fn robot_points(&self) -> Range<usize> {
+        self.robot.clone()
+    }
+
+    /// The robot's centre (mean of its points) now.
+    pub fn robot_centre(&self) -> (f64, f64) {
+        self.centres().robot
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    const FULL: &str = "33333/33333/33333/33333/33333";
+
+    fn env(task: EvoGymTask, rows: &str) -> EvoGymEnv {
+        EvoGymEnv::new(task, &MaterialGrid::from_rows(rows).unwrap()).unwrap()
+    }
+
+    fn all_finite(o: &[f64]) -> bool {
+        o.iter().all(|v| v.is_finite())
+    }
+
+    #[test]
+    fn observation_sizes_of_a_full_body() {
+        let sizes = EvoGymTask::ALL.map(|t| {
+            let e = env(t, FULL);
+            assert_eq!(e.observation().len(), e.observation_size());
+            e.observation_size()
+        });
+        assert_eq!(sizes, [74, 75, 79, 96]);
+    }
+
+    /// "31240/22222/00400": actuators 3, 4 (row 0) and 4 (row 2): three actions.
+    #[test]
+    fn one_action_per_actuator_voxel() {
+        let e = env(EvoGymTask::Walker, "31240/22222/00400");
+        assert_eq!(e.action_count(), 3);
+        assert_eq!(e.world().actuator_count(), 3);
+        assert_eq!(env(EvoGymTask::Walker, FULL).action_count(), 25);
+    }
+
+    /// A full 5 × 5 body at cell (1, 1): points at x = 0.1 … 0.6 and y = 0.1 … 0.6, six by six,
+    /// so the centre is (0.35, 0.35); the first point (top-left, (0.1, 0.6)) is at (−0.25, 0.25)
+    /// from it; velocities are zero.
+    #[test]
+    fn first_observation_by_hand() {
+        let e = env(EvoGymTask::Walker, FULL);
+        let (cx, cy) = e.robot_centre();
+        assert!((cx - 0.35).abs() < 1e-12 && (cy - 0.35).abs() < 1e-12, "{cx} {cy}");
+        let o = e.observation();
+        assert_eq!(&o[..2], &[0.0, 0.0]);
+        assert!((o[2] + 0.25).abs() < 1e-12 && (o[2 + 36] - 0.25).abs() < 1e-12);
+        // Last point: bottom-right (0.6, 0.1).
+        assert!((o[2 + 35] - 0.25).abs() < 1e-12 && (o[2 + 71] + 0.25).abs() < 1e-12);
+    }
+
+    /// The reward of a step is the robot centre's x after minus before, read independently
+    /// from the world's points.
+    #[test]
+    fn reward_is_the_centres_x_gain() {
+        let mut e = env(EvoGymTask::Walker, FULL);
+        let points = e.robot_points();
+        let x_mean = |e: &EvoGymEnv| {
+            let xs = e.world().positions_x();
+            points.clone().map(|i| xs[i]).sum::<f64>() / 36.0
+        };
+        let gait: Vec<f64> = (0..25).map(|i| if i % 5 < 2 { 1.6 } else { 0.6 }).collect();
+        for _ in 0..20 {
+            let before = x_mean(&e);
+            let r = e.step(&gait).unwrap();
+            let reward = r.reward;
+            assert!(!r.unstable);
+            assert!((reward - (x_mean(&e) - before)).abs() < 1e-15);
+        }
+    }
+
+    /// With every action 1 (goal = rest length) the robot only settles: over a whole episode it
+    /// stays within half a cell of its start, finite and stable; the episode is truncated at 500
+    /// steps and refuses a 501st.
+    #[test]
+    fn constant_actions_stay_in_place_for_an_episode() {
+        let mut e = env(EvoGymTask::Walker, FULL);
+        let start = e.robot_centre();
+        let ones = vec![1.0; 25];
+        for k in 1..=500 {
+            let r = e.step(&ones).unwrap();
+            assert!(all_finite(r.observation) && !r.unstable && !r.done, "step {k}");
+            assert_eq!(r.truncated, k == 500);
+        }
+        let end = e.robot_centre();
+        assert!(
+            (end.0 - start.0).abs() < 0.05 && (end.1 - start.1).abs() < 0.05,
+            "{start:?} → {end:?}"
+        );
+        assert_eq!(e.step(&ones), Err(EvoGymError::EpisodeOver));
+        e.reset(0);
+        assert_eq!(e.steps(), 0);
+        assert_eq!(e.robot_centre(), start);
+    }
+
+    /// A square wave of period 20 steps, phase shifted along the body, moves the robot.
+    fn gait(t: usize) -> Vec<f64> {
+        (0..25)
+            .map(|i| if (t + 5 * (i % 5)) % 20 < 10 { 1.6 } else { 0.6 })
+            .collect()
+    }
+
+    #[test]
+    fn an_alternating_gait_moves() {
+        let mut e = env(EvoGymTask::Walker, FULL);
+        let start = e.robot_centre().0;
+        let mut total = 0.0;
+        for t in 0..200 {
+            let r = e.step(&gait(t)).unwrap();
+            assert!(!r.unstable, "step {t}");
+            total += r.reward;
+        }
+        let moved = e.robot_centre().0 - start;
+        assert!((total - moved).abs() < 1e-12);
+        assert!(moved.abs() > 0.1, "moved {moved}");
+    }
+
+    #[test]
+    fn every_task_steps_finite_and_deterministically() {
+        for task in EvoGymTask::ALL {
+            let mut a = env(task, FULL);
+            let mut b = env(task, FULL);
+            for t in 0..20 {
+                let ra = a.step(&gait(t)).unwrap();
+                assert!(all_finite(ra.observation) && !ra.unstable, "{} step {t}", task.name());
+                let (oa, rwa) = (ra.observation.to_vec(), ra.reward);
+                let rb = b.step(&gait(t)).unwrap();
+                assert_eq!(oa, rb.observation);
+                assert_eq!(rwa.to_bits(), rb.reward.to_bits());
+            }
+        }
+    }
+
+    /// The beam (rows 5 and 6, centre y 0.6) rests on its pegs while the robot is far away.
+    #[test]
+    fn the_beam_rests_on_its_pegs() {
+        let mut e = env(EvoGymTask::BeamToppler, FULL);
+        let ones = vec![1.0; 25];
+        for _ in 0..50 {
+            e.step(&ones).unwrap();
+        }
+        let beam_y = mean(e.world().positions_y(), e.beam.clone());
+        assert!((beam_y - 0.6).abs() < 0.01, "{beam_y}");
+        let o = e.observation();
+        // Beam centre (3.4, 0.6) minus robot centre (≈ 0.35, ≈ 0.35).
+        assert!(
+            (o[0] - 3.05).abs() < 0.02 && (o[1] - 0.25).abs() < 0.02,
+            "{:?}",
+            &o[..2]
+        );
+    }
+
+    #[test]
+    fn wrong_robots_and_actions_are_refused() {
+        let bad = MaterialGrid::from_rows("3.3").unwrap();
+        let e = EvoGymEnv::new(EvoGymTask::Walker, &bad).unwrap_err();
+        assert!(matches!(e, EvoGymError::Robot(ref f) if f.path == "cells"), "{e}");
+        // 20 wide and 6 high from cell (1, 2) reaches (20, 7): CaveCrawler's terrain.
+        let big = MaterialGrid::from_rows(&vec!["3".repeat(20); 6].join("/")).unwrap();
+        let e = EvoGymEnv::new(EvoGymTask::CaveCrawler, &big).unwrap_err();
+        assert!(
+            matches!(e, EvoGymError::World(ref f) if f.message.contains("overlaps")),
+            "{e}"
+        );
+        let mut e = env(EvoGymTask::Walker, "33");
+        assert_eq!(e.step(&[1.0]), Err(EvoGymError::ActionCount { expected: 2, got: 1 }));
+        assert!(matches!(
+            e.step(&[1.0, f64::NAN]),
+            Err(EvoGymError::NonFiniteAction { index: 1, .. })
+        ));
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(24))]
+
+        /// Random grids of up to 4 × 4 cells (codes 0–4) with random actions: either refused as
+        /// robots, or every step ends finite or reports instability.
+        #[test]
+        fn random_robots_never_produce_non_finite_observations(
+            w in 1usize..=4,
+            h in 1usize..=4,
+            codes in prop::collection::vec(0u64..=4, 16),
+            actions in prop::collection::vec(-1.0f64..3.0, 16 * 15),
+        ) {
+            let cells = codes[..w * h].iter().map(|&c| super::super::Material::from_code(c).unwrap()).collect();
+            let grid = MaterialGrid::new(w, h, cells).unwrap();
+            let Ok(mut e) = EvoGymEnv::new(EvoGymTask::Walker, &grid) else {
+                prop_assert!(grid.validate_robot().is_err());
+                return Ok(());
+            };
+            let n = e.action_count();
+            for t in 0..15 {
+                let r = e.step(&actions[t * n..(t + 1) * n]).unwrap();
+                prop_assert!(all_finite(r.observation));
+                if r.done {
+                    prop_assert!(r.unstable && r.reward <= -2.0);
+                    break;
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,32 @@
+//! EvoGym's multi-material voxel robots and four of its tasks (Bhatia et al., 2021), over the
+//! mass-spring engine [`vsrlab_physics::mass_spring`].
+//!
+//! Data flows one way: a [`MaterialGrid`] (text rows such as `"33333/31113"`, or EvoGym's JSON
+//! via [`robot_from_json`]) is checked ([`MaterialGrid::validate_robot`]), planned into points,
+//! springs, quads, tight limits and actuators exactly as EvoGym builds objects
+//! ([`plan_object`]), and placed with the task's world objects ([`EvoGymTask::world`]) into an
+//! [`EvoGymEnv`], which steps with one action per actuator voxel and answers with EvoGym's
+//! observation and reward. `docs/evogym-envs.md` lists every task's world, observation, reward
+//! and episode with its source line; `docs/evogym-model.md` the physics.
+
+mod assemble;
+mod env;
+mod error;
+mod grid;
+mod materials;
+mod observe;
+mod rewards;
+mod tasks;
+mod world_file;
+mod worlds;
+
+pub use assemble::{plan_object, ObjectPlan, PlacedObject, PlannedPoint, PlannedQuad, PlannedSpring, CELL, RIGID_BAND};
+pub use env::{EvoGymEnv, StepResult};
+pub use error::EvoGymError;
+pub use grid::{MaterialGrid, MAX_ROBOT_SIDE, MAX_SIDE};
+pub use materials::{Material, ACTUATOR_SIDE, RIGID_SIDE, SOFT_SIDE};
+pub use observe::{relative_positions, terrain_distances, Look, Orientation};
+pub use rewards::{forward, topple, Reward, RobotAndBeam, GOAL_BONUS, UNSTABLE_PENALTY};
+pub use tasks::{EvoGymTask, CAVE_SIGHT};
+pub use world_file::{robot_from_json, world_from_json};
+pub use worlds::{beam_toppler_v0, bridge_walker_v0, cave_crawler_v0, walker_v0, World, WorldObject};

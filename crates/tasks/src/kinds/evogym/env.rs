@@ -365,7 +365,8 @@ mod tests {
         }
         let moved = e.robot_centre().0 - start;
         assert!((total - moved).abs() < 1e-12);
-        assert!(moved.abs() > 0.1, "moved {moved}");
+        // Measured: +0.405 (about 4 cells) in 200 steps.
+        assert!(moved > 0.3, "moved {moved}");
     }
 
     #[test]

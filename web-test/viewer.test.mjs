@@ -149,6 +149,17 @@ await page.mouse.click(now.rect.x + now.x * now.rect.width / now.width, now.rect
 const selected = await page.evaluate(() => window.viewer.state.selected && window.viewer.state.selected.unit);
 check("clicking the robot selects a voxel", Number.isInteger(selected), `voxel ${selected}`);
 
+// The unit chart offers every per-unit channel of the replay and plots the one chosen.
+const offered = await page.locator("#unit-channel option").allTextContents();
+check("the unit chart offers the replay's per-unit channels", ["actuation", "area_ratio", "touch"].every((n) => offered.includes(n)), JSON.stringify(offered));
+const chartBefore = await page.evaluate(() => Array.from(document.getElementById("voxel-chart").getContext("2d").getImageData(0, 0, 900, 150).data));
+await page.selectOption("#unit-channel", "touch");
+const chartAfter = await page.evaluate(() => Array.from(document.getElementById("voxel-chart").getContext("2d").getImageData(0, 0, 900, 150).data));
+const chartChanged = chartBefore.filter((v, i) => v !== chartAfter[i]).length;
+const heading = await page.evaluate(() => window.viewer.state.unitChannel);
+check("choosing a channel replots the unit chart", chartChanged > 200 && heading === "touch", `${chartChanged} values changed, channel ${heading}`);
+await page.selectOption("#unit-channel", "");
+
 // The list removes panes: the two bad files go, the two replays stay side by side.
 await page.uncheck('input[data-name="broken"]');
 await page.uncheck('input[data-name="text"]');

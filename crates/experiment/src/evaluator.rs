@@ -318,7 +318,10 @@ impl<G, M: Mapper<G>> Evaluator<G> for RobotEvaluator<M> {
 
     fn save_robot(&self, genotype: &G, path: &Path, note: &str) -> Result<(), EvaluatorError> {
         let robot = self.mapper.robot(genotype)?;
-        let text = robot.robot_file(Some(note)).ok_or(EvaluatorError::NoRobotFile)?;
+        let text = robot
+            .description()
+            .map(|d| d.to_json(Some(note)))
+            .ok_or(EvaluatorError::NoRobotFile)?;
         vsrlab_tasks::files::write_atomic(path, text.as_bytes()).map_err(|source| EvaluatorError::File {
             path: path.to_path_buf(),
             source,

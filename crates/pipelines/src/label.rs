@@ -255,10 +255,13 @@ impl PageRobotMaker<'_> {
         let robot_rel = format!("robots/{id}.robot.json");
         let video_rel = format!("videos/{id}.gif");
         let out = &self.options.out;
-        let text = robot.robot_file(Some(&note)).ok_or_else(|| AnalysisError::Setup {
-            folder: exp.dir.clone(),
-            source: "this kind of robot has no robot file".into(),
-        })?;
+        let text = robot
+            .description()
+            .map(|d| d.to_json(Some(&note)))
+            .ok_or_else(|| AnalysisError::Setup {
+                folder: exp.dir.clone(),
+                source: "this kind of robot has no robot file".into(),
+            })?;
         write_text(&out.join(&robot_rel), &text)?;
         let video = out.join(&video_rel);
         self.videos

@@ -15,6 +15,7 @@ const state = {
   zoom: 1,
   overlays: { colours: true, touch: true, lidar: true, trail: true, footprints: true, ticks: true },
   selected: null, // { pane, unit }
+  unitChannel: "", // the per-unit channel the unit chart plots ("": actuation and area ratio)
   chartsDirty: true,
 };
 
@@ -599,7 +600,18 @@ function renderCharts() {
   chartCache.velocity = { image: f.ctx.getImageData(0, 0, vCanvas.width, vCanvas.height), f };
   const uCanvas = document.getElementById("voxel-chart");
   const sel = state.selected;
-  if (sel && sel.pane.replay.ch.actuation) {
+  const chosen = sel && state.unitChannel && sel.pane.replay.ch[state.unitChannel];
+  if (chosen) {
+    // any per-unit channel a robot kind or brain recorded, scaled to its own range
+    const r = sel.pane.replay, u = sel.unit, c = chosen;
+    const series = (k) => c.values[k * c.per + u];
+    let lo = Infinity, hi = -Infinity;
+    for (let k = 0; k < r.frames; k++) { lo = Math.min(lo, series(k)); hi = Math.max(hi, series(k)); }
+    if (!(hi > lo)) { lo -= 1; hi += 1; }
+    const g = chartFrame(uCanvas, `unit ${u} of ${r.title}: ${state.unitChannel}`, state.duration, lo, hi);
+    plotSeries(g, r, series, sel.pane.colour, false);
+    chartCache.voxel = { image: g.ctx.getImageData(0, 0, uCanvas.width, uCanvas.height), f: g };
+  } else if (sel && sel.pane.replay.ch.actuation) {
     const r = sel.pane.replay, u = sel.unit, cell = r.cells[u];
     const g = chartFrame(uCanvas, `voxel (${cell[0]}, ${cell[1]}) of ${r.title}: actuation (solid), area ratio − 1 (dashed)`, state.duration, -1, 1);
     plotSeries(g, r, (k) => r.ch.actuation.values[k * r.ch.actuation.per + u], sel.pane.colour, false);
@@ -636,11 +648,23 @@ function selectAt(pane, event) {
     polygonPath(pane.ctx, cam, r, k, a, u);
     if (pane.ctx.isPointInPath(px, py)) {
       state.selected = { pane, unit: u };
+      listUnitChannels(r);
       state.chartsDirty = true;
       draw();
       return;
     }
   }
+}
+
+// The per-unit channels of the selected robot's replay, offered in the unit chart's menu: every
+// channel with one value per unit, whatever kind or brain recorded it.
+function listUnitChannels(r) {
+  const menu = document.getElementById("unit-channel");
+  const units = r.corners.length;
+  const names = Object.keys(r.ch).filter((n) => !["outline", "center"].includes(n) && r.ch[n].per === units).sort();
+  menu.replaceChildren(new Option("actuation and area ratio", ""), ...names.map((n) => new Option(n, n)));
+  if (!names.includes(state.unitChannel)) state.unitChannel = "";
+  menu.value = state.unitChannel;
 }
 
 function setTime(t) {
@@ -700,6 +724,7 @@ async function start() {
   document.getElementById("scrub").addEventListener("input", (e) => { setTime(Number(e.target.value)); draw(); });
   document.getElementById("speed").addEventListener("change", (e) => { state.speed = Number(e.target.value); });
   document.getElementById("follow").addEventListener("change", (e) => { state.follow = e.target.checked; draw(); });
+  document.getElementById("unit-channel").addEventListener("change", (e) => { state.unitChannel = e.target.value; state.chartsDirty = true; draw(); });
   document.getElementById("zoom").addEventListener("input", (e) => { state.zoom = Math.pow(2, Number(e.target.value)); draw(); });
   for (const key of Object.keys(state.overlays)) {
     document.getElementById(`ov-${key}`).addEventListener("change", (e) => { state.overlays[key] = e.target.checked; draw(); });

@@ -4,6 +4,7 @@
 
 use crate::body_summary::BodySummary;
 use crate::episode::EpisodeError;
+use crate::kinds::RobotDescription;
 use crate::outcome::Trace;
 use vsrlab_body::Body;
 use vsrlab_brain::Controller;
@@ -22,8 +23,9 @@ pub trait Robot: Send + Sync {
     fn summary(&self) -> Option<BodySummary> {
         None
     }
-    /// The robot as a robot file (JSON), when its kind has one.
-    fn robot_file(&self, _note: Option<&str>) -> Option<String> {
+    /// The robot as its kind describes it (robot file, brain, labels), when it is of a
+    /// registered kind.
+    fn description(&self) -> Option<&dyn RobotDescription> {
         None
     }
 }

@@ -132,8 +132,8 @@ impl Robot for PsaRobot {
         Ok(Box::new(PsaAgent::new(psa, sensors, brain, shape.units())))
     }
 
-    fn robot_file(&self, note: Option<&str>) -> Option<String> {
-        Some(crate::kinds::psa::psa_to_json(self, note))
+    fn description(&self) -> Option<&dyn crate::kinds::RobotDescription> {
+        Some(self)
     }
 }
 

@@ -59,8 +59,8 @@ impl Robot for RobotSpec {
         Some(BodySummary::of_grid(&self.body))
     }
 
-    fn robot_file(&self, note: Option<&str>) -> Option<String> {
-        Some(crate::files::robot_to_json(self, note))
+    fn description(&self) -> Option<&dyn crate::kinds::RobotDescription> {
+        Some(self)
     }
 }
 

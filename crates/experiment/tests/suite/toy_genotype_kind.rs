@@ -6,7 +6,7 @@
 //! the analyses replay its snapshot rows through the kind's stored-genotype reader. Registering
 //! it for experiment files would be one line in `genotypes::GENOTYPES`.
 
-mod common;
+use crate::common;
 
 use serde::{Deserialize, Serialize};
 use std::path::Path;

@@ -1,7 +1,7 @@
 //! `vsrlab simulate --ensemble` and `--initial-x` (docs/fidelity.md): shifted starts, their
 //! summary, the same numbers on every run, and errors that name the option.
 
-mod common;
+use crate::common;
 use common::{ok, vsrlab};
 
 fn json(text: &str) -> serde_json::Value {

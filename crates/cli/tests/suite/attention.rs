@@ -2,7 +2,7 @@
 //! attention module to a bigger body through `[transfer]`, pooled by `setting` → the
 //! frozen-attention ablation through `vsrlab plasticity` → a video with attention maps.
 
-mod common;
+use crate::common;
 
 use common::{ok, vsrlab};
 use std::path::Path;

@@ -2,7 +2,7 @@
 //! populations): thread count does not change results; an interrupted then resumed run ends
 //! with the same files as an uninterrupted one; failed evaluations are counted, not fatal.
 
-mod common;
+use crate::common;
 
 use common::Killer;
 use std::path::Path;

@@ -1,6 +1,6 @@
 //! Calibration against the original simulator's reference outputs (vsr-model.md §9).
 
-mod common;
+use crate::common;
 
 use common::*;
 use vsrlab_body::Preset;

@@ -3,7 +3,7 @@
 //! topology fixed in the weights-only ablation, starts from a seed graph, and names the field of
 //! every mistake in the file.
 
-mod common;
+use crate::common;
 
 use common::Killer;
 use vsrlab_body::Morphology;

@@ -2,7 +2,7 @@
 //! with damage) → `vsrlab reassess` with and without damage → `vsrlab plasticity`; every table and
 //! figure must appear, and the numbers must be sane.
 
-mod common;
+use crate::common;
 
 use common::{ok, vsrlab};
 use std::path::Path;

@@ -1,7 +1,7 @@
 //! Stability: random connected bodies under random actuation on every terrain never produce
 //! non-finite values or absurd voxel areas; a blown-up state is an error, never a panic.
 
-mod common;
+use crate::common;
 
 use common::*;
 use rand::{Rng, SeedableRng};

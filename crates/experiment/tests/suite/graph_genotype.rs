@@ -3,7 +3,7 @@
 //! small graph of "phase neurons" placed in the cells of a biped; the mapper turns it into the
 //! biped's per-cell phases. Everything specific to the graph lives in this file.
 
-mod common;
+use crate::common;
 
 use common::Killer;
 use serde::{Deserialize, Serialize};

@@ -1,7 +1,7 @@
 //! `vsrlab evaluate`: fitness of given genotypes, in file order, independent of the thread count;
 //! bad files are refused with the line named.
 
-mod common;
+use crate::common;
 use common::{ok, vsrlab};
 
 const EXPERIMENT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../experiments/quickstart.toml");

@@ -2,7 +2,7 @@
 //! simulates a best robot without a replay on demand (the same episode), serves on loopback and
 //! stops on Ctrl-C. The page itself is tested in a browser by web-test/run.sh.
 
-mod common;
+use crate::common;
 use common::{ok, vsrlab};
 use std::io::{Read, Write};
 use std::net::TcpStream;

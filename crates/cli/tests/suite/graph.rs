@@ -3,7 +3,7 @@
 //! → `vsrlab transferability`, plus a video frame with the graph drawn and the errors that name
 //! their option.
 
-mod common;
+use crate::common;
 
 use common::{ok, vsrlab};
 

@@ -1,7 +1,7 @@
 //! End to end, the PSA tools (docs/psa.md): `vsrlab simulate --body psa…` on each PSA task with a
 //! video frame, its robot file replayed, `vsrlab inflate`, and errors that name their option.
 
-mod common;
+use crate::common;
 
 use common::{ok, vsrlab};
 

@@ -1,6 +1,6 @@
 //! Same inputs, same outcome: across repeated runs and across thread counts.
 
-mod common;
+use crate::common;
 
 use common::*;
 use rayon::prelude::*;

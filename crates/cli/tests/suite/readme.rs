@@ -5,7 +5,7 @@
 //! untouched, so the run → replay pair is checked verbatim. `vsrlab view`, a server, is started,
 //! must print its URL, and is stopped with Ctrl-C (SIGINT), which must end it with status 0.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::process::Command;

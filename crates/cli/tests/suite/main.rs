@@ -1,0 +1,17 @@
+//! Every integration test of this crate in one binary (one link instead of one per file: CI
+//! time); each file is a module.
+
+mod analyze;
+mod attention;
+mod bench;
+mod common;
+mod ensemble;
+mod evaluate;
+mod fuzz;
+mod graph;
+mod hebbian;
+mod psa;
+mod readme;
+mod robot_files;
+mod run;
+mod view;

@@ -1,0 +1,11 @@
+//! Every integration test of this crate in one binary (one link instead of one per file: CI
+//! time); each file is a module.
+
+mod common;
+mod config;
+mod graph_brain;
+mod graph_genotype;
+mod psa;
+mod runner;
+mod third_robot_kind;
+mod toy_genotype_kind;

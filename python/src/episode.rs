@@ -79,7 +79,16 @@ impl Env {
 
 /// A new episode with its first sensor reading.
 fn start(robot: &AnyRobot, task: &TaskSpec, seed: u64, level: TraceLevel) -> Result<Episode, EpisodeError> {
-    let mut e = Episode::new(robot.as_robot(), task.task(), seed, level)?;
+    let rigid = task.task().rigid().ok_or_else(|| {
+        EpisodeError::Field(vsrlab_tasks::FieldError::new(
+            "task",
+            format!(
+                "{} episodes run whole on their own engine; step them with vsrlab.simulate, not an Episode",
+                task.task().kind()
+            ),
+        ))
+    })?;
+    let mut e = Episode::new(robot.as_robot(), rigid, seed, level)?;
     e.sense();
     Ok(e)
 }

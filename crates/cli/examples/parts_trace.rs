@@ -37,7 +37,8 @@ fn main() -> Result<(), String> {
         .map_err(|_| format!("SHIFT: not a number: '{}'", args[4]))?;
     task.duration = steps as f64 / 60.0 + 0.5;
     let spec = ensemble::shifted_task(&TaskSpec::Locomotion(task), shift).map_err(|e| e.to_string())?;
-    let mut episode = Episode::new(&robot, spec.task(), 0, TraceLevel::None).map_err(|e| e.to_string())?;
+    let task = spec.task().rigid().ok_or("not a rigid-body task")?;
+    let mut episode = Episode::new(&robot, task, 0, TraceLevel::None).map_err(|e| e.to_string())?;
     let cells: Vec<(usize, usize)> = robot.body.voxels().collect();
     let mut out = std::io::BufWriter::new(std::fs::File::create(&args[6]).map_err(|e| format!("{}: {e}", args[6]))?);
     let mut write = |step: usize, episode: &Episode| -> std::io::Result<()> {

@@ -168,7 +168,7 @@ pub fn weight_snapshots(
     seed: u64,
     times: &[f64],
 ) -> Result<Vec<Vec<f64>>, ReplayError> {
-    let dt = task.physics().dt;
+    let dt = task.rigid().map_or(f64::NAN, |rigid| rigid.physics().dt);
     let mut snapshots: Vec<Option<Vec<f64>>> = vec![None; times.len()];
     let mut last: Option<Vec<f64>> = None;
     let mut plastic = false;

@@ -268,7 +268,8 @@ impl<'a> Scene<'a> {
         if self.opts.draw_overlay {
             overlay::draw_overlay(pm, t, step);
         }
-        if self.opts.draw_legend {
+        // the legend explains the area colours, which a kind that colours its units replaces
+        if self.opts.draw_legend && self.unit_fill.is_empty() {
             overlay::draw_legend(pm, t.damage.is_some(), t.has(channels::PRESSURE.name));
         }
     }

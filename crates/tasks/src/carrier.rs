@@ -10,7 +10,7 @@ use crate::episode::EpisodeError;
 use crate::fitness::Fitness;
 use crate::locomotion::place_on_ground;
 use crate::task::{
-    check_episode, task_field, Flow, Metrics, Objective, Scene, SceneObject, StepView, Task, TaskEpisode,
+    check_episode, task_field, Flow, Metrics, Objective, RigidTask, Scene, SceneObject, StepView, Task, TaskEpisode,
 };
 use crate::terrain::{add_ground, height_at};
 use serde::{Deserialize, Serialize};
@@ -121,6 +121,20 @@ impl Task for Carrier {
         self.duration
     }
 
+    fn metric_names(&self) -> &'static [&'static str] {
+        METRICS
+    }
+
+    fn objectives(&self) -> &[Objective] {
+        &self.fitness.0
+    }
+
+    fn rigid(&self) -> Option<&dyn RigidTask> {
+        Some(self)
+    }
+}
+
+impl RigidTask for Carrier {
     fn physics(&self) -> &WorldSettings {
         &self.physics
     }
@@ -153,14 +167,6 @@ impl Task for Carrier {
             tolerance: self.physics.touch_tolerance,
             ..Default::default()
         })
-    }
-
-    fn metric_names(&self) -> &'static [&'static str] {
-        METRICS
-    }
-
-    fn objectives(&self) -> &[Objective] {
-        &self.fitness.0
     }
 }
 

@@ -5,7 +5,7 @@
 use crate::agent::{Agent, Robot};
 use crate::channels::{BALL_ANGLE, BALL_RADII, BALL_XY, OBSTACLES, OBSTACLE_CORNERS};
 use crate::outcome::{DamageRecord, Outcome, Trace, TraceLevel};
-use crate::task::{fitness_values, Flow, Objective, Scene, StepView, Task, TaskEpisode};
+use crate::task::{fitness_values, Flow, Objective, RigidTask, Scene, StepView, Task, TaskEpisode};
 use vsrlab_body::Probe;
 use vsrlab_field::FieldError;
 use vsrlab_physics::{PhysicsError, Vec2, World, WorldBuilder};
@@ -36,10 +36,24 @@ pub fn run(robot: &dyn Robot, task: &dyn Task, seed: u64, level: TraceLevel) -> 
 }
 
 /// [`run`], calling `observe(t, agent)` after every step (after the task has seen it): the hook of
-/// analyses that look inside the robot during the episode, such as weight snapshots.
+/// analyses that look inside the robot during the episode, such as weight snapshots. The task
+/// runs the episode on its engine ([`Task::run_episode`]); only rigid-body episodes call
+/// `observe`.
 pub fn run_observed(
     robot: &dyn Robot,
     task: &dyn Task,
+    seed: u64,
+    level: TraceLevel,
+    observe: &mut dyn FnMut(f64, &dyn Agent),
+) -> Result<Outcome, EpisodeError> {
+    task.run_episode(robot, seed, level, observe)
+}
+
+/// The episode loop of the 2D rigid-body engine: what [`Task::run_episode`] runs for a
+/// [`RigidTask`].
+pub fn run_rigid(
+    robot: &dyn Robot,
+    task: &dyn RigidTask,
     seed: u64,
     level: TraceLevel,
     observe: &mut dyn FnMut(f64, &dyn Agent),
@@ -72,7 +86,7 @@ pub struct Episode {
 
 impl Episode {
     /// Builds the world, places the robot and reads its sensors once (time 0).
-    pub fn new(robot: &dyn Robot, task: &dyn Task, seed: u64, level: TraceLevel) -> Result<Episode, EpisodeError> {
+    pub fn new(robot: &dyn Robot, task: &dyn RigidTask, seed: u64, level: TraceLevel) -> Result<Episode, EpisodeError> {
         task.validate()?;
         let mut builder = WorldBuilder::new(task.physics().clone());
         let scene = task.build_world(&mut builder, seed);
@@ -255,7 +269,7 @@ struct Recorder {
 }
 
 impl Recorder {
-    fn new(level: TraceLevel, task: &dyn Task, scene: &Scene, agent: &mut dyn Agent) -> Recorder {
+    fn new(level: TraceLevel, task: &dyn RigidTask, scene: &Scene, agent: &mut dyn Agent) -> Recorder {
         let steps = (task.duration() / task.physics().dt).ceil() as usize + 1;
         let mut trace = Trace {
             dt: task.physics().dt,

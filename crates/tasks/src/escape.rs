@@ -13,7 +13,7 @@
 
 use crate::episode::EpisodeError;
 use crate::fitness::Fitness;
-use crate::task::{check_episode, task_field, Flow, Metrics, Objective, Scene, StepView, Task, TaskEpisode};
+use crate::task::{check_episode, task_field, Flow, Metrics, Objective, RigidTask, Scene, StepView, Task, TaskEpisode};
 use crate::terrain::add_ground;
 use serde::{Deserialize, Serialize};
 use vsrlab_field::FieldError;
@@ -112,6 +112,20 @@ impl Task for Escape {
         self.duration
     }
 
+    fn metric_names(&self) -> &'static [&'static str] {
+        METRICS
+    }
+
+    fn objectives(&self) -> &[Objective] {
+        &self.fitness.0
+    }
+
+    fn rigid(&self) -> Option<&dyn RigidTask> {
+        Some(self)
+    }
+}
+
+impl RigidTask for Escape {
     fn physics(&self) -> &WorldSettings {
         &self.physics
     }
@@ -147,14 +161,6 @@ impl Task for Escape {
             distance: 0.0,
             escaped_at: None,
         })
-    }
-
-    fn metric_names(&self) -> &'static [&'static str] {
-        METRICS
-    }
-
-    fn objectives(&self) -> &[Objective] {
-        &self.fitness.0
     }
 }
 

@@ -7,7 +7,7 @@
 use crate::episode::EpisodeError;
 use crate::fitness::Fitness;
 use crate::locomotion::place_on_ground;
-use crate::task::{check_episode, Flow, Metrics, Objective, Scene, StepView, Task, TaskEpisode};
+use crate::task::{check_episode, Flow, Metrics, Objective, RigidTask, Scene, StepView, Task, TaskEpisode};
 use crate::terrain::{add_ground, Terrain};
 use serde::{Deserialize, Serialize};
 use vsrlab_physics::{Vec2, WorldBuilder, WorldSettings};
@@ -54,6 +54,20 @@ impl Task for Jump {
         self.duration
     }
 
+    fn metric_names(&self) -> &'static [&'static str] {
+        METRICS
+    }
+
+    fn objectives(&self) -> &[Objective] {
+        &self.fitness.0
+    }
+
+    fn rigid(&self) -> Option<&dyn RigidTask> {
+        Some(self)
+    }
+}
+
+impl RigidTask for Jump {
     fn physics(&self) -> &WorldSettings {
         &self.physics
     }
@@ -70,14 +84,6 @@ impl Task for Jump {
 
     fn start(&self) -> Box<dyn TaskEpisode> {
         Box::new(JumpEpisode::default())
-    }
-
-    fn metric_names(&self) -> &'static [&'static str] {
-        METRICS
-    }
-
-    fn objectives(&self) -> &[Objective] {
-        &self.fitness.0
     }
 }
 

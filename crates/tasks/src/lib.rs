@@ -55,6 +55,6 @@ pub use registry::{FieldError, TaskParseError, TaskSpec};
 pub use representation::{
     evaluate, evaluate_traced, BodyPart, BodySource, EvaluationError, Mapper, Representation, Stored, StoredGenotypes,
 };
-pub use task::{Flow, Metrics, Objective, Sense, Task};
+pub use task::{Flow, Metrics, Objective, RigidTask, Sense, Task};
 pub use terrain::Terrain;
 pub use vsrlab_body::{Channel, Probe};

@@ -8,7 +8,7 @@
 use crate::damage::Damage;
 use crate::episode::EpisodeError;
 use crate::fitness::Fitness;
-use crate::task::{check_episode, task_field, Flow, Metrics, Objective, Scene, StepView, Task, TaskEpisode};
+use crate::task::{check_episode, task_field, Flow, Metrics, Objective, RigidTask, Scene, StepView, Task, TaskEpisode};
 use crate::terrain::{add_ground, height_at, Terrain};
 use serde::{Deserialize, Serialize};
 use vsrlab_field::FieldError;
@@ -85,6 +85,24 @@ impl Task for Locomotion {
         self.duration
     }
 
+    fn metric_names(&self) -> &'static [&'static str] {
+        METRICS
+    }
+
+    fn objectives(&self) -> &[Objective] {
+        &self.fitness.0
+    }
+
+    fn damage(&self) -> Option<&Damage> {
+        self.damage.as_ref()
+    }
+
+    fn rigid(&self) -> Option<&dyn RigidTask> {
+        Some(self)
+    }
+}
+
+impl RigidTask for Locomotion {
     fn physics(&self) -> &WorldSettings {
         &self.physics
     }
@@ -104,18 +122,6 @@ impl Task for Locomotion {
             transient: self.transient,
             ..Default::default()
         })
-    }
-
-    fn metric_names(&self) -> &'static [&'static str] {
-        METRICS
-    }
-
-    fn objectives(&self) -> &[Objective] {
-        &self.fitness.0
-    }
-
-    fn damage(&self) -> Option<&Damage> {
-        self.damage.as_ref()
     }
 }
 

@@ -8,6 +8,7 @@
 use crate::carrier::Carrier;
 use crate::escape::Escape;
 use crate::jump::Jump;
+use crate::kinds::evogym::{EvoGym, EvoGymTask};
 use crate::locomotion::Locomotion;
 use crate::task::Task;
 use crate::terrain::Terrain;
@@ -27,6 +28,8 @@ pub enum TaskSpec {
     Escape(Escape),
     /// Walk with a ball on top ([`Carrier`]).
     Carrier(Carrier),
+    /// One of EvoGym's tasks, on its own engine ([`EvoGym`]).
+    Evogym(EvoGym),
 }
 
 impl Default for TaskSpec {
@@ -96,6 +99,12 @@ pub const TASKS: &[TaskKind] = &[
         parse: parse_carrier,
         decode: |v| decode::<Carrier>(v).map(TaskSpec::Carrier),
     },
+    TaskKind {
+        name: "evogym",
+        usage: "evogym[:<Walker-v0|BridgeWalker-v0|BeamToppler-v0|CaveCrawler-v0>]",
+        parse: parse_evogym,
+        decode: |v| decode::<EvoGym>(v).map(TaskSpec::Evogym),
+    },
 ];
 
 fn parse_escape(arg: Option<&str>) -> Result<TaskSpec, FieldError> {
@@ -125,6 +134,19 @@ fn parse_locomotion(arg: Option<&str>) -> Result<TaskSpec, FieldError> {
         terrain,
         ..Locomotion::default()
     }))
+}
+
+fn parse_evogym(arg: Option<&str>) -> Result<TaskSpec, FieldError> {
+    let mut task = EvoGym::default();
+    if let Some(name) = arg {
+        let which = EvoGymTask::from_name(name).ok_or_else(|| {
+            FieldError::message(format!(
+                "unknown EvoGym task '{name}': expected Walker-v0, BridgeWalker-v0, BeamToppler-v0 or CaveCrawler-v0"
+            ))
+        })?;
+        task.env = which.name().to_string();
+    }
+    Ok(TaskSpec::Evogym(task))
 }
 
 fn parse_jump(arg: Option<&str>) -> Result<TaskSpec, FieldError> {
@@ -175,6 +197,7 @@ impl TaskSpec {
             TaskSpec::Jump(t) => t,
             TaskSpec::Escape(t) => t,
             TaskSpec::Carrier(t) => t,
+            TaskSpec::Evogym(t) => t,
         }
     }
 
@@ -319,7 +342,7 @@ mod tests {
             .with_settings(&[("duration", json!(7.0)), ("physics.substeps", json!(3))])
             .unwrap();
         assert_eq!(t.task().duration(), 7.0);
-        assert_eq!(t.task().physics().substeps, 3);
+        assert_eq!(t.task().rigid().unwrap().physics().substeps, 3);
         let e = TaskSpec::parse("jump")
             .unwrap()
             .with_settings(&[("transient", json!(1.0))])

@@ -5,8 +5,10 @@
 //! A new task is one module with a settings struct that implements [`Task`], plus one line in
 //! the registry ([`crate::registry`]).
 
+use crate::agent::{Agent, Robot};
 use crate::damage::Damage;
 use crate::episode::EpisodeError;
+use crate::outcome::{Outcome, TraceLevel};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use vsrlab_body::Body;
@@ -109,7 +111,10 @@ pub trait TaskEpisode: Send {
     fn metrics(&self) -> Metrics;
 }
 
-/// A task: settings that build a world, place a robot, watch the episode and score it.
+/// A task: what a robot is asked to do, how long, and how it is scored; and the loop that runs
+/// its episodes. Tasks on the 2D rigid-body engine (locomotion, jump, escape, carrier) are
+/// [`RigidTask`]s and run the one loop of [`crate::episode`]; a task on another engine (EvoGym's
+/// mass-spring voxels) runs its own loop in [`Task::run_episode`].
 pub trait Task: Send + Sync + std::fmt::Debug {
     /// The task's kind, as in configs (`locomotion`, `jump`).
     fn kind(&self) -> &'static str;
@@ -117,6 +122,43 @@ pub trait Task: Send + Sync + std::fmt::Debug {
     fn validate(&self) -> Result<(), EpisodeError>;
     /// Longest episode, in simulated seconds.
     fn duration(&self) -> f64;
+    /// The metrics this task reports.
+    fn metric_names(&self) -> &'static [&'static str];
+    /// The fitness values, in order (one for single-objective tasks).
+    fn objectives(&self) -> &[Objective];
+    /// Body parts that break during the episode, if any ([`Damage`]). Default: none.
+    fn damage(&self) -> Option<&Damage> {
+        None
+    }
+    /// The task as a task of the 2D rigid-body engine, when it is one: what stepping an episode
+    /// from outside (Python, Gymnasium) needs. Default: none.
+    fn rigid(&self) -> Option<&dyn RigidTask> {
+        None
+    }
+    /// Runs one episode of `robot` with episode seed `seed`, recording a trace at `level` and
+    /// calling `observe(t, agent)` after every step of a rigid-body episode. Default: the rigid
+    /// engine's loop ([`crate::episode::run_rigid`]) for a [`RigidTask`]; a task on another
+    /// engine runs its own.
+    fn run_episode(
+        &self,
+        robot: &dyn Robot,
+        seed: u64,
+        level: TraceLevel,
+        observe: &mut dyn FnMut(f64, &dyn Agent),
+    ) -> Result<Outcome, EpisodeError> {
+        match self.rigid() {
+            Some(task) => crate::episode::run_rigid(robot, task, seed, level, observe),
+            None => Err(EpisodeError::Invalid(format!(
+                "task {} has no episode loop",
+                self.kind()
+            ))),
+        }
+    }
+}
+
+/// A task on the 2D rigid-body engine: it builds its world, places the robot, and watches every
+/// step through a [`TaskEpisode`].
+pub trait RigidTask: Task {
     /// Physics engine settings.
     fn physics(&self) -> &WorldSettings;
     /// Adds the static world (ground, obstacles) to `builder`; `seed` is the episode seed.
@@ -126,14 +168,6 @@ pub trait Task: Send + Sync + std::fmt::Debug {
     fn place(&self, scene: &Scene, footprint: &[Vec2]) -> Vec2;
     /// A fresh per-episode state.
     fn start(&self) -> Box<dyn TaskEpisode>;
-    /// The metrics this task reports.
-    fn metric_names(&self) -> &'static [&'static str];
-    /// The fitness values, in order (one for single-objective tasks).
-    fn objectives(&self) -> &[Objective];
-    /// Body parts that break during the episode, if any ([`Damage`]). Default: none.
-    fn damage(&self) -> Option<&Damage> {
-        None
-    }
 }
 
 /// The fitness values of `objectives` read from `metrics` (NaN for a missing metric, which

@@ -3,6 +3,7 @@
 
 mod common;
 mod config;
+mod evogym;
 mod graph_brain;
 mod graph_genotype;
 mod psa;

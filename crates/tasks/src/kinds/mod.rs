@@ -23,7 +23,7 @@ use vsrlab_brain::BrainSpec;
 
 /// Every robot kind. The first whose [`RobotKind::claims_body`] accepts a command-line body
 /// builds it, so the voxel robot, whose bodies are any shape name or text grid, comes last.
-pub const ROBOT_KINDS: &[RobotKind] = &[psa::KIND, voxel::KIND];
+pub const ROBOT_KINDS: &[RobotKind] = &[psa::KIND, evogym::KIND, voxel::KIND];
 
 /// One registered robot kind.
 pub struct RobotKind {

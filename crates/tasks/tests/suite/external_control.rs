@@ -16,7 +16,7 @@ fn task(text: &str, duration: f64) -> TaskSpec {
 /// first step with the brain: its actuation only takes effect after the first physics step).
 fn both_ways(robot: &dyn Robot, task: &TaskSpec, value: f64) -> (vsrlab_tasks::Outcome, vsrlab_tasks::Outcome) {
     let inside = episode::run(robot, task.task(), 4, TraceLevel::None).unwrap();
-    let mut outside = Episode::new(robot, task.task(), 4, TraceLevel::None).unwrap();
+    let mut outside = Episode::new(robot, task.task().rigid().unwrap(), 4, TraceLevel::None).unwrap();
     outside.step(None).unwrap();
     let actions = vec![value; outside.agent().action_count()];
     while !outside.is_over() {
@@ -41,7 +41,7 @@ fn an_outside_driven_psa_is_repeatable_and_follows_its_actions() {
     let robot = PsaRobot::from_short_forms("psa:small", "constant:0").unwrap();
     let spec = task("locomotion:flat", 2.0);
     let drive = |value: f64| {
-        let mut e = Episode::new(&robot, spec.task(), 4, TraceLevel::None).unwrap();
+        let mut e = Episode::new(&robot, spec.task().rigid().unwrap(), 4, TraceLevel::None).unwrap();
         let actions = vec![value; e.agent().action_count()];
         while !e.is_over() {
             e.step(Some(&actions)).unwrap();
@@ -56,7 +56,7 @@ fn an_outside_driven_psa_is_repeatable_and_follows_its_actions() {
 fn other_actions_give_another_episode_and_readings_follow_the_world() {
     let robot = RobotSpec::from_short_forms("biped-4x3", "2021", DEFAULT_SENSORS, "constant:0").unwrap();
     let spec = task("locomotion:flat", 2.0);
-    let mut e = Episode::new(&robot, spec.task(), 0, TraceLevel::None).unwrap();
+    let mut e = Episode::new(&robot, spec.task().rigid().unwrap(), 0, TraceLevel::None).unwrap();
     e.sense();
     let first = e.agent().readings().to_vec();
     assert!(!first.is_empty());
@@ -78,7 +78,7 @@ fn other_actions_give_another_episode_and_readings_follow_the_world() {
 fn actions_of_the_wrong_length_are_refused_with_the_counts() {
     let robot = RobotSpec::from_short_forms("biped-4x3", "2021", DEFAULT_SENSORS, "phase").unwrap();
     let spec = task("locomotion:flat", 1.0);
-    let mut e = Episode::new(&robot, spec.task(), 0, TraceLevel::None).unwrap();
+    let mut e = Episode::new(&robot, spec.task().rigid().unwrap(), 0, TraceLevel::None).unwrap();
     let err = e.step(Some(&[0.0; 3])).unwrap_err().to_string();
     assert!(
         err.contains("actions: 3 values") && err.contains("10 actuators"),

@@ -45,7 +45,9 @@ impl EvoGymTask {
 
     /// The task named `name`, if any.
     pub fn from_name(name: &str) -> Option<EvoGymTask> {
-        EvoGymTask::ALL.into_iter().find(|t| t.name() == name)
+        EvoGymTask::ALL
+            .into_iter()
+            .find(|t| t.name().eq_ignore_ascii_case(name))
     }
 
     /// Its world, without the robot.

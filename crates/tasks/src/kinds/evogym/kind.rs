@@ -1,0 +1,215 @@
+//! The EvoGym robot's registry entry: its command-line short form (`evogym:ROWS`, or
+//! `evogym:<Task>:ROWS` for another task's observation), its robot-file form
+//! (`{"format", "note", "evogym": {"body", "env", "brain"}}`) and its `[representation] body`
+//! table (`{ kind = "evogym", body = "33333/…", env = "Walker-v0" }`: no body genes, the genotype is
+//! the brain's parameters).
+
+use super::robot::EvoGymRobot;
+use crate::body_part::{BodyPart, BodySource};
+use crate::files::{self, FileError, ROBOT_FORMAT};
+use crate::kinds::voxel::short_forms::{RobotArgsError, RobotPart, RANDOM_BRAIN_SEED};
+use crate::kinds::{AnyRobot, RobotArgs, RobotDescription, RobotKind};
+use crate::representation::{EvaluationError, Representation};
+use serde::{Deserialize, Serialize};
+use vsrlab_brain::BrainSpec;
+use vsrlab_field::FieldError;
+
+/// The EvoGym robot's registry entry.
+pub const KIND: RobotKind = RobotKind {
+    name: "evogym",
+    file_key: "evogym",
+    body_usage: "evogym:[<Task>:]<rows of 0-4 digits joined by />",
+    claims_body: |body| body.starts_with("evogym:"),
+    from_short_forms,
+    from_file,
+    body_tables: &["evogym"],
+    physics: vsrlab_physics::WorldSettings::default,
+    decode_body,
+};
+
+/// The default brain: a centralized MLP over the whole observation.
+const DEFAULT_BRAIN: &str = "mlp";
+
+fn from_short_forms(args: &RobotArgs) -> Result<AnyRobot, RobotArgsError> {
+    let kind = |part, message: String| RobotArgsError::Kind { part, message };
+    if args.sensors.is_some() {
+        return Err(kind(
+            RobotPart::Sensors,
+            "an EvoGym robot observes what its task gives (docs/evogym-envs.md); leave sensors out".into(),
+        ));
+    }
+    let rest = args.body.strip_prefix("evogym:").unwrap_or(args.body);
+    let (env, rows) = match rest.split_once(':') {
+        Some((env, rows)) => (env.to_string(), rows),
+        None => (super::EvoGymTask::Walker.name().to_string(), rest),
+    };
+    let brain = BrainSpec::parse(args.brain.unwrap_or(DEFAULT_BRAIN)).map_err(RobotArgsError::Brain)?;
+    let mut robot = EvoGymRobot {
+        body: rows.to_string(),
+        env,
+        brain,
+    };
+    let shape = robot
+        .brain_shape()
+        .map_err(|e| kind(RobotPart::Body, e.at("robot").to_string()))?;
+    let count = robot.brain.parameter_count(&shape).map_err(RobotArgsError::Brain)?;
+    if count > 0 && robot.brain.parameters().is_empty() {
+        robot.brain = robot
+            .brain
+            .with_random_parameters(RANDOM_BRAIN_SEED, &shape)
+            .map_err(RobotArgsError::Brain)?;
+    }
+    robot
+        .validate()
+        .map_err(|e| kind(RobotPart::Brain, e.at("robot").to_string()))?;
+    Ok(AnyRobot::new(robot))
+}
+
+/// On-disk form of an EvoGym robot.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct EvoGymFile {
+    format: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    note: Option<String>,
+    evogym: EvoGymRobot,
+}
+
+/// Parses and validates an EvoGym robot file.
+fn from_file(text: &str, origin: &str) -> Result<AnyRobot, FileError> {
+    let file: EvoGymFile = files::parse_json(text, origin)?;
+    files::check_format(&file.format, origin)?;
+    file.evogym.validate().map_err(|e| FileError::Invalid {
+        path: origin.to_string(),
+        msg: e.at("evogym").to_string(),
+    })?;
+    Ok(AnyRobot::new(file.evogym))
+}
+
+impl RobotDescription for EvoGymRobot {
+    fn kind(&self) -> &'static RobotKind {
+        &KIND
+    }
+
+    fn brain(&self) -> &BrainSpec {
+        &self.brain
+    }
+
+    fn to_json(&self, note: Option<&str>) -> String {
+        let file = EvoGymFile {
+            format: ROBOT_FORMAT.to_string(),
+            note: note.map(str::to_string),
+            evogym: self.clone(),
+        };
+        serde_json::to_string_pretty(&file).expect("EvoGym robots always serialise")
+    }
+
+    fn body_details(&self, actuators: usize) -> String {
+        format!(
+            "material grid {}, {actuators} actuators, {}'s observation",
+            self.body, self.env
+        )
+    }
+
+    fn sensors_label(&self) -> String {
+        format!("{}'s observation", self.env)
+    }
+
+    fn preset_label(&self) -> String {
+        "evogym".to_string()
+    }
+
+    fn size(&self) -> usize {
+        self.grid().map_or(0, |g| g.cell_count())
+    }
+
+    fn label(&self) -> String {
+        format!("evogym {} for {}, brain={:?}", self.body, self.env, self.brain.kind())
+    }
+
+    fn clone_box(&self) -> Box<dyn RobotDescription> {
+        Box::new(self.clone())
+    }
+
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+}
+
+/// An EvoGym body in an experiment file: `{ kind = "evogym", body = "…", env = "Walker-v0" }`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EvoGymTable {
+    /// Always `evogym`.
+    pub kind: String,
+    /// The material grid (rows of digits 0-4 joined by `/`).
+    pub body: String,
+    /// The task whose observation the brain sees (default `Walker-v0`).
+    #[serde(default = "walker")]
+    pub env: String,
+}
+
+fn walker() -> String {
+    super::EvoGymTask::Walker.name().to_string()
+}
+
+/// Reads an EvoGym body table; the error's path is relative to the table.
+fn decode_body(value: serde_json::Value) -> Result<BodyPart, FieldError> {
+    let table: EvoGymTable = crate::registry::decode(value)?;
+    let robot = table.robot_with(BrainSpec::parse(DEFAULT_BRAIN).map_err(FieldError::from)?);
+    robot.grid()?;
+    robot.task()?;
+    Ok(BodyPart::new(table))
+}
+
+impl EvoGymTable {
+    fn robot_with(&self, brain: BrainSpec) -> EvoGymRobot {
+        EvoGymRobot {
+            body: self.body.clone(),
+            env: self.env.clone(),
+            brain,
+        }
+    }
+}
+
+impl BodySource for EvoGymTable {
+    fn kind(&self) -> &'static RobotKind {
+        &KIND
+    }
+
+    fn genes(&self) -> usize {
+        0
+    }
+
+    fn brain_genes(&self, representation: &Representation) -> Result<usize, EvaluationError> {
+        if representation.sensors.is_some() {
+            return Err(EvaluationError::Representation(FieldError::new(
+                "sensors",
+                "an EvoGym robot observes what its task gives; remove this field",
+            )));
+        }
+        let robot = self.robot_with(representation.brain.clone());
+        let shape = robot
+            .brain_shape()
+            .map_err(|e| EvaluationError::Representation(e.at("body")))?;
+        robot
+            .brain
+            .parameter_count(&shape)
+            .map_err(|e| EvaluationError::Representation(FieldError::from(e).at("brain")))
+    }
+
+    fn robot(
+        &self,
+        _representation: &Representation,
+        _genes: &[f64],
+        brain: BrainSpec,
+    ) -> Result<AnyRobot, EvaluationError> {
+        Ok(AnyRobot::new(self.robot_with(brain)))
+    }
+
+    fn size(&self) -> usize {
+        self.robot_with(BrainSpec::parse(DEFAULT_BRAIN).unwrap_or_default())
+            .grid()
+            .map_or(0, |g| g.cell_count())
+    }
+}

@@ -1,0 +1,386 @@
+//! [`EvoGym`]: an EvoGym task as a vsrlab task (`[task] kind = "evogym"`, `env = "Walker-v0"`, or
+//! `evogym:walker-v0` on the command line). Its episodes run on the mass-spring engine through
+//! [`EvoGymEnv`], with the robot's own brain choosing the actions, and are traced like every
+//! other episode: the voxels' outlines coloured by material, the terrain, the centre.
+
+use super::assemble::plan_object;
+use super::robot::{action_of, EvoGymRobot};
+use super::tasks::EvoGymTask;
+use super::EvoGymEnv;
+use crate::agent::{Agent, Robot};
+use crate::channels::{OBSTACLES, OBSTACLE_CORNERS, UNIT_FILL};
+use crate::episode::EpisodeError;
+use crate::fitness::Fitness;
+use crate::outcome::{Outcome, Trace, TraceLevel};
+use crate::task::{check_objectives, fitness_values, task_field, Metrics, Objective, Task};
+use serde::{Deserialize, Serialize};
+use vsrlab_body::Probe;
+use vsrlab_field::FieldError;
+use vsrlab_physics::Vec2;
+
+/// Simulated seconds of one EvoGym step: 30 substeps of 1e-4 s.
+pub const STEP_SECONDS: f64 = 30.0 * 1e-4;
+
+/// What an EvoGym episode reports.
+const METRICS: &[&str] = &["reward", "distance", "velocity", "steps"];
+
+/// An EvoGym task and how its episodes are scored (default: the sum of EvoGym's rewards).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct EvoGym {
+    /// The task (`Walker-v0`, `BridgeWalker-v0`, `BeamToppler-v0`, `CaveCrawler-v0`).
+    pub env: String,
+    /// Objectives among `reward` (EvoGym's summed reward), `distance` (the robot's centre, Δx),
+    /// `velocity` and `steps`.
+    pub fitness: Fitness,
+    /// At most this many simulated seconds (steps of [`STEP_SECONDS`]); absent or longer: the
+    /// task's own length (500 or 1000 steps).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub duration: Option<f64>,
+}
+
+impl Default for EvoGym {
+    fn default() -> Self {
+        EvoGym {
+            env: EvoGymTask::Walker.name().to_string(),
+            fitness: Fitness::maximize("reward"),
+            duration: None,
+        }
+    }
+}
+
+impl EvoGym {
+    /// Steps of an episode: the task's length, or fewer when `duration` says so.
+    fn steps(&self, which: EvoGymTask) -> u64 {
+        let own = which.episode_steps() as u64;
+        match self.duration {
+            Some(d) => own.min((d / STEP_SECONDS).ceil().max(1.0) as u64),
+            None => own,
+        }
+    }
+
+    /// The task named by `env`, the error naming `task.env`.
+    fn which(&self) -> Result<EvoGymTask, EpisodeError> {
+        EvoGymTask::from_name(&self.env).ok_or_else(|| {
+            task_field(FieldError::new(
+                "env",
+                format!(
+                    "unknown EvoGym task '{}': expected Walker-v0, BridgeWalker-v0, BeamToppler-v0 or CaveCrawler-v0",
+                    self.env
+                ),
+            ))
+        })
+    }
+}
+
+impl Task for EvoGym {
+    fn kind(&self) -> &'static str {
+        "evogym"
+    }
+
+    fn validate(&self) -> Result<(), EpisodeError> {
+        self.which()?;
+        if let Some(d) = self.duration {
+            if !(d.is_finite() && d > 0.0) {
+                return Err(task_field(FieldError::sentence(
+                    "duration",
+                    format!("must be a positive number of seconds, got {d}"),
+                )));
+            }
+        }
+        check_objectives(&self.fitness.0, METRICS)
+    }
+
+    fn duration(&self) -> f64 {
+        self.which().map_or(0.0, |t| self.steps(t) as f64 * STEP_SECONDS)
+    }
+
+    fn metric_names(&self) -> &'static [&'static str] {
+        METRICS
+    }
+
+    fn objectives(&self) -> &[Objective] {
+        &self.fitness.0
+    }
+
+    fn run_episode(
+        &self,
+        robot: &dyn Robot,
+        seed: u64,
+        level: TraceLevel,
+        _observe: &mut dyn FnMut(f64, &dyn Agent),
+    ) -> Result<Outcome, EpisodeError> {
+        self.validate()?;
+        let which = self.which()?;
+        let robot = evogym_robot(robot)?;
+        if robot.task().map_err(|e| EpisodeError::Field(e.at("robot")))? != which {
+            return Err(EpisodeError::Field(FieldError::new(
+                "robot.env",
+                format!("the robot's brain sees {}'s observation, not {}'s", robot.env, self.env),
+            )));
+        }
+        let grid = robot.grid().map_err(|e| EpisodeError::Field(e.at("robot")))?;
+        let mut env = EvoGymEnv::new(which, &grid).map_err(|e| EpisodeError::Invalid(e.to_string()))?;
+        let shape = super::robot::shape(env.observation_size(), env.action_count());
+        let mut brain = robot
+            .brain
+            .build(&shape)
+            .map_err(|e| EpisodeError::Field(FieldError::from(e).at("robot.brain")))?;
+        brain.reset();
+        let mut observation = env.reset(seed).to_vec();
+        let mut outputs = vec![0.0; env.action_count()];
+        let mut actions = vec![0.0; env.action_count()];
+        let mut recorder = Recorder::new(level, which, &grid);
+        let start = env.robot_centre().0;
+        recorder.record(&env, 0.0);
+        let (mut reward, mut steps, limit) = (0.0, 0u64, self.steps(which));
+        loop {
+            let t = steps as f64 * STEP_SECONDS;
+            brain.control(t, &observation, &mut outputs);
+            for (a, &o) in actions.iter_mut().zip(&outputs) {
+                *a = action_of(o);
+            }
+            let result = env.step(&actions).map_err(|e| EpisodeError::Invalid(e.to_string()))?;
+            reward += result.reward;
+            steps += 1;
+            observation.copy_from_slice(result.observation);
+            let over = result.done || result.truncated || steps >= limit;
+            recorder.record(&env, steps as f64 * STEP_SECONDS);
+            if over {
+                break;
+            }
+        }
+        let seconds = steps as f64 * STEP_SECONDS;
+        let distance = env.robot_centre().0 - start;
+        let metrics: Metrics = [
+            ("reward", reward),
+            ("distance", distance),
+            ("velocity", distance / seconds.max(STEP_SECONDS)),
+            ("steps", steps as f64),
+        ]
+        .into_iter()
+        .map(|(k, v)| (k.to_string(), v))
+        .collect();
+        Ok(Outcome {
+            fitness: fitness_values(&self.fitness.0, &metrics),
+            metrics,
+            steps,
+            units: env.action_count(),
+            trace: recorder.finish(),
+        })
+    }
+}
+
+/// The EvoGym robot behind a robot of any kind, or an error naming the task's kind.
+fn evogym_robot(robot: &dyn Robot) -> Result<&EvoGymRobot, EpisodeError> {
+    robot
+        .description()
+        .and_then(|d| d.as_any().downcast_ref::<EvoGymRobot>())
+        .ok_or_else(|| {
+            EpisodeError::Field(FieldError::new(
+                "task.kind",
+                "evogym tasks run EvoGym robots (a body `evogym:ROWS`, or a robot file with \"evogym\")",
+            ))
+        })
+}
+
+/// EvoGym's colours of a material code (its renderer's, approximately), as `0xRRGGBB`.
+fn material_colour(code: u8) -> u32 {
+    match code {
+        1 => 0x262626, // rigid
+        2 => 0xbfbfbf, // soft
+        3 => 0xfd8e3e, // horizontal actuator
+        4 => 0x6dafd6, // vertical actuator
+        _ => 0x000000, // fixed
+    }
+}
+
+/// The trace of an EvoGym episode: the robot's voxels as outline polygons (one per voxel, in
+/// cell order, filled with their material's colour), the terrain's cells as obstacles.
+struct Recorder {
+    level: TraceLevel,
+    trace: Trace,
+    /// The robot's voxels' corner points in the world (the robot's points come first).
+    quads: Vec<[usize; 4]>,
+}
+
+impl Recorder {
+    fn new(level: TraceLevel, which: EvoGymTask, grid: &super::MaterialGrid) -> Recorder {
+        let mut trace = Trace {
+            dt: STEP_SECONDS,
+            side_length: super::CELL,
+            ..Default::default()
+        };
+        let plan = plan_object(grid, which.robot_origin());
+        let quads = plan.quads.iter().map(|q| q.corners).collect();
+        if level == TraceLevel::Full {
+            let colours: Vec<f64> = grid
+                .present()
+                .map(|(_, _, m)| f64::from(material_colour(m.code())))
+                .collect();
+            trace.fixed(&UNIT_FILL, 1, &colours);
+            trace.outline_corners = vec![4; plan.quads.len()];
+            describe_terrain(which, &mut trace);
+        }
+        Recorder { level, trace, quads }
+    }
+
+    fn record(&mut self, env: &EvoGymEnv, t: f64) {
+        if self.level == TraceLevel::None {
+            return;
+        }
+        let (x, y) = env.robot_centre();
+        self.trace.times.push(t);
+        self.trace.centers.push(Vec2::new(x, y));
+        if self.level != TraceLevel::Full {
+            return;
+        }
+        let (px, py) = (env.world().positions_x(), env.world().positions_y());
+        for quad in &self.quads {
+            self.trace
+                .outlines
+                .extend(quad.iter().map(|&p| Vec2::new(px[p], py[p])));
+        }
+    }
+
+    fn finish(self) -> Option<Trace> {
+        (self.level != TraceLevel::None).then_some(self.trace)
+    }
+}
+
+/// The fixed cells of the task's world (its terrain) as static squares, and a ground line at
+/// their lowest top for the camera.
+fn describe_terrain(which: EvoGymTask, trace: &mut Trace) {
+    let cell = super::CELL;
+    let mut squares = Vec::new();
+    for object in which.world().objects() {
+        for (x, y, m) in object.grid.present() {
+            if m.code() != 5 {
+                continue;
+            }
+            let (ox, oy) = object.origin;
+            let left = (ox + x) as f64 * cell;
+            let top = (oy + object.grid.height() - y) as f64 * cell;
+            squares.push([left, top - cell, left + cell, top - cell, left + cell, top, left, top]);
+        }
+    }
+    trace.fixed(&OBSTACLE_CORNERS, 1, &vec![4.0; squares.len()]);
+    trace.fixed(&OBSTACLES, 2, &squares.concat());
+    let right = squares.iter().map(|s| s[2]).fold(0.0, f64::max);
+    trace.terrain = vec![Vec2::new(-1.0, 0.0), Vec2::new(right + 1.0, 0.0)];
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kinds::{from_short_forms, RobotArgs};
+    use crate::registry::TaskSpec;
+
+    fn robot(body: &str, brain: &str) -> crate::AnyRobot {
+        from_short_forms(&RobotArgs {
+            body,
+            brain: Some(brain),
+            sensors: None,
+            preset: "2021",
+        })
+        .unwrap()
+    }
+
+    const FULL: &str = "evogym:33333/33333/33333/33333/33333";
+
+    #[test]
+    fn a_walker_episode_is_scored_traced_and_repeatable() {
+        let task = TaskSpec::parse("evogym:walker-v0").unwrap();
+        let r = robot(FULL, "mlp");
+        let o = crate::episode::run(r.as_robot(), task.task(), 0, TraceLevel::Full).unwrap();
+        assert_eq!(
+            o.metrics["steps"], 500.0,
+            "Walker-v0 runs 500 steps without reaching x = 9.9"
+        );
+        assert_eq!(o.units, 25);
+        // Walker's reward is the centre's Δx each step: the sum telescopes to the distance
+        // (no goal bonus, no instability here)
+        assert!(
+            (o.metrics["reward"] - o.metrics["distance"]).abs() < 1e-9,
+            "{:?}",
+            o.metrics
+        );
+        assert_eq!(o.fitness, vec![o.metrics["reward"]]);
+        let trace = o.trace.as_ref().unwrap();
+        assert_eq!(trace.times.len(), 501);
+        assert_eq!(trace.outline_corners, vec![4; 25]);
+        assert_eq!(trace.outlines.len(), 501 * 25 * 4);
+        assert!(trace.outlines.iter().all(|p| p.is_finite()));
+        assert_eq!(trace.fixed_values(UNIT_FILL.name), vec![f64::from(0xfd8e3e); 25]);
+        assert!(
+            !trace.fixed_values(OBSTACLES.name).is_empty(),
+            "the ground's cells are drawn"
+        );
+        let again = crate::episode::run(r.as_robot(), task.task(), 0, TraceLevel::None).unwrap();
+        assert_eq!(again.metrics, o.metrics, "bit-identical");
+    }
+
+    #[test]
+    fn a_duration_shortens_the_episode_and_a_bad_one_is_refused() {
+        let r = robot(FULL, "mlp");
+        let short = TaskSpec::parse("evogym")
+            .unwrap()
+            .with_settings(&[("duration", serde_json::json!(0.3))])
+            .unwrap();
+        let o = crate::episode::run(r.as_robot(), short.task(), 0, TraceLevel::None).unwrap();
+        assert_eq!(o.metrics["steps"], 100.0, "0.3 s of 3 ms steps");
+        assert!((short.task().duration() - 0.3).abs() < 1e-12);
+        let long = TaskSpec::parse("evogym")
+            .unwrap()
+            .with_settings(&[("duration", serde_json::json!(30.0))])
+            .unwrap();
+        assert!(
+            (long.task().duration() - 1.5).abs() < 1e-12,
+            "no longer than Walker's 500 steps"
+        );
+        let bad = TaskSpec::parse("evogym")
+            .unwrap()
+            .with_settings(&[("duration", serde_json::json!(-1.0))])
+            .unwrap();
+        let err = bad.task().validate().unwrap_err().to_string();
+        assert!(err.contains("task.duration"), "{err}");
+    }
+
+    #[test]
+    fn robots_and_tasks_of_other_engines_are_refused_naming_the_field() {
+        let evogym = TaskSpec::parse("evogym").unwrap();
+        let voxel = robot("biped-4x3", "phase");
+        let err = crate::episode::run(voxel.as_robot(), evogym.task(), 0, TraceLevel::None).unwrap_err();
+        assert!(err.to_string().contains("task.kind"), "{err}");
+        let walker = robot(FULL, "mlp");
+        let flat = TaskSpec::parse("locomotion:flat").unwrap();
+        let err = crate::episode::run(walker.as_robot(), flat.task(), 0, TraceLevel::None).unwrap_err();
+        assert!(err.to_string().contains("task.kind"), "{err}");
+        let bridge = TaskSpec::parse("evogym:BridgeWalker-v0").unwrap();
+        let err = crate::episode::run(walker.as_robot(), bridge.task(), 0, TraceLevel::None).unwrap_err();
+        assert!(err.to_string().contains("robot.env"), "{err}");
+        let unknown = TaskSpec::parse("evogym:Climber-v9").unwrap_err();
+        assert!(unknown.to_string().contains("Climber-v9"), "{unknown}");
+    }
+
+    #[test]
+    fn the_brain_sees_the_task_observation_and_drives_every_actuator() {
+        // a 3-voxel robot with one horizontal actuator: 8 points, so Walker's observation has
+        // 2 + 2·8 = 18 values, and a no-hidden-layer MLP has (18 + 1)·1 weights
+        let r = robot("evogym:131", "mlp:none");
+        assert_eq!(r.brain().parameters().len(), 19);
+        let bridge = robot("evogym:BridgeWalker-v0:131", "mlp:none");
+        assert_eq!(
+            bridge.brain().parameters().len(),
+            20,
+            "BridgeWalker adds the orientation"
+        );
+        for (output, action) in [(-1.0, 0.6), (0.0, 1.1), (1.0, 1.6), (f64::INFINITY, 1.6), (-7.0, 0.6)] {
+            assert!(
+                (action_of(output) - action).abs() < 1e-12,
+                "{output} -> {}",
+                action_of(output)
+            );
+        }
+    }
+}

@@ -1,8 +1,8 @@
-//! Time of one EvoGym environment step (30 substeps) of each task with a full 5 × 5 body of
-//! horizontal actuators driven by a square-wave gait, and how far the gait takes the robot.
+//! Each EvoGym task with a full 5 × 5 body of horizontal actuators driven by a square-wave gait:
+//! the summed reward of one episode, and the time of one environment step (30 substeps).
 //!
-//! `cargo run --release -p vsrlab-tasks --example evogym_speed [steps]` (EvoGym's own simulator:
-//! about 1.4 ms per step for Walker-v0).
+//! `cargo run --release -p vsrlab-tasks --example evogym_speed [steps]`; EvoGym's own
+//! environments with the same body and gait: `bench/evogym/tasks.py` (docs/evogym.md has both).
 
 use std::time::Instant;
 use vsrlab_tasks::kinds::evogym::{EvoGymEnv, EvoGymTask, MaterialGrid};
@@ -14,34 +14,38 @@ fn gait(t: usize, n: usize) -> Vec<f64> {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let steps: usize = std::env::args().nth(1).map_or(Ok(500), |s| s.parse())?;
+    let steps: usize = std::env::args().nth(1).map_or(Ok(1000), |s| s.parse())?;
     let body = MaterialGrid::from_rows("33333/33333/33333/33333/33333")?;
     for task in EvoGymTask::ALL {
         let mut env = EvoGymEnv::new(task, &body)?;
         let actions: Vec<Vec<f64>> = (0..20).map(|t| gait(t, env.action_count())).collect();
-        let start = env.robot_centre().0;
-        let (mut done_at, mut total) = (None, 0.0);
+        // one episode of the task's own length: the reward to compare with EvoGym's
+        let (mut reward, mut taken) = (0.0, 0);
+        for t in 0..task.episode_steps() {
+            let r = env.step(&actions[t % 20])?;
+            reward += r.reward;
+            taken += 1;
+            if r.done || r.truncated {
+                break;
+            }
+        }
+        // then the time per step over `steps` steps, episodes restarted as they end
+        env.reset(0);
         let clock = Instant::now();
         for t in 0..steps {
             if env.steps() >= task.episode_steps() {
                 env.reset(0);
             }
-            let r = env.step(&actions[t % 20])?;
-            total += r.reward;
-            if r.done {
-                done_at = Some(t);
-                break;
+            if env.step(&actions[t % 20])?.done {
+                env.reset(0);
             }
         }
-        let elapsed = clock.elapsed().as_secs_f64();
-        let taken = done_at.map_or(steps, |t| t + 1);
+        let micros = clock.elapsed().as_secs_f64() / steps as f64 * 1e6;
         println!(
-            "{:16} {:8.1} µs/step over {taken} steps; centre x moved {:+.3} (reward sum {:+.3}){}",
+            "{:16} obs {:3}  actions {:2}  reward {reward:+.3} over {taken} steps  {micros:7.1} µs/step",
             task.name(),
-            elapsed / taken as f64 * 1e6,
-            env.robot_centre().0 - start,
-            total,
-            done_at.map_or(String::new(), |t| format!(", ended at step {t}")),
+            env.observation_size(),
+            env.action_count(),
         );
     }
     Ok(())

@@ -2,7 +2,7 @@
 //! the summed reward of one episode, and the time of one environment step (30 substeps).
 //!
 //! `cargo run --release -p vsrlab-tasks --example evogym_speed [steps]`; EvoGym's own
-//! environments with the same body and gait: `bench/evogym/tasks.py` (docs/evogym.md has both).
+//! environments with the same body and gait: `bench/evogym/tasks.py` (docs/multimaterial.md has both).
 
 use std::time::Instant;
 use vsrlab_tasks::kinds::evogym::{EvoGymEnv, EvoGymTask, MaterialGrid};

@@ -23,7 +23,7 @@ use vsrlab_tasks::{evaluate, BodyPart, BodySource, EvaluationError, FieldError, 
 /// The chain's registry entry.
 const KIND: RobotKind = RobotKind {
     name: "chain",
-    file_key: "chain",
+    file_keys: &["chain"],
     body_usage: "chain:<links>",
     claims_body: |body| body.starts_with("chain:"),
     from_short_forms,

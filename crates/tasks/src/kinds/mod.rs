@@ -29,8 +29,10 @@ pub const ROBOT_KINDS: &[RobotKind] = &[psa::KIND, evogym::KIND, voxel::KIND];
 pub struct RobotKind {
     /// The kind's name (`voxel`, `psa`): what the Python package's `Robot.kind` says.
     pub name: &'static str,
-    /// The key under which a robot file holds a robot of this kind (`robot`, `psa`).
-    pub file_key: &'static str,
+    /// The top-level keys that mark a robot file as this kind's: the first is the key under which
+    /// its own robot files hold the robot (`robot`, `psa`, `evogym`); others mark files of another
+    /// program that the kind reads too (EvoGym's `objects`).
+    pub file_keys: &'static [&'static str],
     /// The command-line body form, for help and error messages.
     pub body_usage: &'static str,
     /// Whether a command-line body names a robot of this kind.
@@ -177,7 +179,9 @@ pub fn default_kind() -> &'static RobotKind {
 
 /// The kind whose robots robot files hold under `key`, if any.
 pub fn kind_of_file(value: &serde_json::Value) -> Option<&'static RobotKind> {
-    ROBOT_KINDS.iter().find(|k| value.get(k.file_key).is_some())
+    ROBOT_KINDS
+        .iter()
+        .find(|k| k.file_keys.iter().any(|key| value.get(key).is_some()))
 }
 
 #[cfg(test)]
@@ -189,7 +193,7 @@ mod tests {
         for (i, a) in ROBOT_KINDS.iter().enumerate() {
             for b in &ROBOT_KINDS[i + 1..] {
                 assert_ne!(a.name, b.name);
-                assert_ne!(a.file_key, b.file_key);
+                assert!(a.file_keys.iter().all(|k| !b.file_keys.contains(k)), "{}", a.name);
                 assert!(a.body_tables.iter().all(|t| !b.body_tables.contains(t)), "{}", a.name);
             }
         }

@@ -17,7 +17,7 @@ use vsrlab_field::FieldError;
 /// The EvoGym robot's registry entry.
 pub const KIND: RobotKind = RobotKind {
     name: "evogym",
-    file_key: "evogym",
+    file_keys: &["evogym", "objects"],
     body_usage: "evogym:[<Task>:]<rows of 0-4 digits joined by />",
     claims_body: |body| body.starts_with("evogym:"),
     from_short_forms,
@@ -75,8 +75,31 @@ struct EvoGymFile {
     evogym: EvoGymRobot,
 }
 
-/// Parses and validates an EvoGym robot file.
+/// Parses and validates an EvoGym robot file: vsrlab's (`"evogym"`), or EvoGym's own
+/// (`grid_width`, `grid_height`, `objects` with one object), which holds a body only: its brain is
+/// the default template, given random weights for whichever task runs it.
 fn from_file(text: &str, origin: &str) -> Result<AnyRobot, FileError> {
+    let value = serde_json::from_str::<serde_json::Value>(text).unwrap_or_default();
+    if value.get("objects").is_some() {
+        let invalid = |msg: String| FileError::Invalid {
+            path: origin.to_string(),
+            msg,
+        };
+        let grid = super::robot_from_json(text).map_err(|e| invalid(e.to_string()))?;
+        // vsrlab's rows connect every pair of adjacent cells; a file that leaves some apart
+        // cannot be written as rows yet
+        if super::MaterialGrid::from_rows(&grid.to_rows()).ok() != Some(grid.clone()) {
+            return Err(invalid(
+                "objects: a robot whose adjacent cells are not all connected (neighbors) is not supported yet".into(),
+            ));
+        }
+        let brain = BrainSpec::parse(DEFAULT_BRAIN).map_err(|e| invalid(e.to_string()))?;
+        return Ok(AnyRobot::new(EvoGymRobot {
+            body: grid.to_rows(),
+            env: walker(),
+            brain,
+        }));
+    }
     let file: EvoGymFile = files::parse_json(text, origin)?;
     files::check_format(&file.format, origin)?;
     file.evogym.validate().map_err(|e| FileError::Invalid {

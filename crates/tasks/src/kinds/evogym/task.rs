@@ -11,6 +11,7 @@ use crate::agent::{Agent, Robot};
 use crate::channels::{OBSTACLES, OBSTACLE_CORNERS, UNIT_FILL};
 use crate::episode::EpisodeError;
 use crate::fitness::Fitness;
+use crate::kinds::voxel::short_forms::RANDOM_BRAIN_SEED;
 use crate::outcome::{Outcome, Trace, TraceLevel};
 use crate::task::{check_objectives, fitness_values, task_field, Metrics, Objective, Task};
 use serde::{Deserialize, Serialize};
@@ -113,7 +114,9 @@ impl Task for EvoGym {
         self.validate()?;
         let which = self.which()?;
         let robot = evogym_robot(robot)?;
-        if robot.task().map_err(|e| EpisodeError::Field(e.at("robot")))? != which {
+        // a brain with weights was sized for one task's observation; a template fits any
+        let template = robot.brain.parameters().is_empty();
+        if !template && robot.task().map_err(|e| EpisodeError::Field(e.at("robot")))? != which {
             return Err(EpisodeError::Field(FieldError::new(
                 "robot.env",
                 format!("the robot's brain sees {}'s observation, not {}'s", robot.env, self.env),
@@ -122,10 +125,15 @@ impl Task for EvoGym {
         let grid = robot.grid().map_err(|e| EpisodeError::Field(e.at("robot")))?;
         let mut env = EvoGymEnv::new(which, &grid).map_err(|e| EpisodeError::Invalid(e.to_string()))?;
         let shape = super::robot::shape(env.observation_size(), env.action_count());
-        let mut brain = robot
-            .brain
-            .build(&shape)
-            .map_err(|e| EpisodeError::Field(FieldError::from(e).at("robot.brain")))?;
+        let at_brain = |e: vsrlab_brain::BrainError| EpisodeError::Field(FieldError::from(e).at("robot.brain"));
+        let spec = match template && robot.brain.parameter_count(&shape).map_err(at_brain)? > 0 {
+            true => robot
+                .brain
+                .with_random_parameters(RANDOM_BRAIN_SEED, &shape)
+                .map_err(at_brain)?,
+            false => robot.brain.clone(),
+        };
+        let mut brain = spec.build(&shape).map_err(at_brain)?;
         brain.reset();
         let mut observation = env.reset(seed).to_vec();
         let mut outputs = vec![0.0; env.action_count()];
@@ -184,6 +192,16 @@ fn evogym_robot(robot: &dyn Robot) -> Result<&EvoGymRobot, EpisodeError> {
         })
 }
 
+/// Whether a world object is terrain: every cell fixed (drawn as static squares).
+fn is_terrain(object: &super::WorldObject) -> bool {
+    object.grid.present().all(|(_, _, m)| m.code() == 5)
+}
+
+/// A material's colour as a channel value.
+fn colour_of(material: super::Material) -> f64 {
+    f64::from(material_colour(material.code()))
+}
+
 /// EvoGym's colours of a material code (its renderer's, approximately), as `0xRRGGBB`.
 fn material_colour(code: u8) -> u32 {
     match code {
@@ -195,12 +213,13 @@ fn material_colour(code: u8) -> u32 {
     }
 }
 
-/// The trace of an EvoGym episode: the robot's voxels as outline polygons (one per voxel, in
-/// cell order, filled with their material's colour), the terrain's cells as obstacles.
+/// The trace of an EvoGym episode: the robot's voxels, then the cells of the world's moving
+/// objects, as outline polygons (filled with their material's colour), the terrain's cells as
+/// obstacles.
 struct Recorder {
     level: TraceLevel,
     trace: Trace,
-    /// The robot's voxels' corner points in the world (the robot's points come first).
+    /// The corner points in the world of each drawn cell: the robot's, then the moving objects'.
     quads: Vec<[usize; 4]>,
 }
 
@@ -211,15 +230,24 @@ impl Recorder {
             side_length: super::CELL,
             ..Default::default()
         };
-        let plan = plan_object(grid, which.robot_origin());
-        let quads = plan.quads.iter().map(|q| q.corners).collect();
+        // the robot's cells, then those of every object that moves (the bridge, the beam), with
+        // their points numbered as the environment adds them: the robot first, then the
+        // world's objects in order
+        let robot = plan_object(grid, which.robot_origin());
+        let mut first = robot.points.len();
+        let mut quads: Vec<[usize; 4]> = robot.quads.iter().map(|q| q.corners).collect();
+        let mut colours: Vec<f64> = grid.present().map(|(_, _, m)| colour_of(m)).collect();
+        for object in which.world().objects() {
+            let plan = plan_object(&object.grid, object.origin);
+            if !is_terrain(object) {
+                quads.extend(plan.quads.iter().map(|q| q.corners.map(|p| p + first)));
+                colours.extend(object.grid.present().map(|(_, _, m)| colour_of(m)));
+            }
+            first += plan.points.len();
+        }
         if level == TraceLevel::Full {
-            let colours: Vec<f64> = grid
-                .present()
-                .map(|(_, _, m)| f64::from(material_colour(m.code())))
-                .collect();
             trace.fixed(&UNIT_FILL, 1, &colours);
-            trace.outline_corners = vec![4; plan.quads.len()];
+            trace.outline_corners = vec![4; quads.len()];
             describe_terrain(which, &mut trace);
         }
         Recorder { level, trace, quads }
@@ -248,16 +276,13 @@ impl Recorder {
     }
 }
 
-/// The fixed cells of the task's world (its terrain) as static squares, and a ground line at
-/// their lowest top for the camera.
+/// The cells of the task's terrain (objects whose cells are all fixed) as static squares, and a
+/// ground line at y = 0 for the camera.
 fn describe_terrain(which: EvoGymTask, trace: &mut Trace) {
     let cell = super::CELL;
     let mut squares = Vec::new();
-    for object in which.world().objects() {
-        for (x, y, m) in object.grid.present() {
-            if m.code() != 5 {
-                continue;
-            }
+    for object in which.world().objects().iter().filter(|o| is_terrain(o)) {
+        for (x, y, _) in object.grid.present() {
             let (ox, oy) = object.origin;
             let left = (ox + x) as f64 * cell;
             let top = (oy + object.grid.height() - y) as f64 * cell;
@@ -344,6 +369,42 @@ mod tests {
             .unwrap();
         let err = bad.task().validate().unwrap_err().to_string();
         assert!(err.contains("task.duration"), "{err}");
+    }
+
+    #[test]
+    fn evogym_robot_files_run_any_task_with_a_template_brain() {
+        // EvoGym's own robot file (rows from the bottom: a rigid foot, an actuator, a rigid foot)
+        let native = r#"{"grid_width": 3, "grid_height": 1, "objects": {"robot": {
+            "indices": [0, 1, 2], "types": [1, 3, 1], "neighbors": {"0": [1], "1": [0, 2], "2": [1]}}}}"#;
+        let r = crate::files::any_robot_from_json(native, "walker.json").unwrap();
+        assert_eq!(r.kind().name, "evogym");
+        let bridge = TaskSpec::parse("evogym:bridgewalker-v0").unwrap();
+        let o = crate::episode::run(r.as_robot(), bridge.task(), 0, TraceLevel::Full).unwrap();
+        assert!(
+            o.metrics["reward"].is_finite() && o.metrics["steps"] > 0.0,
+            "{:?}",
+            o.metrics
+        );
+        // the bridge's cells are drawn after the robot's three, moving
+        let trace = o.trace.unwrap();
+        let polygons = trace.outline_corners.len();
+        assert!(
+            polygons > 3 && trace.fixed_values(UNIT_FILL.name).len() == polygons,
+            "{polygons}"
+        );
+        let last = trace.outlines.len() - 4 * polygons;
+        let moved = (3 * 4..4 * polygons).any(|i| trace.outlines[i] != trace.outlines[last + i]);
+        assert!(moved, "the bridge sags under the robot");
+        // written back in vsrlab's form, it reads again as the same robot
+        let again = crate::files::any_robot_from_json(&r.to_json(None), "again.json").unwrap();
+        assert_eq!(again.to_json(None), r.to_json(None));
+        let apart = native
+            .replace(r#""1": [0, 2]"#, r#""1": [2]"#)
+            .replace(r#""0": [1]"#, r#""0": []"#);
+        let err = crate::files::any_robot_from_json(&apart, "apart.json")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("apart.json") && err.contains("objects"), "{err}");
     }
 
     #[test]

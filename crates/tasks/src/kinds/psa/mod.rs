@@ -15,7 +15,7 @@ use serde::{Deserialize, Serialize};
 /// The PSA's registry entry.
 pub const KIND: RobotKind = RobotKind {
     name: "psa",
-    file_key: "psa",
+    file_keys: &["psa"],
     body_usage: "psa[:small|medium|large]",
     claims_body: |body| body == "psa" || body.starts_with("psa:"),
     from_short_forms,

@@ -17,7 +17,7 @@ use std::path::Path;
 /// The voxel robot's registry entry.
 pub const KIND: RobotKind = RobotKind {
     name: "voxel",
-    file_key: "robot",
+    file_keys: &["robot"],
     body_usage:
         "a shape (worm-WxH, biped-WxH, comb-WxH, box-WxH, tripod-WxH, t-WxH, ball-D) or a text grid of '#' and '.'",
     claims_body: |_| true,
@@ -69,7 +69,7 @@ pub fn robot_from_json(text: &str, origin: &str) -> Result<RobotSpec, FileError>
     if let Some(other) = super::kind_of_file(&value).filter(|k| k.name != KIND.name) {
         return Err(invalid(format!(
             "this is a {} robot (field '{}'); this command reads voxel robots only",
-            other.name, other.file_key
+            other.name, other.file_keys[0]
         )));
     }
     let file: RobotFile = files::parse_json(text, origin)?;

@@ -8,6 +8,7 @@
 
 mod batch;
 mod episode;
+mod evogym;
 mod robot;
 mod run;
 
@@ -28,6 +29,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(robot::task_json, m)?)?;
     m.add_class::<episode::PyEpisode>()?;
     m.add_class::<episode::PyVectorEpisode>()?;
+    m.add_class::<evogym::PyEvoGymEnv>()?;
     m.add_class::<batch::PyBatchEvaluator>()?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
     m.add_function(wrap_pyfunction!(run::deterministic_files, m)?)?;

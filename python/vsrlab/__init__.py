@@ -22,11 +22,12 @@ from typing import Any, Optional, Sequence, Union
 import numpy as np
 
 from . import _native
-from ._native import BatchEvaluator, Episode, Robot, VectorEpisode, __version__
+from ._native import BatchEvaluator, Episode, EvoGymEnv, Robot, VectorEpisode, __version__
 
 __all__ = [
     "BatchEvaluator",
     "Episode",
+    "EvoGymEnv",
     "Robot",
     "VectorEpisode",
     "__version__",

@@ -9,6 +9,12 @@ draws frames like the CLI's videos.
 Registered ids (``gymnasium.make`` and ``gymnasium.make_vec``):
 ``vsrlab/Locomotion-v0`` (``terrain=``), ``vsrlab/Jump-v0``, ``vsrlab/Escape-v0`` and
 ``vsrlab/Carrier-v0`` (pressure-based soft agents by default).
+
+EvoGym's tasks on vsrlab's engine (docs/multimaterial.md), with EvoGym's observations, actions (a
+target length ratio in [0.6, 1.6] per actuator voxel), rewards and ends: ``vsrlab/Walker-v0``,
+``vsrlab/BridgeWalker-v0``, ``vsrlab/BeamToppler-v0`` and ``vsrlab/CaveCrawler-v0`` (``body=``:
+the material grid as rows of digits joined by ``/``, or a 2-D array of codes as EvoGym's
+``body=``, top row first).
 """
 
 from __future__ import annotations
@@ -21,7 +27,7 @@ import numpy as np
 from gymnasium import spaces
 from gymnasium.vector.utils import batch_space
 
-from ._native import Episode, Robot, VectorEpisode
+from ._native import Episode, EvoGymEnv, Robot, VectorEpisode
 
 # the robot's own brain is never called: the policy gives the actions
 _IDLE_BRAIN = "constant:0"
@@ -165,6 +171,55 @@ JumpEnv, JumpVectorEnv = _task_env("jump", "biped-4x3")
 EscapeEnv, EscapeVectorEnv = _task_env("escape", "psa")
 CarrierEnv, CarrierVectorEnv = _task_env("carrier", "psa")
 
+class EvoGymTaskEnv(gymnasium.Env):
+    """One of EvoGym's tasks (``Walker-v0``, …) with one robot, on vsrlab's mass-spring engine."""
+
+    metadata = {"render_modes": []}
+
+    def __init__(self, task: str = "Walker-v0", body: Any = "33333/33333/33333/33333/33333"):
+        if not isinstance(body, str):
+            grid = np.asarray(body)
+            if grid.ndim != 2:
+                raise ValueError(f"body: a 2-D array of material codes expected, got shape {grid.shape}")
+            body = "/".join("".join(str(int(c)) for c in row) for row in grid)
+        self._env = EvoGymEnv(task, body)
+        self.observation_space = spaces.Box(-np.inf, np.inf, shape=(self._env.observation_size,), dtype=np.float64)
+        self.action_space = spaces.Box(0.6, 1.6, shape=(self._env.action_size,), dtype=np.float64)
+
+    def reset(self, *, seed: Optional[int] = None, options: Optional[dict] = None):
+        super().reset(seed=seed)
+        return self._env.reset(0 if seed is None else seed), {}
+
+    def step(self, action):
+        a = np.asarray(action, dtype=np.float64)
+        if a.shape != self.action_space.shape:
+            raise ValueError(f"action: shape {self.action_space.shape} expected, got {a.shape}")
+        obs, reward, terminated, truncated, unstable = self._env.step(np.ascontiguousarray(a))
+        return obs, reward, terminated, truncated, {"unstable": unstable, "steps": self._env.steps}
+
+
+def _evogym_env(task: str):
+    class TaskEnv(EvoGymTaskEnv):
+        def __init__(self, body: Any = "33333/33333/33333/33333/33333"):
+            super().__init__(task=task, body=body)
+
+    TaskEnv.__name__ = TaskEnv.__qualname__ = task.split("-")[0] + "Env"
+    return TaskEnv
+
+
+WalkerEnv = _evogym_env("Walker-v0")
+BridgeWalkerEnv = _evogym_env("BridgeWalker-v0")
+BeamTopplerEnv = _evogym_env("BeamToppler-v0")
+CaveCrawlerEnv = _evogym_env("CaveCrawler-v0")
+
+#: EvoGym's task ids (under ``vsrlab/``) and their environment classes.
+EVOGYM_ENVIRONMENTS = {
+    "vsrlab/Walker-v0": "WalkerEnv",
+    "vsrlab/BridgeWalker-v0": "BridgeWalkerEnv",
+    "vsrlab/BeamToppler-v0": "BeamTopplerEnv",
+    "vsrlab/CaveCrawler-v0": "CaveCrawlerEnv",
+}
+
 #: Every registered id and its environment classes.
 ENVIRONMENTS = {
     "vsrlab/Locomotion-v0": ("LocomotionEnv", "LocomotionVectorEnv"),
@@ -184,3 +239,6 @@ def register_all() -> None:
             entry_point=f"vsrlab.envs:{single}",
             vector_entry_point=f"vsrlab.envs:{vector}",
         )
+    for env_id, single in EVOGYM_ENVIRONMENTS.items():
+        if env_id not in gymnasium.registry:
+            gymnasium.register(id=env_id, entry_point=f"vsrlab.envs:{single}")

@@ -1,0 +1,56 @@
+"""EvoGym's tasks from Python (issue 33): Gymnasium's checker passes for each id, the observation
+and action sizes are EvoGym's, and EvoGym's own simulator's reward for a fixed gait is reproduced
+(measured side by side with bench/evogym/tasks.py: Walker-v0 +1.172 in 500 steps)."""
+
+import gymnasium
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env
+
+import vsrlab
+from vsrlab.envs import EVOGYM_ENVIRONMENTS
+
+FULL = "33333/33333/33333/33333/33333"
+
+
+@pytest.mark.parametrize("env_id", sorted(EVOGYM_ENVIRONMENTS))
+def test_check_env_passes_for_every_evogym_task(env_id):
+    env = gymnasium.make(env_id)
+    check_env(env.unwrapped, skip_render_check=True)
+    env.close()
+
+
+@pytest.mark.parametrize(
+    "env_id,observations", [("vsrlab/Walker-v0", 74), ("vsrlab/BridgeWalker-v0", 75), ("vsrlab/BeamToppler-v0", 79), ("vsrlab/CaveCrawler-v0", 96)]
+)
+def test_sizes_are_evogyms_for_a_full_5x5_body(env_id, observations):
+    env = gymnasium.make(env_id, body=np.full((5, 5), 3))
+    assert env.observation_space.shape == (observations,)
+    assert env.action_space.shape == (25,)
+    assert (env.action_space.low == 0.6).all() and (env.action_space.high == 1.6).all()
+
+
+def test_a_square_wave_gait_earns_evogyms_reward_on_walker():
+    env = gymnasium.make("vsrlab/Walker-v0", body=FULL)
+    env.reset(seed=0)
+    total, steps, done = 0.0, 0, False
+    while not done:
+        action = np.array([1.6 if (steps + 5 * (i % 5)) % 20 < 10 else 0.6 for i in range(25)])
+        _, reward, terminated, truncated, info = env.step(action)
+        total, steps, done = total + reward, steps + 1, terminated or truncated
+    assert steps == 500 and truncated and not info["unstable"]
+    # EvoGym 2.0.0's own simulator gives +1.172 for this robot and gait
+    assert abs(total - 1.172) < 0.002, total
+
+
+def test_bad_bodies_and_actions_are_refused_naming_the_field():
+    with pytest.raises(ValueError, match="body"):
+        vsrlab.EvoGymEnv("Walker-v0", "1.3")
+    with pytest.raises(ValueError, match="task"):
+        vsrlab.EvoGymEnv("Jumper-v0", FULL)
+    env = vsrlab.EvoGymEnv("Walker-v0", "131")
+    env.reset()
+    with pytest.raises(ValueError, match="actions"):
+        env.step(np.ones(3))
+    with pytest.raises(ValueError, match="actions"):
+        env.step(np.array([np.nan]))

@@ -424,6 +424,52 @@ mod tests {
         ));
     }
 
+    /// Random 5 × 5 bodies of every material mix (codes 0–4, kept when EvoGym would accept them
+    /// as robots) under random actions for a whole episode of every task: every observation is
+    /// finite, and an episode ends early only at the goal or as unstable with the −3 penalty.
+    #[test]
+    fn random_5x5_bodies_run_whole_episodes_of_every_task() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(33);
+        let mut robots = Vec::new();
+        while robots.len() < 3 {
+            let cells = (0..25)
+                .map(|_| super::super::Material::from_code(rng.random_range(0..=4u64)).unwrap())
+                .collect();
+            let grid = MaterialGrid::new(5, 5, cells).unwrap();
+            if grid.validate_robot().is_ok() {
+                robots.push(grid);
+            }
+        }
+        let mut episodes = 0;
+        for task in EvoGymTask::ALL {
+            for grid in &robots {
+                let Ok(mut e) = EvoGymEnv::new(task, grid) else {
+                    continue; // overlaps the task's terrain (CaveCrawler's ceiling)
+                };
+                episodes += 1;
+                let n = e.action_count();
+                let mut actions = vec![0.0; n];
+                for step in 1..=task.episode_steps() {
+                    actions.iter_mut().for_each(|a| *a = rng.random_range(0.0..2.0));
+                    let r = e.step(&actions).unwrap();
+                    assert!(
+                        all_finite(r.observation) && r.reward.is_finite(),
+                        "{task:?} step {step}"
+                    );
+                    if r.unstable {
+                        assert!(r.done && r.reward <= -2.0, "{task:?}: unstable ends with −3");
+                    }
+                    if r.done || r.truncated {
+                        assert!(r.done || step == task.episode_steps());
+                        break;
+                    }
+                }
+            }
+        }
+        assert!(episodes >= 9, "only {episodes} episodes ran");
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(24))]
 

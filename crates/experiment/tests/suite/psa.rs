@@ -4,9 +4,6 @@
 
 use std::path::Path;
 use vsrlab_experiment::config::{self, Experiment};
-use vsrlab_experiment::evaluator::RobotEvaluator;
-use vsrlab_experiment::genotypes::vector::run_vectors;
-use vsrlab_experiment::runner::{RunOptions, Silent};
 use vsrlab_tasks::files::load_any_robot;
 use vsrlab_tasks::{episode, PsaRobot, TraceLevel};
 
@@ -33,15 +30,7 @@ evaluations = 18
     config::parse(&text, "psa.toml").map_err(|e| e.to_string())
 }
 
-fn run(e: &Experiment, out: &Path, threads: usize) {
-    let evaluator = RobotEvaluator::new(e).unwrap();
-    let options = RunOptions {
-        threads,
-        resume: false,
-        ..RunOptions::default()
-    };
-    run_vectors(e, &evaluator, out, &options, &mut Silent).unwrap();
-}
+use crate::common::run_on_threads as run;
 
 #[test]
 fn a_psa_run_writes_a_robot_that_replays_to_its_fitness_on_any_thread_count() {

@@ -45,15 +45,7 @@ snapshot_every = 20
     config::parse(&text, "tiny.toml").unwrap()
 }
 
-fn run(experiment: &Experiment, out: &Path, threads: usize) {
-    let evaluator = RobotEvaluator::new(experiment).unwrap();
-    let options = RunOptions {
-        threads,
-        resume: false,
-        ..RunOptions::default()
-    };
-    run_vectors(experiment, &evaluator, out, &options, &mut Silent).unwrap();
-}
+use crate::common::run_on_threads as run;
 
 #[test]
 fn thread_count_does_not_change_results() {

@@ -45,3 +45,22 @@ pub fn phase_biped(phases: &[f64]) -> Result<Box<dyn vsrlab_tasks::Robot>, vsrla
         brain,
     }))
 }
+
+/// Runs the experiment's vector-genotype runs into `out` on `threads` threads, from scratch,
+/// silently.
+pub fn run_on_threads(experiment: &vsrlab_experiment::config::Experiment, out: &std::path::Path, threads: usize) {
+    let evaluator = vsrlab_experiment::evaluator::RobotEvaluator::new(experiment).unwrap();
+    let options = RunOptions {
+        threads,
+        resume: false,
+        ..RunOptions::default()
+    };
+    vsrlab_experiment::genotypes::vector::run_vectors(
+        experiment,
+        &evaluator,
+        out,
+        &options,
+        &mut vsrlab_experiment::runner::Silent,
+    )
+    .unwrap();
+}

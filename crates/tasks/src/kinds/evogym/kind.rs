@@ -231,8 +231,6 @@ impl BodySource for EvoGymTable {
     }
 
     fn size(&self) -> usize {
-        self.robot_with(BrainSpec::parse(DEFAULT_BRAIN).unwrap_or_default())
-            .grid()
-            .map_or(0, |g| g.cell_count())
+        super::MaterialGrid::from_rows(&self.body).map_or(0, |g| g.cell_count())
     }
 }

@@ -230,6 +230,14 @@ impl Recorder {
             side_length: super::CELL,
             ..Default::default()
         };
+        if level != TraceLevel::Full {
+            // an evaluation's episode: only times and centres, no geometry to plan
+            return Recorder {
+                level,
+                trace,
+                quads: Vec::new(),
+            };
+        }
         // the robot's cells, then those of every object that moves (the bridge, the beam), with
         // their points numbered as the environment adds them: the robot first, then the
         // world's objects in order
@@ -245,11 +253,9 @@ impl Recorder {
             }
             first += plan.points.len();
         }
-        if level == TraceLevel::Full {
-            trace.fixed(&UNIT_FILL, 1, &colours);
-            trace.outline_corners = vec![4; quads.len()];
-            describe_terrain(which, &mut trace);
-        }
+        trace.fixed(&UNIT_FILL, 1, &colours);
+        trace.outline_corners = vec![4; quads.len()];
+        describe_terrain(which, &mut trace);
         Recorder { level, trace, quads }
     }
 

@@ -1,7 +1,7 @@
 //! Each EvoGym task with a full 5 × 5 body of horizontal actuators driven by a square-wave gait:
 //! the summed reward of one episode, and the time of one environment step (30 substeps).
 //!
-//! `cargo run --release -p vsrlab-tasks --example evogym_speed [steps]`; EvoGym's own
+//! `cargo run --release -p vsrlab-tasks --example evogym_speed [steps] [task name part]`; EvoGym's own
 //! environments with the same body and gait: `bench/evogym/tasks.py` (docs/multimaterial.md has both).
 
 use std::time::Instant;
@@ -15,8 +15,12 @@ fn gait(t: usize, n: usize) -> Vec<f64> {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let steps: usize = std::env::args().nth(1).map_or(Ok(1000), |s| s.parse())?;
+    let only = std::env::args().nth(2);
     let body = MaterialGrid::from_rows("33333/33333/33333/33333/33333")?;
     for task in EvoGymTask::ALL {
+        if only.as_deref().is_some_and(|o| !task.name().starts_with(o)) {
+            continue;
+        }
         let mut env = EvoGymEnv::new(task, &body)?;
         let actions: Vec<Vec<f64>> = (0..20).map(|t| gait(t, env.action_count())).collect();
         // one episode of the task's own length: the reward to compare with EvoGym's
@@ -42,10 +46,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         let micros = clock.elapsed().as_secs_f64() / steps as f64 * 1e6;
         println!(
-            "{:16} obs {:3}  actions {:2}  reward {reward:+.3} over {taken} steps  {micros:7.1} µs/step",
+            "{:16} obs {:3}  actions {:2}  points {:3}  springs {:4}  reward {reward:+.9} over {taken} steps  {micros:7.1} µs/step",
             task.name(),
             env.observation_size(),
             env.action_count(),
+            env.world().point_count(),
+            env.world().spring_count(),
         );
     }
     Ok(())

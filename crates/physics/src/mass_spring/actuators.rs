@@ -81,6 +81,7 @@ impl Actuators {
 
 #[cfg(test)]
 mod tests {
+    use super::super::runs::Runs;
     use super::*;
 
     fn springs(n: usize) -> Springs {
@@ -92,7 +93,7 @@ mod tests {
             initial: vec![0.1; n],
             goal: vec![0.1; n],
             band: vec![0.25; n],
-            active: (0..n as u32).collect(),
+            active: Runs::where_(n, |_| true),
         }
     }
 

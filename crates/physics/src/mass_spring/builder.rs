@@ -8,6 +8,7 @@ use super::integrator::Rk4;
 use super::points::Points;
 use super::projection::Projection;
 use super::quad_geometry::{twice_signed_area, Aabb};
+use super::runs::Runs;
 use super::springs::{length, Springs};
 use super::validate;
 use super::world::MassSpringWorld;
@@ -273,9 +274,7 @@ impl MassSpringBuilder {
     fn make_springs(&self, rests: Vec<f64>, fixed: &[bool]) -> Springs {
         let a: Vec<u32> = self.springs.iter().map(|s| s.a.0).collect();
         let b: Vec<u32> = self.springs.iter().map(|s| s.b.0).collect();
-        let active = (0..a.len() as u32)
-            .filter(|&s| !(fixed[a[s as usize] as usize] && fixed[b[s as usize] as usize]))
-            .collect();
+        let active = Runs::where_(a.len(), |s| !(fixed[a[s] as usize] && fixed[b[s] as usize]));
         Springs {
             a,
             b,

@@ -3,70 +3,56 @@
 //! velocities and regularised friction (EvoGym's point-against-edge model).
 
 use super::bodies::Bodies;
+use super::broad_phase::BroadPhase;
 use super::points::Points;
-use super::quad_geometry::{line_distance, point_in_quad, segments_intersect, MIN_SIDE};
+use super::quad_geometry::{line_distance, norm, point_in_quad, segments_intersect, MIN_SIDE};
 use super::settings::ContactSettings;
 
-/// Recomputes the contact forces of this substep into `points.contact_fx/fy`; returns how many
-/// point-in-quad contacts produced a force.
-pub(crate) fn compute_contact_forces(bodies: &Bodies, points: &mut Points, c: &ContactSettings) -> usize {
+/// Recomputes the contact forces of this substep into `points.contact_fx/fy` for the candidate
+/// pairs of `broad`; returns how many point-in-quad contacts produced a force.
+pub(crate) fn compute_contact_forces(
+    bodies: &Bodies,
+    broad: &mut BroadPhase,
+    points: &mut Points,
+    c: &ContactSettings,
+) -> usize {
     points.contact_fx.fill(0.0);
     points.contact_fy.fill(0.0);
     let mut contacts = 0;
-    for i in 0..bodies.len() {
-        for j in i..bodies.len() {
-            contacts += body_pair(bodies, points, c, i, j);
-        }
+    broad.update(bodies);
+    for &(sa, sb) in broad.pairs() {
+        // EvoGym visits each unordered pair of one body's quads twice, so self-contact counts double.
+        let weight = if broad.same_body(sa, sb) { 2.0 } else { 1.0 };
+        let (sa, sb) = (sa as usize, sb as usize);
+        contacts += quad_into_quad(bodies, points, c, sa, sb, weight);
+        contacts += quad_into_quad(bodies, points, c, sb, sa, weight);
     }
     contacts
 }
 
-/// Contacts between the boundary quads of bodies `i` and `j` (the same body when `i == j`).
-fn body_pair(bodies: &Bodies, points: &mut Points, c: &ContactSettings, i: usize, j: usize) -> usize {
-    let same = i == j;
-    if bodies.all_fixed[i] && bodies.all_fixed[j] {
-        return 0;
-    }
-    if !same && !bodies.body_boxes[i].overlaps(&bodies.body_boxes[j]) {
-        return 0;
-    }
-    // EvoGym visits each unordered pair of one body's quads twice, so self-contact counts double.
-    let weight = if same { 2.0 } else { 1.0 };
-    let mut contacts = 0;
-    for sa in bodies.slots(i) {
-        if !same && !bodies.boxes[sa].overlaps(&bodies.body_boxes[j]) {
-            continue;
-        }
-        let first_b = if same { sa + 1 } else { bodies.slots(j).start };
-        for sb in first_b..bodies.slots(j).end {
-            if !bodies.boxes[sa].overlaps(&bodies.boxes[sb]) {
-                continue;
-            }
-            let (qa, qb) = (bodies.boundary[sa] as usize, bodies.boundary[sb] as usize);
-            contacts += quad_into_quad(bodies, points, c, qa, qb, weight);
-            contacts += quad_into_quad(bodies, points, c, qb, qa, weight);
-        }
-    }
-    contacts
-}
-
-/// Pushes each corner of quad `main` that lies inside quad `other` (and is not one of its
-/// corners) out of `other`.
+/// Pushes each corner of the quad in slot `main` that lies inside the quad in slot `other` (and
+/// is not one of its corners) out of it. The other quad's box (current, from the end of the last
+/// substep) rejects most corners before the exact test.
 fn quad_into_quad(
     bodies: &Bodies,
     points: &mut Points,
     c: &ContactSettings,
     main: usize,
-    other: usize,
+    other_slot: usize,
     weight: f64,
 ) -> usize {
-    let m = bodies.quad_points[main];
+    let other = bodies.boundary[other_slot] as usize;
+    let m = bodies.quad_points[bodies.boundary[main] as usize];
     let o = bodies.quad_points[other];
-    let (ox, oy) = (o.map(|p| points.x[p as usize]), o.map(|p| points.y[p as usize]));
+    let other_box = bodies.boxes[other_slot];
     let mut contacts = 0;
     for k in 0..4 {
         let p = m[k] as usize;
-        if o.contains(&m[k]) || !point_in_quad(points.x[p], points.y[p], ox, oy) {
+        if o.contains(&m[k]) || !other_box.contains(points.x[p], points.y[p]) {
+            continue;
+        }
+        let (ox, oy) = (o.map(|q| points.x[q as usize]), o.map(|q| points.y[q as usize]));
+        if !point_in_quad(points.x[p], points.y[p], ox, oy) {
             continue;
         }
         let prev = m[(k + 3) % 4] as usize;
@@ -109,7 +95,7 @@ fn exit_side(
 /// Adds the penalty, damping and friction forces of point `p` against side a→b at `depth`.
 fn push_out(points: &mut Points, c: &ContactSettings, p: usize, a: usize, b: usize, depth: f64, weight: f64) {
     let (sx, sy) = (points.x[b] - points.x[a], points.y[b] - points.y[a]);
-    let len = sx.hypot(sy);
+    let len = norm(sx, sy);
     if len < MIN_SIDE {
         return;
     }

@@ -27,8 +27,7 @@ pub(crate) fn total_forces(
     fx.fill(0.0);
     fy.fill(0.0);
     springs.add_forces(s.x, s.y, fx, fy);
-    for &i in &points.free {
-        let i = i as usize;
+    for i in points.free.indices() {
         fx[i] += -set.drag * s.vx[i] + points.contact_fx[i];
         fy[i] += -set.drag * s.vy[i] - set.gravity * points.mass[i] + points.contact_fy[i];
         if let Some(g) = &set.ground {

@@ -49,15 +49,13 @@ impl Rk4 {
         self.sy.copy_from_slice(&points.y);
         self.svx.copy_from_slice(&points.vx);
         self.svy.copy_from_slice(&points.vy);
-        for &i in &points.free {
-            let i = i as usize;
+        for i in points.free.indices() {
             (self.ax[i], self.ay[i], self.avx[i], self.avy[i]) = (0.0, 0.0, 0.0, 0.0);
         }
         for (next, weight) in STAGES {
             self.stage(points, springs, set, next, weight);
         }
-        for &i in &points.free {
-            let i = i as usize;
+        for i in points.free.indices() {
             points.x[i] += self.ax[i];
             points.y[i] += self.ay[i];
             points.vx[i] += self.avx[i];
@@ -75,8 +73,7 @@ impl Rk4 {
         };
         total_forces(&s, points, springs, set, &mut self.fx, &mut self.fy);
         let dt = set.dt;
-        for &i in &points.free {
-            let i = i as usize;
+        for i in points.free.indices() {
             let (kx, ky) = (self.svx[i] * dt, self.svy[i] * dt);
             let (kvx, kvy) = (self.fx[i] / points.mass[i] * dt, self.fy[i] / points.mass[i] * dt);
             self.ax[i] += weight * kx;
@@ -93,6 +90,7 @@ impl Rk4 {
 
 #[cfg(test)]
 mod tests {
+    use super::super::runs::Runs;
     use super::*;
 
     /// One free point under gravity only: RK4 is exact for constant acceleration.
@@ -112,7 +110,7 @@ mod tests {
             initial: vec![],
             goal: vec![],
             band: vec![],
-            active: vec![],
+            active: Runs::default(),
         };
         let set = MassSpringSettings {
             drag: 0.0,

@@ -20,6 +20,7 @@
 
 mod actuators;
 mod bodies;
+mod broad_phase;
 mod builder;
 mod contact;
 mod error;
@@ -31,6 +32,7 @@ mod overlap;
 mod points;
 mod projection;
 mod quad_geometry;
+mod runs;
 mod settings;
 mod springs;
 mod validate;

@@ -1,5 +1,7 @@
 //! The point masses, stored as structure of arrays.
 
+use super::runs::Runs;
+
 /// Positions, velocities and per-point constants, one entry per point.
 #[derive(Debug, Clone)]
 pub(crate) struct Points {
@@ -10,8 +12,8 @@ pub(crate) struct Points {
     pub vy: Vec<f64>,
     pub mass: Vec<f64>,
     pub fixed: Vec<bool>,
-    /// Indices of the points that move, ascending.
-    pub free: Vec<u32>,
+    /// The points that move.
+    pub free: Runs,
     /// Positions at the start of the current substep.
     pub x_last: Vec<f64>,
     pub y_last: Vec<f64>,
@@ -34,7 +36,7 @@ impl Points {
         let y: Vec<f64> = pos.iter().map(|p| p.1).collect();
         let vx: Vec<f64> = vel.iter().map(|v| v.0).collect();
         let vy: Vec<f64> = vel.iter().map(|v| v.1).collect();
-        let free = (0..n as u32).filter(|&i| !fixed[i as usize]).collect();
+        let free = Runs::where_(n, |i| !fixed[i]);
         Self {
             x_last: x.clone(),
             y_last: y.clone(),
@@ -72,8 +74,7 @@ impl Points {
 
     /// Velocities from the displacement over the substep that just ended.
     pub fn update_moved_velocity(&mut self, dt: f64) {
-        for &i in &self.free {
-            let i = i as usize;
+        for i in self.free.indices() {
             self.moved_vx[i] = (self.x[i] - self.x_last[i]) / dt;
             self.moved_vy[i] = (self.y[i] - self.y_last[i]) / dt;
         }
@@ -81,7 +82,7 @@ impl Points {
 
     /// The first moving point whose position or velocity is NaN or infinite.
     pub fn first_non_finite(&self) -> Option<usize> {
-        self.free.iter().map(|&i| i as usize).find(|&i| {
+        self.free.indices().find(|&i| {
             !(self.x[i].is_finite() && self.y[i].is_finite() && self.vx[i].is_finite() && self.vy[i].is_finite())
         })
     }
@@ -108,6 +109,6 @@ mod tests {
         p.restore();
         assert_eq!((p.x[0], p.vx[0]), (0.0, 0.0));
         assert_eq!(p.first_non_finite(), None);
-        assert_eq!(p.free, vec![0]);
+        assert_eq!(p.free.indices().collect::<Vec<_>>(), vec![0]);
     }
 }

@@ -3,6 +3,7 @@
 //! removing a fraction of the excess.
 
 use super::points::Points;
+use super::quad_geometry::norm;
 use super::springs::Springs;
 
 /// Tight limits, applied in order, and scratch space for the loose pass.
@@ -41,11 +42,10 @@ impl Projection {
     pub fn project_bands(&mut self, springs: &Springs, points: &mut Points, correction: f64) {
         self.shift_x.fill(0.0);
         self.shift_y.fill(0.0);
-        for &s in &springs.active {
-            let s = s as usize;
+        for s in springs.active.indices() {
             let (a, b) = (springs.a[s] as usize, springs.b[s] as usize);
             let (dx, dy) = (points.x[a] - points.x[b], points.y[a] - points.y[b]);
-            let len = dx.hypot(dy);
+            let len = norm(dx, dy);
             let e = excess(len, springs.initial[s], springs.band[s]);
             if e == 0.0 || len == 0.0 {
                 continue;
@@ -56,8 +56,7 @@ impl Projection {
             self.shift_x[b] += dx * k;
             self.shift_y[b] += dy * k;
         }
-        for &i in &points.free {
-            let i = i as usize;
+        for i in points.free.indices() {
             points.x[i] += self.shift_x[i];
             points.y[i] += self.shift_y[i];
         }
@@ -70,7 +69,7 @@ impl Projection {
             let s = s as usize;
             let (a, b) = (springs.a[s] as usize, springs.b[s] as usize);
             let (dx, dy) = (points.x[a] - points.x[b], points.y[a] - points.y[b]);
-            let len = dx.hypot(dy);
+            let len = norm(dx, dy);
             let e = excess(len, springs.initial[s], band);
             if e == 0.0 || len == 0.0 {
                 continue;

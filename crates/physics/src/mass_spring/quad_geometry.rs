@@ -43,6 +43,11 @@ impl Aabb {
         self.min_x <= o.max_x && o.min_x <= self.max_x && self.min_y <= o.max_y && o.min_y <= self.max_y
     }
 
+    /// Whether the point lies in the box, boundary included.
+    pub fn contains(&self, x: f64, y: f64) -> bool {
+        self.min_x <= x && x <= self.max_x && self.min_y <= y && y <= self.max_y
+    }
+
     /// Overlap test with every side moved out by `tol`.
     pub fn overlaps_within(&self, o: &Aabb, tol: f64) -> bool {
         self.min_x <= o.max_x + tol
@@ -50,6 +55,14 @@ impl Aabb {
             && self.min_y <= o.max_y + tol
             && o.min_y <= self.max_y + tol
     }
+}
+
+/// Length of the vector (dx, dy) as the square root of its squared norm, as EvoGym (Eigen's
+/// `norm`) computes it; unlike `f64::hypot` it may overflow for lengths near 1e154, which no
+/// world reaches without first failing the non-finite check.
+#[inline]
+pub(crate) fn norm(dx: f64, dy: f64) -> f64 {
+    (dx * dx + dy * dy).sqrt()
 }
 
 fn cross(ax: f64, ay: f64, bx: f64, by: f64) -> f64 {
@@ -98,7 +111,7 @@ pub(crate) const MIN_SIDE: f64 = 1e-6;
 /// Distance from a point to the infinite line through a–b ([`FAR`] for a degenerate side).
 pub(crate) fn line_distance(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
     let (bx, by) = (b.0 - a.0, b.1 - a.1);
-    let len = bx.hypot(by);
+    let len = norm(bx, by);
     if len < MIN_SIDE {
         return FAR;
     }
@@ -171,6 +184,7 @@ mod tests {
         assert!(!a.overlaps(&c));
         assert!(a.overlaps_within(&c, 0.01));
         assert_eq!(Aabb::EMPTY.union(a), a);
+        assert!(a.contains(1.0, 0.5) && !a.contains(1.001, 0.5) && !Aabb::EMPTY.contains(0.0, 0.0));
         assert_eq!(twice_signed_area(UX, UY), 2.0);
     }
 }

@@ -1,5 +1,8 @@
 //! Springs: Hooke forces along the line between two points, with rest lengths that track a goal.
 
+use super::quad_geometry::norm;
+use super::runs::Runs;
+
 /// Spring data, one entry per spring.
 #[derive(Debug, Clone)]
 pub(crate) struct Springs {
@@ -14,44 +17,48 @@ pub(crate) struct Springs {
     pub goal: Vec<f64>,
     /// Loose band: lengths are pushed back into `initial × [1 - band, 1 + band]`.
     pub band: Vec<f64>,
-    /// Springs with at least one moving end, ascending; the others never matter.
-    pub active: Vec<u32>,
+    /// Springs with at least one moving end; the others never matter.
+    pub active: Runs,
 }
 
 impl Springs {
     /// Sets every active spring's rest length to its current length plus `rate` × (goal − current
     /// length), EvoGym's rule before each substep.
     pub fn track_goals(&mut self, x: &[f64], y: &[f64], rate: f64) {
-        for &s in &self.active {
-            let s = s as usize;
-            let len = length(x, y, self.a[s] as usize, self.b[s] as usize);
-            self.rest[s] = len + (self.goal[s] - len) * rate;
+        for r in self.active.ranges() {
+            let ends = self.a[r.clone()].iter().zip(&self.b[r.clone()]);
+            for ((&a, &b), (rest, &goal)) in ends.zip(self.rest[r.clone()].iter_mut().zip(&self.goal[r])) {
+                let len = length(x, y, a as usize, b as usize);
+                *rest = len + (goal - len) * rate;
+            }
         }
     }
 
     /// Adds every active spring's force to `fx`, `fy` for the positions `x`, `y`. A spring of zero
     /// length has no direction and pushes nothing.
     pub fn add_forces(&self, x: &[f64], y: &[f64], fx: &mut [f64], fy: &mut [f64]) {
-        for &s in &self.active {
-            let s = s as usize;
-            let (a, b) = (self.a[s] as usize, self.b[s] as usize);
-            let (dx, dy) = (x[a] - x[b], y[a] - y[b]);
-            let len = dx.hypot(dy);
-            if len == 0.0 {
-                continue;
+        for r in self.active.ranges() {
+            let ends = self.a[r.clone()].iter().zip(&self.b[r.clone()]);
+            for ((&a, &b), (&rest, &stiffness)) in ends.zip(self.rest[r.clone()].iter().zip(&self.stiffness[r])) {
+                let (a, b) = (a as usize, b as usize);
+                let (dx, dy) = (x[a] - x[b], y[a] - y[b]);
+                let len = norm(dx, dy);
+                if len == 0.0 {
+                    continue;
+                }
+                let k = (len - rest) * stiffness / len;
+                fx[a] -= dx * k;
+                fy[a] -= dy * k;
+                fx[b] += dx * k;
+                fy[b] += dy * k;
             }
-            let k = (len - self.rest[s]) * self.stiffness[s] / len;
-            fx[a] -= dx * k;
-            fy[a] -= dy * k;
-            fx[b] += dx * k;
-            fy[b] += dy * k;
         }
     }
 }
 
 /// Distance between points `a` and `b`.
 pub(crate) fn length(x: &[f64], y: &[f64], a: usize, b: usize) -> f64 {
-    (x[a] - x[b]).hypot(y[a] - y[b])
+    norm(x[a] - x[b], y[a] - y[b])
 }
 
 #[cfg(test)]
@@ -67,7 +74,7 @@ mod tests {
             initial: vec![rest],
             goal: vec![goal],
             band: vec![0.25],
-            active: vec![0],
+            active: Runs::where_(1, |_| true),
         }
     }
 

@@ -2,6 +2,7 @@
 
 use super::actuators::Actuators;
 use super::bodies::Bodies;
+use super::broad_phase::BroadPhase;
 use super::contact::compute_contact_forces;
 use super::handles::{BodyId, PointId, SpringId};
 use super::integrator::Rk4;
@@ -29,6 +30,7 @@ pub struct MassSpringWorld {
     springs: Springs,
     actuators: Actuators,
     bodies: Bodies,
+    broad: BroadPhase,
     projection: Projection,
     rk4: Rk4,
     substeps_done: u64,
@@ -49,6 +51,7 @@ impl MassSpringWorld {
             points,
             springs,
             actuators,
+            broad: BroadPhase::new(&bodies),
             bodies,
             projection,
             rk4,
@@ -79,7 +82,7 @@ impl MassSpringWorld {
     fn substep(&mut self) -> Result<usize, MassSpringError> {
         let n = self.substeps_done;
         self.substeps_done += 1;
-        let contacts = compute_contact_forces(&self.bodies, &mut self.points, &self.settings.contact);
+        let contacts = compute_contact_forces(&self.bodies, &mut self.broad, &mut self.points, &self.settings.contact);
         self.springs
             .track_goals(&self.points.x, &self.points.y, self.settings.tracking_rate);
         self.points.remember();

@@ -57,7 +57,7 @@ def main():
         us = speed(name, args.steps)
         print(
             f"{name:16s} obs {env.observation_space.shape[0]:3d}  actions {env.action_space.shape[0]:2d}  "
-            f"reward {total:+.3f} over {k} steps  {us:7.1f} us/step (CPU)"
+            f"reward {total:+.9f} over {k} steps  {us:7.1f} us/step (CPU)"
         )
 
 

@@ -94,6 +94,7 @@ mod tests {
             goal: vec![0.1; n],
             band: vec![0.25; n],
             active: Runs::where_(n, |_| true),
+            stages: std::array::from_fn(|_| Runs::where_(n, |_| true)),
         }
     }
 

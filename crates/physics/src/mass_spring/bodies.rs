@@ -11,6 +11,8 @@ pub(crate) struct Bodies {
     /// Side `i` joins corners `i` and `i + 1`; a boundary side is stored as its endpoints ordered
     /// so that the normal `(-dy, dx)` of a→b points out of the quad.
     pub quad_sides: Vec<[Option<(u32, u32)>; 4]>,
+    /// Every side of each quad as (from, to), directed as the crossing test walks it.
+    pub walked_sides: Vec<[(u32, u32); 4]>,
     /// Body `b`'s boundary quads are `boundary[offsets[b]..offsets[b + 1]]` (a slot each).
     pub offsets: Vec<u32>,
     pub boundary: Vec<u32>,

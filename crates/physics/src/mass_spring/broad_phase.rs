@@ -104,6 +104,7 @@ mod tests {
         Bodies {
             quad_points: vec![[0, 0, 0, 0]; boxes.len()],
             quad_sides: vec![[None; 4]; boxes.len()],
+            walked_sides: vec![[(0, 0); 4]; boxes.len()],
             offsets,
             boundary: (0..boxes.len() as u32).collect(),
             all_fixed: fixed.to_vec(),

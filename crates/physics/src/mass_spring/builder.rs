@@ -10,6 +10,7 @@ use super::projection::Projection;
 use super::quad_geometry::{twice_signed_area, Aabb};
 use super::runs::Runs;
 use super::springs::{length, Springs};
+use super::stage_points::{hops_from_free, HOPS};
 use super::validate;
 use super::world::MassSpringWorld;
 use super::{MassSpringError, MassSpringSettings};
@@ -133,6 +134,10 @@ pub struct QuadDesc {
     pub corners: [PointId; 4],
     /// Which sides are on the body's outline.
     pub boundary: [bool; 4],
+    /// Sides walked from corner `i + 1` back to corner `i` when a corner's own sides are tested
+    /// for crossing another quad's outline. Only an exact touch at an end point depends on it (by
+    /// rounding); EvoGym keeps the direction each edge was made with, and this lets a mapper say so.
+    pub reversed: [bool; 4],
 }
 
 impl QuadDesc {
@@ -142,12 +147,19 @@ impl QuadDesc {
             body,
             corners,
             boundary: [false; 4],
+            reversed: [false; 4],
         }
     }
 
     /// With boundary sides `sides` (side `i` joins corners `i` and `i + 1`).
     pub fn boundary(mut self, sides: [bool; 4]) -> Self {
         self.boundary = sides;
+        self
+    }
+
+    /// With sides `sides` walked backwards in the crossing test (see [`QuadDesc::reversed`]).
+    pub fn reversed(mut self, sides: [bool; 4]) -> Self {
+        self.reversed = sides;
         self
     }
 }
@@ -227,8 +239,8 @@ impl MassSpringBuilder {
         let rests = self.rest_lengths()?;
         validate::limits(&self.limits, self.springs.len())?;
         validate::actuators(&self.actuators, self.springs.len())?;
-        let points = self.make_points();
-        let springs = self.make_springs(rests, &points.fixed);
+        let mut points = self.make_points();
+        let springs = self.make_springs(rests, &mut points);
         let bodies = self.make_bodies(&points)?;
         let limits: Vec<(u32, f64)> = self.limits.iter().map(|(s, b)| (s.0, *b)).collect();
         let lists: Vec<Vec<u32>> = self.actuators.iter().map(|l| l.iter().map(|s| s.0).collect()).collect();
@@ -271,10 +283,19 @@ impl MassSpringBuilder {
         Ok(rests)
     }
 
-    fn make_springs(&self, rests: Vec<f64>, fixed: &[bool]) -> Springs {
+    /// The springs, and the points the RK4 stages move; the springs that matter are those with an
+    /// end among them.
+    fn make_springs(&self, rests: Vec<f64>, points: &mut Points) -> Springs {
         let a: Vec<u32> = self.springs.iter().map(|s| s.a.0).collect();
         let b: Vec<u32> = self.springs.iter().map(|s| s.b.0).collect();
-        let active = Runs::where_(a.len(), |s| !(fixed[a[s] as usize] && fixed[b[s] as usize]));
+        let hops = hops_from_free(&points.fixed, &a, &b);
+        let mut stages = Vec::new();
+        for stage in 0..4 {
+            let near = |p: u32| hops[p as usize] <= HOPS - stage;
+            points.stage[stage as usize] = Runs::where_(hops.len(), |i| near(i as u32));
+            stages.push(Runs::where_(a.len(), |s| near(a[s]) || near(b[s])));
+        }
+        let active = stages[0].clone();
         Springs {
             a,
             b,
@@ -284,6 +305,7 @@ impl MassSpringBuilder {
             initial: rests,
             band: self.springs.iter().map(|s| s.band).collect(),
             active,
+            stages: stages.try_into().expect("four stages"),
         }
     }
 
@@ -315,6 +337,7 @@ impl MassSpringBuilder {
         let mut bodies = Bodies {
             quad_points: self.quads.iter().map(|q| q.corners.map(|p| p.0)).collect(),
             quad_sides: sides,
+            walked_sides: self.quads.iter().map(walked_sides).collect(),
             boxes: vec![Aabb::EMPTY; boundary.len()],
             offsets,
             boundary,
@@ -328,6 +351,19 @@ impl MassSpringBuilder {
         bodies.find_neighbours(NEIGHBOUR_TOLERANCE);
         Ok(bodies)
     }
+}
+
+/// Every side of the quad as (from, to) for the crossing test.
+fn walked_sides(q: &QuadDesc) -> [(u32, u32); 4] {
+    let c = q.corners.map(|p| p.0);
+    std::array::from_fn(|i| {
+        let (from, to) = (c[i], c[(i + 1) % 4]);
+        if q.reversed[i] {
+            (to, from)
+        } else {
+            (from, to)
+        }
+    })
 }
 
 /// The quad's boundary sides as endpoint pairs whose normal `(-dy, dx)` points outward.

@@ -42,22 +42,22 @@ fn quad_into_quad(
     weight: f64,
 ) -> usize {
     let other = bodies.boundary[other_slot] as usize;
-    let m = bodies.quad_points[bodies.boundary[main] as usize];
+    let main_quad = bodies.boundary[main] as usize;
+    let m = bodies.quad_points[main_quad];
     let o = bodies.quad_points[other];
     let other_box = bodies.boxes[other_slot];
     let mut contacts = 0;
-    for k in 0..4 {
-        let p = m[k] as usize;
-        if o.contains(&m[k]) || !other_box.contains(points.x[p], points.y[p]) {
+    for (k, &corner) in m.iter().enumerate() {
+        let p = corner as usize;
+        if o.contains(&corner) || !other_box.contains(points.x[p], points.y[p]) {
             continue;
         }
         let (ox, oy) = (o.map(|q| points.x[q as usize]), o.map(|q| points.y[q as usize]));
         if !point_in_quad(points.x[p], points.y[p], ox, oy) {
             continue;
         }
-        let prev = m[(k + 3) % 4] as usize;
-        let next = m[(k + 1) % 4] as usize;
-        if let Some((a, b, depth)) = exit_side(bodies, points, other, p, prev, next) {
+        let own = [(k + 3) % 4, k].map(|s| bodies.walked_sides[main_quad][s]);
+        if let Some((a, b, depth)) = exit_side(bodies, points, other, p, own) {
             push_out(points, c, p, a, b, depth, weight);
             contacts += 1;
         }
@@ -66,25 +66,23 @@ fn quad_into_quad(
 }
 
 /// The boundary side of `other` nearest to point `p` (distance to its line) among those that one
-/// of `p`'s own two sides (to `prev` and to `next`) crosses; first one wins ties.
+/// of `p`'s own two sides (`own`, as walked) crosses; first one wins ties.
 fn exit_side(
     bodies: &Bodies,
     points: &Points,
     other: usize,
     p: usize,
-    prev: usize,
-    next: usize,
+    own: [(u32, u32); 2],
 ) -> Option<(usize, usize, f64)> {
-    let at = |i: usize| (points.x[i], points.y[i]);
+    let at = |i: u32| (points.x[i as usize], points.y[i as usize]);
     let mut best: Option<(usize, usize, f64)> = None;
-    for (a, b) in bodies.quad_sides[other].iter().flatten() {
-        let (a, b) = (*a as usize, *b as usize);
-        let crossed =
-            segments_intersect(at(p), at(prev), at(a), at(b)) || segments_intersect(at(p), at(next), at(a), at(b));
+    for &(a, b) in bodies.quad_sides[other].iter().flatten() {
+        let crossed = own.iter().any(|&(s, e)| segments_intersect(at(s), at(e), at(a), at(b)));
+        let (a, b) = (a as usize, b as usize);
         if !crossed {
             continue;
         }
-        let d = line_distance(at(p), at(a), at(b));
+        let d = line_distance(at(p as u32), at(a as u32), at(b as u32));
         if best.is_none_or(|(_, _, bd)| d < bd) {
             best = Some((a, b, d));
         }

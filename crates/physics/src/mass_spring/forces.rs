@@ -14,10 +14,11 @@ pub(crate) struct Stage<'a> {
     pub vy: &'a [f64],
 }
 
-/// Writes the total force on each free point at stage `s` into `fx`, `fy` (entries of fixed
-/// points are meaningless).
+/// Writes the total force on each point RK4 stage `stage` moves, in state `s`, into `fx`, `fy`
+/// (other entries are meaningless).
 pub(crate) fn total_forces(
     s: &Stage,
+    stage: usize,
     points: &Points,
     springs: &Springs,
     set: &MassSpringSettings,
@@ -26,8 +27,8 @@ pub(crate) fn total_forces(
 ) {
     fx.fill(0.0);
     fy.fill(0.0);
-    springs.add_forces(s.x, s.y, fx, fy);
-    for i in points.free.indices() {
+    springs.add_forces(&springs.stages[stage], s.x, s.y, fx, fy);
+    for i in points.stage[stage].indices() {
         fx[i] += -set.drag * s.vx[i] + points.contact_fx[i];
         fy[i] += -set.drag * s.vy[i] - set.gravity * points.mass[i] + points.contact_fy[i];
         if let Some(g) = &set.ground {

@@ -1,5 +1,6 @@
-//! Classical fourth-order Runge–Kutta over positions and velocities, as EvoGym integrates. Fixed
-//! points keep their state in every stage.
+//! Classical fourth-order Runge–Kutta over positions and velocities, as EvoGym integrates. The
+//! stages move every point of `points.stage` (fixed ones near free ones included, as EvoGym lets
+//! them drift inside a substep); only free points keep their increment.
 
 use super::forces::{total_forces, Stage};
 use super::points::Points;
@@ -49,11 +50,11 @@ impl Rk4 {
         self.sy.copy_from_slice(&points.y);
         self.svx.copy_from_slice(&points.vx);
         self.svy.copy_from_slice(&points.vy);
-        for i in points.free.indices() {
+        for i in points.stage[0].indices() {
             (self.ax[i], self.ay[i], self.avx[i], self.avy[i]) = (0.0, 0.0, 0.0, 0.0);
         }
-        for (next, weight) in STAGES {
-            self.stage(points, springs, set, next, weight);
+        for (k, (next, weight)) in STAGES.into_iter().enumerate() {
+            self.stage(k, points, springs, set, next, weight);
         }
         for i in points.free.indices() {
             points.x[i] += self.ax[i];
@@ -63,17 +64,26 @@ impl Rk4 {
         }
     }
 
-    /// Evaluates one stage, adds its weighted increment and prepares the next stage's state.
-    fn stage(&mut self, points: &Points, springs: &Springs, set: &MassSpringSettings, next: f64, weight: f64) {
+    /// Evaluates stage `k`, adds its weighted increment and prepares the next stage's state (of the
+    /// points stage `k` moves: all the next stage reads).
+    fn stage(
+        &mut self,
+        k: usize,
+        points: &Points,
+        springs: &Springs,
+        set: &MassSpringSettings,
+        next: f64,
+        weight: f64,
+    ) {
         let s = Stage {
             x: &self.sx,
             y: &self.sy,
             vx: &self.svx,
             vy: &self.svy,
         };
-        total_forces(&s, points, springs, set, &mut self.fx, &mut self.fy);
+        total_forces(&s, k, points, springs, set, &mut self.fx, &mut self.fy);
         let dt = set.dt;
-        for i in points.free.indices() {
+        for i in points.stage[k].indices() {
             let (kx, ky) = (self.svx[i] * dt, self.svy[i] * dt);
             let (kvx, kvy) = (self.fx[i] / points.mass[i] * dt, self.fy[i] / points.mass[i] * dt);
             self.ax[i] += weight * kx;
@@ -111,6 +121,7 @@ mod tests {
             goal: vec![],
             band: vec![],
             active: Runs::default(),
+            stages: Default::default(),
         };
         let set = MassSpringSettings {
             drag: 0.0,

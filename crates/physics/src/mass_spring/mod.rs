@@ -35,6 +35,7 @@ mod quad_geometry;
 mod runs;
 mod settings;
 mod springs;
+mod stage_points;
 mod validate;
 mod world;
 

@@ -14,6 +14,9 @@ pub(crate) struct Points {
     pub fixed: Vec<bool>,
     /// The points that move.
     pub free: Runs,
+    /// The points each RK4 stage moves: the free ones and the fixed ones whose drift inside a
+    /// substep reaches a free point (see `stage_points`); the free points unless set otherwise.
+    pub stage: [Runs; 4],
     /// Positions at the start of the current substep.
     pub x_last: Vec<f64>,
     pub y_last: Vec<f64>,
@@ -34,8 +37,10 @@ impl Points {
         let n = pos.len();
         let x: Vec<f64> = pos.iter().map(|p| p.0).collect();
         let y: Vec<f64> = pos.iter().map(|p| p.1).collect();
-        let vx: Vec<f64> = vel.iter().map(|v| v.0).collect();
-        let vy: Vec<f64> = vel.iter().map(|v| v.1).collect();
+        // A fixed point is at rest whatever velocity it was given.
+        let at_rest = |i: usize, v: f64| if fixed[i] { 0.0 } else { v };
+        let vx: Vec<f64> = vel.iter().enumerate().map(|(i, v)| at_rest(i, v.0)).collect();
+        let vy: Vec<f64> = vel.iter().enumerate().map(|(i, v)| at_rest(i, v.1)).collect();
         let free = Runs::where_(n, |i| !fixed[i]);
         Self {
             x_last: x.clone(),
@@ -50,6 +55,7 @@ impl Points {
             vy,
             mass,
             fixed,
+            stage: std::array::from_fn(|_| free.clone()),
             free,
             contact_fx: vec![0.0; n],
             contact_fy: vec![0.0; n],

@@ -37,12 +37,12 @@ impl Projection {
         }
     }
 
-    /// Loose pass: every active spring outside its band moves each free end by `correction / 2`
+    /// Loose pass: every spring with a free end outside its band moves each free end by `correction / 2`
     /// of the excess, all shifts computed from the same positions and then applied together.
     pub fn project_bands(&mut self, springs: &Springs, points: &mut Points, correction: f64) {
         self.shift_x.fill(0.0);
         self.shift_y.fill(0.0);
-        for s in springs.active.indices() {
+        for s in springs.touching_free().indices() {
             let (a, b) = (springs.a[s] as usize, springs.b[s] as usize);
             let (dx, dy) = (points.x[a] - points.x[b], points.y[a] - points.y[b]);
             let len = norm(dx, dy);

@@ -17,11 +17,19 @@ pub(crate) struct Springs {
     pub goal: Vec<f64>,
     /// Loose band: lengths are pushed back into `initial × [1 - band, 1 + band]`.
     pub band: Vec<f64>,
-    /// Springs with at least one moving end; the others never matter.
+    /// Springs with an end that moves in the first RK4 stage; the others never matter.
     pub active: Runs,
+    /// The springs each RK4 stage needs: those with an end among the stage's points.
+    pub stages: [Runs; 4],
 }
 
 impl Springs {
+    /// The springs with a free end (the last RK4 stage's set): the only ones whose projection
+    /// moves anything.
+    pub fn touching_free(&self) -> &Runs {
+        &self.stages[3]
+    }
+
     /// Sets every active spring's rest length to its current length plus `rate` × (goal − current
     /// length), EvoGym's rule before each substep.
     pub fn track_goals(&mut self, x: &[f64], y: &[f64], rate: f64) {
@@ -34,10 +42,10 @@ impl Springs {
         }
     }
 
-    /// Adds every active spring's force to `fx`, `fy` for the positions `x`, `y`. A spring of zero
-    /// length has no direction and pushes nothing.
-    pub fn add_forces(&self, x: &[f64], y: &[f64], fx: &mut [f64], fy: &mut [f64]) {
-        for r in self.active.ranges() {
+    /// Adds the force of every spring in `which` to `fx`, `fy` for the positions `x`, `y`. A
+    /// spring of zero length has no direction and pushes nothing.
+    pub fn add_forces(&self, which: &Runs, x: &[f64], y: &[f64], fx: &mut [f64], fy: &mut [f64]) {
+        for r in which.ranges() {
             let ends = self.a[r.clone()].iter().zip(&self.b[r.clone()]);
             for ((&a, &b), (&rest, &stiffness)) in ends.zip(self.rest[r.clone()].iter().zip(&self.stiffness[r])) {
                 let (a, b) = (a as usize, b as usize);
@@ -75,6 +83,7 @@ mod tests {
             goal: vec![goal],
             band: vec![0.25],
             active: Runs::where_(1, |_| true),
+            stages: std::array::from_fn(|_| Runs::where_(1, |_| true)),
         }
     }
 
@@ -83,10 +92,10 @@ mod tests {
         let s = one(1.0, 1.0);
         let (x, y) = ([0.0, 0.6], [0.0, 0.8]); // length 1 → stretch 0 → no force
         let (mut fx, mut fy) = ([0.0; 2], [0.0; 2]);
-        s.add_forces(&x, &y, &mut fx, &mut fy);
+        s.add_forces(&s.active, &x, &y, &mut fx, &mut fy);
         assert!(fx.iter().chain(&fy).all(|f| f.abs() < 1e-12));
         let (x, y) = ([0.0, 1.2], [0.0, 1.6]); // length 2 → force 10 toward each other
-        s.add_forces(&x, &y, &mut fx, &mut fy);
+        s.add_forces(&s.active, &x, &y, &mut fx, &mut fy);
         assert!((fx[0] - 6.0).abs() < 1e-12 && (fy[0] - 8.0).abs() < 1e-12);
         assert!((fx[1] + 6.0).abs() < 1e-12 && (fy[1] + 8.0).abs() < 1e-12);
     }
@@ -103,7 +112,7 @@ mod tests {
     fn a_zero_length_spring_gives_no_force_instead_of_nan() {
         let s = one(1.0, 1.0);
         let (mut fx, mut fy) = ([0.0; 2], [0.0; 2]);
-        s.add_forces(&[0.5, 0.5], &[0.5, 0.5], &mut fx, &mut fy);
+        s.add_forces(&s.active, &[0.5, 0.5], &[0.5, 0.5], &mut fx, &mut fy);
         assert_eq!((fx, fy), ([0.0; 2], [0.0; 2]));
     }
 }

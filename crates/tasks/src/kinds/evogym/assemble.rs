@@ -51,14 +51,21 @@ pub struct PlannedSpring {
     pub rest: f64,
 }
 
-/// A cell as a quad: corners bottom-left, bottom-right, top-right, top-left (counter-clockwise),
-/// side `i` from corner `i` to `i + 1` (bottom, right, top, left).
+/// A cell as a quad in EvoGym's order: corners top-left, top-right, bottom-right, bottom-left
+/// (clockwise), side `i` from corner `i` to `i + 1` (top, right, bottom, left). That order is
+/// EvoGym's in three places where exact touches are decided: which of two equally near edges a
+/// point is pushed through (the first of top, right, bottom, left), the diagonal top-left –
+/// bottom-right of the point-in-cell test, and the direction of outline edges.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct PlannedQuad {
     /// Corner point indices.
     pub corners: [usize; 4],
     /// Which sides face no connected neighbour.
     pub boundary: [bool; 4],
+    /// Sides EvoGym walks against the corner order: inner bottom and left edges, which keep the
+    /// left-to-right and top-to-bottom direction they were made with (`ObjectCreator.cpp:398-422`;
+    /// outline edges are turned to face out, `:603-632`).
+    pub reversed: [bool; 4],
 }
 
 /// Everything an object adds to a world, with indices local to the object.
@@ -211,14 +218,15 @@ fn customise(grid: &MaterialGrid, parts: &[CellParts], plan: &mut ObjectPlan) {
             _ => {}
         }
         let boundary = [
-            !grid.connected_down(x, y),
-            !grid.connected_right(x, y),
             !grid.connected_up(x, y),
+            !grid.connected_right(x, y),
+            !grid.connected_down(x, y),
             !grid.connected_left(x, y),
         ];
         plan.quads.push(PlannedQuad {
-            corners: [c[BL], c[BR], c[TR], c[TL]],
+            corners: [c[TL], c[TR], c[BR], c[BL]],
             boundary,
+            reversed: [false, false, !boundary[2], !boundary[3]],
         });
     }
 }
@@ -266,7 +274,11 @@ impl ObjectPlan {
             .map(|s| builder.add_spring(SpringDesc::between(ids[s.a], ids[s.b], s.stiffness).rest_length(s.rest)))
             .collect();
         for q in &self.quads {
-            builder.add_quad(QuadDesc::new(body, q.corners.map(|i| ids[i])).boundary(q.boundary));
+            builder.add_quad(
+                QuadDesc::new(body, q.corners.map(|i| ids[i]))
+                    .boundary(q.boundary)
+                    .reversed(q.reversed),
+            );
         }
         self.limits
             .iter()
@@ -331,10 +343,16 @@ mod tests {
         // Rigid cell's sides top, right, bottom, left.
         assert_eq!(plan.limits, [0, 3, 1, 2]);
         assert!(plan.actuators.is_empty());
-        assert_eq!(plan.quads[0].corners, [2, 3, 1, 0]);
+        assert_eq!(plan.quads[0].corners, [0, 1, 3, 2]);
         assert_eq!(plan.quads[0].boundary, [true, false, true, true]);
-        assert_eq!(plan.quads[1].corners, [3, 5, 4, 1]);
+        assert_eq!(plan.quads[0].reversed, [false, false, false, false]);
+        assert_eq!(plan.quads[1].corners, [1, 4, 5, 3]);
         assert_eq!(plan.quads[1].boundary, [true, true, true, false]);
+        assert_eq!(
+            plan.quads[1].reversed,
+            [false, false, false, true],
+            "the shared left edge"
+        );
     }
 
     /// Two stacked actuators "3/4" at cell (1, 1): the horizontal one on top drives its top and

@@ -499,4 +499,43 @@ mod tests {
             }
         }
     }
+
+    /// EvoGym 2.0.0's positions after one BridgeWalker-v0 step (robot 13231/34443/32023/33033/40004,
+    /// every action 1.0; recorded with the venv of `bench/evogym`). A bridge point next to a fixed
+    /// anchor sags as EvoGym's only if fixed points drift inside the RK4 stages; the robot's corner
+    /// resting exactly on a bridge corner, and that bridge corner, move as EvoGym's only if the
+    /// edge a point is pushed through is chosen in EvoGym's order (right before bottom).
+    #[test]
+    fn one_bridge_step_lands_where_evogym_puts_it() {
+        let mut e = env(EvoGymTask::BridgeWalker, "13231/34443/32023/33033/40004");
+        let w = e.world();
+        let start: Vec<(f64, f64)> = w
+            .positions_x()
+            .iter()
+            .copied()
+            .zip(w.positions_y().iter().copied())
+            .collect();
+        let n = w.point_count();
+        let actions = vec![1.0; e.action_count()];
+        e.step(&actions).unwrap();
+        let robot = e.robot_points();
+        let find = |mut range: Range<usize>, x: f64, y: f64| {
+            range
+                .find(|&i| (start[i].0 - x).abs() < 1e-9 && (start[i].1 - y).abs() < 1e-9)
+                .unwrap()
+        };
+        let recorded = [
+            (find(robot.end..n, 1.2, 0.5), (1.200032593396046, 0.49963150357908914)),
+            (find(robot.end..n, 0.3, 0.5), (0.3004274728303495, 0.4979007711389167)),
+            (find(robot.clone(), 0.3, 0.5), (0.29844530933135816, 0.501714568086073)),
+        ];
+        let w = e.world();
+        for (i, (x, y)) in recorded {
+            let (dx, dy) = (w.positions_x()[i] - x, w.positions_y()[i] - y);
+            assert!(
+                dx.abs() < 1e-12 && dy.abs() < 1e-12,
+                "point {i}: off EvoGym's by ({dx:e}, {dy:e})"
+            );
+        }
+    }
 }

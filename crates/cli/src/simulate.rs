@@ -4,7 +4,7 @@ use clap::Args;
 use serde_json::json;
 use std::path::PathBuf;
 use std::time::Instant;
-use vsrlab_tasks::files::{load_any_robot, save_any_robot};
+use vsrlab_tasks::files::{load_any_robot, save_any_robot_as};
 use vsrlab_tasks::{episode, kinds, AnyRobot, RobotArgs, RobotArgsError, TaskSpec, TraceLevel};
 
 /// Episode length when neither --duration nor --task-of gives one.
@@ -31,7 +31,8 @@ pub struct SimulateArgs {
     pub brain: Option<String>,
     /// Task: locomotion:<terrain> (terrain = flat | hilly-H-W[-SEED] | steppy-H-W[-SEED] | uphill-DEG |
     /// downhill-DEG | psa-hilly-H-W[-SEED]), jump, escape (or escape:SIDE, the cage side) or carrier (PSA tasks,
-    /// docs/psa.md).
+    /// docs/psa.md), or one of EvoGym's: walker, bridge-walker, beam-toppler, cave-crawler (also
+    /// evogym:BridgeWalker-v0, …; EvoGym robots, docs/multimaterial.md).
     #[arg(long, default_value = "locomotion:flat")]
     pub task: String,
     /// Sensors: uniform-<s1>+<s2>…-<noise σ>, spinedTouch-…, spinedTouchSighted-…,
@@ -101,12 +102,18 @@ pub struct SimulateArgs {
     /// Frames per second kept in the replay file (the viewer interpolates between them).
     #[arg(long, default_value_t = 30.0)]
     pub replay_fps: f64,
-    /// Replay a robot file (JSON) instead of --body/--sensors/--brain/--preset.
+    /// Replay a robot file instead of --body/--sensors/--brain/--preset: vsrlab's JSON, or
+    /// EvoGym's robots (its JSON or `.npz` files).
     #[arg(long, conflicts_with_all = ["body", "sensors", "brain", "preset"])]
     pub robot: Option<PathBuf>,
-    /// Save the robot that was simulated as a robot file (JSON).
+    /// Save the robot that was simulated as a robot file (JSON; a `.npz` name saves an EvoGym
+    /// robot in EvoGym's `.npz` form).
     #[arg(long)]
     pub save_robot: Option<PathBuf>,
+    /// The format of --save-robot: vsrlab, evogym-json or evogym-npz (EvoGym's forms hold the
+    /// body only). Default: by the file's extension.
+    #[arg(long, requires = "save_robot")]
+    pub robot_format: Option<String>,
 }
 
 /// Physics settings given on the command line (`--substeps`, `--solver`).
@@ -285,7 +292,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         .map_err(|e| robot_option_error(&e))?,
     };
     if let Some(path) = &a.save_robot {
-        save_any_robot(path, &robot, None).map_err(|e| e.to_string())?;
+        save_any_robot_as(path, &robot, None, a.robot_format.as_deref()).map_err(|e| e.to_string())?;
     }
     let (sensors, preset) = (robot.description().sensors_label(), robot.description().preset_label());
     let brain = robot.brain();

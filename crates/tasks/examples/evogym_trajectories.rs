@@ -8,7 +8,7 @@
 //! a task name, also prints the first STEPS steps of that task's first run side by side.
 
 use serde::Deserialize;
-use vsrlab_tasks::kinds::evogym::{EvoGymEnv, EvoGymTask, MaterialGrid};
+use vsrlab_tasks::kinds::evogym::{ActionStream, EvoGymEnv, EvoGymTask, MaterialGrid};
 
 #[derive(Deserialize)]
 struct Recording {
@@ -36,23 +36,6 @@ struct End {
     terminated: bool,
 }
 
-/// splitmix64, as the Python script draws its actions.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    fn uniform(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// What vsrlab did with one run's actions.
 struct Replay {
     com: Vec<(f64, f64)>,
@@ -63,12 +46,12 @@ struct Replay {
 fn replay(task: EvoGymTask, body: &MaterialGrid, seed: u64, low: f64, high: f64) -> Result<Replay, String> {
     let mut env = EvoGymEnv::new(task, body).map_err(|e| e.to_string())?;
     env.reset(0);
-    let mut rng = SplitMix64(seed);
+    let mut rng = ActionStream::new(seed);
     let mut actions = vec![0.0; env.action_count()];
     let (mut com, mut reward) = (vec![env.robot_centre()], Vec::new());
     let mut terminated = false;
     for _ in 0..task.episode_steps() {
-        actions.iter_mut().for_each(|a| *a = low + rng.uniform() * (high - low));
+        rng.fill_uniform(&mut actions, low, high);
         let r = env.step(&actions).map_err(|e| e.to_string())?;
         let (step_reward, done, truncated) = (r.reward, r.done, r.truncated);
         reward.push(step_reward);

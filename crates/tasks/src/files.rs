@@ -95,9 +95,70 @@ pub fn any_robot_from_json(text: &str, origin: &str) -> Result<AnyRobot, FileErr
     (kind.from_file)(text, origin)
 }
 
-/// Loads and validates a robot file of any registered kind.
+/// Loads and validates a robot file of any registered kind: vsrlab's JSON, or a file of
+/// another program that a kind reads ([`kinds::ForeignFormat`], e.g. EvoGym's `.npz`).
 pub fn load_any_robot(path: &Path) -> Result<AnyRobot, FileError> {
-    any_robot_from_json(&read_text(path)?, &path.display().to_string())
+    let origin = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|source| FileError::Io {
+        path: origin.clone(),
+        source,
+    })?;
+    if let Some(format) = kinds::foreign_format_of(&bytes) {
+        return (format.read)(&bytes, &origin);
+    }
+    let text = String::from_utf8(bytes).map_err(|_| FileError::Invalid {
+        path: origin.clone(),
+        msg: format!(
+            "not a robot file: neither JSON text nor one of {}",
+            kinds::foreign_format_names().join(", ")
+        ),
+    })?;
+    any_robot_from_json(&text, &origin)
+}
+
+/// Saves a robot in format `format`: `vsrlab` (the robot file), or a foreign format by name
+/// (`evogym-json`, `evogym-npz`); with none, the foreign format whose extension `path` has, other
+/// than `json`, else `vsrlab`. Atomic; a format that cannot hold the
+/// robot is refused before anything is written.
+pub fn save_any_robot_as(
+    path: &Path,
+    robot: &AnyRobot,
+    note: Option<&str>,
+    format: Option<&str>,
+) -> Result<(), FileError> {
+    let invalid = |msg: String| FileError::Invalid {
+        path: path.display().to_string(),
+        msg,
+    };
+    // any kind's: a `.npz` name for a robot no `.npz` format can hold is refused, not written
+    // as JSON under a misleading name
+    let by_extension = || {
+        let ext = path.extension()?.to_str()?;
+        kinds::ROBOT_KINDS
+            .iter()
+            .flat_map(|k| k.foreign_formats.iter())
+            .find(|f| f.extension != "json" && f.extension.eq_ignore_ascii_case(ext))
+    };
+    let foreign = match format {
+        None => by_extension(),
+        Some("vsrlab") => None,
+        Some(name) => Some(kinds::foreign_format(name).map(|(_, f)| f).ok_or_else(|| {
+            let mut names = vec!["vsrlab"];
+            names.extend(kinds::foreign_format_names());
+            invalid(format!(
+                "unknown robot file format '{name}': expected {}",
+                names.join(", ")
+            ))
+        })?),
+    };
+    let bytes = match foreign {
+        Some(f) => (f.write)(robot).map_err(|m| invalid(format!("{}: {m}", f.name)))?,
+        None => robot.to_json(note).into_bytes(),
+    };
+    write_atomic(path, &bytes).map_err(|source| FileError::Io {
+        path: path.display().to_string(),
+        source,
+    })
 }
 
 pub use crate::kinds::voxel::{load_robot, robot_from_json, robot_to_json, save_robot};

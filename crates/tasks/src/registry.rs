@@ -71,6 +71,13 @@ pub struct TaskKind {
     pub parse: fn(Option<&str>) -> Result<TaskSpec, FieldError>,
     /// Builds the task from its config table (without `kind`), naming the field on error.
     pub decode: fn(serde_json::Value) -> Result<TaskSpec, FieldError>,
+    /// A task of this kind known by a name of its own on the command line (EvoGym's
+    /// `bridge-walker` for `evogym:BridgeWalker-v0`), if `name` is one.
+    pub alias: fn(&str) -> Option<TaskSpec>,
+}
+
+fn no_alias(_: &str) -> Option<TaskSpec> {
+    None
 }
 
 /// Every task kind.
@@ -80,30 +87,35 @@ pub const TASKS: &[TaskKind] = &[
         usage: "locomotion:<terrain>",
         parse: parse_locomotion,
         decode: |v| decode::<Locomotion>(v).map(TaskSpec::Locomotion),
+        alias: no_alias,
     },
     TaskKind {
         name: "jump",
         usage: "jump",
         parse: parse_jump,
         decode: |v| decode::<Jump>(v).map(TaskSpec::Jump),
+        alias: no_alias,
     },
     TaskKind {
         name: "escape",
         usage: "escape[:<cage side>]",
         parse: parse_escape,
         decode: |v| decode::<Escape>(v).map(TaskSpec::Escape),
+        alias: no_alias,
     },
     TaskKind {
         name: "carrier",
         usage: "carrier",
         parse: parse_carrier,
         decode: |v| decode::<Carrier>(v).map(TaskSpec::Carrier),
+        alias: no_alias,
     },
     TaskKind {
         name: "evogym",
-        usage: "evogym[:<Walker-v0|BridgeWalker-v0|BeamToppler-v0|CaveCrawler-v0>]",
+        usage: "evogym[:<Walker-v0|BridgeWalker-v0|BeamToppler-v0|CaveCrawler-v0>] (or walker, bridge-walker, beam-toppler, cave-crawler)",
         parse: parse_evogym,
         decode: |v| decode::<EvoGym>(v).map(TaskSpec::Evogym),
+        alias: evogym_alias,
     },
 ];
 
@@ -147,6 +159,14 @@ fn parse_evogym(arg: Option<&str>) -> Result<TaskSpec, FieldError> {
         task.env = which.name().to_string();
     }
     Ok(TaskSpec::Evogym(task))
+}
+
+fn evogym_alias(name: &str) -> Option<TaskSpec> {
+    let which = EvoGymTask::from_name(name)?;
+    Some(TaskSpec::Evogym(EvoGym {
+        env: which.name().to_string(),
+        ..EvoGym::default()
+    }))
 }
 
 fn parse_jump(arg: Option<&str>) -> Result<TaskSpec, FieldError> {
@@ -207,16 +227,19 @@ impl TaskSpec {
     }
 
     /// Parses a command-line short form: `locomotion:<terrain>` (`locomotion` alone is flat),
-    /// `jump`, … (see [`TASKS`]).
+    /// `jump`, …, or a name a kind claims as its own (`bridge-walker`; see [`TASKS`]).
     pub fn parse(s: &str) -> Result<TaskSpec, TaskParseError> {
         let (name, arg) = s.split_once(':').map_or((s, None), |(a, b)| (a, Some(b)));
-        let kind = TASKS
-            .iter()
-            .find(|k| k.name == name)
-            .ok_or_else(|| TaskParseError::Unknown {
-                name: name.to_string(),
-                expected: TASKS.iter().map(|k| k.usage).collect::<Vec<_>>().join(" or "),
-            })?;
+        let kind = TASKS.iter().find(|k| k.name == name);
+        if let (None, None) = (kind, arg) {
+            if let Some(task) = TASKS.iter().find_map(|k| (k.alias)(name)) {
+                return Ok(task);
+            }
+        }
+        let kind = kind.ok_or_else(|| TaskParseError::Unknown {
+            name: name.to_string(),
+            expected: TASKS.iter().map(|k| k.usage).collect::<Vec<_>>().join(" or "),
+        })?;
         (kind.parse)(arg).map_err(|error| TaskParseError::Argument { kind: kind.name, error })
     }
 
@@ -334,6 +357,28 @@ mod tests {
         let e = TaskSpec::from_json(json!({"kind": "fly"})).unwrap_err();
         assert_eq!(e.path, "kind");
         assert!(e.message.contains("locomotion, jump, escape, carrier"), "{e}");
+    }
+
+    /// EvoGym's tasks answer to their own names, the kind's full form being the same task.
+    #[test]
+    fn a_kind_can_claim_task_names_of_its_own() {
+        let full = TaskSpec::parse("evogym:BridgeWalker-v0").unwrap();
+        for name in [
+            "bridge-walker",
+            "bridge-walker-v0",
+            "BridgeWalker-v0",
+            "bridgewalker-v0",
+        ] {
+            assert_eq!(TaskSpec::parse(name).as_ref(), Ok(&full), "{name}");
+        }
+        assert_eq!(
+            TaskSpec::parse("cave-crawler"),
+            TaskSpec::parse("evogym:CaveCrawler-v0")
+        );
+        assert_ne!(TaskSpec::parse("walker"), TaskSpec::parse("evogym:BeamToppler-v0"));
+        let err = TaskSpec::parse("bridge-walker:x").unwrap_err().to_string();
+        assert!(err.contains("unknown task 'bridge-walker'"), "{err}");
+        assert!(TaskSpec::parse("bridge-runner").is_err());
     }
 
     #[test]

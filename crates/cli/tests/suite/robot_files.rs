@@ -137,3 +137,60 @@ fn huge_brains_on_the_command_line_are_refused_naming_the_field() {
         );
     }
 }
+
+/// EvoGym's own robot files through the command line: a `.npz` robot saved by EvoGym runs on an
+/// EvoGym task named as EvoGym names it, and robots are written back in both of EvoGym's forms
+/// (the body is kept; the reward of the same body with the same default brain is the same).
+#[test]
+fn evogym_robot_files_are_read_and_written() {
+    let saved = concat!(env!("CARGO_MANIFEST_DIR"), "/../tasks/tests/data/evogym_robot.npz");
+    let dir = tempfile::tempdir().unwrap();
+    let reward = |json: &str| {
+        let v: serde_json::Value = serde_json::from_str(json).unwrap_or_else(|e| panic!("{e}: {json}"));
+        v["reward"].as_f64().unwrap_or_else(|| panic!("no reward in {json}"))
+    };
+    let npz = dir.path().join("again.npz");
+    let evogym_json = dir.path().join("again.json");
+    let run = |robot: &str, extra: &[&str]| {
+        let mut args = vec!["simulate", "--robot", robot, "--task", "bridge-walker", "--json"];
+        args.extend(extra);
+        let (ok, out, err) = vsrlab(&args);
+        assert!(ok, "{err}");
+        reward(&out)
+    };
+    let first = run(saved, &["--save-robot", npz.to_str().unwrap()]);
+    let json_args = [
+        "--save-robot",
+        evogym_json.to_str().unwrap(),
+        "--robot-format",
+        "evogym-json",
+    ];
+    assert_eq!(run(npz.to_str().unwrap(), &json_args), first);
+    assert_eq!(run(evogym_json.to_str().unwrap(), &[]), first);
+    let text = std::fs::read_to_string(&evogym_json).unwrap();
+    assert!(
+        text.contains("\"grid_width\": 5") && text.contains("\"neighbors\""),
+        "{text}"
+    );
+    // a voxel robot has no .npz form, and nothing is written
+    let wrong = dir.path().join("biped.npz");
+    let (ok, _, err) = vsrlab(&[
+        "simulate",
+        "--body",
+        "biped-4x3",
+        "--save-robot",
+        wrong.to_str().unwrap(),
+    ]);
+    assert!(!ok && err.contains("evogym-npz") && err.contains("voxel"), "{err}");
+    assert!(!wrong.exists());
+    // a broken .npz names the array
+    let broken = dir.path().join("broken.npz");
+    let mut bytes = std::fs::read(saved).unwrap();
+    // the name in the local header and in the central directory
+    while let Some(at) = bytes.windows(5).position(|w| w == b"arr_1") {
+        bytes[at..at + 5].copy_from_slice(b"arr_9");
+    }
+    std::fs::write(&broken, bytes).unwrap();
+    let (ok, _, err) = vsrlab(&["simulate", "--robot", broken.to_str().unwrap(), "--task", "walker"]);
+    assert!(!ok && err.contains("arr_1: missing"), "{err}");
+}

@@ -30,6 +30,7 @@ const KIND: RobotKind = RobotKind {
     from_file,
     body_tables: &["chain"],
     physics: || vsrlab_tasks::Locomotion::default().physics,
+    foreign_formats: &[],
     decode_body,
 };
 

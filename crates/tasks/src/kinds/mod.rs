@@ -46,10 +46,29 @@ pub struct RobotKind {
     pub body_tables: &'static [&'static str],
     /// The world settings its published models were run with (time step, gravity, solver).
     pub physics: fn() -> vsrlab_physics::WorldSettings,
+    /// Robot files of other programs this kind reads and writes (EvoGym's `.npz` and JSON
+    /// robots), by name.
+    pub foreign_formats: &'static [ForeignFormat],
     /// Reads one of its `[representation] body` forms (a table with one of its
     /// [`RobotKind::body_tables`] tags; the default kind also gets every form that is not a
     /// table); the error's path is relative to the body's table (empty: the form as a whole).
     pub decode_body: fn(serde_json::Value) -> Result<crate::BodyPart, vsrlab_field::FieldError>,
+}
+
+/// A robot file format of another program: how to recognise, read and write it.
+pub struct ForeignFormat {
+    /// Its name on the command line (`evogym-npz`).
+    pub name: &'static str,
+    /// The file extension that selects it when saving (`npz`).
+    pub extension: &'static str,
+    /// Whether a file's bytes are in this format (binary formats; text formats that a kind's
+    /// [`RobotKind::file_keys`] recognise say no).
+    pub claims: fn(&[u8]) -> bool,
+    /// A robot from the file's bytes (validated; errors name the field); `origin` names the source.
+    pub read: fn(&[u8], &str) -> Result<AnyRobot, FileError>,
+    /// The robot in this format, or why it cannot be written so (another kind's robot, a brain
+    /// the format has no place for is left out and said in `note`).
+    pub write: fn(&AnyRobot) -> Result<Vec<u8>, String>,
 }
 
 /// The command line's description of a robot: a body, and optionally a brain, sensors and a
@@ -175,6 +194,30 @@ pub fn body_usages() -> String {
 /// robot, whose body forms are any shape name, text grid or list of rows.
 pub fn default_kind() -> &'static RobotKind {
     ROBOT_KINDS.last().expect("at least one robot kind")
+}
+
+/// The foreign format named `name`, with its kind.
+pub fn foreign_format(name: &str) -> Option<(&'static RobotKind, &'static ForeignFormat)> {
+    ROBOT_KINDS
+        .iter()
+        .flat_map(|k| k.foreign_formats.iter().map(move |f| (k, f)))
+        .find(|(_, f)| f.name == name)
+}
+
+/// The foreign format whose files start like `bytes`, if any.
+pub fn foreign_format_of(bytes: &[u8]) -> Option<&'static ForeignFormat> {
+    ROBOT_KINDS
+        .iter()
+        .flat_map(|k| k.foreign_formats.iter())
+        .find(|f| (f.claims)(bytes))
+}
+
+/// Every foreign format's name, for messages.
+pub fn foreign_format_names() -> Vec<&'static str> {
+    ROBOT_KINDS
+        .iter()
+        .flat_map(|k| k.foreign_formats.iter().map(|f| f.name))
+        .collect()
 }
 
 /// The kind whose robots robot files hold under `key`, if any.

@@ -538,4 +538,34 @@ mod tests {
             );
         }
     }
+
+    /// Two of the random bodies that EvoGym 2.0.0 ended as unstable under held extreme actions
+    /// (`bench/evogym/instability.py`, runs 30 and 6: every actuator 0.6 or 1.6 from the action
+    /// stream of the run's index, redrawn every 15 steps): vsrlab ends them at the same step with
+    /// EvoGym's −3, and refuses another step.
+    #[test]
+    fn instability_ends_the_episode_at_the_step_evogym_does() {
+        for (seed, body, evogym_step) in [
+            (30, "24223/40044/30004/30434/30030", 42),
+            (6, "03002/32434/04000/03042/04430", 62),
+        ] {
+            let mut e = env(EvoGymTask::Walker, body);
+            let mut stream = super::super::ActionStream::new(seed);
+            let mut actions = vec![0.0; e.action_count()];
+            let mut ended = None;
+            for t in 0..300 {
+                if t % 15 == 0 {
+                    stream.fill_extremes(&mut actions, 0.6, 1.6);
+                }
+                let r = e.step(&actions).unwrap();
+                if r.unstable {
+                    assert!(r.done && r.reward == -3.0, "{r:?}");
+                    ended = Some(t + 1);
+                    break;
+                }
+            }
+            assert_eq!(ended, Some(evogym_step), "{body}");
+            assert!(matches!(e.step(&actions), Err(EvoGymError::EpisodeOver)));
+        }
+    }
 }

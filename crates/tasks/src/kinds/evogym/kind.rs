@@ -8,7 +8,7 @@ use super::robot::EvoGymRobot;
 use crate::body_part::{BodyPart, BodySource};
 use crate::files::{self, FileError, ROBOT_FORMAT};
 use crate::kinds::voxel::short_forms::{RobotArgsError, RobotPart, RANDOM_BRAIN_SEED};
-use crate::kinds::{AnyRobot, RobotArgs, RobotDescription, RobotKind};
+use crate::kinds::{AnyRobot, ForeignFormat, RobotArgs, RobotDescription, RobotKind};
 use crate::representation::{EvaluationError, Representation};
 use serde::{Deserialize, Serialize};
 use vsrlab_brain::BrainSpec;
@@ -24,8 +24,66 @@ pub const KIND: RobotKind = RobotKind {
     from_file,
     body_tables: &["evogym"],
     physics: vsrlab_physics::WorldSettings::default,
+    foreign_formats: &[
+        ForeignFormat {
+            name: "evogym-json",
+            extension: "json",
+            // recognised by its key `objects` (`file_keys`)
+            claims: |_| false,
+            read: |bytes, origin| from_file(&String::from_utf8_lossy(bytes), origin),
+            write: |robot| Ok(super::robot_to_json(&grid_of(robot)?).into_bytes()),
+        },
+        ForeignFormat {
+            name: "evogym-npz",
+            extension: "npz",
+            claims: super::is_npz,
+            read: from_npz,
+            write: |robot| Ok(super::robot_to_npz(&grid_of(robot)?)),
+        },
+    ],
     decode_body,
 };
+
+/// The body of an EvoGym robot, for EvoGym's own file formats (which hold no brain).
+fn grid_of(robot: &AnyRobot) -> Result<super::MaterialGrid, String> {
+    let evogym = robot.downcast_ref::<EvoGymRobot>().ok_or_else(|| {
+        format!(
+            "EvoGym's robot files hold EvoGym robots, not {} robots",
+            robot.kind().name
+        )
+    })?;
+    evogym.grid().map_err(|e| e.to_string())
+}
+
+/// An EvoGym `.npz` robot: a body only, given the default brain as EvoGym's JSON robots are.
+fn from_npz(bytes: &[u8], origin: &str) -> Result<AnyRobot, FileError> {
+    let grid = super::robot_from_npz(bytes).map_err(|e| FileError::Invalid {
+        path: origin.to_string(),
+        msg: e.to_string(),
+    })?;
+    body_only(grid, origin)
+}
+
+/// A robot of EvoGym's files (a body only): the default brain, for Walker-v0 until a task says
+/// otherwise. vsrlab's rows connect every pair of adjacent cells, so a body that leaves some apart
+/// is refused.
+fn body_only(grid: super::MaterialGrid, origin: &str) -> Result<AnyRobot, FileError> {
+    let invalid = |msg: String| FileError::Invalid {
+        path: origin.to_string(),
+        msg,
+    };
+    if super::MaterialGrid::from_rows(&grid.to_rows()).ok() != Some(grid.clone()) {
+        return Err(invalid(
+            "a robot whose adjacent cells are not all connected is not supported yet".into(),
+        ));
+    }
+    let brain = BrainSpec::parse(DEFAULT_BRAIN).map_err(|e| invalid(e.to_string()))?;
+    Ok(AnyRobot::new(EvoGymRobot {
+        body: grid.to_rows(),
+        env: walker(),
+        brain,
+    }))
+}
 
 /// The default brain: a centralized MLP over the whole observation.
 const DEFAULT_BRAIN: &str = "mlp";
@@ -86,19 +144,13 @@ fn from_file(text: &str, origin: &str) -> Result<AnyRobot, FileError> {
             msg,
         };
         let grid = super::robot_from_json(text).map_err(|e| invalid(e.to_string()))?;
-        // vsrlab's rows connect every pair of adjacent cells; a file that leaves some apart
-        // cannot be written as rows yet
-        if super::MaterialGrid::from_rows(&grid.to_rows()).ok() != Some(grid.clone()) {
-            return Err(invalid(
-                "objects: a robot whose adjacent cells are not all connected (neighbors) is not supported yet".into(),
-            ));
-        }
-        let brain = BrainSpec::parse(DEFAULT_BRAIN).map_err(|e| invalid(e.to_string()))?;
-        return Ok(AnyRobot::new(EvoGymRobot {
-            body: grid.to_rows(),
-            env: walker(),
-            brain,
-        }));
+        return body_only(grid, origin).map_err(|e| match e {
+            FileError::Invalid { path, msg } => FileError::Invalid {
+                path,
+                msg: format!("objects: {msg} (neighbors)"),
+            },
+            other => other,
+        });
     }
     let file: EvoGymFile = files::parse_json(text, origin)?;
     files::check_format(&file.format, origin)?;

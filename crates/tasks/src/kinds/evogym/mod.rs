@@ -9,12 +9,14 @@
 //! observation and reward. `docs/evogym-envs.md` lists every task's world, observation, reward
 //! and episode with its source line; `docs/evogym-model.md` the physics.
 
+mod action_stream;
 mod assemble;
 mod env;
 mod error;
 mod grid;
 mod kind;
 mod materials;
+mod npz_file;
 mod observe;
 mod rewards;
 mod robot;
@@ -23,16 +25,18 @@ mod tasks;
 mod world_file;
 mod worlds;
 
+pub use action_stream::ActionStream;
 pub use assemble::{plan_object, ObjectPlan, PlacedObject, PlannedPoint, PlannedQuad, PlannedSpring, CELL, RIGID_BAND};
 pub use env::{EvoGymEnv, StepResult};
 pub use error::EvoGymError;
 pub use grid::{MaterialGrid, MAX_ROBOT_SIDE, MAX_SIDE};
 pub use kind::{EvoGymTable, KIND};
 pub use materials::{Material, ACTUATOR_SIDE, RIGID_SIDE, SOFT_SIDE};
+pub use npz_file::{is_npz, robot_from_npz, robot_to_npz, NpyArray};
 pub use observe::{relative_positions, terrain_distances, Look, Orientation};
 pub use rewards::{forward, topple, Reward, RobotAndBeam, GOAL_BONUS, UNSTABLE_PENALTY};
 pub use robot::{action_of, EvoGymRobot};
 pub use task::{EvoGym, STEP_SECONDS};
 pub use tasks::{EvoGymTask, CAVE_SIGHT};
-pub use world_file::{robot_from_json, world_from_json};
+pub use world_file::{robot_from_json, robot_to_json, world_from_json};
 pub use worlds::{beam_toppler_v0, bridge_walker_v0, cave_crawler_v0, walker_v0, World, WorldObject};

@@ -43,11 +43,23 @@ impl EvoGymTask {
         }
     }
 
-    /// The task named `name`, if any.
+    /// Its short name on vsrlab's command line (`walker`, `bridge-walker`, …).
+    pub fn short_name(self) -> &'static str {
+        match self {
+            EvoGymTask::Walker => "walker",
+            EvoGymTask::BridgeWalker => "bridge-walker",
+            EvoGymTask::BeamToppler => "beam-toppler",
+            EvoGymTask::CaveCrawler => "cave-crawler",
+        }
+    }
+
+    /// The task named `name`: EvoGym's name in any case (`BridgeWalker-v0`, `bridgewalker-v0`)
+    /// or the short name with or without the version (`bridge-walker`, `bridge-walker-v0`).
     pub fn from_name(name: &str) -> Option<EvoGymTask> {
+        let short = name.strip_suffix("-v0").unwrap_or(name);
         EvoGymTask::ALL
             .into_iter()
-            .find(|t| t.name().eq_ignore_ascii_case(name))
+            .find(|t| t.name().eq_ignore_ascii_case(name) || t.short_name().eq_ignore_ascii_case(short))
     }
 
     /// Its world, without the robot.

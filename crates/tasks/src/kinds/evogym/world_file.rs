@@ -51,6 +51,41 @@ pub fn robot_from_json(text: &str) -> Result<MaterialGrid, FieldError> {
     Ok(object.grid.clone())
 }
 
+/// Writes a robot as EvoGym saves one: a world file of one object `robot` in a grid its own size
+/// (cells numbered from the bottom row, ascending; each cell's connected neighbours listed).
+pub fn robot_to_json(grid: &MaterialGrid) -> String {
+    let (w, h) = (grid.width(), grid.height());
+    // file index of grid cell (x, y), y counted from the top
+    let index = |x: usize, y: usize| (h - 1 - y) * w + x;
+    let mut cells: Vec<(usize, usize, usize)> = grid.present().map(|(x, y, _)| (index(x, y), x, y)).collect();
+    cells.sort_unstable();
+    let mut neighbours = Map::new();
+    for &(i, x, y) in &cells {
+        let mut list = Vec::new();
+        if grid.connected_up(x, y) {
+            list.push(index(x, y - 1));
+        }
+        if grid.connected_down(x, y) {
+            list.push(index(x, y + 1));
+        }
+        if grid.connected_left(x, y) {
+            list.push(index(x - 1, y));
+        }
+        if grid.connected_right(x, y) {
+            list.push(index(x + 1, y));
+        }
+        list.sort_unstable();
+        neighbours.insert(i.to_string(), Value::from(list));
+    }
+    let robot = serde_json::json!({
+        "indices": cells.iter().map(|c| c.0).collect::<Vec<_>>(),
+        "types": cells.iter().map(|&(_, x, y)| grid.at(x, y).code()).collect::<Vec<_>>(),
+        "neighbors": neighbours,
+    });
+    let file = serde_json::json!({"grid_width": w, "grid_height": h, "objects": {"robot": robot}});
+    serde_json::to_string_pretty(&file).expect("a robot always serialises")
+}
+
 /// A positive size field no larger than [`MAX_SIDE`].
 fn size(value: &Value, field: &str) -> Result<usize, FieldError> {
     value

@@ -22,6 +22,7 @@ pub const KIND: RobotKind = RobotKind {
     from_file,
     body_tables: &["psa"],
     physics: inflation::psa_physics,
+    foreign_formats: &[],
     decode_body: body::decode,
 };
 

@@ -25,6 +25,7 @@ pub const KIND: RobotKind = RobotKind {
     from_file: |text, origin| robot_from_json(text, origin).map(AnyRobot::new),
     body_tables: &["direct", "gmm"],
     physics: || crate::Locomotion::default().physics,
+    foreign_formats: &[],
     decode_body: body::decode,
 };
 

@@ -87,8 +87,11 @@ pub fn run(a: BenchArgs) -> Result<(), String> {
 }
 
 fn print_table(report: &BenchReport) {
+    // columns as wide as the longest robot and terrain names
+    let robot_width = report.rows.iter().map(|r| r.robot.len()).max().unwrap_or(0).max(10);
+    let terrain_width = report.rows.iter().map(|r| r.terrain.len()).max().unwrap_or(0).max(11);
     println!(
-        "{:<10} {:<11} {:>6} {:<8} {:>7} {:>8} {:>10} {:>14} {:>14} {:>8} {:>22}",
+        "{:<robot_width$} {:<terrain_width$} {:>6} {:<8} {:>7} {:>8} {:>10} {:>14} {:>14} {:>8} {:>22}",
         "robot",
         "terrain",
         "voxels",
@@ -109,7 +112,7 @@ fn print_table(report: &BenchReport) {
             _ => "-".into(),
         };
         println!(
-            "{:<10} {:<11} {:>6} {:<8} {:>7} {:>8} {:>10.0} {:>14.0} {:>14.0} {:>7.2}x {:>22}",
+            "{:<robot_width$} {:<terrain_width$} {:>6} {:<8} {:>7} {:>8} {:>10.0} {:>14.0} {:>14.0} {:>7.2}x {:>22}",
             r.robot,
             r.terrain,
             r.voxels,

@@ -6,7 +6,9 @@
 //! figure the developers' guide compares across simulators. The pressure-based soft agents
 //! (`psa:small|medium|large`) run on flat ground with the thesis's `heads` brain (random weights);
 //! their "voxels" column counts masses, and they are compared with the original PSA code's
-//! steps/s (psa-model.md, flat, MLP controller).
+//! steps/s (psa-model.md, flat, MLP controller). The EvoGym rows run a full 5 × 5 body of
+//! horizontal actuators with a random centralized MLP on each of EvoGym's four tasks, on the
+//! mass-spring engine, compared with EvoGym 2.0.0's own environments (docs/multimaterial.md).
 
 use crate::cpu_time::{process_cpu_seconds, thread_cpu_seconds};
 use rayon::prelude::*;
@@ -14,19 +16,78 @@ use serde::Serialize;
 use std::time::Instant;
 use vsrlab_tasks::kinds::voxel::short_forms::DEFAULT_SENSORS;
 use vsrlab_tasks::kinds::{self, AnyRobot, RobotArgs};
-use vsrlab_tasks::{EpisodeError, Locomotion, RobotArgsError, TraceLevel};
+use vsrlab_tasks::{EpisodeError, Locomotion, RobotArgsError, TaskSpec, TraceLevel};
 
-/// The standard robots of the benchmark, each with the terrain it walks on and whether the
-/// options' brain and sensors apply to it (otherwise it keeps its kind's published brain and
-/// sensors: a PSA's `heads` and its own sensors).
-pub const STANDARD_CASES: [(&str, &str, bool); 7] = [
-    ("biped-4x3", "flat", true),
-    ("worm-10x4", "flat", true),
-    ("box-5x5", "hilly-1-10", true),
-    ("box-10x10", "flat", true),
-    ("psa:small", "flat", false),
-    ("psa:medium", "flat", false),
-    ("psa:large", "flat", false),
+/// One standard case of the benchmark.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StandardCase {
+    /// The row's name (what `--robots` selects).
+    pub name: &'static str,
+    /// The robot's command-line body.
+    pub body: &'static str,
+    /// The task's command-line short form.
+    pub task: &'static str,
+    /// What the rows call the world it runs in.
+    pub terrain: &'static str,
+    /// Whether the options' brain and sensors apply to it (otherwise it keeps its kind's
+    /// published brain and sensors: a PSA's `heads`, an EvoGym robot's MLP over the observation).
+    pub takes_options: bool,
+}
+
+const fn case(
+    name: &'static str,
+    body: &'static str,
+    task: &'static str,
+    terrain: &'static str,
+    takes_options: bool,
+) -> StandardCase {
+    StandardCase {
+        name,
+        body,
+        task,
+        terrain,
+        takes_options,
+    }
+}
+
+/// The standard cases, in the order of the rows. The EvoGym robots are a full 5 × 5 body of
+/// horizontal actuators, as in the side-by-side runs with EvoGym.
+pub const STANDARD_CASES: [StandardCase; 11] = [
+    case("biped-4x3", "biped-4x3", "locomotion:flat", "flat", true),
+    case("worm-10x4", "worm-10x4", "locomotion:flat", "flat", true),
+    case("box-5x5", "box-5x5", "locomotion:hilly-1-10", "hilly-1-10", true),
+    case("box-10x10", "box-10x10", "locomotion:flat", "flat", true),
+    case("psa:small", "psa:small", "locomotion:flat", "flat", false),
+    case("psa:medium", "psa:medium", "locomotion:flat", "flat", false),
+    case("psa:large", "psa:large", "locomotion:flat", "flat", false),
+    case(
+        "evogym-walker",
+        concat!("evogym:Walker-v0:", "33333/33333/33333/33333/33333"),
+        "walker",
+        "Walker-v0",
+        false,
+    ),
+    case(
+        "evogym-bridge-walker",
+        concat!("evogym:BridgeWalker-v0:", "33333/33333/33333/33333/33333"),
+        "bridge-walker",
+        "BridgeWalker-v0",
+        false,
+    ),
+    case(
+        "evogym-beam-toppler",
+        concat!("evogym:BeamToppler-v0:", "33333/33333/33333/33333/33333"),
+        "beam-toppler",
+        "BeamToppler-v0",
+        false,
+    ),
+    case(
+        "evogym-cave-crawler",
+        concat!("evogym:CaveCrawler-v0:", "33333/33333/33333/33333/33333"),
+        "cave-crawler",
+        "CaveCrawler-v0",
+        false,
+    ),
 ];
 
 /// What to measure. Robots are given by short forms, as on the command line.
@@ -114,6 +175,12 @@ pub fn original_speed(preset: &str, robot: &str) -> Option<OriginalSpeed> {
         ("2021", "worm-10x4") => (1150.0, "v1.10.0"),
         // the PSA paper's code (PressureSoftAgents stable-release, pybox2d), flat, MLP controller
         (_, "psa:small") => (2782.0, "PSA stable-release"),
+        // EvoGym 2.0.0's environments, the same body, this project's 2-core machine, 2026-11-27
+        // (bench/evogym/tasks.py: 2,024 / 3,340 / 1,978 / 3,158 µs per step)
+        (_, "evogym-walker") => (494.0, "EvoGym 2.0.0"),
+        (_, "evogym-bridge-walker") => (299.0, "EvoGym 2.0.0"),
+        (_, "evogym-beam-toppler") => (506.0, "EvoGym 2.0.0"),
+        (_, "evogym-cave-crawler") => (317.0, "EvoGym 2.0.0"),
         (_, "psa:medium") => (1967.0, "PSA stable-release"),
         (_, "psa:large") => (1716.0, "PSA stable-release"),
         _ => return None,
@@ -126,8 +193,10 @@ pub fn original_speed(preset: &str, robot: &str) -> Option<OriginalSpeed> {
 pub struct Row {
     /// The robot's name (one of [`STANDARD_CASES`]).
     pub robot: String,
-    /// The terrain it walked on.
+    /// The terrain it walked on (the task's world, for EvoGym's tasks).
     pub terrain: String,
+    /// Simulated seconds per step.
+    pub step_seconds: f64,
     /// Its voxel count.
     pub voxels: usize,
     /// Single-threaded or parallel.
@@ -159,9 +228,9 @@ pub struct Row {
 /// The benchmark's result: its settings and one or two rows per robot.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct BenchReport {
-    /// Simulated seconds per step.
+    /// Simulated seconds per step of the rigid-body rows (each row has its own).
     pub dt: f64,
-    /// Simulated seconds per episode.
+    /// Simulated seconds per episode (at most: EvoGym's tasks have their own lengths).
     pub duration: f64,
     /// Physical preset.
     pub preset: String,
@@ -203,7 +272,7 @@ pub enum BenchError {
 /// Checks the options that no episode would reject: known robots, a finite positive time budget
 /// and duration, a sane thread count.
 fn check_options(options: &BenchOptions) -> Result<(), BenchError> {
-    let known: Vec<&str> = STANDARD_CASES.iter().map(|(robot, _, _)| *robot).collect();
+    let known: Vec<&str> = STANDARD_CASES.iter().map(|c| c.name).collect();
     if let Some(unknown) = options.robots.iter().flatten().find(|r| !known.contains(&r.as_str())) {
         return Err(BenchError::Option(format!(
             "robots: unknown robot '{unknown}': expected some of {}",
@@ -231,11 +300,11 @@ pub fn run_bench(options: &BenchOptions) -> Result<BenchReport, BenchError> {
         .unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1));
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
     let mut rows = Vec::new();
-    for (robot, terrain, takes_options) in STANDARD_CASES {
-        if !is_selected(options, robot) {
+    for standard in STANDARD_CASES {
+        if !is_selected(options, standard.name) {
             continue;
         }
-        let case = Case::new(robot, terrain, takes_options, options)?;
+        let case = Case::new(standard, options)?;
         let single = case.measure_single(options.min_cpu_seconds)?;
         let single_episodes = single.episodes;
         rows.push(case.row(Mode::Single, 1, single));
@@ -266,7 +335,7 @@ struct Case<'a> {
     name: &'static str,
     terrain: &'static str,
     robot: AnyRobot,
-    task: Locomotion,
+    task: TaskSpec,
     preset: &'a str,
 }
 
@@ -279,37 +348,33 @@ struct Measurement {
 }
 
 impl<'a> Case<'a> {
-    /// The robot `name` with the options' preset, sensors and brain, on `terrain`.
-    fn new(
-        name: &'static str,
-        terrain: &'static str,
-        takes_options: bool,
-        options: &'a BenchOptions,
-    ) -> Result<Self, BenchError> {
+    /// The case's robot with the options' preset (and sensors and brain, where it takes them) on
+    /// its task, for the options' duration (the robot kind's physics on a rigid-body task).
+    fn new(standard: StandardCase, options: &'a BenchOptions) -> Result<Self, BenchError> {
         let robot = kinds::from_short_forms(&RobotArgs {
-            body: name,
-            brain: takes_options.then_some(options.brain.as_str()),
-            sensors: takes_options.then_some(options.sensors.as_str()),
+            body: standard.body,
+            brain: standard.takes_options.then_some(options.brain.as_str()),
+            sensors: standard.takes_options.then_some(options.sensors.as_str()),
             preset: &options.preset,
         })?;
-        let physics = (robot.kind().physics)();
-        let mut task = Locomotion {
-            terrain: terrain
-                .parse()
-                .map_err(|e: vsrlab_tasks::FieldError| BenchError::Terrain(e.to_string()))?,
-            duration: options.duration,
-            physics,
-            ..Default::default()
-        };
-        if let Some(n) = options.substeps {
-            task.physics.substeps = n;
+        let task_error = |e: String| BenchError::Terrain(format!("{}: {e}", standard.task));
+        let mut task = TaskSpec::parse(standard.task).map_err(|e| task_error(e.to_string()))?;
+        let mut settings = vec![("duration", serde_json::json!(options.duration))];
+        if task.task().rigid().is_some() {
+            let mut physics = (robot.kind().physics)();
+            if let Some(n) = options.substeps {
+                physics.substeps = n;
+            }
+            if let Some(solver) = options.solver {
+                physics.solver = solver;
+            }
+            let physics = serde_json::to_value(physics).map_err(|e| task_error(e.to_string()))?;
+            settings.push(("physics", physics));
         }
-        if let Some(solver) = options.solver {
-            task.physics.solver = solver;
-        }
+        task = task.with_settings(&settings).map_err(|e| task_error(e.to_string()))?;
         Ok(Case {
-            name,
-            terrain,
+            name: standard.name,
+            terrain: standard.terrain,
             robot,
             task,
             preset: &options.preset,
@@ -318,7 +383,7 @@ impl<'a> Case<'a> {
 
     /// Steps of one episode with episode seed `seed`.
     fn episode(&self, seed: u64) -> Result<u64, EpisodeError> {
-        vsrlab_tasks::episode::run(self.robot.as_robot(), &self.task, seed, TraceLevel::None).map(|o| o.steps)
+        vsrlab_tasks::episode::run(self.robot.as_robot(), self.task.task(), seed, TraceLevel::None).map(|o| o.steps)
     }
 
     /// A warm-up episode, then episodes on this thread until `min_cpu_seconds` of its CPU time.
@@ -362,9 +427,11 @@ impl<'a> Case<'a> {
             Mode::Parallel => m.steps as f64 / m.wall_seconds,
         };
         let original = original_speed(self.preset, self.name);
+        let dt = self.task.task().step_seconds();
         Row {
             robot: self.name.into(),
             terrain: self.terrain.into(),
+            step_seconds: dt,
             voxels,
             mode,
             threads,
@@ -374,7 +441,7 @@ impl<'a> Case<'a> {
             wall_seconds: m.wall_seconds,
             steps_per_s,
             voxel_steps_per_s: steps_per_s * voxels as f64,
-            voxel_seconds_per_cpu_s: voxels as f64 * m.steps as f64 * self.task.physics.dt / m.cpu_seconds,
+            voxel_seconds_per_cpu_s: voxels as f64 * m.steps as f64 * dt / m.cpu_seconds,
             original_steps_per_s: original.map(|o| o.steps_per_s),
             original_version: original.map(|o| o.version),
             ratio_to_original: original
@@ -459,6 +526,24 @@ mod tests {
             assert_eq!(row.ratio_to_original.is_some(), row.mode == Mode::Single);
         }
         assert_eq!(report.speedup(&report.rows[0]), 1.0);
+    }
+
+    /// An EvoGym row steps its own engine (30 substeps of 1e-4 s), counts cells, stops at the
+    /// bench's duration and compares with EvoGym's own environment; a rigid row keeps 1/60 s.
+    #[test]
+    fn evogym_rows_run_on_their_own_engine_and_compare_with_evogym() {
+        let report = run_bench(&tiny(&["evogym-walker", "biped-4x3"])).unwrap();
+        let (biped, walker) = (&report.rows[0], &report.rows[2]);
+        assert_eq!(
+            (walker.robot.as_str(), walker.terrain.as_str(), walker.voxels),
+            ("evogym-walker", "Walker-v0", 25)
+        );
+        assert_eq!(walker.step_seconds, 30.0 * 1e-4);
+        assert_eq!(walker.steps, 334 * walker.episodes as u64, "1 s of 3 ms steps");
+        assert_eq!(walker.original_version, Some("EvoGym 2.0.0"));
+        let expected = 25.0 * walker.steps as f64 * 0.003 / walker.cpu_seconds;
+        assert!((walker.voxel_seconds_per_cpu_s - expected).abs() < 1e-9 * expected);
+        assert_eq!(biped.step_seconds, report.dt);
     }
 
     #[test]

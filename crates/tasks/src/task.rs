@@ -122,6 +122,11 @@ pub trait Task: Send + Sync + std::fmt::Debug {
     fn validate(&self) -> Result<(), EpisodeError>;
     /// Longest episode, in simulated seconds.
     fn duration(&self) -> f64;
+    /// Simulated seconds per step of an episode (the unit of speed benchmarks). Default: the
+    /// rigid engine's time step; 0 for a task of no engine.
+    fn step_seconds(&self) -> f64 {
+        self.rigid().map_or(0.0, |t| t.physics().dt)
+    }
     /// The metrics this task reports.
     fn metric_names(&self) -> &'static [&'static str];
     /// The fitness values, in order (one for single-objective tasks).

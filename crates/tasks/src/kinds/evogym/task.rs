@@ -96,6 +96,10 @@ impl Task for EvoGym {
         self.which().map_or(0.0, |t| self.steps(t) as f64 * STEP_SECONDS)
     }
 
+    fn step_seconds(&self) -> f64 {
+        STEP_SECONDS
+    }
+
     fn metric_names(&self) -> &'static [&'static str] {
         METRICS
     }

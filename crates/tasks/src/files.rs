@@ -106,10 +106,11 @@ pub fn load_any_robot(path: &Path) -> Result<AnyRobot, FileError> {
     if let Some(format) = kinds::foreign_format_of(&bytes) {
         return (format.read)(&bytes, &origin);
     }
-    let text = String::from_utf8(bytes).map_err(|_| FileError::Invalid {
+    let text = String::from_utf8(bytes).map_err(|e| FileError::Invalid {
         path: origin.clone(),
         msg: format!(
-            "not a robot file: neither JSON text nor one of {}",
+            "not a robot file: byte {} is not UTF-8 text (JSON), and the file is none of {}",
+            e.utf8_error().valid_up_to(),
             kinds::foreign_format_names().join(", ")
         ),
     })?;

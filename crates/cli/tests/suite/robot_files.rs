@@ -194,3 +194,53 @@ fn evogym_robot_files_are_read_and_written() {
     let (ok, _, err) = vsrlab(&["simulate", "--robot", broken.to_str().unwrap(), "--task", "walker"]);
     assert!(!ok && err.contains("arr_1: missing"), "{err}");
 }
+
+/// EvoGym's `.npz` robots with bytes changed at random (seeded): every run either succeeds (a
+/// byte that changes nothing that matters) or exits with an error naming the archive or the
+/// array; none crashes.
+#[test]
+fn corrupted_npz_robots_never_crash() {
+    let saved = std::fs::read(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../tasks/tests/data/evogym_robot.npz"
+    ))
+    .unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("r.npz");
+    let mut state = 11u64;
+    let (mut refused, mut accepted) = (0, 0);
+    for case in 0..40 {
+        let mut bytes = saved.clone();
+        for _ in 0..1 + case % 3 {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let at = (state >> 33) as usize % bytes.len();
+            bytes[at] = (state >> 17) as u8;
+        }
+        std::fs::write(&file, &bytes).unwrap();
+        let out = Command::new(VSRLAB)
+            .args([
+                "simulate",
+                "--robot",
+                file.to_str().unwrap(),
+                "--task",
+                "walker",
+                "--duration",
+                "0.1",
+            ])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        match out.status.code() {
+            Some(0) => accepted += 1,
+            Some(1) => {
+                refused += 1;
+                let named = ["arr_0", "arr_1", "npz", "UTF-8"].iter().any(|w| err.contains(w));
+                assert!(named, "case {case}: {err}");
+            }
+            other => panic!("case {case}: exit {other:?}: {err}"),
+        }
+    }
+    assert!(refused > 10, "{refused} refused, {accepted} accepted");
+}

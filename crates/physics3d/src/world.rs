@@ -1,0 +1,444 @@
+//! The world: materials, voxels on a cubic lattice with links between face neighbours, and the
+//! step (all links from the state at the start of the step, then every voxel by semi-implicit
+//! Euler; `docs/voxelyze-model.md` §6).
+
+use crate::axis::Axis;
+use crate::floor::floor_force;
+use crate::link::{End, Link};
+use crate::material::{LinkConstants, Material, VoxelConstants};
+use crate::quat::{from_rotation_vector, rotate, to_rotation_vector};
+use crate::voxel::{nominal, Voxel};
+use crate::Physics3dError;
+use glam::{DQuat, DVec3};
+use std::collections::HashMap;
+
+/// Standard gravity (m/s²), as Voxelyze scales its gravity.
+pub const STANDARD_GRAVITY: f64 = 9.80665;
+
+/// A link stretched beyond this strain has diverged (Voxelyze's guard).
+const DIVERGED_STRAIN: f64 = 100.0;
+
+/// World-wide settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WorldSettings {
+    /// Lattice size: every voxel's nominal edge (m).
+    pub voxel_size: f64,
+    /// Downward gravitational acceleration (m/s²); Voxelyze's default is 0.
+    pub gravity: f64,
+    /// Whether the floor z = −voxel_size/2 holds voxels up.
+    pub floor: bool,
+}
+
+impl Default for WorldSettings {
+    fn default() -> Self {
+        WorldSettings {
+            voxel_size: 0.01,
+            gravity: STANDARD_GRAVITY,
+            floor: true,
+        }
+    }
+}
+
+/// A voxel's handle.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct VoxelId(pub(crate) usize);
+
+impl VoxelId {
+    /// Its index, as voxels were added.
+    pub fn index(self) -> usize {
+        self.0
+    }
+}
+
+/// A degree of freedom a voxel can have fixed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Dof {
+    /// Translation along x, y, z.
+    Tx,
+    Ty,
+    Tz,
+    /// Rotation about x, y, z.
+    Rx,
+    Ry,
+    Rz,
+}
+
+impl Dof {
+    /// Every degree of freedom, translations first.
+    pub const ALL: [Dof; 6] = [Dof::Tx, Dof::Ty, Dof::Tz, Dof::Rx, Dof::Ry, Dof::Rz];
+
+    fn index(self) -> usize {
+        self as usize
+    }
+}
+
+/// A 3D soft-voxel world. Stepping allocates nothing and is deterministic.
+#[derive(Debug, Clone)]
+pub struct World {
+    settings: WorldSettings,
+    pub(crate) materials: Vec<Material>,
+    constants: Vec<VoxelConstants>,
+    voxels: Vec<Voxel>,
+    links: Vec<Link>,
+    lattice: HashMap<[i32; 3], usize>,
+    link_constants: HashMap<(usize, usize), LinkConstants>,
+    steps: u64,
+    time: f64,
+    ends: Vec<End>,
+}
+
+impl World {
+    /// An empty world; refuses a voxel size that is not finite and positive or a non-finite gravity.
+    pub fn new(settings: WorldSettings) -> Result<World, Physics3dError> {
+        if !(settings.voxel_size.is_finite() && settings.voxel_size > 0.0) {
+            return Err(Physics3dError::Invalid(format!(
+                "voxel_size: must be a finite number > 0, got {}",
+                settings.voxel_size
+            )));
+        }
+        if !settings.gravity.is_finite() {
+            return Err(Physics3dError::Invalid(format!(
+                "gravity: must be finite, got {}",
+                settings.gravity
+            )));
+        }
+        Ok(World {
+            settings,
+            materials: Vec::new(),
+            constants: Vec::new(),
+            voxels: Vec::new(),
+            links: Vec::new(),
+            lattice: HashMap::new(),
+            link_constants: HashMap::new(),
+            steps: 0,
+            time: 0.0,
+            ends: Vec::new(),
+        })
+    }
+
+    /// Adds a material; returns its index.
+    pub fn add_material(&mut self, material: Material) -> Result<usize, Physics3dError> {
+        material.validate().map_err(Physics3dError::Invalid)?;
+        self.materials.push(material);
+        self.constants
+            .push(VoxelConstants::new(&material, self.settings.voxel_size));
+        Ok(self.materials.len() - 1)
+    }
+
+    /// Adds a voxel of `material` at lattice index `index`, linked to every face neighbour
+    /// already there. Refuses an occupied index or an unknown material.
+    pub fn add_voxel(&mut self, material: usize, index: [i32; 3]) -> Result<VoxelId, Physics3dError> {
+        if material >= self.materials.len() {
+            return Err(Physics3dError::Invalid(format!("material {material} does not exist")));
+        }
+        if self.lattice.contains_key(&index) {
+            return Err(Physics3dError::Invalid(format!("voxel index {index:?} is taken")));
+        }
+        let id = self.voxels.len();
+        self.voxels.push(Voxel::new(material, index, self.settings.voxel_size));
+        self.lattice.insert(index, id);
+        for (axis, k) in [(Axis::X, 0), (Axis::Y, 1), (Axis::Z, 2)] {
+            for step in [-1, 1] {
+                let mut other = index;
+                other[k] += step;
+                if let Some(&j) = self.lattice.get(&other) {
+                    let (neg, pos) = if step > 0 { (id, j) } else { (j, id) };
+                    self.link(neg, pos, axis);
+                }
+            }
+        }
+        self.ends.push(End {
+            pos: DVec3::ZERO,
+            orient: DQuat::IDENTITY,
+            damping: 0.0,
+        });
+        Ok(VoxelId(id))
+    }
+
+    fn link(&mut self, neg: usize, pos: usize, axis: Axis) {
+        let (ma, mb) = (self.voxels[neg].material, self.voxels[pos].material);
+        let key = (ma.min(mb), ma.max(mb));
+        let s = self.settings.voxel_size;
+        let (ea, eb) = (self.materials[ma].youngs_modulus, self.materials[mb].youngs_modulus);
+        let k = *self
+            .link_constants
+            .entry(key)
+            .or_insert_with(|| LinkConstants::new(ea, eb, s));
+        let l = self.links.len();
+        let rest = 0.5 * (self.rest_size(neg) + self.rest_size(pos));
+        self.links.push(Link::new(neg, pos, axis, k, s * s, rest));
+        self.voxels[neg].links.push((l, true));
+        self.voxels[pos].links.push((l, false));
+    }
+
+    /// A voxel's rest edge: `s (1 + cte T)`.
+    fn rest_size(&self, v: usize) -> f64 {
+        let voxel = &self.voxels[v];
+        self.settings.voxel_size * (1.0 + self.materials[voxel.material].cte * voxel.temperature)
+    }
+
+    /// Fixes or frees degrees of freedom of a voxel (fixed: held at its lattice position and
+    /// unrotated).
+    pub fn set_fixed(&mut self, v: VoxelId, dofs: &[Dof], fixed: bool) {
+        for d in dofs {
+            self.voxels[v.0].fixed[d.index()] = fixed;
+        }
+    }
+
+    /// Moves a voxel (its links take the new position as a deformation).
+    pub fn set_position(&mut self, v: VoxelId, position: DVec3) {
+        self.voxels[v.0].pos = position;
+    }
+
+    /// Sets the constant external force (N) and moment (N·m) on a voxel, in world axes.
+    pub fn set_external(&mut self, v: VoxelId, force: DVec3, moment: DVec3) {
+        self.voxels[v.0].external_force = force;
+        self.voxels[v.0].external_moment = moment;
+    }
+
+    /// Sets a voxel's temperature, and with it the rest length of its links (thermal actuation).
+    pub fn set_temperature(&mut self, v: VoxelId, temperature: f64) {
+        self.voxels[v.0].temperature = temperature;
+        for i in 0..self.voxels[v.0].links.len() {
+            let l = self.voxels[v.0].links[i].0;
+            let (neg, pos) = (self.links[l].neg, self.links[l].pos);
+            self.links[l].rest = 0.5 * (self.rest_size(neg) + self.rest_size(pos));
+        }
+    }
+
+    /// Voxelyze's recommended time step: one radian of the fastest axial link oscillation,
+    /// `1 / (2π √max(a1 / min(m_neg, m_pos)))` (with no links, of `E s / m` per voxel).
+    pub fn recommended_time_step(&self) -> f64 {
+        let mass = |v: usize| self.constants[self.voxels[v].material].mass;
+        let mut omega2: f64 = 0.0;
+        for l in &self.links {
+            omega2 = omega2.max(l.k.a1 / mass(l.neg).min(mass(l.pos)));
+        }
+        if self.links.is_empty() {
+            for v in &self.voxels {
+                let m = &self.materials[v.material];
+                omega2 = omega2.max(m.youngs_modulus * self.settings.voxel_size / self.constants[v.material].mass);
+            }
+        }
+        if omega2 == 0.0 {
+            return 0.0;
+        }
+        1.0 / (2.0 * std::f64::consts::PI * omega2.sqrt())
+    }
+
+    /// Puts every voxel back at its lattice position, at rest, static, and time to 0 (links lose
+    /// their damping history, as Voxelyze's `resetTime`).
+    pub fn reset(&mut self) {
+        let s = self.settings.voxel_size;
+        for v in &mut self.voxels {
+            v.pos = nominal(v.index, s);
+            v.orient = DQuat::IDENTITY;
+            v.momentum = DVec3::ZERO;
+            v.angular_momentum = DVec3::ZERO;
+            v.is_static = true;
+            v.dt_prev = 0.0;
+        }
+        for l in &mut self.links {
+            l.reset();
+        }
+        self.steps = 0;
+        self.time = 0.0;
+    }
+
+    /// One step of `dt` seconds: every link from the state at the start of the step, then every
+    /// voxel. A diverged step is an error: a link strained 100-fold (found before any voxel
+    /// moves) or a non-finite voxel state (after the step; the world is then not to be stepped on).
+    pub fn step(&mut self, dt: f64) -> Result<(), Physics3dError> {
+        if !(dt.is_finite() && dt >= 0.0) {
+            return Err(Physics3dError::Invalid(format!(
+                "dt: must be a finite number ≥ 0, got {dt}"
+            )));
+        }
+        if dt == 0.0 {
+            return Ok(());
+        }
+        for (end, v) in self.ends.iter_mut().zip(&self.voxels) {
+            let c = &self.constants[v.material];
+            let zeta = self.materials[v.material].internal_damping;
+            *end = End {
+                pos: v.pos,
+                orient: v.orient,
+                damping: if v.dt_prev > 0.0 {
+                    2.0 * c.sqrt_mass * zeta / v.dt_prev
+                } else {
+                    0.0
+                },
+            };
+        }
+        for l in &mut self.links {
+            let (a, b) = (self.ends[l.neg], self.ends[l.pos]);
+            l.update(&a, &b);
+            if l.strain.is_nan() || l.strain.abs() > DIVERGED_STRAIN {
+                return Err(Physics3dError::Diverged {
+                    step: self.steps,
+                    voxel: l.neg,
+                });
+            }
+        }
+        for i in 0..self.voxels.len() {
+            self.step_voxel(i, dt);
+        }
+        if let Some(bad) = self.voxels.iter().position(|v| {
+            !(v.pos.is_finite() && v.momentum.is_finite() && v.angular_momentum.is_finite() && v.orient.is_finite())
+        }) {
+            return Err(Physics3dError::Diverged {
+                step: self.steps,
+                voxel: bad,
+            });
+        }
+        self.steps += 1;
+        self.time += dt;
+        Ok(())
+    }
+
+    /// Semi-implicit Euler for one voxel (`docs/voxelyze-model.md` §6.2).
+    fn step_voxel(&mut self, i: usize, dt: f64) {
+        let s = self.settings.voxel_size;
+        let rest = self.rest_size(i);
+        let (floor, gravity) = (self.settings.floor, self.settings.gravity);
+        let voxel = &self.voxels[i];
+        let m = self.materials[voxel.material];
+        let c = self.constants[voxel.material];
+        if voxel.all_fixed() {
+            let v = &mut self.voxels[i];
+            v.dt_prev = dt;
+            v.pos = nominal(v.index, s);
+            v.orient = DQuat::IDENTITY;
+            v.momentum = DVec3::ZERO;
+            v.angular_momentum = DVec3::ZERO;
+            return;
+        }
+        let (mut link_force, mut link_moment) = (DVec3::ZERO, DVec3::ZERO);
+        for &(l, is_neg) in &voxel.links {
+            let link = &self.links[l];
+            if is_neg {
+                link_force += link.force_neg;
+                link_moment += link.moment_neg;
+            } else {
+                link_force += link.force_pos;
+                link_moment += link.moment_pos;
+            }
+        }
+        let velocity = voxel.momentum / c.mass;
+        let omega = voxel.angular_momentum / c.inertia;
+        let mut force = rotate(voxel.orient, link_force) + voxel.external_force
+            - m.global_damping * c.linear_damping * velocity
+            + DVec3::new(0.0, 0.0, -c.mass * gravity);
+        let moment =
+            rotate(voxel.orient, link_moment) + voxel.external_moment - m.global_damping * c.angular_damping * omega;
+        let v = &mut self.voxels[i];
+        v.dt_prev = dt;
+        let contact = floor.then(|| {
+            floor_force(
+                &mut force,
+                v.pos.z,
+                velocity,
+                rest,
+                s,
+                c.floor_stiffness,
+                m.collision_damping * c.linear_damping,
+                m.static_friction,
+                m.kinetic_friction,
+                &mut v.is_static,
+            )
+        });
+        v.momentum += force * dt;
+        let mut translation = v.momentum * dt / c.mass;
+        if let Some(contact) = contact.filter(|c| c.touching) {
+            let work = contact.friction.x * translation.x + contact.friction.y * translation.y;
+            let kinetic = (v.momentum.x * v.momentum.x + v.momentum.y * v.momentum.y) / (2.0 * c.mass);
+            if kinetic + work <= 0.0 {
+                v.is_static = true;
+            }
+            if v.is_static {
+                (v.momentum.x, v.momentum.y) = (0.0, 0.0);
+                (translation.x, translation.y) = (0.0, 0.0);
+            }
+        }
+        v.pos += translation;
+        v.angular_momentum += moment * dt;
+        v.orient = from_rotation_vector(v.angular_momentum * dt / c.inertia) * v.orient;
+        let home = nominal(v.index, s);
+        for k in 0..3 {
+            if v.fixed[k] {
+                v.pos[k] = home[k];
+                v.momentum[k] = 0.0;
+            }
+        }
+        let (rx, ry, rz) = (v.fixed[3], v.fixed[4], v.fixed[5]);
+        if rx && ry && rz {
+            v.orient = DQuat::IDENTITY;
+            v.angular_momentum = DVec3::ZERO;
+        } else if rx || ry || rz {
+            let mut r = to_rotation_vector(v.orient);
+            for (k, fixed) in [rx, ry, rz].into_iter().enumerate() {
+                if fixed {
+                    r[k] = 0.0;
+                    v.angular_momentum[k] = 0.0;
+                }
+            }
+            v.orient = from_rotation_vector(r);
+        }
+    }
+
+    /// Steps taken since the start or the last reset.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// Simulated time (s).
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Number of voxels.
+    pub fn voxel_count(&self) -> usize {
+        self.voxels.len()
+    }
+
+    /// Number of links.
+    pub fn link_count(&self) -> usize {
+        self.links.len()
+    }
+
+    /// A voxel's centre (m).
+    pub fn position(&self, v: VoxelId) -> DVec3 {
+        self.voxels[v.0].pos
+    }
+
+    /// A voxel's displacement from its lattice position (m).
+    pub fn displacement(&self, v: VoxelId) -> DVec3 {
+        self.voxels[v.0].pos - nominal(self.voxels[v.0].index, self.settings.voxel_size)
+    }
+
+    /// A voxel's orientation.
+    pub fn orientation(&self, v: VoxelId) -> DQuat {
+        self.voxels[v.0].orient
+    }
+
+    /// A voxel's rotation vector (axis × angle, rad).
+    pub fn rotation(&self, v: VoxelId) -> DVec3 {
+        to_rotation_vector(self.voxels[v.0].orient)
+    }
+
+    /// A voxel's velocity (m/s).
+    pub fn velocity(&self, v: VoxelId) -> DVec3 {
+        let voxel = &self.voxels[v.0];
+        voxel.momentum / self.constants[voxel.material].mass
+    }
+
+    /// A voxel's mass (kg).
+    pub fn mass(&self, v: VoxelId) -> f64 {
+        self.constants[self.voxels[v.0].material].mass
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &WorldSettings {
+        &self.settings
+    }
+}

@@ -18,9 +18,9 @@ if [ ! -f "$build/walker" ]; then
     else
         cp -r "$src/include" "$src/src" "$build/src/"
     fi
-    # the mesh renderer needs OpenGL and is not used
+    # the mesh renderer (OpenGL) is not used; without PARDISO_5 the static solver needs no PARDISO
     srcs=$(ls "$build"/src/src/*.cpp | grep -v VX_MeshRender)
-    g++ -O3 -std=c++11 -DPARDISO_5=1 -w -I"$build/src/include" $srcs "$here/walker.cpp" -o "$build/walker"
+    g++ -O3 -std=c++11 -w -I"$build/src/include" $srcs "$here/walker.cpp" -o "$build/walker"
 fi
 "$build/walker" "$seconds"
 cargo run --quiet --release -p vsrlab-physics3d --example walker3d "$seconds"

@@ -65,6 +65,14 @@ type Case = (DVec3, DVec3, &'static [Dof], Read, f64, usize);
 /// The same with the direction of the second voxel.
 type DirectedCase = ([i32; 3], DVec3, DVec3, &'static [Dof], Read, f64, usize);
 
+/// Runs every two-voxel case and checks each reaches its value within its step limit.
+fn assert_reached_in_time(cases: impl IntoIterator<Item = DirectedCase>) {
+    for (i, (dir, f, m, free, read, expected, limit)) in cases.into_iter().enumerate() {
+        let k = two_voxels(dir, f, m, free, read, expected);
+        assert!(k < limit, "case {i} {dir:?}: {k} steps (limit {limit})");
+    }
+}
+
 const F: f64 = 1e-3;
 const M: f64 = 1e-9;
 
@@ -116,10 +124,7 @@ fn a_single_bond_deflects_as_a_beam_axially_transversely_and_in_torsion() {
             200,
         ),
     ];
-    for (i, (f, m, free, read, expected, limit)) in cases.into_iter().enumerate() {
-        let k = two_voxels(x, f, m, free, read, expected);
-        assert!(k < limit, "case {i}: {k} steps (limit {limit})");
-    }
+    assert_reached_in_time(cases.into_iter().map(|c| (x, c.0, c.1, c.2, c.3, c.4, c.5)));
 }
 
 #[test]
@@ -160,10 +165,7 @@ fn end_loads_give_the_cantilever_slopes_and_deflections() {
             300,
         ),
     ];
-    for (i, (f, m, free, read, expected, limit)) in cases.into_iter().enumerate() {
-        let k = two_voxels(x, f, m, free, read, expected);
-        assert!(k < limit, "case {i}: {k} steps (limit {limit})");
-    }
+    assert_reached_in_time(cases.into_iter().map(|c| (x, c.0, c.1, c.2, c.3, c.4, c.5)));
     // torsion gives no axial motion
     assert!(
         two_voxels(
@@ -255,10 +257,7 @@ fn links_along_every_axis_and_direction_behave_alike() {
             100,
         ),
     ];
-    for (i, (dir, f, m, free, read, expected, limit)) in cases.into_iter().enumerate() {
-        let k = two_voxels(dir, f, m, free, read, expected);
-        assert!(k < limit, "case {i} {dir:?}: {k} steps (limit {limit})");
-    }
+    assert_reached_in_time(cases);
 }
 
 /// A line of voxels along x, the first fixed; returns the world and the voxels.

@@ -9,7 +9,11 @@ use vsrlab_physics3d::{Material, VoxelId, World, WorldSettings};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let seconds: f64 = std::env::args().nth(1).map_or(Ok(2.0), |s| s.parse())?;
-    let mut w = World::new(WorldSettings::default())?;
+    // collisions off, as bench/voxelyze runs Voxelyze (its default): the same model on both sides
+    let mut w = World::new(WorldSettings {
+        collisions: false,
+        ..WorldSettings::default()
+    })?;
     let m = w.add_material(Material::affordance())?;
     let mut cells = Vec::new();
     for x in 0..4 {

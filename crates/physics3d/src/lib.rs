@@ -8,9 +8,10 @@
 //! per-voxel temperature, fixed degrees of freedom and external loads. Nothing of robots.
 //! `docs/voxelyze-model.md` gives every rule with its source; `docs/voxels3d.md` what this
 //! engine does and does not do yet (linear elastic, Poisson's ratio 0 as the affordance study
-//! ran, no voxel–voxel collisions yet).
+//! ran).
 
 mod axis;
+mod collision;
 mod error;
 mod floor;
 mod link;

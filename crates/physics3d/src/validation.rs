@@ -10,6 +10,7 @@ fn world() -> World {
         voxel_size: 1e-3,
         gravity: 0.0,
         floor: false,
+        collisions: false,
     })
     .unwrap()
 }
@@ -460,6 +461,7 @@ fn static_friction_holds_below_mu_n_and_slips_above() {
             voxel_size: 1e-3,
             gravity: g * STANDARD_GRAVITY,
             floor: true,
+            collisions: false,
         })
         .unwrap();
         let m = w
@@ -488,6 +490,7 @@ fn kinetic_friction_work_balances_kinetic_energy() {
         voxel_size: 1e-3,
         gravity: STANDARD_GRAVITY,
         floor: true,
+        collisions: false,
     })
     .unwrap();
     let settle = w
@@ -527,6 +530,7 @@ fn a_dropped_voxel_comes_to_rest_without_drift() {
         voxel_size: 0.01,
         gravity: STANDARD_GRAVITY,
         floor: true,
+        collisions: true,
     })
     .unwrap();
     let m = w.add_material(Material::affordance()).unwrap();
@@ -603,4 +607,43 @@ fn random_bodies_under_random_actuation_stay_finite() {
             assert!(p.z > -0.01, "body {body}: a voxel sank through the floor to {p}");
         }
     }
+}
+
+/// A free voxel dropped onto a fixed one (a wall voxel, not linked to it: one empty cell between
+/// them) comes to rest on it, centres 1.25 s apart less the sag m g / k of the contact spring;
+/// without collisions it falls past.
+#[test]
+fn a_voxel_dropped_on_a_fixed_voxel_rests_on_it() {
+    let drop = |collisions: bool| {
+        let mut w = World::new(WorldSettings {
+            floor: false,
+            collisions,
+            ..WorldSettings::default()
+        })
+        .unwrap();
+        let m = w
+            .add_material(Material {
+                collision_damping: 1.0,
+                ..Material::affordance()
+            })
+            .unwrap();
+        let wall = w.add_voxel(m, [0, 0, 0]).unwrap();
+        w.set_fixed(wall, &Dof::ALL, true);
+        let v = w.add_voxel(m, [0, 0, 2]).unwrap();
+        let dt = 0.95 * w.recommended_time_step();
+        for _ in 0..(1.0 / dt) as usize {
+            w.step(dt).unwrap();
+        }
+        (w.position(v), w.velocity(v), w.mass(v), w.touches_voxel(v))
+    };
+    let (p, v, mass, touching) = drop(true);
+    let s = 0.01;
+    let k = 2.0 * 1e4 * s;
+    let expected = 1.25 * s - mass * STANDARD_GRAVITY / k;
+    assert!((p.z - expected).abs() < 1e-6 * s, "z {} vs {expected}", p.z);
+    assert!(v.length() < 1e-6, "{v}");
+    assert!(touching);
+    let (p, _, _, touching) = drop(false);
+    assert!(p.z < -s, "without collisions it falls past: {}", p.z);
+    assert!(!touching);
 }

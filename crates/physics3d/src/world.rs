@@ -3,6 +3,7 @@
 //! Euler; `docs/voxelyze-model.md` §6).
 
 use crate::axis::Axis;
+use crate::collision::{Collider, Collisions};
 use crate::floor::floor_force;
 use crate::link::{End, Link};
 use crate::material::{LinkConstants, Material, VoxelConstants};
@@ -27,6 +28,8 @@ pub struct WorldSettings {
     pub gravity: f64,
     /// Whether the floor z = −voxel_size/2 holds voxels up.
     pub floor: bool,
+    /// Whether voxels that are not linked collide (voxcraft-sim's default; Voxelyze's is off).
+    pub collisions: bool,
 }
 
 impl Default for WorldSettings {
@@ -35,6 +38,7 @@ impl Default for WorldSettings {
             voxel_size: 0.01,
             gravity: STANDARD_GRAVITY,
             floor: true,
+            collisions: true,
         }
     }
 }
@@ -85,6 +89,11 @@ pub struct World {
     steps: u64,
     time: f64,
     ends: Vec<End>,
+    collisions: Collisions,
+    /// Whether the voxels or their fixed DOFs changed since the collision surface was taken.
+    surface_stale: bool,
+    colliders: Vec<Collider>,
+    contact_forces: Vec<DVec3>,
 }
 
 impl World {
@@ -113,6 +122,10 @@ impl World {
             steps: 0,
             time: 0.0,
             ends: Vec::new(),
+            collisions: Collisions::default(),
+            surface_stale: true,
+            colliders: Vec::new(),
+            contact_forces: Vec::new(),
         })
     }
 
@@ -152,6 +165,7 @@ impl World {
             orient: DQuat::IDENTITY,
             damping: 0.0,
         });
+        self.surface_stale = true;
         Ok(VoxelId(id))
     }
 
@@ -183,6 +197,7 @@ impl World {
         for d in dofs {
             self.voxels[v.0].fixed[d.index()] = fixed;
         }
+        self.surface_stale = true;
     }
 
     /// Moves a voxel (its links take the new position as a deformation).
@@ -280,6 +295,7 @@ impl World {
                 });
             }
         }
+        self.collide();
         for i in 0..self.voxels.len() {
             self.step_voxel(i, dt);
         }
@@ -294,6 +310,54 @@ impl World {
         self.steps += 1;
         self.time += dt;
         Ok(())
+    }
+
+    /// The contact forces of this step between voxels (`collision.rs`), from the state at its
+    /// start.
+    fn collide(&mut self) {
+        if !self.settings.collisions {
+            return;
+        }
+        if self.surface_stale {
+            let surface: Vec<usize> = (0..self.voxels.len())
+                .filter(|&v| self.voxels[v].links.len() < 6)
+                .collect();
+            let fixed = surface.iter().map(|&v| self.voxels[v].all_fixed()).collect();
+            self.collisions.set_surface(surface, fixed, self.voxels.len());
+            self.colliders.resize(self.voxels.len(), self.collider(0));
+            self.contact_forces.resize(self.voxels.len(), DVec3::ZERO);
+            self.surface_stale = false;
+        }
+        for v in 0..self.voxels.len() {
+            self.colliders[v] = self.collider(v);
+        }
+        self.contact_forces.iter_mut().for_each(|f| *f = DVec3::ZERO);
+        let voxels = &self.voxels;
+        let linked = |a: usize, b: usize| {
+            voxels[a].links.iter().any(|&(l, _)| {
+                let link = &self.links[l];
+                link.neg == b || link.pos == b
+            })
+        };
+        self.collisions.add_forces(
+            &self.colliders,
+            self.settings.voxel_size,
+            linked,
+            &mut self.contact_forces,
+        );
+    }
+
+    /// Voxel `v` as the collision pass sees it.
+    fn collider(&self, v: usize) -> Collider {
+        let voxel = &self.voxels[v];
+        let c = &self.constants[voxel.material];
+        Collider {
+            pos: voxel.pos,
+            velocity: voxel.momentum / c.mass,
+            size: self.rest_size(v),
+            stiffness: c.floor_stiffness,
+            damping: self.materials[voxel.material].collision_damping * c.linear_damping,
+        }
     }
 
     /// Semi-implicit Euler for one voxel (`docs/voxelyze-model.md` §6.2).
@@ -328,7 +392,8 @@ impl World {
         let omega = voxel.angular_momentum / c.inertia;
         let mut force = rotate(voxel.orient, link_force) + voxel.external_force
             - m.global_damping * c.linear_damping * velocity
-            + DVec3::new(0.0, 0.0, -c.mass * gravity);
+            + DVec3::new(0.0, 0.0, -c.mass * gravity)
+            + self.contact_forces.get(i).copied().unwrap_or(DVec3::ZERO);
         let moment =
             rotate(voxel.orient, link_moment) + voxel.external_moment - m.global_damping * c.angular_damping * omega;
         let v = &mut self.voxels[i];
@@ -384,6 +449,17 @@ impl World {
             }
             v.orient = from_rotation_vector(r);
         }
+    }
+
+    /// Whether voxel `v` touched another voxel (not linked to it) in the last step.
+    pub fn touches_voxel(&self, v: VoxelId) -> bool {
+        self.settings.collisions && self.collisions.touching.get(v.0).copied().unwrap_or(false)
+    }
+
+    /// Whether voxel `v` touches the floor (its bottom at or below the floor).
+    pub fn touches_floor(&self, v: VoxelId) -> bool {
+        let s = self.settings.voxel_size;
+        self.settings.floor && self.rest_size(v.0) / 2.0 - s / 2.0 - self.voxels[v.0].pos.z >= 0.0
     }
 
     /// Steps taken since the start or the last reset.

@@ -42,6 +42,16 @@ pub const BALL_XY: Channel = Channel::traced("ball_xy").positions();
 /// Each ball's angle, per step.
 pub const BALL_ANGLE: Channel = Channel::replayed("ball_angle", 1e-3);
 
+/// Each voxel's centre of a 3D body, x, y, z triples (m), per step; z is up.
+pub const VOXEL_XYZ: Channel = Channel::replayed("voxel_xyz", 1e-5);
+/// Each voxel's orientation of a 3D body, quaternions w, x, y, z, per step.
+pub const VOXEL_QUAT: Channel = Channel::replayed("voxel_quat", 1e-4);
+/// Each 3D voxel's edge (m), per step (thermal actuation changes it).
+pub const VOXEL_EDGE: Channel = Channel::replayed("voxel_edge", 1e-6);
+/// Voxels of a 3D world that never move (walls, obstacles): their centres, x, y, z triples, and
+/// their edge is the trace's `side_length` (fixed).
+pub const FIXED_VOXELS: Channel = Channel::traced("fixed_voxels");
+
 /// The obstacles of a trace ([`OBSTACLES`], [`OBSTACLE_CORNERS`]) as polygons.
 pub fn obstacles(trace: &Trace) -> Vec<Vec<Vec2>> {
     let points = trace.fixed_values(OBSTACLES.name);

@@ -15,7 +15,10 @@ const DEFAULT_DURATION: f64 = 30.0;
 pub struct SimulateArgs {
     /// Body: a named shape (biped-4x3, worm-10x4, comb-7x2, box-5x5, tripod-5x3, t-5x4, ball-5) or a
     /// text grid with rows separated by '/', top row first ('#' voxel, '.' empty), e.g. "###/#.#";
-    /// or a pressure-based soft agent, psa[:small|medium|large] (docs/psa.md).
+    /// or a pressure-based soft agent, psa[:small|medium|large] (docs/psa.md); an EvoGym robot,
+    /// evogym:<rows of material digits> (docs/multimaterial.md); or a 3D voxel body, 3d:<shape>
+    /// (quadruped, cube-2, worm, box-WxHxD) or 3d:<layers bottom first joined by '|', rows by '/'>
+    /// (docs/voxels3d.md).
     #[arg(long, default_value = "biped-4x3")]
     pub body: String,
     /// Brain: `phase` (open-loop a = sin(2πt + πx/W)), `constant:<v>`, `random[:<period>]`,
@@ -32,12 +35,14 @@ pub struct SimulateArgs {
     /// Task: locomotion:<terrain> (terrain = flat | hilly-H-W[-SEED] | steppy-H-W[-SEED] | uphill-DEG |
     /// downhill-DEG | psa-hilly-H-W[-SEED]), jump, escape (or escape:SIDE, the cage side) or carrier (PSA tasks,
     /// docs/psa.md), or one of EvoGym's: walker, bridge-walker, beam-toppler, cave-crawler (also
-    /// evogym:BridgeWalker-v0, …; EvoGym robots, docs/multimaterial.md).
+    /// evogym:BridgeWalker-v0, …; EvoGym robots, docs/multimaterial.md), or locomotion3d (3D voxel
+    /// robots, docs/voxels3d.md).
     #[arg(long, default_value = "locomotion:flat")]
     pub task: String,
     /// Sensors: uniform-<s1>+<s2>…-<noise σ>, spinedTouch-…, spinedTouchSighted-…,
     /// <high|medium|low>_<biped|worm>-<σ>-<cpg t|f> (the Hebbian study's), or empty. Default:
-    /// uniform-a+vxy+t-0 on voxel bodies; a PSA has its own sensors and takes none.
+    /// uniform-a+vxy+t-0 on voxel bodies; a PSA has its own sensors and takes none. A 3D body's:
+    /// a comma-separated list of cpg[:Hz], touch, floor, vx, vy, vz (default cpg,touch,floor,vy,vx).
     #[arg(long)]
     pub sensors: Option<String>,
     /// Take the task (kind and every setting: terrain, cage, ball, physics, start) from an

@@ -51,8 +51,10 @@ const fn case(
 }
 
 /// The standard cases, in the order of the rows. The EvoGym robots are a full 5 × 5 body of
-/// horizontal actuators, as in the side-by-side runs with EvoGym.
-pub const STANDARD_CASES: [StandardCase; 11] = [
+/// horizontal actuators, as in the side-by-side runs with EvoGym. The 3D rows run the 3D engine
+/// (voxcraft-sim's settings, collisions on) with the default open-loop phase brain and the
+/// affordance study's sensors.
+pub const STANDARD_CASES: [StandardCase; 13] = [
     case("biped-4x3", "biped-4x3", "locomotion:flat", "flat", true),
     case("worm-10x4", "worm-10x4", "locomotion:flat", "flat", true),
     case("box-5x5", "box-5x5", "locomotion:hilly-1-10", "hilly-1-10", true),
@@ -88,6 +90,8 @@ pub const STANDARD_CASES: [StandardCase; 11] = [
         "CaveCrawler-v0",
         false,
     ),
+    case("3d-quadruped", "3d:quadruped", "locomotion3d", "floor", false),
+    case("3d-box-6x6x6", "3d:box-6x6x6", "locomotion3d", "floor", false),
 ];
 
 /// What to measure. Robots are given by short forms, as on the command line.

@@ -5,15 +5,19 @@
 //! of the two collision damping coefficients). No friction between voxels.
 //!
 //! voxcraft-sim tests every pair every step. The same pairs are found here from a candidate list
-//! (a Verlet list): pairs whose centres were closer than the contact reach plus twice a margin
-//! when it was built, rebuilt once any voxel has moved more than the margin or a rest size has
-//! grown. A pair left out cannot touch before the rebuild, so the forces are those of testing
-//! every pair.
+//! (a Verlet list): pairs whose centres were closer than the contact reach (of spheres grown by
+//! a headroom) plus twice a margin when it was built, rebuilt once any voxel has moved more than
+//! the margin or a rest size has outgrown the headroom. A pair left out cannot touch before the
+//! rebuild, so the forces are those of testing every pair.
 
 use glam::DVec3;
 
 /// Envelope sphere radius per rest edge (voxcraft-sim's `COLLISION_ENVELOPE_RADIUS`).
 pub(crate) const ENVELOPE_RADIUS: f64 = 0.625;
+
+/// Growth of the largest rest edge (per lattice size) that the list allows for before it is
+/// rebuilt: thermal actuation changes rest sizes every step.
+const SIZE_HEADROOM: f64 = 0.2;
 
 /// A voxel as the collision pass sees it: start-of-step state and constants.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -39,7 +43,7 @@ pub(crate) struct Collisions {
     pairs: Vec<(usize, usize)>,
     /// Positions of the surface voxels when the list was built.
     built_at: Vec<DVec3>,
-    /// Largest rest edge when the list was built (0: never built).
+    /// Largest rest edge the list allows for (0: never built).
     built_size: f64,
     /// Surface voxels by x, for the sweep.
     order: Vec<usize>,
@@ -73,7 +77,7 @@ impl Collisions {
         let margin = 0.5 * lattice;
         let largest = self.surface.iter().map(|&v| colliders[v].size).fold(0.0, f64::max);
         if self.needs_rebuild(colliders, margin, largest) {
-            self.rebuild(colliders, margin, largest, &linked);
+            self.rebuild(colliders, margin, largest + SIZE_HEADROOM * lattice, &linked);
         }
         for &(a, b) in &self.pairs {
             if let Some(f) = contact_force(&colliders[a], &colliders[b]) {
@@ -96,8 +100,8 @@ impl Collisions {
             .any(|(&v, &at)| colliders[v].pos.distance_squared(at) > limit)
     }
 
-    /// Candidate pairs: centres within the reach of the largest spheres plus twice the margin,
-    /// found by sorting along x and sweeping.
+    /// Candidate pairs: centres within the reach of spheres of edge `largest` plus twice the
+    /// margin, found by sorting along x and sweeping.
     fn rebuild(&mut self, colliders: &[Collider], margin: f64, largest: f64, linked: &impl Fn(usize, usize) -> bool) {
         let reach = 2.0 * ENVELOPE_RADIUS * largest + 2.0 * margin;
         self.built_size = largest;

@@ -83,6 +83,8 @@ pub struct World {
     pub(crate) materials: Vec<Material>,
     constants: Vec<VoxelConstants>,
     voxels: Vec<Voxel>,
+    /// Each voxel's piece: voxels are linked within a piece only.
+    pieces: Vec<u32>,
     links: Vec<Link>,
     lattice: HashMap<[i32; 3], usize>,
     link_constants: HashMap<(usize, usize), LinkConstants>,
@@ -116,6 +118,7 @@ impl World {
             materials: Vec::new(),
             constants: Vec::new(),
             voxels: Vec::new(),
+            pieces: Vec::new(),
             links: Vec::new(),
             lattice: HashMap::new(),
             link_constants: HashMap::new(),
@@ -139,8 +142,19 @@ impl World {
     }
 
     /// Adds a voxel of `material` at lattice index `index`, linked to every face neighbour
-    /// already there. Refuses an occupied index or an unknown material.
+    /// already there of piece 0. Refuses an occupied index or an unknown material.
     pub fn add_voxel(&mut self, material: usize, index: [i32; 3]) -> Result<VoxelId, Physics3dError> {
+        self.add_voxel_to_piece(material, index, 0)
+    }
+
+    /// Adds a voxel to a piece: it is linked to its face neighbours of the same piece only, so
+    /// that separate bodies (a robot and a wall) can touch without being joined.
+    pub fn add_voxel_to_piece(
+        &mut self,
+        material: usize,
+        index: [i32; 3],
+        piece: u32,
+    ) -> Result<VoxelId, Physics3dError> {
         if material >= self.materials.len() {
             return Err(Physics3dError::Invalid(format!("material {material} does not exist")));
         }
@@ -149,12 +163,13 @@ impl World {
         }
         let id = self.voxels.len();
         self.voxels.push(Voxel::new(material, index, self.settings.voxel_size));
+        self.pieces.push(piece);
         self.lattice.insert(index, id);
         for (axis, k) in [(Axis::X, 0), (Axis::Y, 1), (Axis::Z, 2)] {
             for step in [-1, 1] {
                 let mut other = index;
                 other[k] += step;
-                if let Some(&j) = self.lattice.get(&other) {
+                if let Some(&j) = self.lattice.get(&other).filter(|&&j| self.pieces[j] == piece) {
                     let (neg, pos) = if step > 0 { (id, j) } else { (j, id) };
                     self.link(neg, pos, axis);
                 }
@@ -506,6 +521,11 @@ impl World {
     pub fn velocity(&self, v: VoxelId) -> DVec3 {
         let voxel = &self.voxels[v.0];
         voxel.momentum / self.constants[voxel.material].mass
+    }
+
+    /// A voxel's rest edge now (m): the lattice size scaled by its thermal expansion.
+    pub fn edge(&self, v: VoxelId) -> f64 {
+        self.rest_size(v.0)
     }
 
     /// A voxel's mass (kg).

@@ -119,6 +119,8 @@ pub(crate) struct Scene<'a> {
     /// The kind's fill colour of each polygon (channel `unit_fill`), where it gives one.
     unit_fill: Vec<Rgba>,
     anti_alias: bool,
+    /// The 3D drawing of a 3D trace (channel `voxel_xyz`), which replaces the 2D one.
+    solid: Option<crate::solid3d::SolidScene<'a>>,
 }
 
 impl<'a> Scene<'a> {
@@ -139,7 +141,6 @@ impl<'a> Scene<'a> {
         let polygon = |unit: usize| unit_polygons.get(unit).copied().unwrap_or(unit);
         Scene {
             trace,
-            opts,
             boxes: camera::step_boxes(trace),
             reading_offsets,
             readings_per_unit,
@@ -160,6 +161,8 @@ impl<'a> Scene<'a> {
                 .map(|&c| packed_rgb(c))
                 .collect(),
             anti_alias,
+            solid: crate::solid3d::SolidScene::of(trace, &opts, anti_alias),
+            opts,
         }
     }
 
@@ -175,6 +178,14 @@ impl<'a> Scene<'a> {
         let [r, g, b, a] = BACKGROUND;
         pm.fill(Color::from_rgba8(r, g, b, a));
         let step = step.min(t.len().saturating_sub(1));
+        if let Some(solid) = &self.solid {
+            solid.draw(step, pm);
+            self.draw_time_bar(pm, step);
+            if self.opts.draw_overlay {
+                overlay::draw_overlay(pm, t, step);
+            }
+            return;
+        }
         let view = camera::view_at(t, &self.boxes, step, self.opts.width, self.opts.height);
         let px = |p: Vec2| view.to_pixel(p, self.opts.width);
         self.draw_ground(pm, &view);

@@ -15,6 +15,9 @@
 //!   padded to the image's aspect ratio.
 //!
 //! World y points up, image y points down. A thin bar along the top edge shows elapsed time.
+//!
+//! 3D traces (channel `voxel_xyz`) are drawn in perspective instead: a camera from the front side
+//! and above follows the body; each voxel is a cube shaded by a fixed light over a checkerboard floor.
 #![warn(missing_docs)]
 
 mod attention;
@@ -27,6 +30,7 @@ mod mp4_out;
 mod overlay;
 mod palette;
 pub mod replay;
+mod solid3d;
 mod text;
 pub mod viewer;
 
@@ -272,6 +276,12 @@ fn check_trace(trace: &Trace, path: &Path) -> Result<(), RenderError> {
     };
     if trace.is_empty() {
         return Err(problem("the trace has no steps"));
+    }
+    if solid3d::is_solid(trace) {
+        if !solid3d::has_every_step(trace) {
+            return Err(problem("the 3D trace has no voxel positions for every step"));
+        }
+        return Ok(());
     }
     if trace.outline_corners.is_empty() || trace.outlines.len() < trace.len() * trace.corners_per_step() {
         return Err(problem(

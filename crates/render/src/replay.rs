@@ -95,6 +95,10 @@ pub struct World {
     pub obstacles: Vec<Vec<[f64; 2]>>,
     /// Radius of each loose ball (channels `ball_xy`, `ball_angle`).
     pub balls: Vec<f64>,
+    /// Centres (x, y, z; z up) of a 3D world's fixed voxels, each of edge `side` (channels
+    /// `voxel_xyz`, `voxel_quat`, `voxel_edge` hold a 3D body).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub fixed_voxels: Vec<[f64; 3]>,
 }
 
 /// What does not change in the body.
@@ -337,6 +341,11 @@ impl Replay {
                     .map(|o| o.iter().map(|&p| point(p)).collect())
                     .collect(),
                 balls: trace.fixed_values(channels::BALL_RADII.name).to_vec(),
+                fixed_voxels: trace
+                    .fixed_values(channels::FIXED_VOXELS.name)
+                    .chunks_exact(3)
+                    .map(|c| [c[0], c[1], c[2]])
+                    .collect(),
             },
             body: Body {
                 cells: cells(trace),

@@ -9,6 +9,7 @@ use crate::carrier::Carrier;
 use crate::escape::Escape;
 use crate::jump::Jump;
 use crate::kinds::evogym::{EvoGym, EvoGymTask};
+use crate::kinds::voxel3d::Locomotion3d;
 use crate::locomotion::Locomotion;
 use crate::task::Task;
 use crate::terrain::Terrain;
@@ -30,6 +31,8 @@ pub enum TaskSpec {
     Carrier(Carrier),
     /// One of EvoGym's tasks, on its own engine ([`EvoGym`]).
     Evogym(EvoGym),
+    /// Walk in 3D, on the 3D engine ([`Locomotion3d`]).
+    Locomotion3d(Locomotion3d),
 }
 
 impl Default for TaskSpec {
@@ -117,6 +120,13 @@ pub const TASKS: &[TaskKind] = &[
         decode: |v| decode::<EvoGym>(v).map(TaskSpec::Evogym),
         alias: evogym_alias,
     },
+    TaskKind {
+        name: "locomotion3d",
+        usage: "locomotion3d[:<seconds>]",
+        parse: parse_locomotion3d,
+        decode: |v| decode::<Locomotion3d>(v).map(TaskSpec::Locomotion3d),
+        alias: no_alias,
+    },
 ];
 
 fn parse_escape(arg: Option<&str>) -> Result<TaskSpec, FieldError> {
@@ -169,6 +179,16 @@ fn evogym_alias(name: &str) -> Option<TaskSpec> {
     }))
 }
 
+fn parse_locomotion3d(arg: Option<&str>) -> Result<TaskSpec, FieldError> {
+    let mut task = Locomotion3d::default();
+    if let Some(a) = arg {
+        task.duration = a
+            .parse::<f64>()
+            .map_err(|_| FieldError::message(format!("'{a}': expected the episode's length in seconds")))?;
+    }
+    Ok(TaskSpec::Locomotion3d(task))
+}
+
 fn parse_jump(arg: Option<&str>) -> Result<TaskSpec, FieldError> {
     match arg {
         None => Ok(TaskSpec::Jump(Jump::default())),
@@ -218,6 +238,7 @@ impl TaskSpec {
             TaskSpec::Escape(t) => t,
             TaskSpec::Carrier(t) => t,
             TaskSpec::Evogym(t) => t,
+            TaskSpec::Locomotion3d(t) => t,
         }
     }
 

@@ -13,6 +13,7 @@
 pub mod evogym;
 pub mod psa;
 pub mod voxel;
+pub mod voxel3d;
 
 use crate::agent::Robot;
 use crate::files::FileError;
@@ -23,7 +24,7 @@ use vsrlab_brain::BrainSpec;
 
 /// Every robot kind. The first whose [`RobotKind::claims_body`] accepts a command-line body
 /// builds it, so the voxel robot, whose bodies are any shape name or text grid, comes last.
-pub const ROBOT_KINDS: &[RobotKind] = &[psa::KIND, evogym::KIND, voxel::KIND];
+pub const ROBOT_KINDS: &[RobotKind] = &[psa::KIND, evogym::KIND, voxel3d::KIND, voxel::KIND];
 
 /// One registered robot kind.
 pub struct RobotKind {

@@ -1,0 +1,20 @@
+//! 3D voxel robots on the Voxelyze model ([`vsrlab_physics3d`]): a body grid of cubic voxels
+//! ([`BodyGrid3`]), the affordance study's sensors on every voxel ([`Sensor3`]), a brain over the
+//! 3D grid layout (each voxel's unit with six face neighbours), thermal actuation, and the
+//! [`Locomotion3d`] task with fixed obstacle voxels. `docs/voxels3d.md` describes the model and
+//! every choice.
+
+mod grid;
+mod kind;
+mod physics;
+mod recorder;
+mod robot;
+mod sensors;
+mod task;
+
+pub use grid::{shape_names, BodyGrid3, MAX_SIDE};
+pub use kind::{Voxel3dTable, DEFAULT_BRAIN, KIND};
+pub use physics::{Built, Physics3d, MAX_STEPS};
+pub use robot::Voxel3dRobot;
+pub use sensors::{Sensor3, VoxelSense, DEFAULT_SENSORS};
+pub use task::Locomotion3d;

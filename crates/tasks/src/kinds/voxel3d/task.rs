@@ -1,0 +1,323 @@
+//! [`Locomotion3d`]: a 3D voxel robot walks on the floor, among fixed obstacle voxels, for a
+//! while; scored by how far its centre of mass moved (`[task] kind = "locomotion3d"`, or
+//! `locomotion3d` on the command line). Its episodes run on the 3D engine
+//! ([`vsrlab_physics3d`]): every step the engine steps, then every voxel senses, the brain
+//! computes, and each voxel's temperature is set to `amplitude × actuation` for the next step
+//! (voxcraft-sim evaluates its controller every physics step too).
+
+use super::physics::{Physics3d, MAX_STEPS};
+use super::recorder::Recorder;
+use super::robot::Voxel3dRobot;
+use super::sensors::VoxelSense;
+use crate::agent::{Agent, Robot};
+use crate::episode::EpisodeError;
+use crate::fitness::Fitness;
+use crate::kinds::voxel::short_forms::RANDOM_BRAIN_SEED;
+use crate::outcome::{Outcome, TraceLevel};
+use crate::task::{check_objectives, fitness_values, task_field, Metrics, Objective, Task};
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+use vsrlab_field::FieldError;
+use vsrlab_physics3d::{VoxelId, World};
+
+/// What a 3D locomotion episode reports: the centre of mass's horizontal displacement (`distance`,
+/// and its `dx`, `dy`), its final height over the start (`dz`), mean horizontal speed, steps.
+const METRICS: &[&str] = &["distance", "dx", "dy", "dz", "velocity", "steps"];
+
+/// Walk as far as possible in 3D.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Locomotion3d {
+    /// Episode length (simulated seconds).
+    pub duration: f64,
+    /// Objectives among `distance`, `dx`, `dy`, `dz`, `velocity`, `steps`.
+    pub fitness: Fitness,
+    /// The world: material, lattice, gravity, collisions, time step, actuation amplitude.
+    pub physics: Physics3d,
+    /// Fixed voxels (walls, obstacles) at lattice cells [x, y, z]; the body occupies its grid's
+    /// cells from [0, 0, 0], z up, the floor under z = 0.
+    pub obstacles: Vec<[i32; 3]>,
+    /// Frames per second of recorded traces (videos, replays).
+    pub frame_rate: f64,
+}
+
+impl Default for Locomotion3d {
+    fn default() -> Self {
+        Locomotion3d {
+            duration: 5.0,
+            fitness: Fitness::maximize("distance"),
+            physics: Physics3d::default(),
+            obstacles: Vec::new(),
+            frame_rate: 50.0,
+        }
+    }
+}
+
+impl Task for Locomotion3d {
+    fn kind(&self) -> &'static str {
+        "locomotion3d"
+    }
+
+    fn validate(&self) -> Result<(), EpisodeError> {
+        let d = self.duration;
+        if !(d.is_finite() && d > 0.0 && d <= 1e4) {
+            return Err(task_field(FieldError::sentence(
+                "duration",
+                format!("must be in (0, 10000] seconds, got {d}"),
+            )));
+        }
+        self.physics.validate().map_err(|e| task_field(e.at("physics")))?;
+        let steps = d / self.physics.dt();
+        if steps > MAX_STEPS {
+            return Err(task_field(FieldError::sentence(
+                "duration",
+                format!(
+                    "{d} s is {steps:.3e} steps of {:.3e} s (this material's time step): at most {MAX_STEPS:.0e} steps per episode",
+                    self.physics.dt()
+                ),
+            )));
+        }
+        let r = self.frame_rate;
+        if !(r.is_finite() && r > 0.0 && r <= 10_000.0) {
+            return Err(task_field(FieldError::sentence(
+                "frame_rate",
+                format!("must be in (0, 10000] frames per second, got {r}"),
+            )));
+        }
+        if self.obstacles.len() > 100_000 {
+            return Err(task_field(FieldError::sentence(
+                "obstacles",
+                format!("at most 100000 voxels, got {}", self.obstacles.len()),
+            )));
+        }
+        check_objectives(&self.fitness.0, METRICS)
+    }
+
+    fn duration(&self) -> f64 {
+        self.duration
+    }
+
+    fn step_seconds(&self) -> f64 {
+        self.physics.dt()
+    }
+
+    fn metric_names(&self) -> &'static [&'static str] {
+        METRICS
+    }
+
+    fn objectives(&self) -> &[Objective] {
+        &self.fitness.0
+    }
+
+    fn run_episode(
+        &self,
+        robot: &dyn Robot,
+        _seed: u64,
+        level: TraceLevel,
+        _observe: &mut dyn FnMut(f64, &dyn Agent),
+    ) -> Result<Outcome, EpisodeError> {
+        self.validate()?;
+        let robot = voxel3d_robot(robot)?;
+        let at_robot = |e: FieldError| EpisodeError::Field(e.at("robot"));
+        let grid = robot.grid().map_err(at_robot)?;
+        let sensors = robot.sensor_list().map_err(at_robot)?;
+        let shape = robot.brain_shape().map_err(at_robot)?;
+        let at_brain = |e: vsrlab_brain::BrainError| EpisodeError::Field(FieldError::from(e).at("robot.brain"));
+        let spec =
+            match robot.brain.parameters().is_empty() && robot.brain.parameter_count(&shape).map_err(at_brain)? > 0 {
+                true => robot
+                    .brain
+                    .with_random_parameters(RANDOM_BRAIN_SEED, &shape)
+                    .map_err(at_brain)?,
+                false => robot.brain.clone(),
+            };
+        let mut brain = spec.build(&shape).map_err(at_brain)?;
+        brain.reset();
+        let mut built = self
+            .physics
+            .build(&grid, &self.obstacles)
+            .map_err(|e| task_field(e.at("physics")))?;
+        let (dt, n) = (built.dt, built.body.len());
+        let steps = (self.duration / dt).ceil() as u64;
+        let mut readings = vec![0.0; n * sensors.len()];
+        let mut actuation = vec![0.0; n];
+        let mut recorder = Recorder::new(level, &built, self.frame_rate);
+        let start = centre(&built.world, &built.body);
+        recorder.record(&built.world, &built.body, &actuation, 0.0);
+        for k in 1..=steps {
+            built
+                .world
+                .step(dt)
+                .map_err(|e| EpisodeError::Invalid(format!("episode failed at t = {:.4} s: {e}", k as f64 * dt)))?;
+            let t = k as f64 * dt;
+            sense(&built.world, &built.body, &sensors, t, &mut readings);
+            brain.control(t, &readings, &mut actuation);
+            for (&v, a) in built.body.iter().zip(&mut actuation) {
+                *a = a.clamp(-1.0, 1.0);
+                built.world.set_temperature(v, self.physics.amplitude * *a);
+            }
+            recorder.record(&built.world, &built.body, &actuation, t);
+        }
+        let moved = centre(&built.world, &built.body) - start;
+        let seconds = steps as f64 * dt;
+        let distance = moved.truncate().length();
+        let metrics: Metrics = [
+            ("distance", distance),
+            ("dx", moved.x),
+            ("dy", moved.y),
+            ("dz", moved.z),
+            ("velocity", distance / seconds),
+            ("steps", steps as f64),
+        ]
+        .into_iter()
+        .map(|(k, v)| (k.to_string(), v))
+        .collect();
+        Ok(Outcome {
+            fitness: fitness_values(&self.fitness.0, &metrics),
+            metrics,
+            steps,
+            units: n,
+            trace: recorder.finish(),
+        })
+    }
+}
+
+/// Every voxel's readings at time `t`, voxel after voxel.
+fn sense(world: &World, body: &[VoxelId], sensors: &[super::Sensor3], t: f64, readings: &mut [f64]) {
+    if sensors.is_empty() {
+        return;
+    }
+    for (&v, out) in body.iter().zip(readings.chunks_mut(sensors.len())) {
+        let sense = VoxelSense {
+            time: t,
+            touches_voxel: world.touches_voxel(v),
+            touches_floor: world.touches_floor(v),
+            velocity: world.velocity(v),
+        };
+        for (r, s) in out.iter_mut().zip(sensors) {
+            *r = s.read(&sense);
+        }
+    }
+}
+
+/// The centre of mass of the body's voxels (all of one material: their mean position).
+pub(crate) fn centre(world: &World, body: &[VoxelId]) -> DVec3 {
+    body.iter().map(|&v| world.position(v)).sum::<DVec3>() / body.len().max(1) as f64
+}
+
+/// The 3D robot behind a robot of any kind, or an error naming the task's kind.
+fn voxel3d_robot(robot: &dyn Robot) -> Result<&Voxel3dRobot, EpisodeError> {
+    robot
+        .description()
+        .and_then(|d| d.as_any().downcast_ref::<Voxel3dRobot>())
+        .ok_or_else(|| {
+            EpisodeError::Field(FieldError::new(
+                "task.kind",
+                "locomotion3d runs 3D voxel robots (a body `3d:…`, or a robot file with \"voxel3d\")",
+            ))
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kinds::{from_short_forms, RobotArgs};
+    use crate::registry::TaskSpec;
+
+    fn robot(body: &str, brain: &str) -> crate::AnyRobot {
+        from_short_forms(&RobotArgs {
+            body,
+            brain: Some(brain),
+            sensors: None,
+            preset: "2021",
+        })
+        .unwrap()
+    }
+
+    #[test]
+    fn a_quadruped_on_a_travelling_sine_walks_and_is_traced_and_repeatable() {
+        let task = TaskSpec::parse("locomotion3d:1").unwrap();
+        let r = robot("3d:quadruped", "phase");
+        let o = crate::episode::run(r.as_robot(), task.task(), 0, TraceLevel::Full).unwrap();
+        let trace = o.trace.as_ref().unwrap();
+        assert_eq!(o.units, 28);
+        // 1 s at 50 frames per second: frames at 0, 0.02, …, 1.0
+        assert_eq!(trace.times.len(), 51, "{:?}", &trace.times[..3]);
+        assert_eq!(trace.at(VOXEL_XYZ_NAME, 50).unwrap().len(), 28 * 3);
+        assert!(o.metric("distance") > 1e-4, "the walker moves: {:?}", o.metrics);
+        assert!(o.metrics.values().all(|v| v.is_finite()));
+        let again = crate::episode::run(r.as_robot(), task.task(), 7, TraceLevel::None).unwrap();
+        assert_eq!(again.fitness, o.fitness);
+        assert_eq!(again.steps, o.steps);
+    }
+
+    #[test]
+    fn an_obstacle_voxel_next_to_the_body_pushes_it_away_and_is_felt() {
+        // no actuation: the body rests, held by static friction, unless something pushes it
+        let still = Physics3d {
+            amplitude: 0.0,
+            ..Physics3d::default()
+        };
+        let r = robot("3d:box-2x1x1", "phase");
+        let mut task = Locomotion3d {
+            duration: 0.05,
+            physics: still,
+            ..Locomotion3d::default()
+        };
+        let alone = task
+            .run_episode(r.as_robot(), 0, TraceLevel::None, &mut |_, _| {})
+            .unwrap();
+        assert_eq!(alone.metric("dx"), 0.0);
+        // a wall cell right after the body's last voxel: their spheres overlap by s/4
+        task.obstacles = vec![[2, 0, 0], [2, 0, 1]];
+        let pushed = task
+            .run_episode(r.as_robot(), 0, TraceLevel::Full, &mut |_, _| {})
+            .unwrap();
+        assert!(pushed.metric("dx") < -1e-3, "{:?}", pushed.metrics);
+        let trace = pushed.trace.unwrap();
+        assert_eq!(
+            trace.fixed_values(crate::channels::FIXED_VOXELS.name),
+            [0.02, 0.0, 0.0, 0.02, 0.0, 0.01]
+        );
+        task.obstacles.push([0, 0, 0]);
+        let e = task
+            .run_episode(r.as_robot(), 0, TraceLevel::None, &mut |_, _| {})
+            .unwrap_err();
+        assert!(e.to_string().contains("obstacles[2]"), "{e}");
+    }
+
+    #[test]
+    fn bad_settings_and_robots_of_another_kind_are_refused_naming_the_field() {
+        let err = |t: Locomotion3d| t.validate().unwrap_err().to_string();
+        assert!(err(Locomotion3d {
+            duration: -1.0,
+            ..Default::default()
+        })
+        .starts_with("task.duration"));
+        assert!(err(Locomotion3d {
+            frame_rate: 0.0,
+            ..Default::default()
+        })
+        .starts_with("task.frame_rate"));
+        let long = Locomotion3d {
+            duration: 1e4,
+            ..Default::default()
+        };
+        assert!(err(long).contains("steps per episode"));
+        let stiff = Locomotion3d {
+            physics: Physics3d {
+                youngs_modulus: 1e12,
+                ..Default::default()
+            },
+            ..Default::default()
+        };
+        assert!(err(stiff).starts_with("task.duration"));
+        let flat = robot("biped-4x3", "phase");
+        let e = Locomotion3d::default()
+            .run_episode(flat.as_robot(), 0, TraceLevel::None, &mut |_, _| {})
+            .unwrap_err();
+        assert!(e.to_string().contains("3D voxel robots"), "{e}");
+    }
+
+    const VOXEL_XYZ_NAME: &str = crate::channels::VOXEL_XYZ.name;
+}

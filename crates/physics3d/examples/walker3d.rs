@@ -8,23 +8,36 @@ use std::time::Instant;
 use vsrlab_physics3d::{Material, VoxelId, World, WorldSettings};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let seconds: f64 = std::env::args().nth(1).map_or(Ok(2.0), |s| s.parse())?;
-    // collisions off, as bench/voxelyze runs Voxelyze (its default): the same model on both sides
+    let arg = |i: usize| std::env::args().nth(i);
+    let seconds: f64 = arg(1).map_or(Ok(2.0), |s| s.parse())?;
+    let body = arg(2).unwrap_or_else(|| "quadruped".into());
+    // collisions off by default, as Voxelyze's default: the same model on both sides
+    let collisions = arg(3).as_deref() == Some("on");
     let mut w = World::new(WorldSettings {
-        collisions: false,
+        collisions,
         ..WorldSettings::default()
     })?;
     let m = w.add_material(Material::affordance())?;
     let mut cells = Vec::new();
-    for x in 0..4 {
-        for y in 0..3 {
-            for z in 1..3 {
-                cells.push([x, y, z]);
+    if body == "box6" {
+        for x in 0..6 {
+            for y in 0..6 {
+                for z in 0..6 {
+                    cells.push([x, y, z]);
+                }
             }
         }
-    }
-    for (x, y) in [(0, 0), (0, 2), (3, 0), (3, 2)] {
-        cells.push([x, y, 0]);
+    } else {
+        for x in 0..4 {
+            for y in 0..3 {
+                for z in 1..3 {
+                    cells.push([x, y, z]);
+                }
+            }
+        }
+        for (x, y) in [(0, 0), (0, 2), (3, 0), (3, 2)] {
+            cells.push([x, y, 0]);
+        }
     }
     let ids: Vec<(VoxelId, i32)> = cells
         .iter()
@@ -46,7 +59,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let elapsed = clock.elapsed().as_secs_f64();
     let moved = centre(&w) - start;
     println!(
-        "{} voxels, {} links, dt {:.4e} s, {steps} steps in {elapsed:.2} s: centre moved ({:+.4}, {:+.4}, {:+.4}) m ({:.2} body lengths), {:.0} voxel·steps/s, {:.0} voxel·s/s",
+        "vsrlab (collisions {}): {} voxels, {} links, dt {:.4e} s, {steps} steps in {elapsed:.2} s: centre moved ({:+.4}, {:+.4}, {:+.4}) m ({:.2} body lengths), {:.0} voxel·steps/s, {:.0} voxel·s/s",
+        if collisions { "on" } else { "off" },
         w.voxel_count(),
         w.link_count(),
         dt,

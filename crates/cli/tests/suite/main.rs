@@ -15,3 +15,4 @@ mod readme;
 mod robot_files;
 mod run;
 mod view;
+mod voxels3d;

@@ -314,8 +314,7 @@ impl GenotypeKind for GraphGenotypeConfig {
 
     fn time_evaluations(&self, experiment: &Experiment, count: usize) -> Result<(), FieldError> {
         let (variation, mapper) = build(experiment, self)?;
-        time_with_operators(experiment, &variation, mapper, count);
-        Ok(())
+        time_with_operators(experiment, &variation, mapper, count)
     }
 
     fn stored(&self, experiment: &Experiment) -> Result<Arc<dyn StoredGenotypes>, FieldError> {

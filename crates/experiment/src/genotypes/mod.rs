@@ -60,7 +60,8 @@ pub trait GenotypeKind: Debug + Send + Sync + GenotypeCopy {
         options: &RunOptions,
         observer: &mut dyn Observer,
     ) -> Result<Vec<RunSummary>, RunError>;
-    /// Evaluates `count` initial genotypes (the time estimate of `vsrlab validate`).
+    /// Evaluates `count` initial genotypes (the time estimate of `vsrlab validate`); an error
+    /// when every one of them failed, as every run would.
     fn time_evaluations(&self, experiment: &Experiment, count: usize) -> Result<(), FieldError>;
     /// Its genotypes as snapshots and checkpoints store them → robots: how analyses replay the
     /// individuals of a run.
@@ -197,4 +198,32 @@ pub fn run_configured(
     observer: &mut dyn Observer,
 ) -> Result<Vec<RunSummary>, RunError> {
     experiment.genotype_kind().run(experiment, out, options, observer)
+}
+
+/// An error when every timed evaluation failed (`errors`: each one's failure, if any): a run of
+/// such an experiment would fail every evaluation too, so `vsrlab validate` refuses it with the
+/// first reason (which names the field, e.g. `task.obstacles[0]: …`).
+pub(crate) fn unless_every_evaluation_failed(errors: &[Option<String>]) -> Result<(), FieldError> {
+    match errors.iter().map(Option::as_deref).collect::<Option<Vec<&str>>>() {
+        Some(all) if !all.is_empty() => Err(FieldError::message(format!(
+            "all {} initial genotypes timed failed (so would every evaluation of a run): {}",
+            all.len(),
+            all[0]
+        ))),
+        _ => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::unless_every_evaluation_failed;
+
+    #[test]
+    fn validation_refuses_only_when_every_timed_evaluation_failed() {
+        let failed = |why: &str| Some(why.to_string());
+        assert!(unless_every_evaluation_failed(&[]).is_ok());
+        assert!(unless_every_evaluation_failed(&[failed("a"), None, failed("b")]).is_ok());
+        let e = unless_every_evaluation_failed(&[failed("task.x: bad"), failed("other")]).unwrap_err();
+        assert!(e.to_string().contains("all 2 initial genotypes") && e.to_string().ends_with("task.x: bad"), "{e}");
+    }
 }

@@ -96,15 +96,23 @@ where
 }
 
 /// Evaluates the first `count` initial genotypes of `variation` (for time estimates).
-pub fn time_with_operators<V, M>(experiment: &Experiment, variation: &V, mapper: M, count: usize)
+pub fn time_with_operators<V, M>(
+    experiment: &Experiment,
+    variation: &V,
+    mapper: M,
+    count: usize,
+) -> Result<(), FieldError>
 where
     V: Variation,
     M: Mapper<V::Genotype>,
 {
     let evaluator = RobotEvaluator::with_mapper(mapper, experiment);
-    for i in 0..count {
-        let mut rng = SeededRng::derive(0, 0, i as u64, Stream::Initialisation);
-        let genotype = variation.initial(i, &mut rng);
-        let _ = evaluator.evaluate(&genotype, 0);
-    }
+    let errors: Vec<Option<String>> = (0..count)
+        .map(|i| {
+            let mut rng = SeededRng::derive(0, 0, i as u64, Stream::Initialisation);
+            let genotype = variation.initial(i, &mut rng);
+            evaluator.evaluate(&genotype, 0).record.error
+        })
+        .collect();
+    super::unless_every_evaluation_failed(&errors)
 }

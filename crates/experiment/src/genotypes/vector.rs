@@ -80,11 +80,13 @@ impl GenotypeKind for VectorGenotype {
         })?;
         let genes = evaluator.genotype_length();
         let mut rng = ChaCha8Rng::seed_from_u64(0);
-        for _ in 0..count {
-            let genotype: Vec<f64> = (0..genes).map(|_| rng.random_range(-1.0..1.0)).collect();
-            let _ = Evaluator::<Vec<f64>>::evaluate(&evaluator, &genotype, 0);
-        }
-        Ok(())
+        let errors: Vec<Option<String>> = (0..count)
+            .map(|_| {
+                let genotype: Vec<f64> = (0..genes).map(|_| rng.random_range(-1.0..1.0)).collect();
+                Evaluator::<Vec<f64>>::evaluate(&evaluator, &genotype, 0).record.error
+            })
+            .collect();
+        super::unless_every_evaluation_failed(&errors)
     }
 
     fn stored(&self, experiment: &Experiment) -> Result<Arc<dyn StoredGenotypes>, FieldError> {

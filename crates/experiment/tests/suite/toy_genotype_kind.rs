@@ -141,8 +141,7 @@ impl GenotypeKind for QuantisedPhases {
 
     fn time_evaluations(&self, experiment: &Experiment, count: usize) -> Result<(), FieldError> {
         let ops = PhaseOps { levels: self.levels };
-        time_with_operators(experiment, &ops, PhaseMapper { levels: self.levels }, count);
-        Ok(())
+        time_with_operators(experiment, &ops, PhaseMapper { levels: self.levels }, count)
     }
 
     fn stored(&self, _experiment: &Experiment) -> Result<Arc<dyn StoredGenotypes>, FieldError> {

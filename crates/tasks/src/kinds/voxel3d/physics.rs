@@ -143,9 +143,11 @@ impl Physics3d {
     }
 
     /// The world with `body` at lattice cells (x, y, z) from the origin and `obstacles` fixed in
-    /// every degree of freedom (a piece of their own: never linked to the body); an obstacle on a body cell is refused naming it.
+    /// every degree of freedom (a piece of their own: never linked to the body); an obstacle on a
+    /// body cell is refused naming it. Error paths are those of a task's table (`physics.…`,
+    /// `obstacles[i]`).
     pub fn build(&self, body: &BodyGrid3, obstacles: &[[i32; 3]]) -> Result<Built, FieldError> {
-        self.validate()?;
+        self.validate().map_err(|e| e.at("physics"))?;
         let settings = WorldSettings {
             voxel_size: self.voxel_size,
             gravity: self.gravity,

@@ -1,0 +1,116 @@
+//! End to end, 3D voxel robots (docs/voxels3d.md): `vsrlab simulate --body 3d:…` with a video
+//! frame and a replay, its robot file replayed to the same outcome, an evolution run, and errors
+//! that name the field or option.
+
+use crate::common;
+
+use common::{ok, vsrlab};
+
+#[test]
+fn a_3d_robot_simulates_draws_replays_and_saves_a_robot_file_that_replays() {
+    let dir = tempfile::tempdir().unwrap();
+    let (frame, replay, robot) = (
+        dir.path().join("f.png"),
+        dir.path().join("r.replay.json"),
+        dir.path().join("q.json"),
+    );
+    let first = ok(&[
+        "simulate",
+        "--body",
+        "3d:quadruped",
+        "--task",
+        "locomotion3d",
+        "--duration",
+        "0.3",
+        "--json",
+        "--video",
+        frame.to_str().unwrap(),
+        "--replay",
+        replay.to_str().unwrap(),
+        "--save-robot",
+        robot.to_str().unwrap(),
+    ]);
+    assert!(std::fs::read(&frame).unwrap().starts_with(b"\x89PNG"));
+    let replay: serde_json::Value = serde_json::from_slice(&std::fs::read(&replay).unwrap()).unwrap();
+    assert_eq!(
+        replay["channels"]["voxel_xyz"]["per_frame"],
+        28 * 3,
+        "{}",
+        replay["channels"]["voxel_xyz"]
+    );
+    let again = ok(&[
+        "simulate",
+        "--robot",
+        robot.to_str().unwrap(),
+        "--task",
+        "locomotion3d",
+        "--duration",
+        "0.3",
+        "--json",
+    ]);
+    let distance = |text: &str| {
+        serde_json::from_str::<serde_json::Value>(text).unwrap()["distance"]
+            .as_f64()
+            .unwrap()
+    };
+    assert_eq!(distance(&first), distance(&again));
+    assert!(distance(&first) > 0.0);
+}
+
+#[test]
+fn an_experiment_evolves_a_3d_brain_and_bad_files_name_the_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let experiment = dir.path().join("e.toml");
+    std::fs::write(
+        &experiment,
+        r#"name = "tiny3d"
+runs = 1
+seed = 1
+[representation]
+body = { kind = "voxel3d", body = "cube-2" }
+brain = { kind = "distributed-mlp", signals = 1 }
+[task]
+kind = "locomotion3d"
+duration = 0.1
+obstacles = [[3, 0, 0]]
+[optimizer]
+kind = "ga"
+population_size = 4
+[stop]
+evaluations = 8
+"#,
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    ok(&["run", experiment.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert!(out.join("run-00/best.robot.json").exists());
+    let best = std::fs::read_to_string(out.join("run-00/best.robot.json")).unwrap();
+    assert!(best.contains("\"voxel3d\""), "{best}");
+
+    let bad = dir.path().join("bad.json");
+    std::fs::write(&bad, best.replace("cube-2", "#.#")).unwrap();
+    let (success, text) = vsrlab(&["simulate", "--robot", bad.to_str().unwrap(), "--task", "locomotion3d"]);
+    assert!(
+        !success && text.contains("voxel3d.body") && text.contains("in pieces"),
+        "{text}"
+    );
+    let (success, text) = vsrlab(&[
+        "simulate",
+        "--body",
+        "3d:cube-2",
+        "--sensors",
+        "cpg,sonar",
+        "--task",
+        "locomotion3d",
+    ]);
+    assert!(!success && text.contains("unknown 3D sensor 'sonar'"), "{text}");
+    std::fs::write(
+        &experiment,
+        std::fs::read_to_string(&experiment)
+            .unwrap()
+            .replace("[[3, 0, 0]]", "[[1, 1, 1]]"),
+    )
+    .unwrap();
+    let (success, text) = vsrlab(&["validate", experiment.to_str().unwrap()]);
+    assert!(!success && text.contains("obstacles[0]"), "{text}");
+}

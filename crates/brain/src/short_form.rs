@@ -33,6 +33,7 @@ pub static SHORT_FORMS: &[ShortForm] = &[
     controllers::attention::SHORT_FORM,
     controllers::graph::SHORT_FORM,
     controllers::heads::SHORT_FORM,
+    controllers::elman::SHORT_FORM,
 ];
 
 /// Parses `name[:argument]` with the [`SHORT_FORMS`] entry of that name; any failure is

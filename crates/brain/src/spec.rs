@@ -4,6 +4,7 @@ use crate::controllers::attention::AttentionSpec;
 use crate::controllers::centralized_mlp::MlpSpec;
 use crate::controllers::constant::ConstantSpec;
 use crate::controllers::distributed_mlp::DistributedMlpSpec;
+use crate::controllers::elman::ElmanSpec;
 use crate::controllers::graph::GraphSpec;
 use crate::controllers::heads::HeadsSpec;
 use crate::controllers::hebbian::HebbianSpec;
@@ -75,6 +76,8 @@ pub enum BrainSpec {
     Graph(GraphSpec),
     /// One layer, tanh heads and linear heads (the PSA controller, [`HeadsSpec`]).
     Heads(HeadsSpec),
+    /// The affordance study's Elman network in every voxel, with a vote ([`ElmanSpec`]).
+    Elman(ElmanSpec),
 }
 
 /// Every `kind` tag, in the order of [`BrainSpec`]'s variants.
@@ -121,6 +124,7 @@ impl<'de> Deserialize<'de> for BrainSpec {
             "attention" => BrainSpec::Attention(payload(fields)?),
             "graph" => BrainSpec::Graph(payload(fields)?),
             "heads" => BrainSpec::Heads(payload(fields)?),
+            "elman" => BrainSpec::Elman(payload(fields)?),
             other => {
                 return Err(D::Error::custom(format!(
                     "kind: unknown brain kind `{other}`, expected one of {}",
@@ -166,6 +170,7 @@ impl BrainSpec {
             BrainSpec::Attention(kind) => kind,
             BrainSpec::Graph(kind) => kind,
             BrainSpec::Heads(kind) => kind,
+            BrainSpec::Elman(kind) => kind,
         }
     }
 
@@ -184,6 +189,7 @@ impl BrainSpec {
             BrainSpec::Attention(kind) => kind,
             BrainSpec::Graph(kind) => kind,
             BrainSpec::Heads(kind) => kind,
+            BrainSpec::Elman(kind) => kind,
         }
     }
 

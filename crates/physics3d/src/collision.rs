@@ -49,6 +49,8 @@ pub(crate) struct Collisions {
     order: Vec<usize>,
     /// Contacts now touching (for sensors), reset every step.
     pub touching: Vec<bool>,
+    /// The pairs in contact this step (lower index first, in order).
+    pub contacts: Vec<(usize, usize)>,
 }
 
 impl Collisions {
@@ -71,6 +73,7 @@ impl Collisions {
         forces: &mut [DVec3],
     ) {
         self.touching.iter_mut().for_each(|t| *t = false);
+        self.contacts.clear();
         if self.surface.len() < 2 {
             return;
         }
@@ -83,6 +86,7 @@ impl Collisions {
             if let Some(f) = contact_force(&colliders[a], &colliders[b]) {
                 forces[a] -= f;
                 forces[b] += f;
+                self.contacts.push((a, b));
                 self.touching[a] = true;
                 self.touching[b] = true;
             }
@@ -202,6 +206,7 @@ mod tests {
         let f12 = contact_force(&colliders[1], &colliders[2]).unwrap();
         assert_eq!(forces, vec![DVec3::ZERO, -f12, f12, DVec3::ZERO]);
         assert_eq!(c.touching, vec![false, true, true, false]);
+        assert_eq!(c.contacts, vec![(1, 2)]);
     }
 
     #[test]

@@ -471,6 +471,21 @@ impl World {
         self.settings.collisions && self.collisions.touching.get(v.0).copied().unwrap_or(false)
     }
 
+    /// The pairs of voxels that touched in the last step (not linked; the lower index first).
+    pub fn contacts(&self) -> impl Iterator<Item = (VoxelId, VoxelId)> + '_ {
+        let contacts: &[(usize, usize)] = if self.settings.collisions {
+            &self.collisions.contacts
+        } else {
+            &[]
+        };
+        contacts.iter().map(|&(a, b)| (VoxelId(a), VoxelId(b)))
+    }
+
+    /// The piece a voxel belongs to ([`World::add_voxel_to_piece`]).
+    pub fn piece(&self, v: VoxelId) -> u32 {
+        self.pieces[v.0]
+    }
+
     /// Whether voxel `v` touches the floor (its bottom at or below the floor).
     pub fn touches_floor(&self, v: VoxelId) -> bool {
         let s = self.settings.voxel_size;

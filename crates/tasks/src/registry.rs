@@ -9,7 +9,7 @@ use crate::carrier::Carrier;
 use crate::escape::Escape;
 use crate::jump::Jump;
 use crate::kinds::evogym::{EvoGym, EvoGymTask};
-use crate::kinds::voxel3d::Locomotion3d;
+use crate::kinds::voxel3d::{Affordance, Environment, Locomotion3d};
 use crate::locomotion::Locomotion;
 use crate::task::Task;
 use crate::terrain::Terrain;
@@ -33,6 +33,8 @@ pub enum TaskSpec {
     Evogym(EvoGym),
     /// Walk in 3D, on the 3D engine ([`Locomotion3d`]).
     Locomotion3d(Locomotion3d),
+    /// Detect whether an aperture is passable, on the 3D engine ([`Affordance`]).
+    Affordance(Affordance),
 }
 
 impl Default for TaskSpec {
@@ -127,6 +129,13 @@ pub const TASKS: &[TaskKind] = &[
         decode: |v| decode::<Locomotion3d>(v).map(TaskSpec::Locomotion3d),
         alias: no_alias,
     },
+    TaskKind {
+        name: "affordance",
+        usage: "affordance[:<impassable|passable-left|passable-right>] (one environment; all three by default)",
+        parse: parse_affordance,
+        decode: |v| decode::<Affordance>(v).map(TaskSpec::Affordance),
+        alias: no_alias,
+    },
 ];
 
 fn parse_escape(arg: Option<&str>) -> Result<TaskSpec, FieldError> {
@@ -189,6 +198,19 @@ fn parse_locomotion3d(arg: Option<&str>) -> Result<TaskSpec, FieldError> {
     Ok(TaskSpec::Locomotion3d(task))
 }
 
+fn parse_affordance(arg: Option<&str>) -> Result<TaskSpec, FieldError> {
+    let mut task = Affordance::default();
+    if let Some(name) = arg {
+        let env = Environment::ALL.into_iter().find(|e| e.name() == name).ok_or_else(|| {
+            FieldError::message(format!(
+                "unknown environment '{name}': expected impassable, passable-left or passable-right"
+            ))
+        })?;
+        task.environments = vec![env];
+    }
+    Ok(TaskSpec::Affordance(task))
+}
+
 fn parse_jump(arg: Option<&str>) -> Result<TaskSpec, FieldError> {
     match arg {
         None => Ok(TaskSpec::Jump(Jump::default())),
@@ -239,6 +261,7 @@ impl TaskSpec {
             TaskSpec::Carrier(t) => t,
             TaskSpec::Evogym(t) => t,
             TaskSpec::Locomotion3d(t) => t,
+            TaskSpec::Affordance(t) => t,
         }
     }
 

@@ -4,6 +4,7 @@ pub mod attention;
 pub mod centralized_mlp;
 pub mod constant;
 pub mod distributed_mlp;
+pub mod elman;
 pub mod graph;
 pub mod heads;
 pub mod hebbian;

@@ -22,10 +22,19 @@ const SHAPES: &[(&str, &str)] = &[
     ("quadruped", "#..#/..../#..#|####/####/####|####/####/####"),
     ("cube-2", "##/##|##/##"),
     ("worm", "######|######"),
+    // the affordance study's three (thesis §5.1.3.1; Voxcraft-python's `_create_fixed_world`),
+    // one layer each: a 5×5 square, a 9×9 plus of four limbs, a 6×6 double cross
+    ("flatworm", "#####/#####/#####/#####/#####"),
+    (
+        "starfish",
+        "....#..../....#..../....#..../....#..../#########/....#..../....#..../....#..../....#....",
+    ),
+    ("gecko", ".#..#./######/.#..#./.#..#./######/.#..#."),
 ];
 
 impl BodyGrid3 {
-    /// A grid from its text form, a named shape (`quadruped`, `cube-2`, `worm`) or a box
+    /// A grid from its text form, a named shape (`quadruped`, `cube-2`, `worm`, and the affordance
+    /// study's `flatworm`, `starfish`, `gecko`) or a box
     /// `box-WxHxD`; the error says what is wrong (the caller names the field).
     pub fn parse(text: &str) -> Result<BodyGrid3, FieldError> {
         let text = text.trim();
@@ -214,6 +223,8 @@ mod tests {
         assert_eq!(BodyGrid3::parse("box-2x3x4").unwrap().voxel_count(), 24);
         assert_eq!(BodyGrid3::parse("quadruped").unwrap().voxel_count(), 28);
         assert_eq!(g.layout().units(), 16);
+        let count = |name: &str| BodyGrid3::parse(name).unwrap().voxel_count();
+        assert_eq!((count("flatworm"), count("starfish"), count("gecko")), (25, 17, 20));
     }
 
     #[test]

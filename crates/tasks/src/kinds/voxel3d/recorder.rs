@@ -18,6 +18,8 @@ pub(crate) struct Recorder {
     /// Time of the next frame (s).
     next: f64,
     period: f64,
+    /// Whether the last call to [`Recorder::record`] recorded a full frame.
+    framed: bool,
     /// Buffers for one frame's rows.
     xyz: Vec<f64>,
     quat: Vec<f64>,
@@ -45,6 +47,7 @@ impl Recorder {
             trace,
             next: 0.0,
             period,
+            framed: false,
             xyz: Vec::new(),
             quat: Vec::new(),
             edge: Vec::new(),
@@ -53,6 +56,7 @@ impl Recorder {
 
     /// Records the state at time `t` when a frame is due.
     pub fn record(&mut self, world: &World, body: &[VoxelId], actuation: &[f64], t: f64) {
+        self.framed = false;
         if self.level == TraceLevel::None || t + 1e-12 < self.next {
             return;
         }
@@ -76,6 +80,14 @@ impl Recorder {
         self.trace.step(&VOXEL_QUAT, &self.quat);
         self.trace.step(&VOXEL_EDGE, &self.edge);
         self.trace.step(&ACTUATION, actuation);
+        self.framed = true;
+    }
+
+    /// Adds a channel's values to the frame just recorded, if one was (a brain's votes).
+    pub fn record_channel(&mut self, channel: &vsrlab_body::Channel, values: &[f64]) {
+        if self.framed {
+            self.trace.step(channel, values);
+        }
     }
 
     pub fn finish(self) -> Option<crate::outcome::Trace> {

@@ -1,0 +1,555 @@
+//! [`Affordance`]: the affordance study's task (thesis §5.1.3, thesis-code-facts §7): a 3D voxel
+//! robot walks towards a wall with an aperture, in three environments ([`Environment`]), and
+//! every voxel votes each step on whether the aperture is passable (its brain's [`VOTE`]
+//! channel, e.g. the `elman` brain).
+//!
+//! Per environment i, from the step the body first touches the wall on:
+//! - the step's decision is "passable" when at least as many voxels vote > 0 as ≤ 0 (ties count
+//!   as passable); `acc_i` = steps whose decision is the truth / all steps of the episode (eq.
+//!   5.4), 0 when the body never touches the wall;
+//! - `d_i` = distance of the body's centre of mass from the target at the end (m), capped at
+//!   `d_max` (5, as the original's code, which measures in metres: the cap never binds);
+//! - penalties (on by default, as the original's code, which differs from the thesis's "more than
+//!   half of the voxels outside the bounding volume"): a voxel's centre beyond the wall voxels'
+//!   centres along x or above the highest of them, or at least half of the bottom layer off the
+//!   floor at once ("flying"), at any step, sets `d_i = d_max` and `acc_i = 0`.
+//!
+//! Then `locomotion = max d_i` (minimised) and `sensing = min acc_i` (maximised), eqs. 5.5–5.6.
+
+use super::aperture::{aperture_world, shape_length, ApertureWorld, Environment};
+use super::physics::{Built, Physics3d, MAX_STEPS};
+use super::recorder::Recorder;
+use super::robot::Voxel3dRobot;
+use super::sensors::VoxelSense;
+use super::BodyGrid3;
+use crate::agent::{Agent, Robot};
+use crate::episode::EpisodeError;
+use crate::fitness::Fitness;
+use crate::kinds::voxel::short_forms::RANDOM_BRAIN_SEED;
+use crate::outcome::{Outcome, Trace, TraceLevel};
+use crate::task::{check_objectives, fitness_values, task_field, Metrics, Objective, Sense, Task};
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+use vsrlab_body::Capture;
+use vsrlab_brain::controllers::elman::VOTE;
+use vsrlab_brain::Controller;
+use vsrlab_field::FieldError;
+use vsrlab_physics3d::{Dof, VoxelId, World, WorldSettings};
+
+/// What an affordance evaluation reports: the two objectives, then each environment's.
+const METRICS: &[&str] = &[
+    "locomotion",
+    "sensing",
+    "locomotion-impassable",
+    "sensing-impassable",
+    "locomotion-passable-left",
+    "sensing-passable-left",
+    "locomotion-passable-right",
+    "sensing-passable-right",
+    "steps",
+];
+
+/// The pieces of an affordance world: voxels link within a piece only.
+const BODY: u32 = 0;
+const WALL: u32 = 1;
+const TARGET: u32 = 2;
+
+/// Detect whether an aperture is passable while walking to the right target.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Affordance {
+    /// Episode length per environment (simulated seconds; the original's code ran 5 s).
+    pub duration: f64,
+    /// The environments, each an episode (the trace shows the first).
+    pub environments: Vec<Environment>,
+    /// Objectives among the metrics (default: minimise `locomotion`, maximise `sensing`).
+    pub fitness: Fitness,
+    /// The world: material, lattice, gravity, collisions, time step, actuation amplitude.
+    pub physics: Physics3d,
+    /// The body length L that sizes the world (absent: the study's for its shapes, flatworm 4,
+    /// starfish 9, gecko 6, else the body's larger side).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub body_length: Option<usize>,
+    /// Upper bound of each distance (m).
+    pub d_max: f64,
+    /// Whether leaving the world's bounds or flying gives the worst scores.
+    pub penalties: bool,
+    /// Frames per second of recorded traces.
+    pub frame_rate: f64,
+}
+
+impl Default for Affordance {
+    fn default() -> Self {
+        Affordance {
+            duration: 5.0,
+            environments: Environment::ALL.to_vec(),
+            fitness: Fitness(vec![
+                Objective {
+                    metric: "locomotion".into(),
+                    sense: Sense::Minimize,
+                },
+                Objective::maximize("sensing"),
+            ]),
+            physics: Physics3d::default(),
+            body_length: None,
+            d_max: 5.0,
+            penalties: true,
+            frame_rate: 50.0,
+        }
+    }
+}
+
+/// One environment's scores.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scores {
+    /// Distance from the target at the end (m), capped.
+    pub distance: f64,
+    /// Accuracy of the collective votes (eq. 5.4).
+    pub accuracy: f64,
+}
+
+/// The collective decision of one step: passable when at least as many votes are > 0 as ≤ 0.
+pub fn decision(votes: &[f64]) -> bool {
+    let yes = votes.iter().filter(|&&v| v > 0.0).count();
+    yes >= votes.len() - yes
+}
+
+impl Affordance {
+    fn length(&self, robot: &Voxel3dRobot, grid: &BodyGrid3) -> usize {
+        let [w, h, _] = grid.extent();
+        self.body_length
+            .or_else(|| shape_length(&robot.body))
+            .unwrap_or(w.max(h))
+    }
+
+    /// One environment's episode.
+    #[allow(clippy::too_many_arguments)]
+    fn episode(
+        &self,
+        env: Environment,
+        grid: &BodyGrid3,
+        length: usize,
+        sensors: &[super::Sensor3],
+        brain: &mut dyn Controller,
+        level: TraceLevel,
+    ) -> Result<(Scores, u64, Option<Trace>), EpisodeError> {
+        let [w, h, _] = grid.extent();
+        let layout = aperture_world(env, length, w, h);
+        let mut built = self.build(grid, &layout)?;
+        let (dt, n) = (built.dt, built.body.len());
+        let steps = (self.duration / dt).ceil() as u64;
+        let (min_x, max_x, top) = bounds(&built);
+        let bottom: Vec<VoxelId> = built
+            .body
+            .iter()
+            .copied()
+            .filter(|&v| built.world.position(v).z < 0.5 * self.physics.voxel_size)
+            .collect();
+        let mut readings = vec![0.0; n * sensors.len()];
+        let mut actuation = vec![0.0; n];
+        let mut capture = Capture::new();
+        let mut recorder = Recorder::new(level, &built, self.frame_rate);
+        recorder.record(&built.world, &built.body, &actuation, 0.0);
+        recorder.record_channel(&VOTE, &vec![0.0; n]);
+        let (mut touched, mut correct, mut penalised) = (false, 0u64, false);
+        brain.reset();
+        for k in 1..=steps {
+            built.world.step(dt).map_err(|e| {
+                EpisodeError::Invalid(format!(
+                    "{}: episode failed at t = {:.4} s: {e}",
+                    env.name(),
+                    k as f64 * dt
+                ))
+            })?;
+            let t = k as f64 * dt;
+            sense(&built.world, &built.body, sensors, t, &mut readings);
+            brain.control(t, &readings, &mut actuation);
+            for (&v, a) in built.body.iter().zip(&mut actuation) {
+                *a = a.clamp(-1.0, 1.0);
+                built.world.set_temperature(v, self.physics.amplitude * *a);
+            }
+            brain.publish(&mut capture);
+            let votes = capture.get(VOTE.name).ok_or_else(|| {
+                EpisodeError::Field(FieldError::new(
+                    "robot.brain",
+                    "the affordance task needs a brain that votes (elman)",
+                ))
+            })?;
+            touched = touched || touches_wall(&built.world);
+            if touched && decision(votes) == env.passable() {
+                correct += 1;
+            }
+            if self.penalties && !penalised {
+                penalised = out_of_bounds(&built, min_x, max_x, top) || flying(&built.world, &bottom);
+            }
+            recorder.record(&built.world, &built.body, &actuation, t);
+            recorder.record_channel(&VOTE, votes);
+        }
+        let target = built.world.position(built.obstacles[built.obstacles.len() - 1]);
+        let centre = built.body.iter().map(|&v| built.world.position(v)).sum::<DVec3>() / n as f64;
+        let scores = match penalised {
+            true => Scores {
+                distance: self.d_max,
+                accuracy: 0.0,
+            },
+            false => Scores {
+                distance: centre.distance(target).min(self.d_max),
+                accuracy: correct as f64 / steps as f64,
+            },
+        };
+        Ok((scores, steps, recorder.finish()))
+    }
+
+    /// The world: the body at the layout's origin, the wall and the target fixed, each a piece.
+    fn build(&self, grid: &BodyGrid3, layout: &ApertureWorld) -> Result<Built, EpisodeError> {
+        let p = &self.physics;
+        let invalid = |e: vsrlab_physics3d::Physics3dError| EpisodeError::Invalid(e.to_string());
+        let mut world = World::new(WorldSettings {
+            voxel_size: p.voxel_size,
+            gravity: p.gravity,
+            floor: true,
+            collisions: p.collisions,
+        })
+        .map_err(invalid)?;
+        let material = world.add_material(p.material()).map_err(invalid)?;
+        let o = layout.body_origin;
+        let mut body = Vec::with_capacity(grid.voxel_count());
+        for c in grid.cells() {
+            let cell = [o[0] + c[0] as i32, o[1] + c[1] as i32, o[2] + c[2] as i32];
+            body.push(world.add_voxel_to_piece(material, cell, BODY).map_err(invalid)?);
+        }
+        let mut obstacles = Vec::with_capacity(layout.wall.len() + 1);
+        for (&cell, piece) in layout.wall.iter().map(|c| (c, WALL)).chain([(&layout.target, TARGET)]) {
+            let v = world.add_voxel_to_piece(material, cell, piece).map_err(|_| {
+                task_field(FieldError::new(
+                    "body_length",
+                    format!("the body reaches the wall or the target at {cell:?}: give a larger body_length"),
+                ))
+            })?;
+            world.set_fixed(v, &Dof::ALL, true);
+            obstacles.push(v);
+        }
+        Ok(Built {
+            world,
+            body,
+            obstacles,
+            dt: p.dt(),
+        })
+    }
+}
+
+/// Whether a body voxel touched a wall voxel this step.
+fn touches_wall(world: &World) -> bool {
+    world.contacts().any(|(a, b)| {
+        let pieces = (world.piece(a), world.piece(b));
+        pieces == (BODY, WALL) || pieces == (WALL, BODY)
+    })
+}
+
+/// The original's bounding volume: the least and greatest x of the wall voxels' centres and the
+/// highest centre (m).
+fn bounds(built: &Built) -> (f64, f64, f64) {
+    let wall = built.obstacles.iter().filter(|&&v| built.world.piece(v) == WALL);
+    let (mut min_x, mut max_x, mut top) = (f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
+    for &v in wall {
+        let p = built.world.position(v);
+        (min_x, max_x, top) = (min_x.min(p.x), max_x.max(p.x), top.max(p.z));
+    }
+    (min_x, max_x, top)
+}
+
+/// Whether a body voxel's centre left the wall's centres along x or rose above the highest.
+fn out_of_bounds(built: &Built, min_x: f64, max_x: f64, top: f64) -> bool {
+    built.body.iter().any(|&v| {
+        let p = built.world.position(v);
+        p.x < min_x || p.x > max_x || p.z > top
+    })
+}
+
+/// Whether at least half of the bottom layer is off the floor.
+fn flying(world: &World, bottom: &[VoxelId]) -> bool {
+    let off = bottom.iter().filter(|&&v| !world.touches_floor(v)).count();
+    !bottom.is_empty() && 2 * off >= bottom.len()
+}
+
+/// Every voxel's readings at time `t`.
+fn sense(world: &World, body: &[VoxelId], sensors: &[super::Sensor3], t: f64, readings: &mut [f64]) {
+    if sensors.is_empty() {
+        return;
+    }
+    for (&v, out) in body.iter().zip(readings.chunks_mut(sensors.len())) {
+        let sense = VoxelSense {
+            time: t,
+            touches_voxel: world.touches_voxel(v),
+            touches_floor: world.touches_floor(v),
+            velocity: world.velocity(v),
+        };
+        for (r, s) in out.iter_mut().zip(sensors) {
+            *r = s.read(&sense);
+        }
+    }
+}
+
+impl Task for Affordance {
+    fn kind(&self) -> &'static str {
+        "affordance"
+    }
+
+    fn validate(&self) -> Result<(), EpisodeError> {
+        let d = self.duration;
+        if !(d.is_finite() && d > 0.0 && d <= 1e4) {
+            return Err(task_field(FieldError::sentence(
+                "duration",
+                format!("must be in (0, 10000] seconds, got {d}"),
+            )));
+        }
+        self.physics.validate().map_err(|e| task_field(e.at("physics")))?;
+        if d / self.physics.dt() > MAX_STEPS {
+            return Err(task_field(FieldError::sentence(
+                "duration",
+                format!("{d} s is more than {MAX_STEPS:.0e} steps of this material's time step"),
+            )));
+        }
+        if self.environments.is_empty() {
+            return Err(task_field(FieldError::sentence("environments", "give at least one")));
+        }
+        if let Some(l) = self.body_length {
+            if !(2..=64).contains(&l) {
+                return Err(task_field(FieldError::sentence(
+                    "body_length",
+                    format!("must be 2 to 64 voxels, got {l}"),
+                )));
+            }
+        }
+        if !(self.d_max.is_finite() && self.d_max > 0.0) {
+            return Err(task_field(FieldError::sentence(
+                "d_max",
+                format!("must be a positive number, got {}", self.d_max),
+            )));
+        }
+        let r = self.frame_rate;
+        if !(r.is_finite() && r > 0.0 && r <= 10_000.0) {
+            return Err(task_field(FieldError::sentence(
+                "frame_rate",
+                format!("must be in (0, 10000], got {r}"),
+            )));
+        }
+        check_objectives(&self.fitness.0, METRICS)
+    }
+
+    fn duration(&self) -> f64 {
+        self.duration
+    }
+
+    fn step_seconds(&self) -> f64 {
+        self.physics.dt()
+    }
+
+    fn metric_names(&self) -> &'static [&'static str] {
+        METRICS
+    }
+
+    fn objectives(&self) -> &[Objective] {
+        &self.fitness.0
+    }
+
+    fn run_episode(
+        &self,
+        robot: &dyn Robot,
+        _seed: u64,
+        level: TraceLevel,
+        _observe: &mut dyn FnMut(f64, &dyn Agent),
+    ) -> Result<Outcome, EpisodeError> {
+        self.validate()?;
+        let robot = robot
+            .description()
+            .and_then(|d| d.as_any().downcast_ref::<Voxel3dRobot>())
+            .ok_or_else(|| {
+                EpisodeError::Field(FieldError::new(
+                    "task.kind",
+                    "the affordance task runs 3D voxel robots (`3d:starfish`, …)",
+                ))
+            })?;
+        let at_robot = |e: FieldError| EpisodeError::Field(e.at("robot"));
+        let grid = robot.grid().map_err(at_robot)?;
+        let sensors = robot.sensor_list().map_err(at_robot)?;
+        let shape = robot.brain_shape().map_err(at_robot)?;
+        let at_brain = |e: vsrlab_brain::BrainError| EpisodeError::Field(FieldError::from(e).at("robot.brain"));
+        let spec =
+            match robot.brain.parameters().is_empty() && robot.brain.parameter_count(&shape).map_err(at_brain)? > 0 {
+                true => robot
+                    .brain
+                    .with_random_parameters(RANDOM_BRAIN_SEED, &shape)
+                    .map_err(at_brain)?,
+                false => robot.brain.clone(),
+            };
+        let mut brain = spec.build(&shape).map_err(at_brain)?;
+        let length = self.length(robot, &grid);
+        let mut metrics = Metrics::new();
+        let (mut locomotion, mut sensing, mut steps, mut trace) = (0.0f64, 1.0f64, 0, None);
+        for (i, &env) in self.environments.iter().enumerate() {
+            let level = if i == 0 { level } else { TraceLevel::None };
+            let (scores, n, t) = self.episode(env, &grid, length, &sensors, brain.as_mut(), level)?;
+            metrics.insert(format!("locomotion-{}", env.name()), scores.distance);
+            metrics.insert(format!("sensing-{}", env.name()), scores.accuracy);
+            locomotion = locomotion.max(scores.distance);
+            sensing = sensing.min(scores.accuracy);
+            steps += n;
+            trace = trace.or(t);
+        }
+        metrics.insert("locomotion".into(), locomotion);
+        metrics.insert("sensing".into(), sensing);
+        metrics.insert("steps".into(), steps as f64);
+        Ok(Outcome {
+            fitness: fitness_values(&self.fitness.0, &metrics),
+            metrics,
+            steps,
+            units: grid.voxel_count(),
+            trace,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kinds::{from_short_forms, RobotArgs};
+    use vsrlab_brain::controllers::elman::ElmanSpec;
+    use vsrlab_brain::BrainSpec;
+
+    #[test]
+    fn ties_count_as_passable() {
+        assert!(decision(&[0.5, -0.5]));
+        assert!(decision(&[0.5, 0.2, -0.9]));
+        assert!(!decision(&[0.5, -0.2, -0.9]));
+        assert!(!decision(&[0.0]), "a vote of 0 is a no");
+    }
+
+    /// A robot whose every voxel always votes `vote` and never actuates (an Elman brain with
+    /// zero weights but the vote's bias).
+    fn voter(body: &str, vote: f64) -> crate::AnyRobot {
+        let robot = from_short_forms(&RobotArgs {
+            body,
+            brain: Some("elman"),
+            sensors: None,
+            preset: "2021",
+        })
+        .unwrap();
+        let r = robot.downcast_ref::<Voxel3dRobot>().unwrap();
+        let shape = r.brain_shape().unwrap();
+        let n = r.brain.parameter_count(&shape).unwrap();
+        let mut weights = vec![0.0; n];
+        // the vote's bias: the first of the last m + 1 parameters
+        weights[n - 7] = vote;
+        crate::AnyRobot::new(Voxel3dRobot {
+            brain: BrainSpec::Elman(ElmanSpec {
+                weights,
+                ..ElmanSpec::default()
+            }),
+            ..r.clone()
+        })
+    }
+
+    #[test]
+    fn a_robot_touching_the_wall_from_the_start_and_voting_passable_scores_by_the_truth() {
+        // L = 2: the wall at y = 6 and apertures 1 wide (at x = 3, 2 and 4); a 3 × 4 body from
+        // (2, 2) ends next to the wall and touches it at once in all three
+        let task = Affordance {
+            duration: 0.02,
+            body_length: Some(2),
+            ..Affordance::default()
+        };
+        let yes = voter("3d:###/###/###/###", 10.0);
+        let o = task
+            .run_episode(yes.as_robot(), 0, TraceLevel::Full, &mut |_, _| {})
+            .unwrap();
+        assert_eq!(o.metric("sensing-passable-left"), 1.0, "{:?}", o.metrics);
+        assert_eq!(o.metric("sensing-passable-right"), 1.0);
+        assert_eq!(o.metric("sensing-impassable"), 0.0);
+        assert_eq!(o.metric("sensing"), 0.0, "the worst of the three");
+        let trace = o.trace.unwrap();
+        assert_eq!(
+            trace.at(VOTE.name, 0).unwrap(),
+            [0.0; 12],
+            "no vote before the first step"
+        );
+        assert!(trace.at(VOTE.name, 1).unwrap().iter().all(|&v| v > 0.99));
+        let no = voter("3d:###/###/###/###", -10.0);
+        let o = task
+            .run_episode(no.as_robot(), 0, TraceLevel::None, &mut |_, _| {})
+            .unwrap();
+        assert_eq!(
+            (o.metric("sensing-impassable"), o.metric("sensing-passable-left")),
+            (1.0, 0.0)
+        );
+    }
+
+    #[test]
+    fn a_robot_that_never_reaches_the_wall_scores_0_and_distances_are_capped() {
+        let task = Affordance {
+            duration: 0.05,
+            d_max: 0.01,
+            ..Affordance::default()
+        };
+        let o = task
+            .run_episode(
+                voter("3d:flatworm", 10.0).as_robot(),
+                0,
+                TraceLevel::None,
+                &mut |_, _| {},
+            )
+            .unwrap();
+        assert_eq!(o.metric("sensing"), 0.0);
+        // the flatworm starts 2 L voxels (8 cm) and more from its targets
+        assert_eq!(o.metric("locomotion"), 0.01);
+        assert_eq!(o.fitness, vec![0.01, 0.0]);
+    }
+
+    #[test]
+    fn brains_that_do_not_vote_and_bad_settings_are_refused_naming_the_field() {
+        let phase = from_short_forms(&RobotArgs {
+            body: "3d:flatworm",
+            brain: Some("phase"),
+            sensors: None,
+            preset: "2021",
+        })
+        .unwrap();
+        let e = Affordance::default()
+            .run_episode(phase.as_robot(), 0, TraceLevel::None, &mut |_, _| {})
+            .unwrap_err();
+        assert!(
+            e.to_string().starts_with("robot.brain") && e.to_string().contains("vote"),
+            "{e}"
+        );
+        let err = |t: Affordance| t.validate().unwrap_err().to_string();
+        assert!(err(Affordance {
+            environments: vec![],
+            ..Default::default()
+        })
+        .starts_with("task.environments"));
+        assert!(err(Affordance {
+            body_length: Some(1),
+            ..Default::default()
+        })
+        .starts_with("task.body_length"));
+        assert!(err(Affordance {
+            d_max: f64::NAN,
+            ..Default::default()
+        })
+        .starts_with("task.d_max"));
+        // a body too deep for its length reaches the wall
+        let long = Affordance {
+            body_length: Some(2),
+            ..Affordance::default()
+        };
+        let e = long
+            .run_episode(
+                voter("3d:#/#/#/#/#", 1.0).as_robot(),
+                0,
+                TraceLevel::None,
+                &mut |_, _| {},
+            )
+            .unwrap_err();
+        assert!(e.to_string().starts_with("task.body_length"), "{e}");
+    }
+}

@@ -224,6 +224,9 @@ mod tests {
         assert!(unless_every_evaluation_failed(&[]).is_ok());
         assert!(unless_every_evaluation_failed(&[failed("a"), None, failed("b")]).is_ok());
         let e = unless_every_evaluation_failed(&[failed("task.x: bad"), failed("other")]).unwrap_err();
-        assert!(e.to_string().contains("all 2 initial genotypes") && e.to_string().ends_with("task.x: bad"), "{e}");
+        assert!(
+            e.to_string().contains("all 2 initial genotypes") && e.to_string().ends_with("task.x: bad"),
+            "{e}"
+        );
     }
 }

@@ -1,7 +1,7 @@
 // Browser test of `vsrlab view` (docs/viewer.md): Playwright drives Debian's chromium, headless.
 // It writes replays with `vsrlab simulate --replay`, serves them, plays, scrubs, toggles overlays,
-// clicks a voxel and checks the drawn pixels; screenshots go to $VIEWER_SCREENSHOTS (default
-// web-test/screenshots) to be looked at. Run by web-test/run.sh.
+// clicks a voxel, orbits a 3D replay's camera and checks the drawn pixels; screenshots go to
+// $VIEWER_SCREENSHOTS (default web-test/screenshots) to be looked at. Run by web-test/run.sh.
 import { chromium } from "playwright-core";
 import { spawn, execFileSync } from "node:child_process";
 import { mkdtempSync, writeFileSync, statSync, mkdirSync, readFileSync } from "node:fs";
@@ -264,6 +264,89 @@ const fills = await paintPage.evaluate(() => {
 check("a replay's unit_fill colours its units instead of the area colours", fills.kind > 2000 && fills.area < 50, JSON.stringify(fills));
 await paintPage.screenshot({ path: join(shots, "unit-fill.png") });
 paint.proc.kill("SIGINT");
+
+// 3D replays: a quadruped beside a small wall of fixed voxels (1 s), next to the 2D biped. The 3D
+// pane draws shaded cubes on a checkerboard under the sky; scrubbing, dragging (orbit), the wheel
+// and the follow toggle change its pixels; clicking a voxel selects it.
+writeFileSync(join(work, "wall3d.toml"), [
+  "runs = 1", "[representation]", 'body = { kind = "voxel3d", body = "quadruped", sensors = "cpg:5,touch,floor,vy,vx" }',
+  'brain = { kind = "distributed-mlp", signals = 1 }', "[task]", 'kind = "locomotion3d"', "duration = 1.0",
+  "obstacles = [[6, 0, 0], [6, 1, 0], [6, 2, 0], [6, 1, 1]]", "[optimizer]", 'kind = "cma-es"', "[stop]", "evaluations = 10",
+].join("\n") + "\n");
+const solid = join(work, "solid.replay.json");
+vsrlab("simulate", "--body", "3d:quadruped", "--task-of", join(work, "wall3d.toml"), "--duration", "1", "--replay", solid);
+const view3d = await startViewer([solid, walk]);
+const page3d = await browser.newPage({ viewport: { width: 1300, height: 1000 } });
+page3d.on("pageerror", (e) => consoleErrors.push(String(e)));
+await page3d.goto(view3d.url);
+await page3d.waitForFunction(() => window.viewer && window.viewer.ready, null, { timeout: 30000 });
+// Counts of the 3D pane's colours (below the HUD): shaded blue voxels (and their centroid on the
+// page), the sky, the floor's two greys, the shaded grey of the wall. The frame is kept in the page
+// as `name` for `changed3d`, which counts the pixels that differ between two kept frames.
+const solidPixels = (name) => page3d.evaluate((name) => {
+  const c = document.querySelector(".pane canvas");
+  const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+  (window.frames3d = window.frames3d || {})[name] = d;
+  const n = { blue: 0, sky: 0, light: 0, dark: 0, wall: 0, bx: 0, by: 0 };
+  for (let p = 0; p < d.length; p += 4) {
+    const [r, g, b] = [d[p], d[p + 1], d[p + 2]], y = Math.floor(p / 4 / c.width);
+    if (r === 214 && g === 230 && b === 245) n.sky++;
+    if (y < 80) continue;
+    if (b > 100 && b - r > 60 && b > g) { n.blue++; n.bx += (p / 4) % c.width; n.by += y; }
+    if (r === g && g === b) {
+      if (r === 226) n.light++; else if (r === 196) n.dark++; else if (r >= 60 && r <= 130) n.wall++;
+    }
+  }
+  const rect = c.getBoundingClientRect();
+  return { ...n, bx: rect.x + n.bx / n.blue * rect.width / c.width, by: rect.y + n.by / n.blue * rect.height / c.height };
+}, name);
+const changed3d = (a, b) => page3d.evaluate(([a, b]) => {
+  const x = window.frames3d[a], y = window.frames3d[b];
+  let n = 0;
+  for (let i = 0; i < x.length; i += 4) if (x[i] !== y[i] || x[i + 1] !== y[i + 1] || x[i + 2] !== y[i + 2]) n++;
+  return n;
+}, [a, b]);
+const scrub3d = (t) => page3d.evaluate((t) => { const s = document.getElementById("scrub"); s.value = String(t); s.dispatchEvent(new Event("input")); }, t);
+await scrub3d(0);
+const first3d = await solidPixels("first");
+await page3d.screenshot({ path: join(shots, "solid-3d.png") });
+const counts = first3d;
+check("the 3D pane draws shaded blue cubes", first3d.blue > 3000, JSON.stringify(counts));
+check("the 3D pane draws the sky and the floor's two greys", first3d.sky > 1000 && first3d.light > 5000 && first3d.dark > 5000, JSON.stringify(counts));
+check("the 3D pane draws the fixed voxels grey", first3d.wall > 500, JSON.stringify(counts));
+await scrub3d(1);
+await solidPixels("end");
+const startToEnd = await changed3d("first", "end");
+check("the 3D frame changes from the start to the end of the episode", startToEnd > 1000, `${startToEnd} pixels`);
+const canvas3d = await page3d.locator(".pane canvas").first().boundingBox();
+await page3d.mouse.move(canvas3d.x + canvas3d.width / 2, canvas3d.y + canvas3d.height / 2);
+await page3d.mouse.down();
+await page3d.mouse.move(canvas3d.x + canvas3d.width / 2 + 120, canvas3d.y + canvas3d.height / 2 + 40, { steps: 6 });
+await page3d.mouse.up();
+await solidPixels("orbited");
+const byDrag = await changed3d("end", "orbited");
+const orbit = await page3d.evaluate(() => ({ ...window.viewer.state.orbit, selected: window.viewer.state.selected }));
+await page3d.screenshot({ path: join(shots, "solid-3d-orbit.png") });
+check("dragging the 3D pane orbits the camera", byDrag > 5000 && orbit.azimuth !== -60 && orbit.elevation > 25 && orbit.selected === null,
+  `${byDrag} pixels, ${JSON.stringify(orbit)}`);
+await page3d.mouse.wheel(0, -200);
+await solidPixels("zoomed");
+const byWheel = await changed3d("orbited", "zoomed");
+check("the wheel zooms the 3D pane", byWheel > 5000, `${byWheel} pixels`);
+await page3d.uncheck("#follow");
+await solidPixels("whole");
+const byFollow = await changed3d("zoomed", "whole");
+check("the follow toggle reframes the 3D pane", byFollow > 1000, `${byFollow} pixels`);
+await page3d.check("#follow");
+await scrub3d(0);
+const atBody = await solidPixels("click");
+await page3d.mouse.click(atBody.bx, atBody.by);
+const picked = await page3d.evaluate(() => window.viewer.state.selected && window.viewer.state.selected.unit);
+const offered3d = await page3d.locator("#unit-channel option").allTextContents();
+check("clicking a 3D voxel selects it and offers its channels", Number.isInteger(picked) && ["actuation", "voxel_edge"].every((n) => offered3d.includes(n)),
+  `voxel ${picked}, ${JSON.stringify(offered3d)}`);
+view3d.proc.kill("SIGINT");
+check("no script errors on the later pages (labelling, unit fill, 3D)", consoleErrors.length === 0, consoleErrors.join("; "));
 await browser.close();
 
 // Ctrl-C stops the server cleanly.

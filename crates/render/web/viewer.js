@@ -14,6 +14,7 @@ const state = {
   follow: true,
   zoom: 1,
   overlays: { colours: true, touch: true, lidar: true, trail: true, footprints: true, ticks: true },
+  orbit: { azimuth: -60, elevation: 25 }, // the 3D camera's direction from its target (degrees), shared by all 3D panes
   selected: null, // { pane, unit }
   unitChannel: "", // the per-unit channel the unit chart plots ("": actuation and area ratio)
   chartsDirty: true,
@@ -69,6 +70,7 @@ function readReplay(json, name) {
   for (const f of ["t0", "frame_dt", "side", "quantum"]) need(isNumber(json[f]), name, `field '${f}' must be a number, got ${JSON.stringify(json[f])}`);
   need(json.frame_dt > 0, name, "field 'frame_dt' must be positive");
   need(json.side > 0, name, "field 'side' must be positive");
+  if (json.channels && typeof json.channels === "object" && json.channels.voxel_xyz) return readSolidReplay(json, name);
   const world = json.world, body = json.body;
   need(world && Array.isArray(world.terrain) && world.terrain.length >= 2, name, "field 'world.terrain' must be a list of at least 2 points");
   world.terrain.forEach((p, i) => need(Array.isArray(p) && isNumber(p[0]) && isNumber(p[1]), name, `field 'world.terrain[${i}]' is not an [x, y] point`));
@@ -259,6 +261,10 @@ function addPane(replay, error, name) {
     pane.ctx = canvas.getContext("2d");
     canvas.addEventListener("click", (e) => selectAt(pane, e));
     canvas.addEventListener("wheel", (e) => { e.preventDefault(); zoomBy(e.deltaY < 0 ? 0.1 : -0.1); }, { passive: false });
+    if (replay.solid) {
+      el.classList.add("solid");
+      listenOrbit(pane);
+    }
   } else {
     const p = document.createElement("div");
     p.className = "error";
@@ -406,6 +412,7 @@ function drawPane(pane) {
   const dpr = window.devicePixelRatio || 1;
   const width = Math.round(canvas.clientWidth * dpr), height = Math.round(canvas.clientHeight * dpr);
   if (canvas.width !== width || canvas.height !== height) { canvas.width = width; canvas.height = height; }
+  if (r.solid) return drawSolidPane(pane);
   const { k, a } = frameAt(r, state.time);
   const cam = cameraOf(pane, k, a);
   ctx.fillStyle = "#fff";
@@ -543,11 +550,408 @@ function drawHud(ctx, r, k, a) {
   const lines = [`t = ${(r.t0 + t).toFixed(2)} s`, `distance ${x >= 0 ? "+" : ""}${x.toFixed(1)} (${(x / r.side).toFixed(1)} voxels)`];
   if (t > 0) lines.push(`velocity ${(x / t).toFixed(2)} /s (last 1 s: ${r.velocity[k].toFixed(2)})`);
   if (r.ch.pressure) lines.push(`pressure ${value(r.ch.pressure, k, a, 0).toFixed(2)} p_max`);
+  drawHudLines(ctx, lines);
+}
+
+// The HUD's lines in a box at the top left of a pane.
+function drawHudLines(ctx, lines) {
   ctx.font = "13px sans-serif";
   ctx.fillStyle = "rgba(255,255,255,0.75)";
   ctx.fillRect(4, 4, 290, 6 + 17 * lines.length);
   ctx.fillStyle = "#000";
   lines.forEach((l, i) => ctx.fillText(l, 10, 20 + 17 * i));
+}
+
+// ---------------------------------------------------------------- 3D replays
+
+// The look of 3D frames, the same as the PNG renderer's (crates/render/src/solid3d/) so the page
+// and the videos look alike: palette, light, camera and floor.
+const SOLID = {
+  sky: [214, 230, 245],
+  floorLight: [226, 226, 226],
+  floorDark: [196, 196, 196],
+  floorFar: [211, 211, 211], // the floor far away, where its squares fade
+  fixedVoxel: [140, 140, 140], // walls, before shading
+  voxel: [79, 155, 217], // a moving voxel at rest, before shading
+  contracted: [222, 84, 84], // what actuation −1 tints it towards
+  expanded: [92, 196, 92], // what actuation +1 tints it towards
+  tint: 0.6, // how far full actuation moves the colour towards its extreme
+  ambient: 0.35, // light reaching a face whatever its direction
+  outline: 0.55, // a face's outline is its colour times this
+  light: normalise3([0.35, -0.55, 0.76]), // towards the light: above, in front, a little right
+  azimuth: -60, // default direction of the camera from its target, degrees from +x (in front, right)
+  elevation: 25, // default height of the camera above the target's plane, degrees
+  minElevation: 5,
+  maxElevation: 85,
+  fov: 55, // field of view across the canvas's shorter side, degrees
+  targetRow: 0.55, // canvas row of the target, as a fraction of the height
+  margin: 1.4, // room around the framed sphere (1: it touches the edges)
+  near: 0.02, // nearest depth drawn, as a fraction of the camera's distance
+  fadeStart: 1.5, // depth (× the distance) where the floor starts to fade
+  fadeFull: 4, // depth (× the distance) from where it shows only its far colour
+  reach: 7, // half-side (× the distance) of the floor's squares drawn around the target
+  maxSquares: 60, // most squares along a half-side (larger squares beyond)
+  degreesPerPixel: 0.4, // orbit speed when dragging
+};
+const NO_TURN = [1, 0, 0, 0];
+
+function add3(a, b) { return [a[0] + b[0], a[1] + b[1], a[2] + b[2]]; }
+function sub3(a, b) { return [a[0] - b[0], a[1] - b[1], a[2] - b[2]]; }
+function scale3(a, s) { return [a[0] * s, a[1] * s, a[2] * s]; }
+function dot3(a, b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+function cross3(a, b) { return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]; }
+function length3(a) { return Math.sqrt(dot3(a, a)); }
+function normalise3(a) { return scale3(a, 1 / length3(a)); }
+
+// `v` turned by the unit quaternion q = (w, x, y, z): v + 2w (u × v) + 2 u × (u × v), u its vector part.
+function rotate(q, v) {
+  const u = [q[1], q[2], q[3]];
+  const t = scale3(cross3(u, v), 2);
+  return add3(add3(v, scale3(t, q[0])), cross3(u, t));
+}
+
+// The quaternion w, x, y, z normalised (the identity when all zero): interpolated ones are not unit.
+function unitQuat(w, x, y, z) {
+  const n = Math.sqrt(w * w + x * x + y * y + z * z);
+  return n > 0 ? [w / n, x / n, y / n, z / n] : NO_TURN;
+}
+
+// Checks and decodes a 3D replay (channel `voxel_xyz`); throws ReplayError naming the field.
+function readSolidReplay(json, name) {
+  const frames = json.frames;
+  const ch = {};
+  for (const [key, channel] of Object.entries(json.channels)) ch[key] = decodeChannel(name, key, channel, frames);
+  const xyz = ch.voxel_xyz;
+  need(xyz.per % 3 === 0, name, `channel 'voxel_xyz' has ${xyz.per} values per frame, expected 3 per voxel`);
+  const voxels = xyz.per / 3;
+  for (const [key, width] of [["voxel_quat", 4], ["voxel_edge", 1], ["actuation", 1]]) {
+    if (ch[key]) need(ch[key].per === width * voxels, name, `channel '${key}' has ${ch[key].per} values per frame, expected ${width * voxels} (${width} per voxel of 'voxel_xyz')`);
+  }
+  need(ch.center && ch.center.per === 2, name, "channel 'center' is missing or does not hold 2 values per frame");
+  const world = json.world || {}, body = json.body || {};
+  const fixed = world.fixed_voxels || [];
+  need(Array.isArray(fixed), name, "field 'world.fixed_voxels' must be a list of [x, y, z] centres");
+  fixed.forEach((p, i) => need(Array.isArray(p) && p.length === 3 && p.every(isNumber), name, `field 'world.fixed_voxels[${i}]' is not an [x, y, z] centre`));
+  const unitFill = body.unit_fill || [];
+  need(Array.isArray(unitFill) && unitFill.every((c) => Number.isInteger(c) && c >= 0 && c <= 0xffffff), name, "field 'body.unit_fill' must be a list of 0xRRGGBB colours");
+  const r = {
+    solid: true, name, title: json.title || name, frames, t0: json.t0, dt: json.frame_dt, side: json.side,
+    floorZ: -json.side / 2, voxels, fixed, unitFill, ch, cells: [], corners: [], rays: [], damage: null, graph: null,
+  };
+  deriveSolid(r);
+  return r;
+}
+
+// Quantities a 3D replay's page computes once: horizontal velocity over the last second, the
+// body's size (framing when following) and the whole run's extent (framing when not).
+function deriveSolid(r) {
+  const c = r.ch.center.values, w = Math.max(1, Math.round(1 / r.dt));
+  r.velocity = new Float64Array(r.frames);
+  for (let k = 1; k < r.frames; k++) {
+    const j = Math.max(0, k - w);
+    r.velocity[k] = Math.hypot(c[2 * k] - c[2 * j], c[2 * k + 1] - c[2 * j + 1]) / ((k - j) * r.dt);
+  }
+  r.duration = (r.frames - 1) * r.dt;
+  const xyz = r.ch.voxel_xyz.values, per = r.ch.voxel_xyz.per, cube = [r.side, r.side, r.side];
+  let radius = r.side, height = r.side;
+  const runLo = [Infinity, Infinity, Infinity], runHi = [-Infinity, -Infinity, -Infinity];
+  for (let k = 0; k < r.frames; k++) {
+    const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+    for (let j = k * per; j < (k + 1) * per; j += 3) {
+      for (let d = 0; d < 3; d++) { lo[d] = Math.min(lo[d], xyz[j + d]); hi[d] = Math.max(hi[d], xyz[j + d]); }
+    }
+    radius = Math.max(radius, length3(add3(sub3(hi, lo), cube)) / 2);
+    height = Math.max(height, hi[2] + r.side / 2 - r.floorZ);
+    for (let d = 0; d < 3; d++) { runLo[d] = Math.min(runLo[d], lo[d]); runHi[d] = Math.max(runHi[d], hi[d]); }
+  }
+  r.radius = radius; // the largest sphere around the body's bounding box at any frame
+  r.targetZ = r.floorZ + height / 2; // the camera looks at half the body's greatest height
+  r.square = r.side * Math.max(1, Math.round(radius / r.side)); // floor squares
+  r.runCentre = scale3(add3(runLo, runHi), 0.5);
+  r.runRadius = length3(add3(sub3(runHi, runLo), cube)) / 2;
+}
+
+// The pane's perspective camera: `distance` from `target` in the orbit's direction; projects world
+// points (z up) to canvas pixels.
+function solidCamera(target, distance, w, h) {
+  const az = state.orbit.azimuth * Math.PI / 180, el = state.orbit.elevation * Math.PI / 180;
+  const toEye = [Math.cos(el) * Math.cos(az), Math.cos(el) * Math.sin(az), Math.sin(el)];
+  const forward = scale3(toEye, -1);
+  const right = normalise3(cross3(forward, [0, 0, 1]));
+  return {
+    eye: add3(target, scale3(toEye, distance)), right, up: cross3(right, forward), forward, target, distance, el, w, h,
+    focal: 0.5 * Math.min(w, h) / Math.tan(SOLID.fov * Math.PI / 360),
+    cx: w / 2, cy: h * SOLID.targetRow, near: distance * SOLID.near,
+  };
+}
+
+// The camera of a pane at frame k + a: following the body's centre, or framing the whole run.
+function solidCameraOf(pane, k, a) {
+  const r = pane.replay;
+  const [x, y, radius] = state.follow
+    ? [value(r.ch.center, k, a, 0), value(r.ch.center, k, a, 1), r.radius]
+    : [r.runCentre[0], r.runCentre[1], r.runRadius];
+  const distance = radius * SOLID.margin / Math.sin(SOLID.fov * Math.PI / 360) / state.zoom;
+  return solidCamera([x, y, r.targetZ], distance, pane.canvas.width, pane.canvas.height);
+}
+
+// `p` in camera coordinates: x right, y up, z depth along the view direction.
+function cameraSpace(cam, p) {
+  const d = sub3(p, cam.eye);
+  return [dot3(d, cam.right), dot3(d, cam.up), dot3(d, cam.forward)];
+}
+
+function pixelOf(cam, c) {
+  return [cam.cx + cam.focal * c[0] / c[2], cam.cy - cam.focal * c[1] / c[2]];
+}
+
+// The polygon of world points in pixels, cut at the near plane (Sutherland–Hodgman against one
+// plane); empty when it lies wholly behind it.
+function projectPolygon(cam, corners) {
+  const poly = corners.map((p) => cameraSpace(cam, p)), out = [];
+  for (let i = 0; i < poly.length; i++) {
+    const p = poly[i], q = poly[(i + 1) % poly.length];
+    const pIn = p[2] >= cam.near, qIn = q[2] >= cam.near;
+    if (pIn) out.push(pixelOf(cam, p));
+    if (pIn !== qIn) {
+      const t = (cam.near - p[2]) / (q[2] - p[2]);
+      out.push(pixelOf(cam, add3(p, scale3(sub3(q, p), t))));
+    }
+  }
+  return out;
+}
+
+// Canvas row of the horizon (where the floor meets the sky far away).
+function horizonRow(cam) {
+  return cam.cy - cam.focal * Math.tan(cam.el);
+}
+
+// Canvas row where the floor at height z is `depth` away: on a plane, depth depends on the row only.
+function floorRow(cam, z, depth) {
+  const v = (Math.sin(cam.el) - (cam.eye[2] - z) / depth) / Math.cos(cam.el);
+  return cam.cy - cam.focal * v;
+}
+
+function rgb(c) {
+  return `rgb(${c[0]},${c[1]},${c[2]})`;
+}
+
+// `c` times `factor`, rounded and clamped per channel.
+function scaledColour(c, factor) {
+  return c.map((v) => Math.min(255, Math.max(0, Math.round(v * factor))));
+}
+
+// `a` moved a fraction t (clamped to [0, 1]) towards `b`.
+function mixColour(a, b, t) {
+  t = Math.min(1, Math.max(0, t));
+  return a.map((v, i) => Math.round(v + (b[i] - v) * t));
+}
+
+// Brightness of a face with outward unit normal n: ambient plus a Lambert term.
+function brightness(n) {
+  return SOLID.ambient + (1 - SOLID.ambient) * Math.max(0, dot3(n, SOLID.light));
+}
+
+// Base colour of moving voxel v: the replay's own fill where it gives one, else blue tinted red
+// when contracting and green when expanding by its actuation in [−1, 1] (untinted blue with the
+// colours overlay off).
+function voxelColour(r, v, actuation) {
+  if (!state.overlays.colours) return SOLID.voxel;
+  if (v < r.unitFill.length) { const c = r.unitFill[v]; return [c >> 16, (c >> 8) & 255, c & 255]; }
+  const act = Math.min(1, Math.max(-1, actuation));
+  return act < 0 ? mixColour(SOLID.voxel, SOLID.contracted, -act * SOLID.tint) : mixColour(SOLID.voxel, SOLID.expanded, act * SOLID.tint);
+}
+
+// Every cube at frame k + a: the moving voxels (unit = voxel index), then the fixed ones (unit −1).
+function solidCubes(r, k, a) {
+  const { voxel_xyz: xyz, voxel_quat: quat, voxel_edge: edge, actuation } = r.ch;
+  const cubes = [];
+  for (let v = 0; v < r.voxels; v++) {
+    const centre = [value(xyz, k, a, 3 * v), value(xyz, k, a, 3 * v + 1), value(xyz, k, a, 3 * v + 2)];
+    const turn = quat ? unitQuat(value(quat, k, a, 4 * v), value(quat, k, a, 4 * v + 1), value(quat, k, a, 4 * v + 2), value(quat, k, a, 4 * v + 3)) : NO_TURN;
+    const e = edge ? value(edge, k, a, v) : r.side;
+    const colour = voxelColour(r, v, actuation ? value(actuation, k, a, v) : 0);
+    cubes.push({ centre, turn, edge: e > 0 ? e : r.side, colour, unit: v });
+  }
+  for (const centre of r.fixed) cubes.push({ centre, turn: NO_TURN, edge: r.side, colour: SOLID.fixedVoxel, unit: -1 });
+  return cubes;
+}
+
+// Appends to `out` the faces of `cube` turned towards the eye (back faces culled), each with its
+// corners in order around it, its shaded fill and outline, and its distance from the eye.
+function visibleFaces(cube, eye, out) {
+  const h = cube.edge / 2;
+  const axes = [rotate(cube.turn, [1, 0, 0]), rotate(cube.turn, [0, 1, 0]), rotate(cube.turn, [0, 0, 1])];
+  const outline = rgb(scaledColour(cube.colour, SOLID.outline));
+  for (let i = 0; i < 6; i++) {
+    const axis = i >> 1, normal = scale3(axes[axis], i % 2 === 0 ? -1 : 1);
+    const centre = add3(cube.centre, scale3(normal, h));
+    if (dot3(normal, sub3(eye, centre)) <= 0) continue;
+    const u = scale3(axes[(axis + 1) % 3], h), v = scale3(axes[(axis + 2) % 3], h);
+    const corners = [add3(add3(centre, u), v), add3(sub3(centre, u), v), sub3(sub3(centre, u), v), sub3(add3(centre, u), v)];
+    out.push({
+      corners, unit: cube.unit, distance: length3(sub3(centre, eye)),
+      fill: rgb(scaledColour(cube.colour, brightness(normal))), outline,
+    });
+  }
+}
+
+// The camera and the visible faces of a pane at the viewer's time, far to near, each with its
+// pixels (the drawing and the click use the same).
+function solidScene(pane) {
+  const r = pane.replay;
+  const { k, a } = frameAt(r, state.time);
+  const cam = solidCameraOf(pane, k, a);
+  const faces = [];
+  for (const cube of solidCubes(r, k, a)) visibleFaces(cube, cam.eye, faces);
+  faces.sort((p, q) => q.distance - p.distance);
+  for (const f of faces) f.pixels = projectPolygon(cam, f.corners);
+  return { k, a, cam, faces: faces.filter((f) => f.pixels.length >= 3) };
+}
+
+function pixelPath(ctx, pixels) {
+  ctx.beginPath();
+  pixels.forEach(([x, y], i) => (i ? ctx.lineTo(x, y) : ctx.moveTo(x, y)));
+  ctx.closePath();
+}
+
+// Sky, the floor (a checkerboard on z = floorZ fading to one grey far away), the trail, then
+// every visible face painted far to near, the selected voxel outlined, and the HUD.
+function drawSolidPane(pane) {
+  const r = pane.replay, ctx = pane.ctx;
+  const { k, a, cam, faces } = solidScene(pane);
+  ctx.lineJoin = "round";
+  drawSolidFloor(ctx, cam, r);
+  if (state.overlays.trail) drawSolidTrail(ctx, cam, r, k);
+  const selected = state.selected && state.selected.pane === pane ? state.selected.unit : -1;
+  for (const f of faces) {
+    pixelPath(ctx, f.pixels);
+    ctx.fillStyle = f.fill;
+    ctx.fill();
+    const chosen = f.unit >= 0 && f.unit === selected;
+    ctx.strokeStyle = chosen ? "#e0e" : f.outline;
+    ctx.lineWidth = chosen ? 2.5 : 1;
+    ctx.stroke();
+  }
+  drawSolidHud(ctx, r, k, a);
+}
+
+function drawSolidFloor(ctx, cam, r) {
+  ctx.fillStyle = rgb(SOLID.sky);
+  ctx.fillRect(0, 0, cam.w, cam.h);
+  const horizon = Math.max(0, Math.floor(horizonRow(cam)));
+  ctx.fillStyle = rgb(SOLID.floorLight);
+  ctx.fillRect(0, horizon, cam.w, cam.h - horizon);
+  // the dark squares (the light ones are the floor's own colour), nearer than the full fade, in one path
+  const reach = SOLID.reach * cam.distance, square = Math.max(r.square, reach / SOLID.maxSquares);
+  const farthest = SOLID.fadeFull * cam.distance, z = r.floorZ, [tx, ty] = cam.target;
+  ctx.beginPath();
+  for (let i = Math.floor((tx - reach) / square); i <= Math.ceil((tx + reach) / square); i++) {
+    for (let j = Math.floor((ty - reach) / square); j <= Math.ceil((ty + reach) / square); j++) {
+      if (((i + j) & 1) === 0) continue;
+      const corners = [[i, j], [i + 1, j], [i + 1, j + 1], [i, j + 1]].map(([x, y]) => [x * square, y * square, z]);
+      if (corners.every((c) => dot3(sub3(c, cam.eye), cam.forward) > farthest)) continue;
+      const pixels = projectPolygon(cam, corners);
+      if (pixels.length < 3 || pixels.every(([x]) => x < 0) || pixels.every(([x]) => x > cam.w) || pixels.every(([, y]) => y > cam.h)) continue;
+      pixels.forEach(([x, y], n) => (n ? ctx.lineTo(x, y) : ctx.moveTo(x, y)));
+      ctx.closePath();
+    }
+  }
+  ctx.fillStyle = rgb(SOLID.floorDark);
+  ctx.fill();
+  // the fade: the far colour from the horizon, clearing towards where fading starts
+  const start = floorRow(cam, z, SOLID.fadeStart * cam.distance), full = floorRow(cam, z, farthest);
+  const bottom = Math.min(cam.h, Math.ceil(start));
+  if (bottom > horizon && start > full) {
+    const [cr, cg, cb] = SOLID.floorFar;
+    const fade = ctx.createLinearGradient(0, full, 0, start);
+    fade.addColorStop(0, `rgba(${cr},${cg},${cb},1)`);
+    fade.addColorStop(1, `rgba(${cr},${cg},${cb},0)`);
+    ctx.fillStyle = fade;
+    ctx.fillRect(0, horizon, cam.w, bottom - horizon);
+  }
+}
+
+// The path of the body's centre so far, on the floor.
+function drawSolidTrail(ctx, cam, r, k) {
+  const c = r.ch.center.values;
+  ctx.beginPath();
+  let pen = false;
+  for (let j = 0; j <= k; j++) {
+    const p = cameraSpace(cam, [c[2 * j], c[2 * j + 1], r.floorZ]);
+    if (p[2] < cam.near) { pen = false; continue; }
+    const [x, y] = pixelOf(cam, p);
+    if (pen) ctx.lineTo(x, y); else ctx.moveTo(x, y);
+    pen = true;
+  }
+  ctx.strokeStyle = "rgba(0,0,0,0.45)";
+  ctx.lineWidth = 1.5;
+  ctx.stroke();
+}
+
+// Time, horizontal distance of the body's centre from the start (m and voxel edges), velocity.
+function drawSolidHud(ctx, r, k, a) {
+  const c = r.ch.center.values;
+  const d = Math.hypot(value(r.ch.center, k, a, 0) - c[0], value(r.ch.center, k, a, 1) - c[1]);
+  const t = (k + a) * r.dt;
+  const lines = [`t = ${(r.t0 + t).toFixed(2)} s`, `distance ${d.toFixed(3)} m (${(d / r.side).toFixed(1)} voxels)`];
+  if (t > 0) lines.push(`velocity ${(d / t).toFixed(3)} m/s (last 1 s: ${r.velocity[k].toFixed(3)})`);
+  drawHudLines(ctx, lines);
+}
+
+// Selects the voxel whose visible face is under the pointer (the nearest face there), not after a drag.
+function selectSolidAt(pane, event) {
+  if (pane.dragged) { pane.dragged = false; return; }
+  const canvas = pane.canvas, rect = canvas.getBoundingClientRect();
+  const px = (event.clientX - rect.left) * canvas.width / rect.width;
+  const py = (event.clientY - rect.top) * canvas.height / rect.height;
+  const { faces } = solidScene(pane);
+  for (let i = faces.length - 1; i >= 0; i--) {
+    pixelPath(pane.ctx, faces[i].pixels);
+    if (!pane.ctx.isPointInPath(px, py)) continue;
+    if (faces[i].unit < 0) return; // a wall
+    state.selected = { pane, unit: faces[i].unit };
+    listUnitChannels(pane.replay);
+    state.chartsDirty = true;
+    draw();
+    return;
+  }
+}
+
+// Dragging on a 3D pane orbits the camera of every 3D pane (azimuth, and elevation within
+// 5–85°); a double click returns to the default view.
+function listenOrbit(pane) {
+  const canvas = pane.canvas;
+  let drag = null;
+  canvas.addEventListener("pointerdown", (e) => {
+    if (e.button !== 0) return;
+    drag = { x: e.clientX, y: e.clientY, moved: 0 };
+    pane.dragged = false;
+    canvas.setPointerCapture(e.pointerId);
+  });
+  canvas.addEventListener("pointermove", (e) => {
+    if (!drag) return;
+    const dx = e.clientX - drag.x, dy = e.clientY - drag.y;
+    drag.x = e.clientX; drag.y = e.clientY;
+    drag.moved += Math.abs(dx) + Math.abs(dy);
+    if (drag.moved > 3) pane.dragged = true;
+    orbitBy(-dx * SOLID.degreesPerPixel, dy * SOLID.degreesPerPixel);
+  });
+  const end = () => { drag = null; };
+  canvas.addEventListener("pointerup", end);
+  canvas.addEventListener("pointercancel", end);
+  canvas.addEventListener("dblclick", () => {
+    state.orbit.azimuth = SOLID.azimuth;
+    state.orbit.elevation = SOLID.elevation;
+    draw();
+  });
+}
+
+function orbitBy(dAzimuth, dElevation) {
+  const o = state.orbit;
+  o.azimuth = ((((o.azimuth + dAzimuth) % 360) + 540) % 360) - 180; // within [−180, 180)
+  o.elevation = Math.min(SOLID.maxElevation, Math.max(SOLID.minElevation, o.elevation + dElevation));
+  draw();
 }
 
 // ---------------------------------------------------------------- charts
@@ -613,7 +1017,9 @@ function renderCharts() {
     chartCache.voxel = { image: g.ctx.getImageData(0, 0, uCanvas.width, uCanvas.height), f: g };
   } else if (sel && sel.pane.replay.ch.actuation) {
     const r = sel.pane.replay, u = sel.unit, cell = r.cells[u];
-    const g = chartFrame(uCanvas, `voxel (${cell[0]}, ${cell[1]}) of ${r.title}: actuation (solid), area ratio − 1 (dashed)`, state.duration, -1, 1);
+    const title = r.solid ? `voxel ${u} of ${r.title}: actuation`
+      : `voxel (${cell[0]}, ${cell[1]}) of ${r.title}: actuation (solid), area ratio − 1 (dashed)`;
+    const g = chartFrame(uCanvas, title, state.duration, -1, 1);
     plotSeries(g, r, (k) => r.ch.actuation.values[k * r.ch.actuation.per + u], sel.pane.colour, false);
     if (r.ch.area_ratio) plotSeries(g, r, (k) => r.ch.area_ratio.values[k * r.ch.area_ratio.per + u] - 1, "#555", true);
     chartCache.voxel = { image: g.ctx.getImageData(0, 0, uCanvas.width, uCanvas.height), f: g };
@@ -638,6 +1044,7 @@ function drawCharts() {
 // ---------------------------------------------------------------- interaction
 
 function selectAt(pane, event) {
+  if (pane.replay.solid) return selectSolidAt(pane, event);
   const r = pane.replay, canvas = pane.canvas;
   const rect = canvas.getBoundingClientRect();
   const px = (event.clientX - rect.left) * canvas.width / rect.width;
@@ -660,7 +1067,7 @@ function selectAt(pane, event) {
 // channel with one value per unit, whatever kind or brain recorded it.
 function listUnitChannels(r) {
   const menu = document.getElementById("unit-channel");
-  const units = r.corners.length;
+  const units = r.solid ? r.voxels : r.corners.length;
   const names = Object.keys(r.ch).filter((n) => !["outline", "center"].includes(n) && r.ch[n].per === units).sort();
   menu.replaceChildren(new Option("actuation and area ratio", ""), ...names.map((n) => new Option(n, n)));
   if (!names.includes(state.unitChannel)) state.unitChannel = "";

@@ -11,8 +11,9 @@
 //!   `d_max` (5, as the original's code, which measures in metres: the cap never binds);
 //! - penalties (on by default, as the original's code, which differs from the thesis's "more than
 //!   half of the voxels outside the bounding volume"): a voxel's centre beyond the wall voxels'
-//!   centres along x or above the highest of them, or at least half of the bottom layer off the
-//!   floor at once ("flying"), at any step, sets `d_i = d_max` and `acc_i = 0`.
+//!   centres along x or above the highest of them at any step, or at least half of the bottom
+//!   layer off the floor ("flying") for longer than `flying_seconds` (default 0: a single step,
+//!   the original's rule), sets `d_i = d_max` and `acc_i = 0`.
 //!
 //! Then `locomotion = max d_i` (minimised) and `sensing = min acc_i` (maximised), eqs. 5.5–5.6.
 
@@ -74,6 +75,9 @@ pub struct Affordance {
     pub d_max: f64,
     /// Whether leaving the world's bounds or flying gives the worst scores.
     pub penalties: bool,
+    /// How long (s) half of the bottom layer must stay off the floor to count as flying; default
+    /// 0, the original's rule (a single step).
+    pub flying_seconds: f64,
     /// Frames per second of recorded traces.
     pub frame_rate: f64,
 }
@@ -94,6 +98,7 @@ impl Default for Affordance {
             body_length: None,
             d_max: 5.0,
             penalties: true,
+            flying_seconds: 0.0,
             frame_rate: 50.0,
         }
     }
@@ -152,6 +157,8 @@ impl Affordance {
         recorder.record(&built.world, &built.body, &actuation, 0.0);
         recorder.record_channel(&VOTE, &vec![0.0; n]);
         let (mut touched, mut correct, mut penalised) = (false, 0u64, false);
+        let flying_steps = (self.flying_seconds / dt).round() as u64;
+        let mut airborne = 0u64;
         brain.reset();
         for k in 1..=steps {
             built.world.step(dt).map_err(|e| {
@@ -179,8 +186,9 @@ impl Affordance {
             if touched && decision(votes) == env.passable() {
                 correct += 1;
             }
+            airborne = if flying(&built.world, &bottom) { airborne + 1 } else { 0 };
             if self.penalties && !penalised {
-                penalised = out_of_bounds(&built, min_x, max_x, top) || flying(&built.world, &bottom);
+                penalised = out_of_bounds(&built, min_x, max_x, top) || airborne > flying_steps;
             }
             recorder.record(&built.world, &built.body, &actuation, t);
             recorder.record_channel(&VOTE, votes);
@@ -321,6 +329,12 @@ impl Task for Affordance {
                 )));
             }
         }
+        if !(self.flying_seconds.is_finite() && self.flying_seconds >= 0.0) {
+            return Err(task_field(FieldError::sentence(
+                "flying_seconds",
+                format!("must be a number of seconds ≥ 0, got {}", self.flying_seconds),
+            )));
+        }
         if !(self.d_max.is_finite() && self.d_max > 0.0) {
             return Err(task_field(FieldError::sentence(
                 "d_max",
@@ -428,6 +442,11 @@ mod tests {
     /// A robot whose every voxel always votes `vote` and never actuates (an Elman brain with
     /// zero weights but the vote's bias).
     fn voter(body: &str, vote: f64) -> crate::AnyRobot {
+        biased(body, 0.0, vote)
+    }
+
+    /// A robot whose every voxel always actuates `actuation` (as tanh of it) and votes `vote`.
+    fn biased(body: &str, actuation: f64, vote: f64) -> crate::AnyRobot {
         let robot = from_short_forms(&RobotArgs {
             body,
             brain: Some("elman"),
@@ -439,7 +458,8 @@ mod tests {
         let shape = r.brain_shape().unwrap();
         let n = r.brain.parameter_count(&shape).unwrap();
         let mut weights = vec![0.0; n];
-        // the vote's bias: the first of the last m + 1 parameters
+        // the biases of the actuation and the vote: the first of each of the last two m + 1 blocks
+        weights[n - 14] = actuation;
         weights[n - 7] = vote;
         crate::AnyRobot::new(Voxel3dRobot {
             brain: BrainSpec::Elman(ElmanSpec {
@@ -503,6 +523,47 @@ mod tests {
         // the flatworm starts 2 L voxels (8 cm) and more from its targets
         assert_eq!(o.metric("locomotion"), 0.01);
         assert_eq!(o.fitness, vec![0.01, 0.0]);
+    }
+
+    #[test]
+    fn a_body_that_contracts_its_belly_flies_and_gets_the_worst_scores() {
+        let task = Affordance {
+            duration: 0.05,
+            body_length: Some(2),
+            ..Affordance::default()
+        };
+        // contracted voxels lift their bottom faces off the floor at once
+        let shrinking = biased("3d:###/###/###/###", -10.0, 10.0);
+        let o = task
+            .run_episode(shrinking.as_robot(), 0, TraceLevel::None, &mut |_, _| {})
+            .unwrap();
+        assert_eq!(
+            (o.metric("locomotion"), o.metric("sensing")),
+            (5.0, 0.0),
+            "{:?}",
+            o.metrics
+        );
+        let lenient = Affordance {
+            penalties: false,
+            ..task.clone()
+        };
+        let o = lenient
+            .run_episode(shrinking.as_robot(), 0, TraceLevel::None, &mut |_, _| {})
+            .unwrap();
+        assert!(
+            o.metric("locomotion") < 0.1 && o.metric("sensing-passable-left") == 1.0,
+            "{:?}",
+            o.metrics
+        );
+        // flying for less than `flying_seconds` is tolerated
+        let patient = Affordance {
+            flying_seconds: 1.0,
+            ..task.clone()
+        };
+        let o = patient
+            .run_episode(shrinking.as_robot(), 0, TraceLevel::None, &mut |_, _| {})
+            .unwrap();
+        assert!(o.metric("locomotion") < 0.1, "{:?}", o.metrics);
     }
 
     #[test]

@@ -14,6 +14,7 @@ pub mod labels;
 /// The morphology descriptors (d_num, d_elong, d_compact), defined with the body grid in
 /// `vsrlab-body` so that robot kinds compute them.
 pub use vsrlab_body::descriptors as morphology;
+pub mod pareto;
 pub mod pca;
 pub mod plot;
 pub mod pose;

@@ -120,6 +120,15 @@ pub fn analyze(
         &fitness_figure(&settings, &experiments, &with_unit(&fitness)),
         "best-so-far and population-median fitness vs evaluations, median ± sd across runs",
     )?;
+    let (senses, members) = crate::pareto::members(&settings, &experiments);
+    if !members.is_empty() {
+        a.table("pareto.csv", &crate::pareto::pareto_csv(&settings, &senses, &members))?;
+        a.figure(
+            "pareto",
+            &crate::pareto::pareto_figure(&settings, &senses, &members),
+            "two objectives: every run's final population, its first front (large) and knee (largest)",
+        )?;
+    }
     if let Some(figure) = graph_size_figure(&settings, &experiments) {
         a.figure(
             "graph-size",

@@ -23,6 +23,7 @@ pub mod label;
 mod label_page;
 pub mod modules;
 mod output;
+mod pareto;
 pub mod plasticity;
 pub mod reassemble;
 pub mod reassess;

@@ -1,0 +1,186 @@
+//! The Pareto analysis of `vsrlab analyze` for runs with two objectives (NSGA-II; thesis ch.
+//! 5.1): each run's final population, its first front, knee and specialists
+//! ([`vsrlab_analysis::pareto`]), as `pareto.csv` and a scatter of every final population with
+//! the fronts drawn larger.
+
+use crate::settings::Setting;
+use std::fmt::Write as _;
+use vsrlab_analysis::pareto::{first_front, knee, specialist};
+use vsrlab_analysis::plot::{ScatterFigure, ScatterPoint};
+use vsrlab_analysis::results::{read_snapshot, ExperimentData};
+
+/// One objective of an experiment: its metric and whether it is minimised.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct ObjectiveSense {
+    pub metric: String,
+    pub minimize: bool,
+}
+
+/// The objectives of an experiment's task (`task.fitness` of its resolved configuration).
+pub(crate) fn objectives(experiment: &ExperimentData) -> Vec<ObjectiveSense> {
+    let one = |v: &toml::Value| match v {
+        toml::Value::String(metric) => Some(ObjectiveSense {
+            metric: metric.clone(),
+            minimize: false,
+        }),
+        toml::Value::Table(t) => Some(ObjectiveSense {
+            metric: t.get("metric")?.as_str()?.to_string(),
+            minimize: t.get("sense").and_then(|s| s.as_str()) == Some("minimize"),
+        }),
+        _ => None,
+    };
+    match experiment.config_value("task.fitness") {
+        Some(toml::Value::Array(items)) => items.iter().filter_map(one).collect(),
+        Some(v) => one(v).into_iter().collect(),
+        None => Vec::new(),
+    }
+}
+
+/// One member of a final population.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Member {
+    pub setting: usize,
+    pub run: String,
+    pub index: usize,
+    pub objectives: Vec<f64>,
+    /// `front`, `knee`, `specialist-<metric>` (joined by `+`), or empty.
+    pub role: String,
+}
+
+/// Every final-population member of every run of the settings whose experiments have two
+/// objectives, with their roles; and the objectives (those of the first such experiment).
+pub(crate) fn members(settings: &[Setting], experiments: &[ExperimentData]) -> (Vec<ObjectiveSense>, Vec<Member>) {
+    let mut senses = Vec::new();
+    let mut all = Vec::new();
+    for (s, setting) in settings.iter().enumerate() {
+        for (experiment, run) in setting.runs(experiments) {
+            let own = objectives(experiment);
+            if own.len() != 2 {
+                continue;
+            }
+            if senses.is_empty() {
+                senses = own.clone();
+            }
+            let Some((_, path)) = run.final_snapshot() else {
+                continue;
+            };
+            let Ok(rows) = read_snapshot(path) else { continue };
+            let points: Vec<Vec<f64>> = rows
+                .iter()
+                .map(|r| {
+                    r.record
+                        .as_ref()
+                        .and_then(|rec| rec.objectives.clone())
+                        .unwrap_or_else(|| vec![f64::NAN; 2])
+                })
+                .collect();
+            let minimize: Vec<bool> = own.iter().map(|o| o.minimize).collect();
+            let front = first_front(&points, &minimize);
+            let knee = knee(&points, &front);
+            let specialists: Vec<Option<usize>> = (0..2).map(|k| specialist(&points, &front, k, minimize[k])).collect();
+            for (i, p) in points.into_iter().enumerate() {
+                let mut roles = Vec::new();
+                if front.contains(&i) {
+                    roles.push("front".to_string());
+                }
+                if knee == Some(i) {
+                    roles.push("knee".to_string());
+                }
+                for (k, &sp) in specialists.iter().enumerate() {
+                    if sp == Some(i) {
+                        roles.push(format!("specialist-{}", own[k].metric));
+                    }
+                }
+                all.push(Member {
+                    setting: s,
+                    run: experiment.run_label(run),
+                    index: rows[i].index,
+                    objectives: p,
+                    role: roles.join("+"),
+                });
+            }
+        }
+    }
+    (senses, all)
+}
+
+/// `pareto.csv`: setting, run, index in the final population, the two objectives, role.
+pub(crate) fn pareto_csv(settings: &[Setting], senses: &[ObjectiveSense], members: &[Member]) -> String {
+    let mut text = format!("setting,run,index,{},{},role\n", senses[0].metric, senses[1].metric);
+    for m in members {
+        let _ = writeln!(
+            text,
+            "{},{},{},{},{},{}",
+            settings[m.setting].name, m.run, m.index, m.objectives[0], m.objectives[1], m.role
+        );
+    }
+    text
+}
+
+/// The scatter of every final population: front members larger, knees largest.
+pub(crate) fn pareto_figure(settings: &[Setting], senses: &[ObjectiveSense], members: &[Member]) -> ScatterFigure {
+    let label = |o: &ObjectiveSense| format!("{} ({})", o.metric, if o.minimize { "minimised" } else { "maximised" });
+    let radius = |role: &str| {
+        if role.contains("knee") {
+            9.0
+        } else if role.contains("front") {
+            5.0
+        } else {
+            2.5
+        }
+    };
+    ScatterFigure {
+        title: "Final populations and their first fronts (large: front, largest: knee)".into(),
+        x_label: label(&senses[0]),
+        y_label: label(&senses[1]),
+        groups: settings.iter().map(|s| s.name.clone()).collect(),
+        legend_title: "setting".into(),
+        points: members
+            .iter()
+            .filter(|m| m.objectives.iter().all(|v| v.is_finite()))
+            .map(|m| ScatterPoint {
+                x: m.objectives[0],
+                y: m.objectives[1],
+                radius: radius(&m.role),
+                group: m.setting,
+            })
+            .collect(),
+        x_range: None,
+        y_range: None,
+        size_legend: None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn experiment(task: &str) -> ExperimentData {
+        ExperimentData {
+            dir: "x".into(),
+            name: "x".into(),
+            config: toml::from_str(task).unwrap(),
+            runs: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn objectives_are_read_from_the_resolved_fitness() {
+        let two = experiment("[task]\nfitness = [{ metric = \"locomotion\", sense = \"minimize\" }, \"sensing\"]");
+        assert_eq!(
+            objectives(&two),
+            vec![
+                ObjectiveSense {
+                    metric: "locomotion".into(),
+                    minimize: true
+                },
+                ObjectiveSense {
+                    metric: "sensing".into(),
+                    minimize: false
+                }
+            ]
+        );
+        assert_eq!(objectives(&experiment("[task]\nfitness = \"velocity\"")).len(), 1);
+        assert!(objectives(&experiment("[task]\nkind = \"jump\"")).is_empty());
+    }
+}

@@ -173,12 +173,19 @@ impl ExperimentData {
         format!("{}/{name}", self.dir.display())
     }
 
-    /// What the fitness is (`velocity` or `distance`; `velocity` when unset).
+    /// What the fitness is: the task's metric (`velocity`, `distance`), the first objective's
+    /// metric of a multi-objective task, or `velocity` when unset.
     pub fn fitness_kind(&self) -> String {
-        self.config_value("task.fitness")
-            .and_then(|v| v.as_str())
-            .unwrap_or("velocity")
-            .to_string()
+        let first = match self.config_value("task.fitness") {
+            Some(toml::Value::Array(items)) => items.first(),
+            other => other,
+        };
+        let metric = match first {
+            Some(toml::Value::String(s)) => Some(s.as_str()),
+            Some(toml::Value::Table(t)) => t.get("metric").and_then(|m| m.as_str()),
+            _ => None,
+        };
+        metric.unwrap_or("velocity").to_string()
     }
 }
 
@@ -524,6 +531,13 @@ mod tests {
         );
         assert_eq!(rows[0].fitness(), Some(0.5));
         assert_eq!(exps[0].fitness_kind(), "velocity");
+        let mut two = exps[0].clone();
+        two.config =
+            toml::from_str("[task]\nfitness = [{ metric = \"locomotion\", sense = \"minimize\" }, \"sensing\"]")
+                .unwrap();
+        assert_eq!(two.fitness_kind(), "locomotion", "the first objective of several");
+        two.config = toml::from_str("[task]\nfitness = \"distance\"").unwrap();
+        assert_eq!(two.fitness_kind(), "distance");
         assert_eq!(exps[0].run_label(run), format!("{}/run-00", root.join("a").display()));
         assert_eq!(run.files().best_robot(), root.join("a/run-00/best.robot.json"));
         assert!(matches!(

@@ -21,12 +21,11 @@ use super::aperture::{aperture_world, shape_length, ApertureWorld, Environment};
 use super::physics::{Built, Physics3d, MAX_STEPS};
 use super::recorder::Recorder;
 use super::robot::Voxel3dRobot;
-use super::sensors::VoxelSense;
+use super::setup::{prepare, sense, Prepared};
 use super::BodyGrid3;
 use crate::agent::{Agent, Robot};
 use crate::episode::EpisodeError;
 use crate::fitness::Fitness;
-use crate::kinds::voxel::short_forms::RANDOM_BRAIN_SEED;
 use crate::outcome::{Outcome, Trace, TraceLevel};
 use crate::task::{check_objectives, fitness_values, task_field, Metrics, Objective, Sense, Task};
 use glam::DVec3;
@@ -280,24 +279,6 @@ fn flying(world: &World, bottom: &[VoxelId]) -> bool {
     !bottom.is_empty() && 2 * off >= bottom.len()
 }
 
-/// Every voxel's readings at time `t`.
-fn sense(world: &World, body: &[VoxelId], sensors: &[super::Sensor3], t: f64, readings: &mut [f64]) {
-    if sensors.is_empty() {
-        return;
-    }
-    for (&v, out) in body.iter().zip(readings.chunks_mut(sensors.len())) {
-        let sense = VoxelSense {
-            time: t,
-            touches_voxel: world.touches_voxel(v),
-            touches_floor: world.touches_floor(v),
-            velocity: world.velocity(v),
-        };
-        for (r, s) in out.iter_mut().zip(sensors) {
-            *r = s.read(&sense);
-        }
-    }
-}
-
 impl Task for Affordance {
     fn kind(&self) -> &'static str {
         "affordance"
@@ -375,29 +356,12 @@ impl Task for Affordance {
         _observe: &mut dyn FnMut(f64, &dyn Agent),
     ) -> Result<Outcome, EpisodeError> {
         self.validate()?;
-        let robot = robot
-            .description()
-            .and_then(|d| d.as_any().downcast_ref::<Voxel3dRobot>())
-            .ok_or_else(|| {
-                EpisodeError::Field(FieldError::new(
-                    "task.kind",
-                    "the affordance task runs 3D voxel robots (`3d:starfish`, …)",
-                ))
-            })?;
-        let at_robot = |e: FieldError| EpisodeError::Field(e.at("robot"));
-        let grid = robot.grid().map_err(at_robot)?;
-        let sensors = robot.sensor_list().map_err(at_robot)?;
-        let shape = robot.brain_shape().map_err(at_robot)?;
-        let at_brain = |e: vsrlab_brain::BrainError| EpisodeError::Field(FieldError::from(e).at("robot.brain"));
-        let spec =
-            match robot.brain.parameters().is_empty() && robot.brain.parameter_count(&shape).map_err(at_brain)? > 0 {
-                true => robot
-                    .brain
-                    .with_random_parameters(RANDOM_BRAIN_SEED, &shape)
-                    .map_err(at_brain)?,
-                false => robot.brain.clone(),
-            };
-        let mut brain = spec.build(&shape).map_err(at_brain)?;
+        let Prepared {
+            robot,
+            grid,
+            sensors,
+            mut brain,
+        } = prepare(robot, "the affordance task")?;
         let length = self.length(robot, &grid);
         let mut metrics = Metrics::new();
         let (mut locomotion, mut sensing, mut steps, mut trace) = (0.0f64, 1.0f64, 0, None);

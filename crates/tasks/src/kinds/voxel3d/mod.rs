@@ -13,6 +13,7 @@ mod physics;
 mod recorder;
 mod robot;
 mod sensors;
+mod setup;
 mod task;
 
 pub use affordance::{decision, Affordance, Scores};

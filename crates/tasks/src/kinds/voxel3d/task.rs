@@ -7,12 +7,10 @@
 
 use super::physics::{Physics3d, MAX_STEPS};
 use super::recorder::Recorder;
-use super::robot::Voxel3dRobot;
-use super::sensors::VoxelSense;
+use super::setup::{prepare, sense, Prepared};
 use crate::agent::{Agent, Robot};
 use crate::episode::EpisodeError;
 use crate::fitness::Fitness;
-use crate::kinds::voxel::short_forms::RANDOM_BRAIN_SEED;
 use crate::outcome::{Outcome, TraceLevel};
 use crate::task::{check_objectives, fitness_values, task_field, Metrics, Objective, Task};
 use glam::DVec3;
@@ -117,21 +115,12 @@ impl Task for Locomotion3d {
         _observe: &mut dyn FnMut(f64, &dyn Agent),
     ) -> Result<Outcome, EpisodeError> {
         self.validate()?;
-        let robot = voxel3d_robot(robot)?;
-        let at_robot = |e: FieldError| EpisodeError::Field(e.at("robot"));
-        let grid = robot.grid().map_err(at_robot)?;
-        let sensors = robot.sensor_list().map_err(at_robot)?;
-        let shape = robot.brain_shape().map_err(at_robot)?;
-        let at_brain = |e: vsrlab_brain::BrainError| EpisodeError::Field(FieldError::from(e).at("robot.brain"));
-        let spec =
-            match robot.brain.parameters().is_empty() && robot.brain.parameter_count(&shape).map_err(at_brain)? > 0 {
-                true => robot
-                    .brain
-                    .with_random_parameters(RANDOM_BRAIN_SEED, &shape)
-                    .map_err(at_brain)?,
-                false => robot.brain.clone(),
-            };
-        let mut brain = spec.build(&shape).map_err(at_brain)?;
+        let Prepared {
+            grid,
+            sensors,
+            mut brain,
+            ..
+        } = prepare(robot, "locomotion3d")?;
         brain.reset();
         let mut built = self.physics.build(&grid, &self.obstacles).map_err(task_field)?;
         let (dt, n) = (built.dt, built.body.len());
@@ -179,40 +168,9 @@ impl Task for Locomotion3d {
     }
 }
 
-/// Every voxel's readings at time `t`, voxel after voxel.
-fn sense(world: &World, body: &[VoxelId], sensors: &[super::Sensor3], t: f64, readings: &mut [f64]) {
-    if sensors.is_empty() {
-        return;
-    }
-    for (&v, out) in body.iter().zip(readings.chunks_mut(sensors.len())) {
-        let sense = VoxelSense {
-            time: t,
-            touches_voxel: world.touches_voxel(v),
-            touches_floor: world.touches_floor(v),
-            velocity: world.velocity(v),
-        };
-        for (r, s) in out.iter_mut().zip(sensors) {
-            *r = s.read(&sense);
-        }
-    }
-}
-
 /// The centre of mass of the body's voxels (all of one material: their mean position).
 pub(crate) fn centre(world: &World, body: &[VoxelId]) -> DVec3 {
     body.iter().map(|&v| world.position(v)).sum::<DVec3>() / body.len().max(1) as f64
-}
-
-/// The 3D robot behind a robot of any kind, or an error naming the task's kind.
-fn voxel3d_robot(robot: &dyn Robot) -> Result<&Voxel3dRobot, EpisodeError> {
-    robot
-        .description()
-        .and_then(|d| d.as_any().downcast_ref::<Voxel3dRobot>())
-        .ok_or_else(|| {
-            EpisodeError::Field(FieldError::new(
-                "task.kind",
-                "locomotion3d runs 3D voxel robots (a body `3d:…`, or a robot file with \"voxel3d\")",
-            ))
-        })
 }
 
 #[cfg(test)]
@@ -313,7 +271,7 @@ mod tests {
         let e = Locomotion3d::default()
             .run_episode(flat.as_robot(), 0, TraceLevel::None, &mut |_, _| {})
             .unwrap_err();
-        assert!(e.to_string().contains("3D voxel robots"), "{e}");
+        assert!(e.to_string().contains("runs 3D voxel robots"), "{e}");
     }
 
     const VOXEL_XYZ_NAME: &str = crate::channels::VOXEL_XYZ.name;

@@ -1,0 +1,80 @@
+//! What every 3D task does before and during its episodes: the robot behind a `dyn Robot`, its
+//! body grid, sensors and brain (a template brain gets seeded random parameters), and every
+//! voxel's readings each step.
+
+use super::grid::BodyGrid3;
+use super::robot::Voxel3dRobot;
+use super::sensors::{Sensor3, VoxelSense};
+use crate::agent::Robot;
+use crate::episode::EpisodeError;
+use crate::kinds::voxel::short_forms::RANDOM_BRAIN_SEED;
+use vsrlab_brain::{BrainShape, BrainSpec, Controller};
+use vsrlab_field::FieldError;
+use vsrlab_physics3d::{VoxelId, World};
+
+/// A 3D robot ready for an episode.
+pub(crate) struct Prepared<'a> {
+    /// The robot's description.
+    pub robot: &'a Voxel3dRobot,
+    /// Its body.
+    pub grid: BodyGrid3,
+    /// Its sensors, the same on every voxel.
+    pub sensors: Vec<Sensor3>,
+    /// Its brain, built.
+    pub brain: Box<dyn Controller>,
+}
+
+/// The 3D robot behind `robot`, its body, sensors and built brain; errors name the field
+/// (`robot.…`), or the task's kind (`task_kind`) for a robot of another kind.
+pub(crate) fn prepare<'a>(robot: &'a dyn Robot, task_kind: &str) -> Result<Prepared<'a>, EpisodeError> {
+    let robot = robot
+        .description()
+        .and_then(|d| d.as_any().downcast_ref::<Voxel3dRobot>())
+        .ok_or_else(|| {
+            EpisodeError::Field(FieldError::new(
+                "task.kind",
+                format!("{task_kind} runs 3D voxel robots (a body `3d:…`, or a robot file with \"voxel3d\")"),
+            ))
+        })?;
+    let at_robot = |e: FieldError| EpisodeError::Field(e.at("robot"));
+    let grid = robot.grid().map_err(at_robot)?;
+    let sensors = robot.sensor_list().map_err(at_robot)?;
+    let shape = robot.brain_shape().map_err(at_robot)?;
+    let at_brain = |e: vsrlab_brain::BrainError| EpisodeError::Field(FieldError::from(e).at("robot.brain"));
+    let spec = filled(&robot.brain, &shape).map_err(at_brain)?;
+    let brain = spec.build(&shape).map_err(at_brain)?;
+    Ok(Prepared {
+        robot,
+        grid,
+        sensors,
+        brain,
+    })
+}
+
+/// The brain itself, or for a template with parameters to fill (no parameters given), the
+/// template with seeded random ones, as the command line gives them.
+pub(crate) fn filled(brain: &BrainSpec, shape: &BrainShape) -> Result<BrainSpec, vsrlab_brain::BrainError> {
+    if brain.parameters().is_empty() && brain.parameter_count(shape)? > 0 {
+        brain.with_random_parameters(RANDOM_BRAIN_SEED, shape)
+    } else {
+        Ok(brain.clone())
+    }
+}
+
+/// Every voxel's readings at time `t`, voxel after voxel.
+pub(crate) fn sense(world: &World, body: &[VoxelId], sensors: &[Sensor3], t: f64, readings: &mut [f64]) {
+    if sensors.is_empty() {
+        return;
+    }
+    for (&v, out) in body.iter().zip(readings.chunks_mut(sensors.len())) {
+        let sense = VoxelSense {
+            time: t,
+            touches_voxel: world.touches_voxel(v),
+            touches_floor: world.touches_floor(v),
+            velocity: world.velocity(v),
+        };
+        for (r, s) in out.iter_mut().zip(sensors) {
+            *r = s.read(&sense);
+        }
+    }
+}

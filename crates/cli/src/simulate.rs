@@ -42,7 +42,7 @@ pub struct SimulateArgs {
     /// Sensors: uniform-<s1>+<s2>…-<noise σ>, spinedTouch-…, spinedTouchSighted-…,
     /// <high|medium|low>_<biped|worm>-<σ>-<cpg t|f> (the Hebbian study's), or empty. Default:
     /// uniform-a+vxy+t-0 on voxel bodies; a PSA has its own sensors and takes none. A 3D body's:
-    /// a comma-separated list of cpg[:Hz], touch, floor, vx, vy, vz (default cpg,touch,floor,vy,vx).
+    /// a comma-separated list of cpg or cpg:HZ, touch, floor, vx, vy, vz (default cpg,touch,floor,vy,vx).
     #[arg(long)]
     pub sensors: Option<String>,
     /// Take the task (kind and every setting: terrain, cage, ball, physics, start) from an

@@ -172,7 +172,7 @@ mod tests {
             BrainError::Unknown("neat".into()).to_string(),
             "unknown brain 'neat': expected phase, phase-grid[:freq], constant:<value>, random[:<period s>], \
              mlp[:<hidden sizes, comma separated, or none>], distributed-mlp[:<signals>], \
-             distributed-mlp-hetero[:<signals>], local-mlp[:<signals>], step:<period s>:<brain>, smoothed:<speed>:<brain>, hebbian[:full|incoming|dew|l2], attention[:hetero|slow], graph[:<added hidden neurons>] or heads[:<linear outputs>]"
+             distributed-mlp-hetero[:<signals>], local-mlp[:<signals>], step:<period s>:<brain>, smoothed:<speed>:<brain>, hebbian[:full|incoming|dew|l2], attention[:hetero|slow], graph[:<added hidden neurons>], heads[:<linear outputs>] or elman[:<memory units>]"
         );
     }
 

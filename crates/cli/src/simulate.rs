@@ -27,8 +27,9 @@ pub struct SimulateArgs {
     /// `hebbian[:full|incoming|dew|l2]` (Hebbian ABCD rules, docs/ch5.3.md), `attention[:hetero|slow]`
     /// and `local-mlp[:<signals>]` (self-attention and its baselines, docs/ch4.2.md),
     /// `graph[:<added hidden neurons>]` (the self-organizing graph controller, docs/ch4.1.md),
-    /// `heads[:<linear outputs>]` (the PSA controller, docs/psa.md). Default: phase for voxel
-    /// bodies, heads for a PSA.
+    /// `heads[:<linear outputs>]` (the PSA controller, docs/psa.md), `elman[:<memory units>]` (the
+    /// affordance study's voting voxels, docs/ch5.1.md). Default: phase for voxel bodies, heads for
+    /// a PSA.
     /// Brains with parameters get seeded random ones in [-1, 1]; evolved ones come in robot files.
     #[arg(long)]
     pub brain: Option<String>,

@@ -10,7 +10,7 @@ use vsrlab_tasks::kinds::voxel::short_forms::DEFAULT_SENSORS;
 /// Arguments of `vsrlab bench`.
 #[derive(Args, Debug)]
 pub struct BenchArgs {
-    /// Simulated seconds per episode.
+    /// Simulated seconds per episode (EvoGym rows: at most their task's length; 3D rows: at most 2 s).
     #[arg(long, default_value_t = 30.0)]
     pub duration: f64,
     /// Minimum CPU seconds to spend on each row (more episodes are run until it is reached).

@@ -19,7 +19,7 @@ use vsrlab_tasks::kinds::{self, AnyRobot, RobotArgs};
 use vsrlab_tasks::{EpisodeError, Locomotion, RobotArgsError, TaskSpec, TraceLevel};
 
 /// One standard case of the benchmark.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StandardCase {
     /// The row's name (what `--robots` selects).
     pub name: &'static str,
@@ -32,6 +32,9 @@ pub struct StandardCase {
     /// Whether the options' brain and sensors apply to it (otherwise it keeps its kind's
     /// published brain and sensors: a PSA's `heads`, an EvoGym robot's MLP over the observation).
     pub takes_options: bool,
+    /// Longest episode it runs (s), whatever the options' duration: a 3D episode takes some
+    /// 21,000 engine steps per simulated second.
+    pub longest: f64,
 }
 
 const fn case(
@@ -47,13 +50,22 @@ const fn case(
         task,
         terrain,
         takes_options,
+        longest: f64::INFINITY,
+    }
+}
+
+/// A 3D case: its episodes last at most 2 s.
+const fn case_3d(name: &'static str, body: &'static str) -> StandardCase {
+    StandardCase {
+        longest: 2.0,
+        ..case(name, body, "locomotion3d", "floor", false)
     }
 }
 
 /// The standard cases, in the order of the rows. The EvoGym robots are a full 5 × 5 body of
 /// horizontal actuators, as in the side-by-side runs with EvoGym. The 3D rows run the 3D engine
 /// (voxcraft-sim's settings, collisions on) with the default open-loop phase brain and the
-/// affordance study's sensors.
+/// affordance study's sensors, in episodes of at most 2 s.
 pub const STANDARD_CASES: [StandardCase; 13] = [
     case("biped-4x3", "biped-4x3", "locomotion:flat", "flat", true),
     case("worm-10x4", "worm-10x4", "locomotion:flat", "flat", true),
@@ -90,8 +102,8 @@ pub const STANDARD_CASES: [StandardCase; 13] = [
         "CaveCrawler-v0",
         false,
     ),
-    case("3d-quadruped", "3d:quadruped", "locomotion3d", "floor", false),
-    case("3d-box-6x6x6", "3d:box-6x6x6", "locomotion3d", "floor", false),
+    case_3d("3d-quadruped", "3d:quadruped"),
+    case_3d("3d-box-6x6x6", "3d:box-6x6x6"),
 ];
 
 /// What to measure. Robots are given by short forms, as on the command line.
@@ -363,7 +375,7 @@ impl<'a> Case<'a> {
         })?;
         let task_error = |e: String| BenchError::Terrain(format!("{}: {e}", standard.task));
         let mut task = TaskSpec::parse(standard.task).map_err(|e| task_error(e.to_string()))?;
-        let mut settings = vec![("duration", serde_json::json!(options.duration))];
+        let mut settings = vec![("duration", serde_json::json!(options.duration.min(standard.longest)))];
         if task.task().rigid().is_some() {
             let mut physics = (robot.kind().physics)();
             if let Some(n) = options.substeps {
@@ -467,6 +479,21 @@ mod tests {
             robots: Some(robots.iter().map(|r| r.to_string()).collect()),
             ..BenchOptions::default()
         }
+    }
+
+    #[test]
+    fn a_3d_row_runs_episodes_of_at_most_2_s_on_the_3d_engine() {
+        let options = BenchOptions {
+            duration: 30.0,
+            ..tiny(&["3d-quadruped"])
+        };
+        let report = run_bench(&options).unwrap();
+        let row = &report.rows[0];
+        assert_eq!((row.robot.as_str(), row.voxels), ("3d-quadruped", 28));
+        // 2 s of 0.95 × the recommended step (4.78e-5 s)
+        let per_episode = row.steps / row.episodes as u64;
+        assert_eq!(per_episode, (2.0 / row.step_seconds).ceil() as u64, "{row:?}");
+        assert!((row.step_seconds - 4.7813e-5).abs() < 1e-8);
     }
 
     #[test]

@@ -228,6 +228,20 @@ pub fn kind_of_file(value: &serde_json::Value) -> Option<&'static RobotKind> {
         .find(|k| k.file_keys.iter().any(|key| value.get(key).is_some()))
 }
 
+/// The brain itself, or for a template (parameters to fill, none given) the template with
+/// seeded random parameters, as the command line gives them: what tasks on their own engines
+/// run a robot file's brain with.
+pub(crate) fn filled_brain(
+    brain: &BrainSpec,
+    shape: &vsrlab_brain::BrainShape,
+) -> Result<BrainSpec, vsrlab_brain::BrainError> {
+    if brain.parameters().is_empty() && brain.parameter_count(shape)? > 0 {
+        brain.with_random_parameters(voxel::short_forms::RANDOM_BRAIN_SEED, shape)
+    } else {
+        Ok(brain.clone())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

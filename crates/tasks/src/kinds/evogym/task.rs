@@ -11,7 +11,6 @@ use crate::agent::{Agent, Robot};
 use crate::channels::{OBSTACLES, OBSTACLE_CORNERS, UNIT_FILL};
 use crate::episode::EpisodeError;
 use crate::fitness::Fitness;
-use crate::kinds::voxel::short_forms::RANDOM_BRAIN_SEED;
 use crate::outcome::{Outcome, Trace, TraceLevel};
 use crate::task::{check_objectives, fitness_values, task_field, Metrics, Objective, Task};
 use serde::{Deserialize, Serialize};
@@ -130,13 +129,7 @@ impl Task for EvoGym {
         let mut env = EvoGymEnv::new(which, &grid).map_err(|e| EpisodeError::Invalid(e.to_string()))?;
         let shape = super::robot::shape(env.observation_size(), env.action_count());
         let at_brain = |e: vsrlab_brain::BrainError| EpisodeError::Field(FieldError::from(e).at("robot.brain"));
-        let spec = match template && robot.brain.parameter_count(&shape).map_err(at_brain)? > 0 {
-            true => robot
-                .brain
-                .with_random_parameters(RANDOM_BRAIN_SEED, &shape)
-                .map_err(at_brain)?,
-            false => robot.brain.clone(),
-        };
+        let spec = crate::kinds::filled_brain(&robot.brain, &shape).map_err(at_brain)?;
         let mut brain = spec.build(&shape).map_err(at_brain)?;
         brain.reset();
         let mut observation = env.reset(seed).to_vec();

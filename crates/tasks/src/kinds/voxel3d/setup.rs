@@ -7,8 +7,7 @@ use super::robot::Voxel3dRobot;
 use super::sensors::{Sensor3, VoxelSense};
 use crate::agent::Robot;
 use crate::episode::EpisodeError;
-use crate::kinds::voxel::short_forms::RANDOM_BRAIN_SEED;
-use vsrlab_brain::{BrainShape, BrainSpec, Controller};
+use vsrlab_brain::Controller;
 use vsrlab_field::FieldError;
 use vsrlab_physics3d::{VoxelId, World};
 
@@ -41,7 +40,7 @@ pub(crate) fn prepare<'a>(robot: &'a dyn Robot, task_kind: &str) -> Result<Prepa
     let sensors = robot.sensor_list().map_err(at_robot)?;
     let shape = robot.brain_shape().map_err(at_robot)?;
     let at_brain = |e: vsrlab_brain::BrainError| EpisodeError::Field(FieldError::from(e).at("robot.brain"));
-    let spec = filled(&robot.brain, &shape).map_err(at_brain)?;
+    let spec = crate::kinds::filled_brain(&robot.brain, &shape).map_err(at_brain)?;
     let brain = spec.build(&shape).map_err(at_brain)?;
     Ok(Prepared {
         robot,
@@ -49,16 +48,6 @@ pub(crate) fn prepare<'a>(robot: &'a dyn Robot, task_kind: &str) -> Result<Prepa
         sensors,
         brain,
     })
-}
-
-/// The brain itself, or for a template with parameters to fill (no parameters given), the
-/// template with seeded random ones, as the command line gives them.
-pub(crate) fn filled(brain: &BrainSpec, shape: &BrainShape) -> Result<BrainSpec, vsrlab_brain::BrainError> {
-    if brain.parameters().is_empty() && brain.parameter_count(shape)? > 0 {
-        brain.with_random_parameters(RANDOM_BRAIN_SEED, shape)
-    } else {
-        Ok(brain.clone())
-    }
 }
 
 /// Every voxel's readings at time `t`, voxel after voxel.

@@ -346,6 +346,32 @@ const offered3d = await page3d.locator("#unit-channel option").allTextContents()
 check("clicking a 3D voxel selects it and offers its channels", Number.isInteger(picked) && ["actuation", "voxel_edge"].every((n) => offered3d.includes(n)),
   `voxel ${picked}, ${JSON.stringify(offered3d)}`);
 view3d.proc.kill("SIGINT");
+
+// An affordance episode (ch. 5.1): each voxel is coloured by its vote. At t = 0 no voxel has
+// voted yet (votes 0 count as "impassable"): every voxel is red, none keeps the default blue.
+const voting = join(work, "votes.replay.json");
+vsrlab("simulate", "--body", "3d:flatworm", "--brain", "elman", "--task", "affordance:impassable", "--duration", "0.3", "--replay", voting);
+const viewVotes = await startViewer([voting]);
+const pageVotes = await browser.newPage({ viewport: { width: 1000, height: 800 } });
+pageVotes.on("pageerror", (e) => consoleErrors.push(String(e)));
+await pageVotes.goto(viewVotes.url);
+await pageVotes.waitForFunction(() => window.viewer && window.viewer.ready, null, { timeout: 30000 });
+await pageVotes.evaluate(() => { const s = document.getElementById("scrub"); s.value = "0"; s.dispatchEvent(new Event("input")); });
+const voteColours = await pageVotes.evaluate(() => {
+  const c = document.querySelector(".pane canvas");
+  const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+  const n = { red: 0, blue: 0 };
+  for (let p = 0; p < d.length; p += 4) {
+    const [r, g, b] = [d[p], d[p + 1], d[p + 2]];
+    if (Math.floor(p / 4 / c.width) < 80) continue;
+    if (r > 100 && r - g > 25 && r - b > 25) n.red++;
+    if (b > 100 && b - r > 60 && b > g) n.blue++;
+  }
+  return n;
+});
+await pageVotes.screenshot({ path: join(shots, "solid-3d-votes.png") });
+check("a 3D replay with votes colours each voxel by its vote", voteColours.red > 1000 && voteColours.blue < 50, JSON.stringify(voteColours));
+viewVotes.proc.kill("SIGINT");
 check("no script errors on the later pages (labelling, unit fill, 3D)", consoleErrors.length === 0, consoleErrors.join("; "));
 await browser.close();
 

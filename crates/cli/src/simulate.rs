@@ -98,9 +98,10 @@ pub struct SimulateArgs {
     /// What videos draw besides the world and the robot: a comma-separated list of ticks (distance
     /// marks on the ground), trail (the centre's path), sensors, lidar, attention (each voxel's
     /// attention matrix, attention brains, in place of its sensors), graph (a graph brain's
-    /// neurons and edges, in place of the sensors), overlay (time, distance, velocity), legend
-    /// (voxel colours); or all, or none.
-    #[arg(long, default_value = "ticks,sensors,lidar,attention,graph,overlay,legend")]
+    /// neurons and edges, in place of the sensors), votes (each 3D voxel coloured by its vote:
+    /// blue passable, red impassable; touching voxels bordered in yellow with sensors), overlay
+    /// (time, distance, velocity), legend (voxel colours, vote counts); or all, or none.
+    #[arg(long, default_value = "ticks,sensors,lidar,attention,graph,votes,overlay,legend")]
     pub draw: String,
     /// Write a replay file (JSON) for the browser viewer: `vsrlab view FILE` (docs/viewer.md).
     #[arg(long)]

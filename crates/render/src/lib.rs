@@ -74,6 +74,9 @@ pub struct RenderOptions {
     /// Whether to draw a graph brain's neurons and edges over the body (graph brains), in
     /// place of the sensor glyphs.
     pub draw_graph: bool,
+    /// Whether to colour each voxel by its vote (brains that vote, e.g. `elman`): blue for
+    /// "passable" (> 0), red for "impassable", in place of the actuation tint.
+    pub draw_votes: bool,
 }
 
 impl Default for RenderOptions {
@@ -90,6 +93,7 @@ impl Default for RenderOptions {
             draw_trail: false,
             draw_attention: true,
             draw_graph: true,
+            draw_votes: true,
         }
     }
 }
@@ -102,6 +106,7 @@ pub const LAYERS: &[&str] = &[
     "lidar",
     "attention",
     "graph",
+    "votes",
     "overlay",
     "legend",
 ];
@@ -122,6 +127,7 @@ impl RenderOptions {
                 "lidar" => o.draw_lidar = on,
                 "attention" => o.draw_attention = on,
                 "graph" => o.draw_graph = on,
+                "votes" => o.draw_votes = on,
                 "overlay" => o.draw_overlay = on,
                 _ => o.draw_legend = on,
             }

@@ -576,6 +576,10 @@ const SOLID = {
   contracted: [222, 84, 84], // what actuation −1 tints it towards
   expanded: [92, 196, 92], // what actuation +1 tints it towards
   tint: 0.6, // how far full actuation moves the colour towards its extreme
+  passable: [40, 90, 225], // a voxel voting "passable" (vote > 0)
+  impassable: [220, 45, 45], // a voxel voting "impassable" (vote ≤ 0)
+  votePale: [205, 205, 215], // what a vote of 0 tends to
+  touchBorder: "rgb(250,205,0)", // the border of a voxel touching another (its touch sensor fires)
   ambient: 0.35, // light reaching a face whatever its direction
   outline: 0.55, // a face's outline is its colour times this
   light: normalise3([0.35, -0.55, 0.76]), // towards the light: above, in front, a little right
@@ -624,7 +628,7 @@ function readSolidReplay(json, name) {
   const xyz = ch.voxel_xyz;
   need(xyz.per % 3 === 0, name, `channel 'voxel_xyz' has ${xyz.per} values per frame, expected 3 per voxel`);
   const voxels = xyz.per / 3;
-  for (const [key, width] of [["voxel_quat", 4], ["voxel_edge", 1], ["actuation", 1]]) {
+  for (const [key, width] of [["voxel_quat", 4], ["voxel_edge", 1], ["actuation", 1], ["vote", 1], ["touch", 1]]) {
     if (ch[key]) need(ch[key].per === width * voxels, name, `channel '${key}' has ${ch[key].per} values per frame, expected ${width * voxels} (${width} per voxel of 'voxel_xyz')`);
   }
   need(ch.center && ch.center.per === 2, name, "channel 'center' is missing or does not hold 2 values per frame");
@@ -752,11 +756,19 @@ function brightness(n) {
   return SOLID.ambient + (1 - SOLID.ambient) * Math.max(0, dot3(n, SOLID.light));
 }
 
-// Base colour of moving voxel v: the replay's own fill where it gives one, else blue tinted red
-// when contracting and green when expanding by its actuation in [−1, 1] (untinted blue with the
-// colours overlay off).
-function voxelColour(r, v, actuation) {
+// The colour of a vote in [−1, 1]: blue when > 0 ("passable"), red otherwise, paler near 0 (as
+// the PNG renderer's `vote_color`).
+function voteColour(vote) {
+  const v = Number.isFinite(vote) ? Math.min(1, Math.max(-1, vote)) : 0;
+  return mixColour(SOLID.votePale, v > 0 ? SOLID.passable : SOLID.impassable, 0.35 + 0.65 * Math.abs(v));
+}
+
+// Base colour of moving voxel v: its vote's colour where the replay has votes, else the
+// replay's own fill where it gives one, else blue tinted red when contracting and green when
+// expanding by its actuation in [−1, 1] (untinted blue with the colours overlay off).
+function voxelColour(r, v, actuation, k) {
   if (!state.overlays.colours) return SOLID.voxel;
+  if (r.ch.vote) return voteColour(r.ch.vote.values[k * r.voxels + v]);
   if (v < r.unitFill.length) { const c = r.unitFill[v]; return [c >> 16, (c >> 8) & 255, c & 255]; }
   const act = Math.min(1, Math.max(-1, actuation));
   return act < 0 ? mixColour(SOLID.voxel, SOLID.contracted, -act * SOLID.tint) : mixColour(SOLID.voxel, SOLID.expanded, act * SOLID.tint);
@@ -764,14 +776,15 @@ function voxelColour(r, v, actuation) {
 
 // Every cube at frame k + a: the moving voxels (unit = voxel index), then the fixed ones (unit −1).
 function solidCubes(r, k, a) {
-  const { voxel_xyz: xyz, voxel_quat: quat, voxel_edge: edge, actuation } = r.ch;
+  const { voxel_xyz: xyz, voxel_quat: quat, voxel_edge: edge, actuation, touch } = r.ch;
   const cubes = [];
   for (let v = 0; v < r.voxels; v++) {
     const centre = [value(xyz, k, a, 3 * v), value(xyz, k, a, 3 * v + 1), value(xyz, k, a, 3 * v + 2)];
     const turn = quat ? unitQuat(value(quat, k, a, 4 * v), value(quat, k, a, 4 * v + 1), value(quat, k, a, 4 * v + 2), value(quat, k, a, 4 * v + 3)) : NO_TURN;
     const e = edge ? value(edge, k, a, v) : r.side;
-    const colour = voxelColour(r, v, actuation ? value(actuation, k, a, v) : 0);
-    cubes.push({ centre, turn, edge: e > 0 ? e : r.side, colour, unit: v });
+    const colour = voxelColour(r, v, actuation ? value(actuation, k, a, v) : 0, k);
+    const touching = state.overlays.touch && touch && touch.values[k * r.voxels + v] > 0.5;
+    cubes.push({ centre, turn, edge: e > 0 ? e : r.side, colour, unit: v, border: touching ? SOLID.touchBorder : null });
   }
   for (const centre of r.fixed) cubes.push({ centre, turn: NO_TURN, edge: r.side, colour: SOLID.fixedVoxel, unit: -1 });
   return cubes;
@@ -782,7 +795,7 @@ function solidCubes(r, k, a) {
 function visibleFaces(cube, eye, out) {
   const h = cube.edge / 2;
   const axes = [rotate(cube.turn, [1, 0, 0]), rotate(cube.turn, [0, 1, 0]), rotate(cube.turn, [0, 0, 1])];
-  const outline = rgb(scaledColour(cube.colour, SOLID.outline));
+  const outline = cube.border || rgb(scaledColour(cube.colour, SOLID.outline));
   for (let i = 0; i < 6; i++) {
     const axis = i >> 1, normal = scale3(axes[axis], i % 2 === 0 ? -1 : 1);
     const centre = add3(cube.centre, scale3(normal, h));
@@ -791,7 +804,7 @@ function visibleFaces(cube, eye, out) {
     const corners = [add3(add3(centre, u), v), add3(sub3(centre, u), v), sub3(sub3(centre, u), v), sub3(add3(centre, u), v)];
     out.push({
       corners, unit: cube.unit, distance: length3(sub3(centre, eye)),
-      fill: rgb(scaledColour(cube.colour, brightness(normal))), outline,
+      fill: rgb(scaledColour(cube.colour, brightness(normal))), outline, wide: Boolean(cube.border),
     });
   }
 }
@@ -830,7 +843,7 @@ function drawSolidPane(pane) {
     ctx.fill();
     const chosen = f.unit >= 0 && f.unit === selected;
     ctx.strokeStyle = chosen ? "#e0e" : f.outline;
-    ctx.lineWidth = chosen ? 2.5 : 1;
+    ctx.lineWidth = chosen ? 2.5 : f.wide ? 2 : 1;
     ctx.stroke();
   }
   drawSolidHud(ctx, r, k, a);
@@ -896,6 +909,12 @@ function drawSolidHud(ctx, r, k, a) {
   const t = (k + a) * r.dt;
   const lines = [`t = ${(r.t0 + t).toFixed(2)} s`, `distance ${d.toFixed(3)} m (${(d / r.side).toFixed(1)} voxels)`];
   if (t > 0) lines.push(`velocity ${(d / t).toFixed(3)} m/s (last 1 s: ${r.velocity[k].toFixed(3)})`);
+  if (r.ch.vote) {
+    // the collective decision of the affordance study: passable when at least as many vote > 0
+    const votes = r.ch.vote.values.subarray(k * r.voxels, (k + 1) * r.voxels);
+    const yes = votes.filter((v) => v > 0).length, no = r.voxels - yes;
+    lines.push(`votes: ${yes} passable, ${no} impassable → ${yes >= no ? "passable" : "impassable"}`);
+  }
   drawHudLines(ctx, lines);
 }
 

@@ -10,6 +10,7 @@ use vsrlab_physics::Vec2;
 pub use crate::kinds::psa::robot::PRESSURE;
 pub use crate::kinds::voxel::agent::{ANGLE, CELLS, LIDAR, RAYS};
 pub use vsrlab_brain::controllers::attention::{ATTENTION, ATTENTION_SIDE};
+pub use vsrlab_brain::controllers::elman::VOTE;
 pub use vsrlab_brain::controllers::graph::{GRAPH_EDGES, GRAPH_NEURONS, GRAPH_OUTPUTS};
 pub use vsrlab_brain::PLASTIC_WEIGHTS;
 

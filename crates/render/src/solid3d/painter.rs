@@ -8,22 +8,31 @@ use super::vec3::Vec3;
 use crate::draw::{paint, stroke, Rgba};
 use tiny_skia::{FillRule, PathBuilder, Pixmap, Transform};
 
-/// A face to paint: its corners, shaded fill and outline, and its distance from the eye.
+/// A face to paint: its corners, shaded fill, outline and its width, and its distance from the
+/// eye.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Face {
     corners: [Vec3; 4],
     fill: Rgba,
     outline: Rgba,
+    outline_width: f32,
     distance: f64,
 }
 
-/// The faces of `cube` that `camera` sees, in base colour `color` shaded by their direction.
-pub(crate) fn visible_faces(cube: &Cube, color: Rgba, camera: &Camera) -> impl Iterator<Item = Face> {
+/// The faces of `cube` that `camera` sees, in base colour `color` shaded by their direction,
+/// outlined in a darker shade, or in `border` (2 pixels wide) when given.
+pub(crate) fn visible_faces(
+    cube: &Cube,
+    color: Rgba,
+    border: Option<Rgba>,
+    camera: &Camera,
+) -> impl Iterator<Item = Face> {
     let eye = camera.eye();
     cube.visible_faces(eye).map(move |f| Face {
         corners: f.corners,
         fill: shading::shaded(color, f.normal),
-        outline: shading::outline(color),
+        outline: border.unwrap_or_else(|| shading::outline(color)),
+        outline_width: if border.is_some() { 2.0 } else { 1.0 },
         distance: (f.centre - eye).length(),
     })
 }
@@ -33,17 +42,23 @@ pub(crate) fn paint_faces(pm: &mut Pixmap, camera: &Camera, faces: &mut [Face], 
     faces.sort_by(|a, b| b.distance.total_cmp(&a.distance));
     for face in faces.iter() {
         let pixels = camera.project_polygon(&face.corners);
-        fill_polygon(pm, &pixels, face.fill, Some(face.outline), anti_alias);
+        fill_polygon(
+            pm,
+            &pixels,
+            face.fill,
+            Some((face.outline, face.outline_width)),
+            anti_alias,
+        );
     }
 }
 
-/// Fills the pixel polygon `pixels` with `fill`, and strokes it one pixel wide with `outline`
-/// when given (nothing for fewer than three corners).
+/// Fills the pixel polygon `pixels` with `fill`, and strokes it with `outline` (colour, width in
+/// pixels) when given (nothing for fewer than three corners).
 pub(crate) fn fill_polygon(
     pm: &mut Pixmap,
     pixels: &[(f32, f32)],
     fill: Rgba,
-    outline: Option<Rgba>,
+    outline: Option<(Rgba, f32)>,
     anti_alias: bool,
 ) {
     let Some(path) = closed_path(pixels) else {
@@ -56,11 +71,11 @@ pub(crate) fn fill_polygon(
         Transform::identity(),
         None,
     );
-    if let Some(outline) = outline {
+    if let Some((outline, width)) = outline {
         pm.stroke_path(
             &path,
             &paint(outline, anti_alias),
-            &stroke(1.0),
+            &stroke(width),
             Transform::identity(),
             None,
         );

@@ -6,7 +6,7 @@ use super::cube::Cube;
 use super::floor::Floor;
 use super::painter::{self, Face};
 use super::quat::Quat;
-use super::shading::{self, FIXED_VOXEL};
+use super::shading::{self, FIXED_VOXEL, TOUCH_BORDER, VOTE_IMPASSABLE, VOTE_PASSABLE};
 use super::vec3::Vec3;
 use crate::draw::{packed_rgb, Rgba};
 use crate::RenderOptions;
@@ -25,6 +25,12 @@ pub(crate) struct SolidScene<'a> {
     voxels: usize,
     /// Each voxel's fill (channel `unit_fill`), where given.
     fills: Vec<Rgba>,
+    /// Whether voxels are coloured by their votes (channel `vote`).
+    votes: bool,
+    /// Whether voxels that touch another are bordered (channel `touch`).
+    touch: bool,
+    /// Whether to write the votes' count at the top right.
+    legend: bool,
     /// Centres of the voxels that never move.
     fixed: Vec<Vec3>,
     /// How far the camera stays from the body's centre.
@@ -98,6 +104,9 @@ impl<'a> SolidScene<'a> {
                 .iter()
                 .map(|&c| packed_rgb(c))
                 .collect(),
+            votes: opts.draw_votes && trace.has(channels::VOTE.name),
+            touch: opts.draw_sensors && trace.has(channels::TOUCH.name),
+            legend: opts.draw_legend,
             fixed: points(trace.fixed_values(channels::FIXED_VOXELS.name)).collect(),
             distance,
             target_z: floor_z + height / 2.0,
@@ -144,13 +153,21 @@ impl<'a> SolidScene<'a> {
         Camera::looking_at(self.target(step), self.distance, self.width, self.height)
     }
 
-    /// The moving voxels at `step` as cubes with their base colours (unusable ones skipped).
-    fn voxel_cubes(&self, step: usize) -> Vec<(Cube, Rgba)> {
+    /// A per-voxel channel's values at `step`, when it has one per voxel.
+    fn per_voxel(&self, name: &str, step: usize) -> Option<&'a [f64]> {
+        self.trace.at(name, step).filter(|a| a.len() == self.voxels)
+    }
+
+    /// The moving voxels at `step` as cubes with their base colours and borders (unusable ones
+    /// skipped).
+    fn voxel_cubes(&self, step: usize) -> Vec<(Cube, Rgba, Option<Rgba>)> {
         let t = self.trace;
         let xyz = t.at(channels::VOXEL_XYZ.name, step).unwrap_or(&[]);
         let quats = t.at(channels::VOXEL_QUAT.name, step).unwrap_or(&[]);
         let edges = t.at(channels::VOXEL_EDGE.name, step).unwrap_or(&[]);
-        let actuation = t.at(channels::ACTUATION.name, step).filter(|a| a.len() == self.voxels);
+        let actuation = self.per_voxel(channels::ACTUATION.name, step);
+        let votes = self.per_voxel(channels::VOTE.name, step).filter(|_| self.votes);
+        let touch = self.per_voxel(channels::TOUCH.name, step).filter(|_| self.touch);
         (0..self.voxels)
             .filter_map(|v| {
                 let p = xyz.get(3 * v..3 * v + 3)?;
@@ -164,11 +181,39 @@ impl<'a> SolidScene<'a> {
                     orientation: Quat::from_slice(quats.get(4 * v..4 * v + 4)),
                     edge: edge.unwrap_or(self.side),
                 };
-                let fill = self.fills.get(v).copied();
-                let color = shading::voxel_color(fill, actuation.and_then(|a| a.get(v)).copied());
-                Some((cube, color))
+                let color = match votes {
+                    Some(votes) => shading::vote_color(votes[v]),
+                    None => shading::voxel_color(self.fills.get(v).copied(), actuation.map(|a| a[v])),
+                };
+                let border = touch.filter(|t| t[v] > 0.5).map(|_| TOUCH_BORDER);
+                Some((cube, color, border))
             })
             .collect()
+    }
+
+    /// The votes of `step` at the top right: how many voxels vote "passable" and "impassable",
+    /// and the collective decision (passable on a tie, as the affordance study counts).
+    fn draw_votes_legend(&self, step: usize, pm: &mut Pixmap) {
+        let Some(votes) = self.per_voxel(channels::VOTE.name, step) else {
+            return;
+        };
+        let yes = votes.iter().filter(|&&v| v > 0.0).count();
+        let no = votes.len() - yes;
+        let decision = if yes >= no { "passable" } else { "impassable" };
+        let size = crate::overlay::text_size(pm.height()) * 0.85;
+        let lines = [
+            (format!("{yes} vote passable"), VOTE_PASSABLE),
+            (format!("{no} vote impassable"), VOTE_IMPASSABLE),
+            (format!("decision: {decision}"), [40, 40, 40, 255]),
+        ];
+        let widest = lines
+            .iter()
+            .map(|(l, _)| crate::text::width(l, size))
+            .fold(0.0, f32::max);
+        let x = pm.width() as f32 - widest - 8.0;
+        for (i, (line, [r, g, b, _])) in lines.iter().enumerate() {
+            crate::text::draw(pm, line, x, 8.0 + i as f32 * size * 1.3, size, [*r, *g, *b]);
+        }
     }
 
     /// Draws step `step` (clamped to the last one) into `pm`, which must have the frame size:
@@ -189,9 +234,12 @@ impl<'a> SolidScene<'a> {
         let mut faces: Vec<Face> = self
             .voxel_cubes(step)
             .into_iter()
-            .chain(fixed)
-            .flat_map(|(cube, color)| painter::visible_faces(&cube, color, &camera))
+            .chain(fixed.map(|(cube, color)| (cube, color, None)))
+            .flat_map(|(cube, color, border)| painter::visible_faces(&cube, color, border, &camera))
             .collect();
         painter::paint_faces(pm, &camera, &mut faces, self.anti_alias);
+        if self.votes && self.legend {
+            self.draw_votes_legend(step, pm);
+        }
     }
 }

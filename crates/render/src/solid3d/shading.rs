@@ -22,6 +22,14 @@ const CONTRACTED: Rgba = [222, 84, 84, 255];
 const EXPANDED: Rgba = [92, 196, 92, 255];
 /// How far full actuation moves the default colour towards its extreme.
 const TINT: f64 = 0.6;
+/// A voxel voting "passable" (vote > 0), as the thesis's figures.
+pub(crate) const VOTE_PASSABLE: Rgba = [40, 90, 225, 255];
+/// A voxel voting "impassable" (vote ≤ 0).
+pub(crate) const VOTE_IMPASSABLE: Rgba = [220, 45, 45, 255];
+/// A vote of 0 tends to this: votes near 0 look pale.
+const VOTE_PALE: Rgba = [205, 205, 215, 255];
+/// The border of a voxel that touches another (its touch sensor fires).
+pub(crate) const TOUCH_BORDER: Rgba = [250, 205, 0, 255];
 
 /// Light reaching a face regardless of its direction (fraction of full).
 pub(crate) const AMBIENT: f64 = 0.35;
@@ -73,6 +81,14 @@ pub(crate) fn voxel_color(fill: Option<Rgba>, actuation: Option<f64>) -> Rgba {
     }
 }
 
+/// The base colour of a voxel voting `vote` in [−1, 1]: blue when > 0 ("passable"), red
+/// otherwise, paler the closer the vote is to 0.
+pub(crate) fn vote_color(vote: f64) -> Rgba {
+    let v = if vote.is_finite() { vote.clamp(-1.0, 1.0) } else { 0.0 };
+    let strong = if v > 0.0 { VOTE_PASSABLE } else { VOTE_IMPASSABLE };
+    mix(VOTE_PALE, strong, 0.35 + 0.65 * v.abs())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -85,6 +101,19 @@ mod tests {
         assert!(top > front && front > side && side > AMBIENT, "{top} {front} {side}");
         assert_eq!(brightness(Vec3::new(0.0, 0.0, -1.0)), AMBIENT);
         assert!(top <= 1.0);
+    }
+
+    #[test]
+    fn votes_are_blue_when_passable_and_red_otherwise() {
+        assert_eq!(vote_color(1.0), VOTE_PASSABLE);
+        assert_eq!(vote_color(-1.0), VOTE_IMPASSABLE);
+        assert_eq!(vote_color(-7.0), VOTE_IMPASSABLE, "clamped");
+        let (weak, zero) = (vote_color(0.1), vote_color(0.0));
+        assert!(
+            weak[2] > weak[0] && zero[0] > zero[2],
+            "{weak:?} {zero:?}: a 0 vote is a no"
+        );
+        assert_eq!(vote_color(f64::NAN), zero);
     }
 
     #[test]

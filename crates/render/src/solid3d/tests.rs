@@ -322,3 +322,38 @@ fn a_3d_trace_missing_positions_is_refused() {
     empty.step(&channels::VOXEL_XYZ, &[]);
     assert!(save_png(&empty, 0, &plain(), dir.0.join("y.png")).is_err());
 }
+
+/// [`pair`] where the red-filled voxel votes "impassable" and touches the wall, and the
+/// blue-filled one votes "passable", at every step.
+fn voting_pair() -> Trace {
+    let mut t = pair();
+    for _ in 0..t.len() {
+        t.step(&channels::VOTE, &[-0.9, 0.8]);
+        t.step(&channels::TOUCH, &[1.0, 0.0]);
+    }
+    t
+}
+
+#[test]
+fn votes_colour_the_voxels_and_touching_ones_get_a_yellow_border() {
+    let t = voting_pair();
+    let pm = render_frame(&t, 0, &plain());
+    let top = |v: f64| rgb(&pm, project(&t, 0, Vec3::new(v, 0.0, H)));
+    let no = shade(shading::vote_color(-0.9), 0.0, 0.0, 1.0);
+    let yes = shade(shading::vote_color(0.8), 0.0, 0.0, 1.0);
+    assert!(is(top(0.0), no), "{:?} vs {no:?}", top(0.0));
+    assert!(is(top(SIDE), yes), "{:?} vs {yes:?}", top(SIDE));
+    let yellow = |pm: &Pixmap| {
+        (0..pm.width())
+            .flat_map(|x| (0..pm.height()).map(move |y| (x as f32, y as f32)))
+            .filter(|&p| is(rgb(pm, p), shading::TOUCH_BORDER))
+            .count()
+    };
+    assert!(yellow(&pm) > 20, "the touching voxel's border: {} pixels", yellow(&pm));
+    // without the votes layer, the fills; without the sensors layer, no border
+    let plain_fills = render_frame(&t, 0, &plain().with_layers("sensors").unwrap());
+    let red_top = rgb(&plain_fills, project(&t, 0, Vec3::new(0.0, 0.0, H)));
+    assert!(is(red_top, shade(color(RED), 0.0, 0.0, 1.0)), "{red_top:?}");
+    let no_border = render_frame(&t, 0, &plain().with_layers("votes").unwrap());
+    assert_eq!(yellow(&no_border), 0);
+}

@@ -16,8 +16,12 @@
 //!   the original's rule), sets `d_i = d_max` and `acc_i = 0`.
 //!
 //! Then `locomotion = max d_i` (minimised) and `sensing = min acc_i` (maximised), eqs. 5.5–5.6.
+//!
+//! The thesis's controls (§5.1.4.2, [`Evolved`]) replace one output of every voxel, every step,
+//! by a uniform draw in [−1, 1] from the evaluation's seed; `worlds = "random"` draws each
+//! environment's aperture and side walls from it ([`random_aperture_world`]).
 
-use super::aperture::{aperture_world, shape_length, ApertureWorld, Environment};
+use super::aperture::{aperture_world, random_aperture_world, shape_length, ApertureWorld, Environment};
 use super::physics::{Built, Physics3d, MAX_STEPS};
 use super::recorder::Recorder;
 use super::robot::Voxel3dRobot;
@@ -29,6 +33,8 @@ use crate::fitness::Fitness;
 use crate::outcome::{Outcome, Trace, TraceLevel};
 use crate::task::{check_objectives, fitness_values, task_field, Metrics, Objective, Sense, Task};
 use glam::DVec3;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 use vsrlab_body::Capture;
 use vsrlab_brain::controllers::elman::VOTE;
@@ -54,6 +60,35 @@ const BODY: u32 = 0;
 const WALL: u32 = 1;
 const TARGET: u32 = 2;
 
+/// Which of the network's two outputs evolution shapes: the thesis's treatment and its two
+/// controls (§5.1.4.2). In a control, the other output is replaced, for every voxel at every
+/// step, by a uniform draw in [−1, 1]: in what the world does with it (temperature, or the vote
+/// counted), not in the signal the voxel passes to its neighbours.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Evolved {
+    /// EvolvedBoth: both outputs are the network's.
+    #[default]
+    Both,
+    /// EvolvedAffordance: the actuation is random, only the votes are evolved.
+    Affordance,
+    /// EvolvedLocomotion: the votes are random, only the actuation is evolved.
+    Locomotion,
+}
+
+/// The study's three fixed worlds, or the original's randomised variant.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Worlds {
+    /// The apertures of the study (`_create_fixed_world`).
+    #[default]
+    Fixed,
+    /// Aperture centre and width and side walls drawn from the evaluation's seed
+    /// (`_create_random_world`; set `random_terrain_per_evaluation` for a new draw per
+    /// evaluation).
+    Random,
+}
+
 /// Detect whether an aperture is passable while walking to the right target.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -77,9 +112,17 @@ pub struct Affordance {
     /// How long (s) half of the bottom layer must stay off the floor to count as flying; default
     /// 0, the original's rule (a single step).
     pub flying_seconds: f64,
+    /// Which outputs are the network's: `both`, or a control (`affordance`, `locomotion`).
+    pub evolved: Evolved,
+    /// `fixed` (the study's worlds) or `random`.
+    pub worlds: Worlds,
     /// Frames per second of recorded traces.
     pub frame_rate: f64,
 }
+
+/// The seed streams of one evaluation: control noise, and random worlds.
+const NOISE_STREAM: u64 = 0x6e6f_6973_6500_0001;
+const WORLD_STREAM: u64 = 0x776f_726c_6400_0002;
 
 impl Default for Affordance {
     fn default() -> Self {
@@ -98,6 +141,8 @@ impl Default for Affordance {
             d_max: 5.0,
             penalties: true,
             flying_seconds: 0.0,
+            evolved: Evolved::Both,
+            worlds: Worlds::Fixed,
             frame_rate: 50.0,
         }
     }
@@ -131,15 +176,14 @@ impl Affordance {
     fn episode(
         &self,
         env: Environment,
+        layout: &ApertureWorld,
         grid: &BodyGrid3,
-        length: usize,
         sensors: &[super::Sensor3],
         brain: &mut dyn Controller,
+        noise: &mut ChaCha8Rng,
         level: TraceLevel,
     ) -> Result<(Scores, u64, Option<Trace>), EpisodeError> {
-        let [w, h, _] = grid.extent();
-        let layout = aperture_world(env, length, w, h);
-        let mut built = self.build(grid, &layout)?;
+        let mut built = self.build(grid, layout)?;
         let (dt, n) = (built.dt, built.body.len());
         let steps = (self.duration / dt).ceil() as u64;
         let (min_x, max_x, top) = bounds(&built);
@@ -151,6 +195,7 @@ impl Affordance {
             .collect();
         let mut readings = vec![0.0; n * sensors.len()];
         let mut actuation = vec![0.0; n];
+        let mut random_votes = vec![0.0; n];
         let mut capture = Capture::new();
         let mut recorder = Recorder::new(level, &built, self.frame_rate);
         recorder.record(&built.world, &built.body, &actuation, 0.0);
@@ -170,17 +215,26 @@ impl Affordance {
             let t = k as f64 * dt;
             sense(&built.world, &built.body, sensors, t, &mut readings);
             brain.control(t, &readings, &mut actuation);
+            if self.evolved == Evolved::Affordance {
+                actuation.iter_mut().for_each(|a| *a = noise.random_range(-1.0..=1.0));
+            }
             for (&v, a) in built.body.iter().zip(&mut actuation) {
                 *a = a.clamp(-1.0, 1.0);
                 built.world.set_temperature(v, self.physics.amplitude * *a);
             }
             brain.publish(&mut capture);
-            let votes = capture.get(VOTE.name).ok_or_else(|| {
+            let mut votes = capture.get(VOTE.name).ok_or_else(|| {
                 EpisodeError::Field(FieldError::new(
                     "robot.brain",
                     "the affordance task needs a brain that votes (elman)",
                 ))
             })?;
+            if self.evolved == Evolved::Locomotion {
+                random_votes
+                    .iter_mut()
+                    .for_each(|v| *v = noise.random_range(-1.0..=1.0));
+                votes = &random_votes;
+            }
             touched = touched || touches_wall(&built.world);
             if touched && decision(votes) == env.passable() {
                 correct += 1;
@@ -225,7 +279,18 @@ impl Affordance {
             let cell = [o[0] + c[0] as i32, o[1] + c[1] as i32, o[2] + c[2] as i32];
             body.push(world.add_voxel_to_piece(material, cell, BODY).map_err(invalid)?);
         }
-        let mut obstacles = Vec::with_capacity(layout.wall.len() + 1);
+        let mut obstacles = Vec::with_capacity(layout.wall.len() + layout.side_walls.len() + 1);
+        // a random world's side wall leaves out the cells of a body wider than the original's
+        // (its random worlds narrowed the flatworm to 3 voxels; ours keeps the 5 × 5)
+        let occupied: std::collections::HashSet<[i32; 3]> = grid
+            .cells()
+            .map(|c| [o[0] + c[0] as i32, o[1] + c[1] as i32, o[2] + c[2] as i32])
+            .collect();
+        for &cell in layout.side_walls.iter().filter(|c| !occupied.contains(*c)) {
+            let v = world.add_voxel_to_piece(material, cell, WALL).map_err(invalid)?;
+            world.set_fixed(v, &Dof::ALL, true);
+            obstacles.push(v);
+        }
         for (&cell, piece) in layout.wall.iter().map(|c| (c, WALL)).chain([(&layout.target, TARGET)]) {
             let v = world.add_voxel_to_piece(material, cell, piece).map_err(|_| {
                 task_field(FieldError::new(
@@ -351,7 +416,7 @@ impl Task for Affordance {
     fn run_episode(
         &self,
         robot: &dyn Robot,
-        _seed: u64,
+        seed: u64,
         level: TraceLevel,
         _observe: &mut dyn FnMut(f64, &dyn Agent),
     ) -> Result<Outcome, EpisodeError> {
@@ -363,11 +428,18 @@ impl Task for Affordance {
             mut brain,
         } = prepare(robot, "the affordance task")?;
         let length = self.length(robot, &grid);
+        let [w, h, _] = grid.extent();
+        let mut noise = ChaCha8Rng::seed_from_u64(seed ^ NOISE_STREAM);
+        let mut draw = ChaCha8Rng::seed_from_u64(seed ^ WORLD_STREAM);
         let mut metrics = Metrics::new();
         let (mut locomotion, mut sensing, mut steps, mut trace) = (0.0f64, 1.0f64, 0, None);
         for (i, &env) in self.environments.iter().enumerate() {
             let level = if i == 0 { level } else { TraceLevel::None };
-            let (scores, n, t) = self.episode(env, &grid, length, &sensors, brain.as_mut(), level)?;
+            let layout = match self.worlds {
+                Worlds::Fixed => aperture_world(env, length, w, h),
+                Worlds::Random => random_aperture_world(env, length, w, h, &mut draw),
+            };
+            let (scores, n, t) = self.episode(env, &layout, &grid, &sensors, brain.as_mut(), &mut noise, level)?;
             metrics.insert(format!("locomotion-{}", env.name()), scores.distance);
             metrics.insert(format!("sensing-{}", env.name()), scores.accuracy);
             locomotion = locomotion.max(scores.distance);
@@ -391,6 +463,7 @@ impl Task for Affordance {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::channels::{ACTUATION, FIXED_VOXELS};
     use crate::kinds::{from_short_forms, RobotArgs};
     use vsrlab_brain::controllers::elman::ElmanSpec;
     use vsrlab_brain::BrainSpec;
@@ -466,6 +539,75 @@ mod tests {
             (o.metric("sensing-impassable"), o.metric("sensing-passable-left")),
             (1.0, 0.0)
         );
+    }
+
+    #[test]
+    fn the_controls_replace_one_output_by_seeded_noise() {
+        let task = Affordance {
+            duration: 0.05,
+            body_length: Some(2),
+            penalties: false,
+            ..Affordance::default()
+        };
+        let yes = voter("3d:###/###/###/###", 10.0);
+        let run = |task: &Affordance, seed: u64| {
+            task.run_episode(yes.as_robot(), seed, TraceLevel::Full, &mut |_, _| {})
+                .unwrap()
+        };
+        // EvolvedLocomotion: the votes counted are random, so "passable" is no longer unanimous
+        let locomotion = Affordance {
+            evolved: Evolved::Locomotion,
+            ..task.clone()
+        };
+        let o = run(&locomotion, 3);
+        let (left, impassable) = (o.metric("sensing-passable-left"), o.metric("sensing-impassable"));
+        assert!(left < 1.0 && impassable > 0.0, "{:?}", o.metrics);
+        let votes = o.trace.as_ref().unwrap().at(VOTE.name, 1).unwrap();
+        assert!(votes.iter().all(|v| (-1.0..=1.0).contains(v)) && votes.iter().any(|&v| v < 0.0));
+        assert_eq!(run(&locomotion, 3).metrics, o.metrics, "the same seed, the same noise");
+        assert_ne!(run(&locomotion, 4).metrics, o.metrics);
+        // the actuation is untouched: the distances are those of the treatment
+        let both = run(&task, 3);
+        assert_eq!(o.metric("locomotion"), both.metric("locomotion"));
+        assert_eq!(both.metric("sensing-passable-left"), 1.0);
+        // EvolvedAffordance: a robot that never actuates is shaken by random temperatures
+        let affordance = Affordance {
+            evolved: Evolved::Affordance,
+            ..task.clone()
+        };
+        let o = run(&affordance, 3);
+        let actuation = o.trace.as_ref().unwrap().at(ACTUATION.name, 1).unwrap();
+        assert!(actuation.iter().any(|a| a.abs() > 0.1), "{actuation:?}");
+        assert_eq!(both.trace.as_ref().unwrap().at(ACTUATION.name, 1).unwrap(), [0.0; 12]);
+        assert_ne!(o.metric("locomotion"), both.metric("locomotion"));
+        assert_eq!(o.metric("sensing-passable-left"), 1.0, "the votes are the network's");
+    }
+
+    #[test]
+    fn random_worlds_are_drawn_from_the_seed() {
+        let task = Affordance {
+            duration: 0.02,
+            worlds: Worlds::Random,
+            ..Affordance::default()
+        };
+        let robot = voter("3d:starfish", 10.0);
+        let metrics = |seed: u64| {
+            let o = task
+                .run_episode(robot.as_robot(), seed, TraceLevel::Full, &mut |_, _| {})
+                .unwrap();
+            let walls = o.trace.unwrap().fixed_values(FIXED_VOXELS.name).to_vec();
+            (o.metrics, walls)
+        };
+        let (a, walls_a) = metrics(1);
+        assert_eq!(metrics(1), (a.clone(), walls_a.clone()));
+        let differ = (2..6).filter(|&s| metrics(s).1 != walls_a).count();
+        assert!(differ >= 3, "worlds change with the seed: {differ} of 4");
+        // every random world builds for the flatworm, whose 5 × 5 body a knee wall would cross
+        let flatworm = voter("3d:flatworm", 10.0);
+        for seed in 0..40 {
+            task.run_episode(flatworm.as_robot(), seed, TraceLevel::None, &mut |_, _| {})
+                .unwrap();
+        }
     }
 
     #[test]

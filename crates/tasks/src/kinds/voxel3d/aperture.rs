@@ -10,7 +10,11 @@
 //!   (start, y_w + 1, 0);
 //! - `passable-left`, `passable-right`: an aperture `2⌊(L−1)/2⌋ + 1` wide, centred at start and
 //!   shifted by ∓⌈(L−1)/2⌉, the target at (start, y_w + L, 0) beyond the wall.
+//!
+//! [`random_aperture_world`] draws the original's randomised variant (`_create_random_world`).
 
+use rand::seq::IndexedRandom;
+use rand::Rng;
 use serde::{Deserialize, Serialize};
 
 /// One of the three environments of an evaluation.
@@ -55,6 +59,8 @@ pub struct ApertureWorld {
     pub body_origin: [i32; 3],
     /// The wall's cells.
     pub wall: Vec<[i32; 3]>,
+    /// Side walls from the near side up to the wall (random worlds only), two voxels high.
+    pub side_walls: Vec<[i32; 3]>,
     /// The target cell (a fixed voxel, as in the original).
     pub target: [i32; 3],
     /// The aperture's cells along x, [first, last).
@@ -88,8 +94,91 @@ pub fn aperture_world(environment: Environment, length: usize, width: usize, dep
     ApertureWorld {
         body_origin: [start - width as i32 / 2, gap + start - depth as i32 / 2, 0],
         wall,
+        side_walls: Vec::new(),
         target,
         aperture: (left_bank + 1, right_bank),
+    }
+}
+
+/// A side wall's shape in a random world.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum SideWall {
+    None,
+    /// Straight from the near side to the wall.
+    Straight,
+    /// Outside the body's half, stepping in by L/4 at the body's far edge.
+    Knee,
+}
+
+/// The original's randomised world of `environment` (Voxcraft-python's `_create_random_world`),
+/// drawn from `rng`: the aperture's centre uniform in `start − 2 + [0, L/2]`, its nominal width
+/// `a` uniform in `[0, L/2]` (impassable) or `{L+1, L+2, L+3}` (passable), carved
+/// `[centre − ⌊a/2⌋, centre + ⌊a/2⌋)`; each side wall none, straight or a knee, 1 to ⌊L/3⌋ cells
+/// outside the body's span or the aperture; the target at (centre, y_w + L) or right behind the
+/// wall. The body is placed as in [`aperture_world`].
+pub fn random_aperture_world(
+    environment: Environment,
+    length: usize,
+    width: usize,
+    depth: usize,
+    rng: &mut impl Rng,
+) -> ApertureWorld {
+    let l = length as i32;
+    let start = (3 * l) / 2;
+    let gap = l / 2;
+    let wall_y = 2 * gap + 2 * l;
+    let centre = start - 2 + rng.random_range(0..=l / 2);
+    let a = match environment.passable() {
+        true => l + rng.random_range(1..=3),
+        false => rng.random_range(0..=l / 2),
+    };
+    let (first, end) = (centre - a / 2, centre + a / 2);
+    let wall = (0..3 * l)
+        .filter(|x| !(first..end).contains(x))
+        .flat_map(|x| [[x, wall_y, 0], [x, wall_y, 1]])
+        .collect();
+    let inset = 1..=(l / 3).max(1);
+    let left = l.min(first) - rng.random_range(inset.clone());
+    let right = (2 * l).max(end) + rng.random_range(inset);
+    let kinds = [SideWall::None, SideWall::Straight, SideWall::Knee];
+    let left_kind = *kinds.choose(rng).expect("three kinds");
+    let right_kind = *kinds.choose(rng).expect("three kinds");
+    let near = (l - 4).max(0);
+    let elbow = gap + start + l / 2;
+    let mut cells = Vec::new();
+    let mut column = |x: i32, ys: std::ops::Range<i32>| cells.extend(ys.map(|y| [x, y]));
+    match left_kind {
+        SideWall::None => {}
+        SideWall::Straight => column(left, near..wall_y),
+        SideWall::Knee => {
+            let inner = left + l / 4 - 1;
+            column(left - 1, near..elbow);
+            (left - 1..inner).for_each(|x| column(x, elbow..elbow + 1));
+            column(inner, elbow..wall_y);
+        }
+    }
+    match right_kind {
+        SideWall::None => {}
+        SideWall::Straight => column(right, near..wall_y),
+        SideWall::Knee => {
+            let inner = right - l / 4;
+            column(right, near..elbow);
+            (inner..right + 1).for_each(|x| column(x, elbow..elbow + 1));
+            column(inner, elbow..wall_y);
+        }
+    }
+    cells.sort_unstable();
+    cells.dedup();
+    let target = match environment.passable() {
+        true => [centre, wall_y + l, 0],
+        false => [centre, wall_y + 1, 0],
+    };
+    ApertureWorld {
+        body_origin: [start - width as i32 / 2, gap + start - depth as i32 / 2, 0],
+        wall,
+        side_walls: cells.into_iter().flat_map(|[x, y]| [[x, y, 0], [x, y, 1]]).collect(),
+        target,
+        aperture: (first, end),
     }
 }
 
@@ -136,5 +225,39 @@ mod tests {
         assert_eq!(aperture_world(Environment::Impassable, 6, 6, 6).body_origin, [6, 9, 0]);
         assert_eq!(shape_length("gecko"), Some(6));
         assert!(Environment::PassableLeft.passable() && !Environment::Impassable.passable());
+    }
+
+    #[test]
+    fn random_worlds_follow_the_originals_ranges() {
+        use rand::SeedableRng;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let (mut widths, mut kinds_seen) = (std::collections::BTreeSet::new(), 0);
+        for _ in 0..200 {
+            for env in Environment::ALL {
+                // the starfish: L = 9, start 13, wall at y = 26, body x in [9, 18)
+                let w = random_aperture_world(env, 9, 9, 9, &mut rng);
+                let (first, end) = w.aperture;
+                let centre = (first + end) / 2;
+                assert!((11..=15).contains(&centre), "{:?}", w.aperture);
+                let width = end - first;
+                widths.insert((env.passable(), width));
+                match env.passable() {
+                    true => assert!([10, 12].contains(&width) && w.target == [centre, 35, 0]),
+                    false => assert!(width <= 4 && w.target == [centre, 27, 0]),
+                }
+                assert_eq!(w.wall.len(), 2 * (27 - width) as usize);
+                // side walls stay outside the body's span and in front of the wall
+                assert!(w
+                    .side_walls
+                    .iter()
+                    .all(|c| (c[0] < 9 || c[0] >= 18 || c[1] >= 21) && (5..26).contains(&c[1])));
+                kinds_seen += usize::from(!w.side_walls.is_empty());
+            }
+        }
+        assert_eq!(
+            widths.into_iter().collect::<Vec<_>>(),
+            [(false, 0), (false, 2), (false, 4), (true, 10), (true, 12)]
+        );
+        assert!(kinds_seen > 400, "most worlds have a side wall: {kinds_seen} of 600");
     }
 }

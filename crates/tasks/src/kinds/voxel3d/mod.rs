@@ -17,7 +17,7 @@ mod setup;
 mod task;
 
 pub use affordance::{decision, Affordance, Scores};
-pub use aperture::{aperture_world, shape_length, ApertureWorld, Environment};
+pub use aperture::{aperture_world, random_aperture_world, shape_length, ApertureWorld, Environment};
 pub use grid::{shape_names, BodyGrid3, MAX_SIDE};
 pub use kind::{Voxel3dTable, DEFAULT_BRAIN, KIND};
 pub use physics::{Built, Physics3d, MAX_STEPS};

@@ -1,11 +1,12 @@
 //! The trace of a 3D episode, at a fixed frame rate (an episode has some 20,000 engine steps per
 //! second): times and the centre's x, y at every level but `None`; with `Full`, each voxel's
-//! centre, orientation, edge and actuation, and the obstacles' cells once (the channels
-//! [`VOXEL_XYZ`], [`VOXEL_QUAT`], [`VOXEL_EDGE`], [`ACTUATION`], [`FIXED_VOXELS`]).
+//! centre, orientation, edge, actuation and touch (1 when it touches another voxel), and the
+//! obstacles' cells once (the channels [`VOXEL_XYZ`], [`VOXEL_QUAT`], [`VOXEL_EDGE`],
+//! [`ACTUATION`], [`TOUCH`], [`FIXED_VOXELS`]).
 
 use super::physics::Built;
 use super::task::centre;
-use crate::channels::{ACTUATION, FIXED_VOXELS, VOXEL_EDGE, VOXEL_QUAT, VOXEL_XYZ};
+use crate::channels::{ACTUATION, FIXED_VOXELS, TOUCH, VOXEL_EDGE, VOXEL_QUAT, VOXEL_XYZ};
 use crate::outcome::{Trace, TraceLevel};
 use vsrlab_body::Probe;
 use vsrlab_physics::Vec2;
@@ -24,6 +25,7 @@ pub(crate) struct Recorder {
     xyz: Vec<f64>,
     quat: Vec<f64>,
     edge: Vec<f64>,
+    touch: Vec<f64>,
 }
 
 impl Recorder {
@@ -51,6 +53,7 @@ impl Recorder {
             xyz: Vec::new(),
             quat: Vec::new(),
             edge: Vec::new(),
+            touch: Vec::new(),
         }
     }
 
@@ -70,16 +73,19 @@ impl Recorder {
         self.xyz.clear();
         self.quat.clear();
         self.edge.clear();
+        self.touch.clear();
         for &v in body {
             self.xyz.extend(world.position(v).to_array());
             let q = world.orientation(v);
             self.quat.extend([q.w, q.x, q.y, q.z]);
             self.edge.push(world.edge(v));
+            self.touch.push(f64::from(u8::from(world.touches_voxel(v))));
         }
         self.trace.step(&VOXEL_XYZ, &self.xyz);
         self.trace.step(&VOXEL_QUAT, &self.quat);
         self.trace.step(&VOXEL_EDGE, &self.edge);
         self.trace.step(&ACTUATION, actuation);
+        self.trace.step(&TOUCH, &self.touch);
         self.framed = true;
     }
 

@@ -103,6 +103,10 @@ pub struct SimulateArgs {
     /// (time, distance, velocity), legend (voxel colours, vote counts); or all, or none.
     #[arg(long, default_value = "ticks,sensors,lidar,attention,graph,votes,overlay,legend")]
     pub draw: String,
+    /// Draw the share of voxels voting "passable" at every frame (brains that vote, e.g. elman on
+    /// the affordance task) into this figure (.png, and .svg beside it).
+    #[arg(long)]
+    pub votes: Option<PathBuf>,
     /// Write a replay file (JSON) for the browser viewer: `vsrlab view FILE` (docs/viewer.md).
     #[arg(long)]
     pub replay: Option<PathBuf>,
@@ -336,7 +340,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     if let Some(n) = a.ensemble {
         return run_ensemble(&a, n, &robot, &task, (&body_name, &task_name));
     }
-    let level = if a.video.is_some() || a.replay.is_some() {
+    let level = if a.video.is_some() || a.replay.is_some() || a.votes.is_some() {
         TraceLevel::Full
     } else {
         TraceLevel::None
@@ -351,6 +355,18 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
             .map_err(|e| e.to_string())?;
         let info = vsrlab_render::save_video(trace, &options, path).map_err(|e| e.to_string())?;
         video_note = Some(format!("{} ({} frames)", path.display(), info.frames));
+    }
+    let mut votes_note = None;
+    if let (Some(path), Some(trace)) = (&a.votes, &outcome.trace) {
+        let title = format!("Votes over time (seed {})", a.seed);
+        let files = vsrlab_pipelines::votes::save_votes(trace, &title, path)?;
+        votes_note = Some(
+            files
+                .iter()
+                .map(|f| f.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+        );
     }
     let mut replay_note = None;
     if let (Some(path), Some(trace)) = (&a.replay, &outcome.trace) {
@@ -376,6 +392,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
             "steps": outcome.steps, "voxels": outcome.units, "wall_seconds": wall,
             "video": a.video.as_ref().map(|p| p.display().to_string()),
             "replay": a.replay.as_ref().map(|p| p.display().to_string()),
+            "votes": a.votes.as_ref().map(|p| p.display().to_string()),
         });
         for (name, value) in &outcome.metrics {
             if v.get(name).is_none() {
@@ -415,6 +432,9 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         }
         if let Some(r) = replay_note {
             println!("replay    {r}");
+        }
+        if let Some(v) = votes_note {
+            println!("votes     {v}");
         }
     }
     Ok(())

@@ -128,6 +128,29 @@ pub fn analyze(
             &crate::pareto::pareto_figure(&settings, &senses, &members),
             "two objectives: every run's final population, its first front (large) and knee (largest)",
         )?;
+        for (k, objective) in senses.iter().enumerate() {
+            let metric = &objective.metric;
+            for (role, name, what) in [
+                (
+                    format!("specialist-{metric}"),
+                    format!("specialist-{metric}"),
+                    "specialist (the front's best in it)",
+                ),
+                ("knee".to_string(), format!("knee-{metric}"), "knee"),
+            ] {
+                let values = crate::pareto::role_values(&settings, &members, &role, k);
+                a.figure(
+                    &name,
+                    &boxplot(
+                        format!("{metric} of each run's {what}"),
+                        metric.clone(),
+                        &settings,
+                        &values,
+                    ),
+                    &format!("{metric} of each run's {what} per setting, with pairwise Mann–Whitney p-values"),
+                )?;
+            }
+        }
     }
     if let Some(figure) = graph_size_figure(&settings, &experiments) {
         a.figure(

@@ -126,15 +126,38 @@ fn median_band(setting: &Setting, curves: &[Vec<(f64, f64)>]) -> BandSeries {
     }
 }
 
-/// One box per setting from `values[setting colour]`, with pairwise Mann–Whitney p-values.
+/// The settings' names without the dash-separated words they all begin with (a sweep's
+/// `affordance-reduced-flatworm`, `affordance-reduced-gecko` → `flatworm`, `gecko`), so that tick
+/// labels fit; the names themselves when fewer than two or when nothing would be left.
+pub(crate) fn short_names(settings: &[Setting]) -> Vec<String> {
+    let names: Vec<&str> = settings.iter().map(|s| s.name.as_str()).collect();
+    let shared = |cut: usize| {
+        names
+            .iter()
+            .all(|n| n.len() > cut && n.as_bytes()[cut] == b'-' && n[..cut] == names[0][..cut])
+    };
+    let cut = match names.len() {
+        0 | 1 => None,
+        _ => names[0].match_indices('-').map(|(i, _)| i).rfind(|&i| shared(i)),
+    };
+    names
+        .iter()
+        .map(|n| cut.map_or(*n, |c| &n[c + 1..]).to_string())
+        .collect()
+}
+
+/// One box per setting from `values[setting colour]`, with pairwise Mann–Whitney p-values; the
+/// boxes are labelled by [`short_names`].
 pub(crate) fn boxplot(title: String, y_label: String, settings: &[Setting], values: &[Vec<f64>]) -> BoxFigure {
+    let labels = short_names(settings);
     BoxFigure {
         title,
         y_label,
         groups: settings
             .iter()
-            .map(|s| BoxGroup {
-                label: s.name.clone(),
+            .zip(labels)
+            .map(|(s, label)| BoxGroup {
+                label,
                 color: s.color,
                 values: values[s.color].clone(),
             })
@@ -287,5 +310,27 @@ mod tests {
     fn size_legend_spans_the_voxel_counts() {
         assert_eq!(size_legend_values(40.0), vec![1, 10, 20, 40]);
         assert_eq!(size_legend_values(2.0), vec![1, 2]);
+    }
+
+    #[test]
+    fn short_names_drop_the_words_every_setting_begins_with() {
+        let settings = |names: &[&str]| -> Vec<Setting> {
+            names
+                .iter()
+                .enumerate()
+                .map(|(color, n)| Setting {
+                    name: n.to_string(),
+                    color,
+                    experiments: Vec::new(),
+                })
+                .collect()
+        };
+        let short = |names: &[&str]| short_names(&settings(names));
+        assert_eq!(short(&["aff-red-flatworm", "aff-red-gecko"]), ["flatworm", "gecko"]);
+        // a shared prefix that is not whole words stays
+        assert_eq!(short(&["ho-mlp", "he-mlp"]), ["ho-mlp", "he-mlp"]);
+        assert_eq!(short(&["aff-x", "aff-xy"]), ["x", "xy"]);
+        assert_eq!(short(&["demo"]), ["demo"]);
+        assert_eq!(short(&["a-b", "a-b-c"]), ["b", "b-c"]);
     }
 }

@@ -32,6 +32,7 @@ mod settings;
 pub mod setup;
 mod species;
 mod summary_page;
+pub mod votes;
 
 pub use analyze::{analyze, AnalysisReport, AnalyzeOptions, FigureNote};
 pub use classes::{parse_classes, THESIS_BEHAVIOURS, THESIS_SHAPES};

@@ -117,6 +117,16 @@ pub(crate) fn pareto_csv(settings: &[Setting], senses: &[ObjectiveSense], member
     text
 }
 
+/// Per setting (indexed by its colour), objective `k` of every run's member with `role` (`knee`,
+/// `specialist-<metric>`): the values of the per-setting boxplots.
+pub(crate) fn role_values(settings: &[Setting], members: &[Member], role: &str, k: usize) -> Vec<Vec<f64>> {
+    let mut values = vec![Vec::new(); settings.iter().map(|s| s.color + 1).max().unwrap_or(0)];
+    for m in members.iter().filter(|m| m.role.split('+').any(|r| r == role)) {
+        values[settings[m.setting].color].push(m.objectives[k]);
+    }
+    values
+}
+
 /// The scatter of every final population: front members larger, knees largest.
 pub(crate) fn pareto_figure(settings: &[Setting], senses: &[ObjectiveSense], members: &[Member]) -> ScatterFigure {
     let label = |o: &ObjectiveSense| format!("{} ({})", o.metric, if o.minimize { "minimised" } else { "maximised" });
@@ -162,6 +172,38 @@ mod tests {
             config: toml::from_str(task).unwrap(),
             runs: Vec::new(),
         }
+    }
+
+    #[test]
+    fn role_values_pick_each_runs_member_with_the_role() {
+        let setting = |name: &str, color| Setting {
+            name: name.into(),
+            color,
+            experiments: Vec::new(),
+        };
+        let settings = [setting("flatworm", 0), setting("gecko", 1)];
+        let member = |s, role: &str, o: [f64; 2]| Member {
+            setting: s,
+            run: "0".into(),
+            index: 0,
+            objectives: o.to_vec(),
+            role: role.into(),
+        };
+        let members = [
+            member(0, "front+knee", [0.1, 0.3]),
+            member(0, "front+specialist-sensing", [0.2, 0.5]),
+            member(0, "", [0.4, 0.9]),
+            member(1, "front+knee+specialist-sensing", [0.3, 0.6]),
+        ];
+        assert_eq!(role_values(&settings, &members, "knee", 1), [vec![0.3], vec![0.6]]);
+        assert_eq!(
+            role_values(&settings, &members, "specialist-sensing", 1),
+            [vec![0.5], vec![0.6]]
+        );
+        assert_eq!(
+            role_values(&settings, &members, "front", 0),
+            [vec![0.1, 0.2], vec![0.3]]
+        );
     }
 
     #[test]

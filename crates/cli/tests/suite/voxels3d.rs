@@ -114,3 +114,41 @@ evaluations = 8
     let (success, text) = vsrlab(&["validate", experiment.to_str().unwrap()]);
     assert!(!success && text.contains("obstacles[0]"), "{text}");
 }
+
+#[test]
+fn an_affordance_episode_draws_its_votes_over_time_and_a_brain_without_votes_is_told() {
+    let dir = tempfile::tempdir().unwrap();
+    let votes = dir.path().join("votes.png");
+    let out = ok(&[
+        "simulate",
+        "--body",
+        "3d:flatworm",
+        "--brain",
+        "elman",
+        "--task",
+        "affordance:impassable",
+        "--duration",
+        "0.1",
+        "--votes",
+        votes.to_str().unwrap(),
+    ]);
+    assert!(out.contains("votes.png"), "{out}");
+    assert!(std::fs::read(&votes).unwrap().starts_with(b"\x89PNG"));
+    assert!(dir.path().join("votes.svg").exists());
+    let (success, text) = vsrlab(&[
+        "simulate",
+        "--body",
+        "3d:quadruped",
+        "--task",
+        "locomotion3d",
+        "--duration",
+        "0.05",
+        "--votes",
+        dir.path().join("none.png").to_str().unwrap(),
+    ]);
+    assert!(
+        !success && text.contains("--votes") && text.contains("no votes"),
+        "{text}"
+    );
+    assert!(!dir.path().join("none.png").exists());
+}

@@ -1,12 +1,12 @@
 //! Selection helpers shared by the population-based optimizers.
 
-use crate::optimizer::{Individual, Sense};
+use crate::optimizer::{compare_lexicographic, Individual, Sense};
 use crate::rng::SeededRng;
 
-/// Sorts individuals best-first by their first objective. The sort is stable, so among equal
-/// fitnesses the earlier individual stays first (callers choose the order to break ties).
-pub(crate) fn sort_best_first<G>(individuals: &mut [Individual<G>], sense: Sense) {
-    individuals.sort_by(|a, b| sense.compare(b.fitness(), a.fitness()));
+/// Sorts `individuals` best first by their objectives compared lexicographically under `senses`
+/// (stable: equal ones keep their order, so callers choose the order that breaks ties).
+pub(crate) fn sort_lexicographic<G>(individuals: &mut [Individual<G>], senses: &[Sense]) {
+    individuals.sort_by(|a, b| compare_lexicographic(&b.objectives, &a.objectives, senses));
 }
 
 /// Tournament selection on a best-first sorted population: draws `size` positions uniformly

@@ -153,6 +153,7 @@ fn genetic_algorithm() {
                         ..GaSettings::default()
                     },
                     sense: Sense::Minimize,
+                    ties: Vec::new(),
                 };
                 GeneticAlgorithm::new(config, RealVector::thesis(6), seed).unwrap()
             },

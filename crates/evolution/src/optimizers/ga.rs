@@ -23,7 +23,7 @@ use crate::operators::{mutate_or_crossover, random_genotypes, Representation};
 use crate::optimizer::{ensure, Candidate, Individual, Optimizer, Sense, Tell, Told};
 use crate::rng::Stream;
 use crate::search_state::SearchState;
-use crate::selection::{sort_best_first, tournament};
+use crate::selection::{sort_lexicographic, tournament};
 use serde::{Deserialize, Serialize};
 
 /// The GA's settings as a user writes them in an experiment's `[optimizer]` table (and as
@@ -55,15 +55,26 @@ impl Default for GaSettings {
     }
 }
 
-/// Parameters of the [`GeneticAlgorithm`]: its settings and the sense of the objective.
-/// `Default` gives the thesis settings, maximising.
+/// Parameters of the [`GeneticAlgorithm`]: its settings and the senses of its objectives.
+/// `Default` gives the thesis settings, one objective, maximising.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct GaConfig {
     /// The settings, written flat beside `sense`.
     #[serde(flatten)]
     pub settings: GaSettings,
-    /// Whether fitness is maximised or minimised.
+    /// Whether fitness (the first objective) is maximised or minimised.
     pub sense: Sense,
+    /// Senses of further objectives, each compared only when the ones before it tie: a
+    /// lexicographic GA (thesis ch. 5.1's single-objective control). Empty for one objective.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub ties: Vec<Sense>,
+}
+
+impl GaConfig {
+    /// Every objective's sense, in order: `sense`, then `ties`.
+    pub fn senses(&self) -> Vec<Sense> {
+        std::iter::once(self.sense).chain(self.ties.iter().copied()).collect()
+    }
 }
 
 /// The μ + λ genetic algorithm over any [`Representation`] (see the module docs).
@@ -77,6 +88,9 @@ pub struct GeneticAlgorithm<R: Representation> {
     representation: R,
     #[serde(flatten)]
     state: SearchState<R::Genotype>,
+    /// Every objective's sense ([`GaConfig::senses`]).
+    #[serde(default)]
+    senses: Vec<Sense>,
     /// Survivors, best first.
     population: Vec<Individual<R::Genotype>>,
 }
@@ -98,6 +112,7 @@ impl<R: Representation> GeneticAlgorithm<R> {
         })?;
         representation.validate()?;
         Ok(Self {
+            senses: config.senses(),
             config,
             representation,
             state: SearchState::new(seed),
@@ -152,7 +167,11 @@ impl<R: Representation> Optimizer for GeneticAlgorithm<R> {
     }
 
     fn senses(&self) -> &[Sense] {
-        std::slice::from_ref(&self.config.sense)
+        // checkpoints written before `senses` existed hold one objective
+        match self.senses.is_empty() {
+            true => std::slice::from_ref(&self.config.sense),
+            false => &self.senses,
+        }
     }
 
     fn population(&self) -> Vec<&Individual<R::Genotype>> {
@@ -162,7 +181,7 @@ impl<R: Representation> Optimizer for GeneticAlgorithm<R> {
 
 impl<R: Representation, O> Tell<O> for GeneticAlgorithm<R> {
     fn tell(&mut self, results: Vec<Told<O>>) -> Result<(), EvolutionError> {
-        let (batch, evaluations) = self.state.take_told(results, 1)?;
+        let (batch, evaluations) = self.state.take_told(results, self.senses().len())?;
         let generation = self.state.generation();
         let mut merged = Vec::with_capacity(batch.len() + self.population.len());
         let mut survivors = std::mem::take(&mut self.population);
@@ -176,13 +195,13 @@ impl<R: Representation, O> Tell<O> for GeneticAlgorithm<R> {
         }
         // Children first, so that on equal fitness the stable sort keeps them ahead of parents.
         merged.extend(survivors);
-        let senses = std::slice::from_ref(&self.config.sense);
+        let senses = self.senses().to_vec();
         if !self.config.settings.reevaluate_survivors {
             for individual in merged.iter().filter(|i| i.birth_generation == generation) {
-                self.state.offer(individual, senses);
+                self.state.offer(individual, &senses);
             }
         }
-        sort_best_first(&mut merged, self.config.sense);
+        sort_lexicographic(&mut merged, &senses);
         merged.truncate(self.config.settings.population_size);
         if self.config.settings.reevaluate_survivors {
             // every member was just evaluated: the best is the population's, not the luckiest
@@ -199,6 +218,7 @@ impl<R: Representation, O> Tell<O> for GeneticAlgorithm<R> {
 mod tests {
     use super::*;
     use crate::operators::RealVector;
+    use crate::optimizer::compare_lexicographic;
     use crate::run::{run_to_budget, Stop};
     use crate::test_functions::{rastrigin, rosenbrock, sphere};
 
@@ -239,6 +259,51 @@ mod tests {
     }
 
     #[test]
+    fn further_objectives_break_ties_lexicographically() {
+        // the first objective (maximised) only sees whether x0 > 0: ties everywhere; the second
+        // (minimised) is the sphere, so only it can drive the search
+        let config = GaConfig {
+            settings: GaSettings {
+                population_size: 20,
+                offspring_size: 10,
+                mutation_probability: 1.0,
+                ..GaSettings::default()
+            },
+            sense: Sense::Maximize,
+            ties: vec![Sense::Minimize],
+        };
+        assert_eq!(config.senses(), [Sense::Maximize, Sense::Minimize]);
+        let mut ga = GeneticAlgorithm::new(config, RealVector::thesis(3), 2).unwrap();
+        assert_eq!(ga.senses().len(), 2);
+        let both = |c: &Candidate<Vec<f64>>| crate::Evaluation {
+            objectives: vec![f64::from(u8::from(c.genotype[0] > 0.0)), sphere(&c.genotype)],
+            descriptor: Vec::new(),
+            outcome: (),
+        };
+        run_to_budget(&mut ga, both, &Stop::evaluations(2_000)).unwrap();
+        let pop = ga.population();
+        assert!(
+            pop.windows(2).all(
+                |w| compare_lexicographic(&w[0].objectives, &w[1].objectives, ga.senses()) != std::cmp::Ordering::Less
+            ),
+            "sorted best first"
+        );
+        let best = ga.best().unwrap();
+        assert_eq!(best.objectives[0], 1.0, "x0 > 0 first");
+        assert!(best.objectives[1] < 0.5, "then the sphere: {:?}", best.objectives);
+        // a single-objective GA that only sees the first objective does not improve the sphere
+        let flat = GaConfig {
+            ties: Vec::new(),
+            ..ga.config().clone()
+        };
+        let mut one = GeneticAlgorithm::new(flat, RealVector::thesis(3), 2).unwrap();
+        let first = |c: &Candidate<Vec<f64>>| crate::Evaluation::single(f64::from(u8::from(c.genotype[0] > 0.0)));
+        run_to_budget(&mut one, first, &Stop::evaluations(2_000)).unwrap();
+        let spread = one.population().iter().map(|i| sphere(&i.genotype)).fold(0.0, f64::max);
+        assert!(spread > best.objectives[1], "{spread}");
+    }
+
+    #[test]
     fn population_is_truncated_to_the_best_and_counts_births() {
         let config = GaConfig {
             settings: GaSettings {
@@ -247,6 +312,7 @@ mod tests {
                 ..GaSettings::default()
             },
             sense: Sense::Minimize,
+            ties: Vec::new(),
         };
         let mut ga = GeneticAlgorithm::new(config, RealVector::thesis(3), 1).unwrap();
         let sphere = |c: &Candidate<Vec<f64>>| crate::Evaluation::single(sphere(&c.genotype));

@@ -400,11 +400,11 @@ impl Experiment {
         let kind = self.optimizer.kind();
         kind.validate().map_err(|e| e.at("optimizer"))?;
         let objectives = self.task.spec.task().objectives().len();
-        if objectives > 1 && !kind.multi_objective() {
+        if objectives > 1 && !kind.multi_objective() && !kind.lexicographic() {
             return err(
                 "optimizer.kind",
                 format!(
-                    "{} optimizes one objective but task.fitness has {objectives}: use nsga2, or one objective",
+                    "{} optimizes one objective but task.fitness has {objectives}: use nsga2, ga (lexicographic), or one objective",
                     kind.name()
                 ),
             );

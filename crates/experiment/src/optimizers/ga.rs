@@ -23,11 +23,12 @@ pub struct GaParams {
 }
 
 impl GaParams {
-    /// The GA's settings for an objective of this sense.
+    /// The GA's settings for objectives of these senses (several: compared lexicographically).
     fn config(&self, senses: &[Sense]) -> GaConfig {
         GaConfig {
             settings: self.ga.clone(),
             sense: single(senses),
+            ties: senses.iter().skip(1).copied().collect(),
         }
     }
 }
@@ -35,6 +36,10 @@ impl GaParams {
 impl OptimizerKind for GaParams {
     fn name(&self) -> &'static str {
         "ga"
+    }
+
+    fn lexicographic(&self) -> bool {
+        true
     }
 
     fn validate(&self) -> Result<(), FieldError> {

@@ -64,6 +64,11 @@ pub trait OptimizerKind {
     fn multi_objective(&self) -> bool {
         false
     }
+    /// Whether it ranks several objectives lexicographically (the first decides, the next ones
+    /// break its ties).
+    fn lexicographic(&self) -> bool {
+        false
+    }
     /// Builds the optimizer for genotypes of `dimension` genes, objectives of these senses, and
     /// a run seed.
     fn build(&self, dimension: usize, senses: &[Sense], seed: u64) -> Result<AnyOptimizer, EvolutionError>;

@@ -133,6 +133,7 @@ fn new_optimizer(seed: u64) -> Result<Searcher<GeneticAlgorithm<GraphOps>>, RunE
             ..GaSettings::default()
         },
         sense: Sense::Maximize,
+        ties: Vec::new(),
     };
     Ok(Searcher(GeneticAlgorithm::new(config, GraphOps, seed)?))
 }

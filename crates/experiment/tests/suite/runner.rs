@@ -253,17 +253,47 @@ fn nsga2_runs_a_two_objective_task_from_a_config() {
 }
 
 #[test]
-fn a_single_objective_optimizer_refuses_two_objectives() {
+fn a_single_objective_optimizer_refuses_two_objectives_and_the_ga_ranks_them_lexicographically() {
     let text = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/../../experiments/two-objectives.toml"
     ))
     .unwrap();
     assert!(config::parse(&text, "two-objectives.toml").is_ok());
-    let ga = text.replace("kind = \"nsga2\"", "kind = \"ga\"");
-    let err = config::parse(&ga, "x.toml").unwrap_err();
+    let es = text.replace(
+        "kind = \"nsga2\"\npopulation_size = 40\noffspring_size = 40",
+        "kind = \"cma-es\"",
+    );
+    let err = config::parse(&es, "x.toml").unwrap_err();
     assert_eq!(err.field, "optimizer.kind");
-    assert!(err.to_string().contains("use nsga2"), "{err}");
+    assert!(err.to_string().contains("use nsga2, ga (lexicographic)"), "{err}");
+    assert!(config::parse(&text.replace("kind = \"nsga2\"", "kind = \"ga\""), "x.toml").is_ok());
+    // the GA keeps both objectives and sorts its population by the first, then the second
+    let experiment = two_objectives(tiny(
+        "kind = \"ga\"\npopulation_size = 8\noffspring_size = 8",
+        "generations = 3",
+    ));
+    let dir = tempfile::tempdir().unwrap();
+    run(&experiment, dir.path(), 2);
+    let snapshots = std::fs::read_dir(dir.path().join("run-00/snapshots")).unwrap();
+    let last = snapshots.map(|e| e.unwrap().path()).max().unwrap();
+    let text = std::fs::read_to_string(last).unwrap();
+    let objectives: Vec<(f64, f64)> = text
+        .lines()
+        .map(|l| {
+            let line: serde_json::Value = serde_json::from_str(l).unwrap();
+            let o = line["objectives"].as_array().unwrap().clone();
+            (o[0].as_f64().unwrap(), o[1].as_f64().unwrap())
+        })
+        .collect();
+    assert_eq!(objectives.len(), 8);
+    // velocity maximised, then voxels minimised on equal velocity
+    assert!(
+        objectives
+            .windows(2)
+            .all(|w| w[0].0 > w[1].0 || (w[0].0 == w[1].0 && w[0].1 <= w[1].1)),
+        "{objectives:?}"
+    );
 }
 
 /// The experiment with two objectives: velocity maximised, voxel count minimised.

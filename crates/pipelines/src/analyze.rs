@@ -162,6 +162,13 @@ pub fn analyze(
     let best = per_setting(&settings, &experiments, RunData::final_best);
     progress.note("replaying the best robot of every run…");
     let setups = read_setups(&experiments, setups, progress);
+    let saved = crate::pareto::save_role_robots(&a.path("pareto-robots"), &settings, &setups, &members, progress)?;
+    if saved > 0 {
+        progress.note(&format!(
+            "saved {saved} knee and specialist robot files in {}",
+            a.path("pareto-robots").display()
+        ));
+    }
     a.best_robots(&setups)?;
     let (classifiers, final_isi) = match &options.labels {
         Some(labels) => a.species(labels, &setups)?,

@@ -3,10 +3,15 @@
 //! ([`vsrlab_analysis::pareto`]), as `pareto.csv` and a scatter of every final population with
 //! the fronts drawn larger.
 
+use crate::error::AnalysisError;
+use crate::output::{create_folder, write_output};
+use crate::replay::ReplaySetup;
 use crate::settings::Setting;
 use std::fmt::Write as _;
+use std::path::Path;
 use vsrlab_analysis::pareto::{first_front, knee, specialist};
 use vsrlab_analysis::plot::{ScatterFigure, ScatterPoint};
+use vsrlab_analysis::progress::Progress;
 use vsrlab_analysis::results::{read_snapshot, ExperimentData};
 
 /// One objective of an experiment: its metric and whether it is minimised.
@@ -40,11 +45,15 @@ pub(crate) fn objectives(experiment: &ExperimentData) -> Vec<ObjectiveSense> {
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Member {
     pub setting: usize,
+    /// Its experiment (an index into the experiments).
+    pub experiment: usize,
     pub run: String,
     pub index: usize,
     pub objectives: Vec<f64>,
     /// `front`, `knee`, `specialist-<metric>` (joined by `+`), or empty.
     pub role: String,
+    /// The genotype of a knee or specialist (to save it as a robot file), else `None`.
+    pub genotype: Option<serde_json::Value>,
 }
 
 /// Every final-population member of every run of the settings whose experiments have two
@@ -53,7 +62,12 @@ pub(crate) fn members(settings: &[Setting], experiments: &[ExperimentData]) -> (
     let mut senses = Vec::new();
     let mut all = Vec::new();
     for (s, setting) in settings.iter().enumerate() {
-        for (experiment, run) in setting.runs(experiments) {
+        let runs = setting
+            .experiments
+            .iter()
+            .flat_map(|&e| experiments[e].runs.iter().map(move |r| (e, r)));
+        for (e, run) in runs {
+            let experiment = &experiments[e];
             let own = objectives(experiment);
             if own.len() != 2 {
                 continue;
@@ -91,17 +105,65 @@ pub(crate) fn members(settings: &[Setting], experiments: &[ExperimentData]) -> (
                         roles.push(format!("specialist-{}", own[k].metric));
                     }
                 }
+                let chosen = roles.iter().any(|r| r != "front");
                 all.push(Member {
                     setting: s,
+                    experiment: e,
                     run: experiment.run_label(run),
                     index: rows[i].index,
                     objectives: p,
                     role: roles.join("+"),
+                    genotype: chosen.then(|| rows[i].genotype.clone()),
                 });
             }
         }
     }
     (senses, all)
+}
+
+/// Saves every run's knee and specialists as robot files in `dir`
+/// (`<setting>-<run>-<roles>.robot.json`, the roles joined by `+`), for `vsrlab simulate --robot`;
+/// returns how many were written. A member whose experiment cannot be replayed is skipped with
+/// a warning.
+pub(crate) fn save_role_robots(
+    dir: &Path,
+    settings: &[Setting],
+    setups: &[Option<ReplaySetup>],
+    members: &[Member],
+    progress: &dyn Progress,
+) -> Result<usize, AnalysisError> {
+    let mut written = 0;
+    for m in members {
+        let (Some(genotype), Some(setup)) = (&m.genotype, &setups[m.experiment]) else {
+            continue;
+        };
+        let run = Path::new(&m.run)
+            .file_name()
+            .map_or("run".into(), |n| n.to_string_lossy());
+        let name = format!(
+            "{}-{run}-{}.robot.json",
+            settings[m.setting].name,
+            m.role.replace("front+", "")
+        );
+        let note = format!(
+            "{} {}: {} of the final first front, objectives {:?}",
+            settings[m.setting].name, m.run, m.role, m.objectives
+        );
+        match setup.genotypes.robot(genotype) {
+            Ok(robot) => {
+                let Some(description) = robot.description() else {
+                    continue;
+                };
+                if written == 0 {
+                    create_folder(dir)?;
+                }
+                write_output(&dir.join(name), description.to_json(Some(&note)).as_bytes())?;
+                written += 1;
+            }
+            Err(e) => progress.note(&format!("warning: {}: {e}", m.run)),
+        }
+    }
+    Ok(written)
 }
 
 /// `pareto.csv`: setting, run, index in the final population, the two objectives, role.
@@ -184,10 +246,12 @@ mod tests {
         let settings = [setting("flatworm", 0), setting("gecko", 1)];
         let member = |s, role: &str, o: [f64; 2]| Member {
             setting: s,
+            experiment: s,
             run: "0".into(),
             index: 0,
             objectives: o.to_vec(),
             role: role.into(),
+            genotype: None,
         };
         let members = [
             member(0, "front+knee", [0.1, 0.3]),

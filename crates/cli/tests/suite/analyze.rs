@@ -154,3 +154,65 @@ fn label_refuses_zero_bins_naming_the_option() {
     assert!(err.contains("bins") && err.contains("got 0"), "{err}");
     assert!(!tmp.path().join("lab").exists());
 }
+
+/// A tiny affordance run (ch. 5.1, two objectives): `analyze` writes the Pareto table and
+/// figures, the knee and specialist boxplots, and each run's knee and specialists as robot files
+/// that replay to the objectives the table gives them.
+#[test]
+fn analyze_two_objective_runs_saves_knees_that_replay_to_their_scores() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let file = d.join("aff.toml");
+    std::fs::write(
+        &file,
+        "name = \"aff\"\nruns = 1\nseed = 2\n\n[representation]\n\
+         body = { kind = \"voxel3d\", body = \"flatworm\", sensors = \"cpg:5,touch,floor,vy,vx\" }\n\
+         brain = { kind = \"elman\" }\n\n\
+         [task]\nkind = \"affordance\"\nduration = 0.05\npenalties = false\n\n\
+         [optimizer]\nkind = \"nsga2\"\npopulation_size = 4\noffspring_size = 4\n\n[stop]\nevaluations = 8\n",
+    )
+    .unwrap();
+    let out = d.join("out");
+    vsrlab(&["run", file.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let analysis = d.join("analysis");
+    let text = vsrlab(&["analyze", out.to_str().unwrap(), "--out", analysis.to_str().unwrap()]);
+    for figure in [
+        "pareto",
+        "knee-sensing",
+        "knee-locomotion",
+        "specialist-sensing",
+        "specialist-locomotion",
+    ] {
+        assert!(analysis.join(format!("{figure}.png")).exists(), "{figure}: {text}");
+    }
+    let csv = std::fs::read_to_string(analysis.join("pareto.csv")).unwrap();
+    let knee: Vec<&str> = csv
+        .lines()
+        .find(|l| l.split(',').nth(5).is_some_and(|r| r.split('+').any(|r| r == "knee")))
+        .expect("a knee row")
+        .split(',')
+        .collect();
+    let robots: Vec<_> = std::fs::read_dir(analysis.join("pareto-robots"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    let knee_file = robots
+        .iter()
+        .find(|p| p.to_string_lossy().contains("-run-00-knee"))
+        .unwrap_or_else(|| panic!("{robots:?}"));
+    let replayed = vsrlab(&[
+        "simulate",
+        "--robot",
+        knee_file.to_str().unwrap(),
+        "--task-of",
+        file.to_str().unwrap(),
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_str(&replayed).unwrap();
+    assert_eq!(
+        v["locomotion"].as_f64().unwrap(),
+        knee[3].parse::<f64>().unwrap(),
+        "{replayed}"
+    );
+    assert_eq!(v["sensing"].as_f64().unwrap(), knee[4].parse::<f64>().unwrap());
+}

@@ -11,9 +11,13 @@
 //!   `d_max` (5, as the original's code, which measures in metres: the cap never binds);
 //! - penalties (on by default, as the original's code, which differs from the thesis's "more than
 //!   half of the voxels outside the bounding volume"): a voxel's centre beyond the wall voxels'
-//!   centres along x or above the highest of them at any step, or at least half of the bottom
-//!   layer off the floor ("flying") for longer than `flying_seconds` (default 0: a single step,
-//!   the original's rule), sets `d_i = d_max` and `acc_i = 0`.
+//!   centres along x or above the highest of them at any step sets `d_i = d_max` and `acc_i = 0`.
+//!   With `flying = true`, so does having at least half of the bottom layer off the floor for
+//!   longer than `flying_seconds` (0: a single step). Off by default: the thesis has no such
+//!   rule, and the original's code counts the flying voxels with a non-atomic increment from one
+//!   GPU thread per voxel, so that (a warp's lanes overwriting each other) at most about one
+//!   voxel per warp is counted and the half is never reached for the study's bodies.
+//!   Both are checked when the voxels sense, before they actuate, as in the original.
 //!
 //! Then `locomotion = max d_i` (minimised) and `sensing = min acc_i` (maximised), eqs. 5.5–5.6.
 //!
@@ -107,8 +111,11 @@ pub struct Affordance {
     pub body_length: Option<usize>,
     /// Upper bound of each distance (m).
     pub d_max: f64,
-    /// Whether leaving the world's bounds or flying gives the worst scores.
+    /// Whether leaving the world's bounds (and flying, with `flying`) gives the worst scores.
     pub penalties: bool,
+    /// Whether flying is penalised too (off: the thesis has no such rule and the original's is
+    /// inert, see the module docs).
+    pub flying: bool,
     /// How long (s) half of the bottom layer must stay off the floor to count as flying; default
     /// 0, the original's rule (a single step).
     pub flying_seconds: f64,
@@ -140,6 +147,7 @@ impl Default for Affordance {
             body_length: None,
             d_max: 5.0,
             penalties: true,
+            flying: false,
             flying_seconds: 0.0,
             evolved: Evolved::Both,
             worlds: Worlds::Fixed,
@@ -214,6 +222,11 @@ impl Affordance {
             })?;
             let t = k as f64 * dt;
             sense(&built.world, &built.body, sensors, t, &mut readings);
+            airborne = if flying(&built.world, &bottom) { airborne + 1 } else { 0 };
+            if self.penalties && !penalised {
+                let flown = self.flying && airborne > flying_steps;
+                penalised = flown || out_of_bounds(&built, min_x, max_x, top);
+            }
             brain.control(t, &readings, &mut actuation);
             if self.evolved == Evolved::Affordance {
                 actuation.iter_mut().for_each(|a| *a = noise.random_range(-1.0..=1.0));
@@ -238,10 +251,6 @@ impl Affordance {
             touched = touched || touches_wall(&built.world);
             if touched && decision(votes) == env.passable() {
                 correct += 1;
-            }
-            airborne = if flying(&built.world, &bottom) { airborne + 1 } else { 0 };
-            if self.penalties && !penalised {
-                penalised = out_of_bounds(&built, min_x, max_x, top) || airborne > flying_steps;
             }
             recorder.record(&built.world, &built.body, &actuation, t);
             recorder.record_channel(&VOTE, votes);
@@ -632,10 +641,11 @@ mod tests {
     }
 
     #[test]
-    fn a_body_that_contracts_its_belly_flies_and_gets_the_worst_scores() {
+    fn a_body_that_contracts_its_belly_flies_and_gets_the_worst_scores_when_flying_counts() {
         let task = Affordance {
             duration: 0.05,
             body_length: Some(2),
+            flying: true,
             ..Affordance::default()
         };
         // contracted voxels lift their bottom faces off the floor at once
@@ -649,6 +659,15 @@ mod tests {
             "{:?}",
             o.metrics
         );
+        // by default flying is not penalised (the original's rule never fires)
+        let default = Affordance {
+            flying: false,
+            ..task.clone()
+        };
+        let o = default
+            .run_episode(shrinking.as_robot(), 0, TraceLevel::None, &mut |_, _| {})
+            .unwrap();
+        assert!(o.metric("locomotion") < 0.1, "{:?}", o.metrics);
         let lenient = Affordance {
             penalties: false,
             ..task.clone()
@@ -668,6 +687,66 @@ mod tests {
         };
         let o = patient
             .run_episode(shrinking.as_robot(), 0, TraceLevel::None, &mut |_, _| {})
+            .unwrap();
+        assert!(o.metric("locomotion") < 0.1, "{:?}", o.metrics);
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig { cases: 8, ..Default::default() })]
+        /// Random Elman weights on the study's shapes, in every treatment, fixed or random worlds:
+        /// every metric is finite and the scores stay in their ranges.
+        #[test]
+        fn random_voters_give_finite_scores_in_range(
+            shape in proptest::sample::select(vec!["3d:flatworm", "3d:starfish", "3d:gecko"]),
+            weights in proptest::collection::vec(-3.0f64..3.0, 158),
+            evolved in proptest::sample::select(vec![Evolved::Both, Evolved::Affordance, Evolved::Locomotion]),
+            random in proptest::bool::ANY,
+            seed in 0u64..1000,
+        ) {
+            let template = voter(shape, 0.0);
+            let r = template.downcast_ref::<Voxel3dRobot>().unwrap();
+            let robot = crate::AnyRobot::new(Voxel3dRobot {
+                brain: BrainSpec::Elman(ElmanSpec { weights, ..ElmanSpec::default() }),
+                ..r.clone()
+            });
+            let task = Affordance {
+                duration: 0.04,
+                evolved,
+                worlds: if random { Worlds::Random } else { Worlds::Fixed },
+                flying: true,
+                ..Affordance::default()
+            };
+            let o = task.run_episode(robot.as_robot(), seed, TraceLevel::None, &mut |_, _| {}).unwrap();
+            proptest::prop_assert!(o.metrics.values().all(|v| v.is_finite()), "{:?}", o.metrics);
+            proptest::prop_assert!((0.0..=5.0).contains(&o.metric("locomotion")));
+            proptest::prop_assert!((0.0..=1.0).contains(&o.metric("sensing")));
+        }
+    }
+
+    #[test]
+    fn a_voxel_above_the_wall_gets_the_worst_scores() {
+        // a column three voxels high: its top centre (z = 2 voxels) is above the wall's top (1)
+        let task = Affordance {
+            duration: 0.02,
+            body_length: Some(2),
+            ..Affordance::default()
+        };
+        let tower = voter("3d:#|#|#", 10.0);
+        let o = task
+            .run_episode(tower.as_robot(), 0, TraceLevel::None, &mut |_, _| {})
+            .unwrap();
+        assert_eq!(
+            (o.metric("locomotion"), o.metric("sensing")),
+            (5.0, 0.0),
+            "{:?}",
+            o.metrics
+        );
+        let lenient = Affordance {
+            penalties: false,
+            ..task
+        };
+        let o = lenient
+            .run_episode(tower.as_robot(), 0, TraceLevel::None, &mut |_, _| {})
             .unwrap();
         assert!(o.metric("locomotion") < 0.1, "{:?}", o.metrics);
     }

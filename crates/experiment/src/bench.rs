@@ -32,6 +32,9 @@ pub struct StandardCase {
     /// Whether the options' brain and sensors apply to it (otherwise it keeps its kind's
     /// published brain and sensors: a PSA's `heads`, an EvoGym robot's MLP over the observation).
     pub takes_options: bool,
+    /// The brain of a row that does not take the options', when not its kind's default (the
+    /// affordance row's voting `elman`).
+    pub brain: Option<&'static str>,
     /// Longest episode it runs (s), whatever the options' duration: a 3D episode takes some
     /// 21,000 engine steps per simulated second.
     pub longest: f64,
@@ -50,6 +53,7 @@ const fn case(
         task,
         terrain,
         takes_options,
+        brain: None,
         longest: f64::INFINITY,
     }
 }
@@ -62,11 +66,19 @@ const fn case_3d(name: &'static str, body: &'static str) -> StandardCase {
     }
 }
 
+/// The affordance row (ch. 5.1): the starfish with the study's Elman brain and sensors walking
+/// to the impassable aperture, wall and target colliding, in episodes of at most 2 s.
+const AFFORDANCE: StandardCase = StandardCase {
+    brain: Some("elman"),
+    ..case_3d("affordance-starfish", "3d:starfish")
+};
+
 /// The standard cases, in the order of the rows. The EvoGym robots are a full 5 × 5 body of
 /// horizontal actuators, as in the side-by-side runs with EvoGym. The 3D rows run the 3D engine
 /// (voxcraft-sim's settings, collisions on) with the default open-loop phase brain and the
-/// affordance study's sensors, in episodes of at most 2 s.
-pub const STANDARD_CASES: [StandardCase; 13] = [
+/// affordance study's sensors, in episodes of at most 2 s; the affordance row adds its Elman
+/// brain and its world of fixed voxels.
+pub const STANDARD_CASES: [StandardCase; 14] = [
     case("biped-4x3", "biped-4x3", "locomotion:flat", "flat", true),
     case("worm-10x4", "worm-10x4", "locomotion:flat", "flat", true),
     case("box-5x5", "box-5x5", "locomotion:hilly-1-10", "hilly-1-10", true),
@@ -104,6 +116,11 @@ pub const STANDARD_CASES: [StandardCase; 13] = [
     ),
     case_3d("3d-quadruped", "3d:quadruped"),
     case_3d("3d-box-6x6x6", "3d:box-6x6x6"),
+    StandardCase {
+        task: "affordance:impassable",
+        terrain: "aperture",
+        ..AFFORDANCE
+    },
 ];
 
 /// What to measure. Robots are given by short forms, as on the command line.
@@ -369,7 +386,10 @@ impl<'a> Case<'a> {
     fn new(standard: StandardCase, options: &'a BenchOptions) -> Result<Self, BenchError> {
         let robot = kinds::from_short_forms(&RobotArgs {
             body: standard.body,
-            brain: standard.takes_options.then_some(options.brain.as_str()),
+            brain: match standard.takes_options {
+                true => Some(options.brain.as_str()),
+                false => standard.brain,
+            },
             sensors: standard.takes_options.then_some(options.sensors.as_str()),
             preset: &options.preset,
         })?;
@@ -494,6 +514,15 @@ mod tests {
         let per_episode = row.steps / row.episodes as u64;
         assert_eq!(per_episode, (2.0 / row.step_seconds).ceil() as u64, "{row:?}");
         assert!((row.step_seconds - 4.7813e-5).abs() < 1e-8);
+    }
+
+    #[test]
+    fn the_affordance_row_runs_the_starfish_with_its_voting_brain() {
+        let report = run_bench(&tiny(&["affordance-starfish"])).unwrap();
+        let row = &report.rows[0];
+        assert_eq!((row.robot.as_str(), row.voxels), ("affordance-starfish", 17));
+        let per_episode = row.steps / row.episodes as u64;
+        assert_eq!(per_episode, (1.0 / row.step_seconds).ceil() as u64, "{row:?}");
     }
 
     #[test]

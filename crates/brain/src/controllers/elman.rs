@@ -120,6 +120,8 @@ pub struct ElmanController {
     directions: usize,
     memory: Vec<f64>,
     outputs: Vec<f64>,
+    /// tanh of every unit's outputs of the previous step: the squashed signals its neighbours
+    /// read (computed once per unit, not once per neighbour).
     previous: Vec<f64>,
     x: Vec<f64>,
     u: Vec<f64>,
@@ -170,7 +172,9 @@ impl ElmanController {
     /// One voxel's network on `self.x`: its new memory and two outputs.
     fn think(&mut self, unit: usize) {
         let (m, n) = (self.m, self.inputs);
-        self.x.iter_mut().for_each(|v| *v = v.tanh());
+        // the sensor readings pass through tanh here; the neighbours' signals already did
+        // (`previous` holds them squashed; tanh(0) = 0 for a missing neighbour)
+        self.x[..self.readings].iter_mut().for_each(|v| *v = v.tanh());
         let (wx, rest) = self.weights.split_at(m * n);
         let (wh, wy) = rest.split_at(m * (m + 1));
         for (i, u) in self.u.iter_mut().enumerate() {
@@ -208,7 +212,9 @@ impl Controller for ElmanController {
             self.gather(unit, readings);
             self.think(unit);
         }
-        self.previous.copy_from_slice(&self.outputs);
+        for (p, o) in self.previous.iter_mut().zip(&self.outputs) {
+            *p = o.tanh();
+        }
         for (unit, a) in actuations.iter_mut().enumerate() {
             *a = self.outputs[unit * OUTPUTS];
             self.votes[unit] = self.outputs[unit * OUTPUTS + 1];

@@ -52,10 +52,10 @@ pub struct SimulateArgs {
     #[arg(long, conflicts_with = "task")]
     pub task_of: Option<PathBuf>,
     /// Episode length in simulated seconds (default 30, or the --task-of experiment's).
-    #[arg(long)]
+    #[arg(long, value_parser = finite_number)]
     pub duration: Option<f64>,
     /// Initial seconds excluded from distance and velocity (locomotion).
-    #[arg(long)]
+    #[arg(long, value_parser = finite_number)]
     pub transient: Option<f64>,
     /// Voxels break during the episode: `<time s>:<probability>`, e.g. 30:0.5 (each voxel breaks
     /// at that time with that probability, drawn from the seed; a broken voxel stops actuating).
@@ -63,7 +63,7 @@ pub struct SimulateArgs {
     pub damage: Option<String>,
     /// Start position: the robot's bounding-box left edge (locomotion and carrier tasks; default
     /// 11, the original's).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true, value_parser = finite_number)]
     pub initial_x: Option<f64>,
     /// Run N episodes from starts shifted right by k·--shift (k = ±1 … ±N/2) on every core and
     /// print the distribution of --metric (median, quartiles, mean, sd, range) and the time the
@@ -71,7 +71,7 @@ pub struct SimulateArgs {
     #[arg(long, conflicts_with_all = ["video", "replay", "save_robot"])]
     pub ensemble: Option<usize>,
     /// Step between the ensemble's starts.
-    #[arg(long, default_value_t = 1e-6)]
+    #[arg(long, default_value_t = 1e-6, allow_negative_numbers = true, value_parser = finite_number)]
     pub shift: f64,
     /// The metric the ensemble summarises.
     #[arg(long, default_value = "velocity")]
@@ -274,6 +274,16 @@ fn with_episode_settings(
     })?;
     spec.task().validate().map_err(|e| e.to_string())?;
     Ok(spec)
+}
+
+/// A finite number (`nan` and `inf` are refused here, naming the option, rather than deep in a
+/// task as a JSON `null`).
+pub fn finite_number(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        Ok(v) => Err(format!("must be a finite number, got {v}")),
+        Err(_) => Err(format!("'{text}' is not a number")),
+    }
 }
 
 /// The JSON value of a `--damage` option: `<time>:<probability>`, or `none` (no damage).

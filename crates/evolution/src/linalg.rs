@@ -590,45 +590,4 @@ mod tests {
         }
         a
     }
-
-    /// Timing probe (release: `cargo test -p vsrlab-evolution --release linalg::tests::timing -- --ignored
-    /// --nocapture`); sizes from `LINALG_SIZES` (comma-separated), default 374, 784, 1344.
-    #[test]
-    #[ignore]
-    fn timing() {
-        let sizes: Vec<usize> = std::env::var("LINALG_SIZES")
-            .unwrap_or_else(|_| "374,784,1344".into())
-            .split(',')
-            .map(|s| s.trim().parse().unwrap())
-            .collect();
-        for n in sizes {
-            let a = random_spd(n, 7);
-            // The next "generation": a small symmetric perturbation of a.
-            let noise = SeededRng::derive(8, 0, 0, Stream::Sampling).normal_vec(n * n);
-            let mut b = a.clone();
-            for i in 0..n {
-                for j in 0..n {
-                    b[i * n + j] += 1e-3 * (noise[i * n + j] + noise[j * n + i]);
-                }
-            }
-            let start = std::time::Instant::now();
-            let (_, basis) = symmetric_eigen(&a, n);
-            let cold = start.elapsed();
-            let start = std::time::Instant::now();
-            let (values, vectors) = symmetric_eigen_from(&b, n, &basis);
-            let warm = start.elapsed();
-            // residual ‖B V − V Λ‖_max / ‖B‖_max on a few columns
-            let scale = b.iter().fold(0.0f64, |s, x| s.max(x.abs()));
-            let mut residual = 0.0f64;
-            for k in (0..n).step_by((n / 8).max(1)) {
-                for i in 0..n {
-                    let bv: f64 = (0..n).map(|j| b[i * n + j] * vectors[j * n + k]).sum();
-                    residual = residual.max((bv - values[k] * vectors[i * n + k]).abs() / scale);
-                }
-            }
-            println!(
-                "n {n}: symmetric_eigen {cold:.3?}, symmetric_eigen_from (warm) {warm:.3?}, residual {residual:.1e}"
-            );
-        }
-    }
 }

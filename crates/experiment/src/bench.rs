@@ -565,7 +565,10 @@ mod tests {
         assert_eq!((single.robot.as_str(), single.voxels), ("psa:small", 10));
         assert_eq!(single.steps, 60 * single.episodes as u64);
         assert_eq!(single.original_version, Some("PSA stable-release"));
-        assert!(single.ratio_to_original.unwrap() > 1.0);
+        // the ratio is measured speed over the original's figure: its value depends on the
+        // machine, only its presence and sign are the code's
+        let ratio = single.ratio_to_original.unwrap();
+        assert!(ratio.is_finite() && ratio > 0.0, "{ratio}");
     }
 
     #[test]

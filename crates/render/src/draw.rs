@@ -805,8 +805,15 @@ mod tests {
         t.fixed(&channels::ATTENTION_SIDE, 1, &[4.0]);
         t.step(&channels::ATTENTION, &[0.5]);
         t.outlines[2] = Vec2::new(f64::NAN, 1.0);
-        let _ = render_frame(&t, 10, &RenderOptions::default());
-        let _ = render_frame(
+        // a frame of the asked size comes back, drawn as far as the trace allows
+        let pm = render_frame(&t, 10, &RenderOptions::default());
+        assert_eq!((pm.width(), pm.height()), (640, 360));
+        assert!(pm
+            .pixels()
+            .iter()
+            .any(|p| p.demultiply() != pm.pixels()[0].demultiply()));
+        // sizes of 0 are clamped to one pixel rather than failing
+        let pm = render_frame(
             &Trace::default(),
             0,
             &RenderOptions {
@@ -815,5 +822,6 @@ mod tests {
                 ..Default::default()
             },
         );
+        assert_eq!((pm.width(), pm.height()), (1, 1));
     }
 }

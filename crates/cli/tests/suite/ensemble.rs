@@ -85,3 +85,18 @@ fn ensemble_errors_name_the_option() {
         assert!(text.contains(expect), "{args:?}: {text}");
     }
 }
+
+#[test]
+fn numeric_options_take_negative_numbers_and_refuse_non_finite_ones_by_name() {
+    // a negative start is a value, not an unknown option (the task then says what it allows)
+    let (_, text) = vsrlab(&["simulate", "--duration", "0.1", "--initial-x", "-50"]);
+    assert!(!text.contains("unexpected argument"), "{text}");
+    for (option, value) in [("--duration", "nan"), ("--transient", "inf"), ("--initial-x", "NaN")] {
+        let (success, text) = vsrlab(&["simulate", option, value]);
+        assert!(!success, "{option} {value}");
+        assert!(
+            text.contains(option) && text.contains("must be a finite number"),
+            "{option} {value}: {text}"
+        );
+    }
+}

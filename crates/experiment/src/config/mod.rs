@@ -393,6 +393,14 @@ impl Experiment {
                 return err("stop.wall_seconds", format!("must be a positive number, got {w}"));
             }
         }
+        if let Some(t) = s.target_fitness {
+            if !t.is_finite() {
+                return err(
+                    "stop.target_fitness",
+                    format!("must be a finite number, got {t} (no fitness can reach it, or every one does)"),
+                );
+            }
+        }
         let o = &self.output;
         if !(o.checkpoint_interval.is_finite() && o.checkpoint_interval >= 0.0) {
             return err("output.checkpoint_interval", "must be ≥ 0 seconds".into());

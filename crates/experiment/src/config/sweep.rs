@@ -114,6 +114,8 @@ pub fn expand(text: &str, origin: &str, stem: &str) -> Result<Vec<Experiment>, C
         _ => stem.to_string(),
     };
     let mut experiments = Vec::with_capacity(count);
+    // each setting runs in a folder of its name: two settings of one name would collide there
+    let mut named: std::collections::HashMap<String, String> = std::collections::HashMap::new();
     for index in 0..count {
         let mut setting = table.clone();
         let mut rest = index;
@@ -137,6 +139,15 @@ pub fn expand(text: &str, origin: &str, stem: &str) -> Result<Vec<Experiment>, C
             assignments.push(format!("{} = {label}", axis.key));
         }
         let name = format!("{base}-{}", labels.join("-"));
+        if let Some(first) = named.insert(name.clone(), assignments.join(", ")) {
+            return Err(whole_file(
+                "sweep",
+                format!(
+                    "the settings ({first}) and ({}) are both named '{name}' and would share its folder: give them distinct labels",
+                    assignments.join(", ")
+                ),
+            ));
+        }
         setting.insert("name".into(), toml::Value::String(name.clone()));
         let setting_origin = format!("{origin} (sweep setting {})", assignments.join(", "));
         let generated = toml::to_string(&setting)
@@ -169,6 +180,21 @@ kind = "ga"
 [stop]
 evaluations = 100
 "#;
+
+    #[test]
+    fn settings_that_expand_to_one_name_are_refused_naming_both() {
+        let twice = format!("{BASE}[sweep]\nseed = [1, 1]\n");
+        let e = expand(&twice, "demo.toml", "demo").unwrap_err();
+        assert_eq!(e.field, "sweep");
+        assert!(
+            e.to_string().contains("(seed = 1) and (seed = 1)") && e.to_string().contains("'demo-1'"),
+            "{e}"
+        );
+        // labels that join to the same string: "a-b" + "c" and "a" + "b-c"
+        let joined = format!("{BASE}[sweep.seed]\n\"a-b\" = 1\na = 2\n[sweep.runs]\nc = 1\n\"b-c\" = 2\n");
+        let e = expand(&joined, "demo.toml", "demo").unwrap_err();
+        assert!(e.to_string().contains("'demo-a-b-c'"), "{e}");
+    }
 
     #[test]
     fn a_file_without_sweep_is_one_experiment() {

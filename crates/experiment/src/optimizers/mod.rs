@@ -337,23 +337,31 @@ pub(crate) mod check {
             Err(FieldError::new(field, format!("must be in [0, 1], got {p}")))
         }
     }
-    /// A finite `[min, max]` with min ≤ max.
+    /// A finite `[min, max]` with min ≤ max, within ±[`MAX_GENE`].
     pub fn range(field: &str, r: [f64; 2]) -> Result<(), FieldError> {
-        if r[0].is_finite() && r[1].is_finite() && r[0] <= r[1] {
-            Ok(())
-        } else {
+        if !(r[0].is_finite() && r[1].is_finite() && r[0] <= r[1]) {
             Err(FieldError::new(
                 field,
                 format!("must be [min, max] with min ≤ max, got {r:?}"),
             ))
+        } else if r[0].abs().max(r[1].abs()) > MAX_GENE {
+            Err(FieldError::new(
+                field,
+                format!("must lie within ±{MAX_GENE:e} (genes beyond it overflow the networks they weigh), got {r:?}"),
+            ))
+        } else {
+            Ok(())
         }
     }
-    /// A finite `s ≥ 0`.
+    /// Largest magnitude of a gene an operator may start from or produce in one step: a network
+    /// weighted by genes of 1e308 gives infinities in every evaluation.
+    pub const MAX_GENE: f64 = 1e6;
+    /// A finite `s` in [0, [`MAX_GENE`]].
     pub fn sigma(field: &str, s: f64) -> Result<(), FieldError> {
-        if s.is_finite() && s >= 0.0 {
+        if s.is_finite() && (0.0..=MAX_GENE).contains(&s) {
             Ok(())
         } else {
-            Err(FieldError::new(field, format!("must be ≥ 0, got {s}")))
+            Err(FieldError::new(field, format!("must be in [0, {MAX_GENE:e}], got {s}")))
         }
     }
 }

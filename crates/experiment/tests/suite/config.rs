@@ -365,3 +365,36 @@ fn optimizer_fields_written_at_their_default_are_known_and_misspelt_ones_refused
         }
     }
 }
+
+#[test]
+fn values_that_mean_nothing_are_refused_naming_the_field() {
+    let cases = [
+        (
+            "evaluations = 100",
+            "evaluations = 100\ntarget_fitness = nan",
+            "'stop.target_fitness'",
+        ),
+        (
+            "evaluations = 100",
+            "evaluations = 100\ntarget_fitness = inf",
+            "'stop.target_fitness'",
+        ),
+        (
+            "population_size = 10",
+            "population_size = 10\ninit_range = [-1e308, 1e308]",
+            "'optimizer.init_range'",
+        ),
+        (
+            "population_size = 10",
+            "population_size = 10\nmutation_sigma = 1e300",
+            "'optimizer.mutation_sigma'",
+        ),
+    ];
+    for (from, to, field) in cases {
+        let e = error_of(from, to);
+        assert!(e.contains(field), "{to}: {e}");
+    }
+    // a finite target and ordinary ranges are fine
+    let text = BASE.replacen("evaluations = 100", "evaluations = 100\ntarget_fitness = 1.5", 1);
+    assert!(config::parse(&text, "demo.toml").is_ok());
+}

@@ -181,8 +181,23 @@ fn entries(paths: &[PathBuf]) -> Result<(Vec<ViewerEntry>, Option<Vec<u8>>), Str
     Ok((out, None))
 }
 
-fn entry(path: &Path, name: String, shown: bool) -> Result<ViewerEntry, String> {
+/// Whether `path` holds a replay: named `*.replay.json`, or whatever its name, a JSON object
+/// whose first field is `"format": "vsrlab-replay"` (as `--replay` writes them).
+fn is_replay(path: &Path) -> bool {
     if path.to_string_lossy().ends_with(REPLAY_SUFFIX) {
+        return true;
+    }
+    let mut head = [0u8; 64];
+    let n = std::fs::File::open(path)
+        .and_then(|mut f| std::io::Read::read(&mut f, &mut head))
+        .unwrap_or(0);
+    let text = String::from_utf8_lossy(&head[..n]);
+    let compact: String = text.chars().filter(|c| !c.is_whitespace()).collect();
+    compact.starts_with(&format!("{{\"format\":\"{}\"", vsrlab_render::replay::FORMAT))
+}
+
+fn entry(path: &Path, name: String, shown: bool) -> Result<ViewerEntry, String> {
+    if is_replay(path) {
         Ok(ViewerEntry {
             name,
             source: ReplaySource::File(path.to_path_buf()),
@@ -239,5 +254,26 @@ mod tests {
         assert_eq!(name("out/run-00", "out/run-00/best.replay.json"), "out/run-00");
         assert_eq!(name("", "best.replay.json"), "best.replay.json");
         assert_eq!(name("examples", "examples/biped.robot.json"), "biped.robot.json");
+    }
+
+    #[test]
+    fn a_replay_is_known_by_its_content_whatever_its_name() {
+        let dir = tempfile::tempdir().unwrap();
+        let write = |name: &str, text: &str| {
+            let path = dir.path().join(name);
+            std::fs::write(&path, text).unwrap();
+            path
+        };
+        assert!(is_replay(&write(
+            "r.json",
+            "{\"format\":\"vsrlab-replay\",\"version\":1}"
+        )));
+        assert!(is_replay(&write("r2.json", "{\n  \"format\": \"vsrlab-replay\"}")));
+        assert!(is_replay(&write("x.replay.json", "{}")));
+        assert!(!is_replay(&write(
+            "robot.json",
+            "{\"version\":1,\"body\":\"vsrlab-replay\"}"
+        )));
+        assert!(!is_replay(&dir.path().join("missing.json")));
     }
 }

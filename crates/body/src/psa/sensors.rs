@@ -10,6 +10,7 @@
 
 use super::membrane::Psa;
 use crate::body::Body;
+use vsrlab_field::FieldError;
 use vsrlab_physics::{Vec2, World};
 
 /// The PSA's sensors and their moving-average window. Allocates only when built.
@@ -25,12 +26,28 @@ pub struct PsaSensors {
     readings: usize,
 }
 
+/// Most readings the averaging window may hold (steps × readings): 2 × 10⁷ values, 160 MB.
+pub const MAX_WINDOW_VALUES: f64 = 2e7;
+
 impl PsaSensors {
-    /// Sensors for `psa`, averaging over `round(sensor_window / dt)` steps (at least one).
-    pub fn new(psa: &Psa, dt: f64) -> PsaSensors {
+    /// Sensors for `psa`, averaging over `round(sensor_window / dt)` steps (at least one); an
+    /// error names `sensor_window` when that window would hold more than [`MAX_WINDOW_VALUES`]
+    /// readings (a window of 1e300 s, or a time step of 1e-300 s).
+    pub fn new(psa: &Psa, dt: f64) -> Result<PsaSensors, FieldError> {
         let readings = psa.params().reading_count();
-        let window = ((psa.params().sensor_window / dt).round() as usize).max(1);
-        PsaSensors {
+        let steps = (psa.params().sensor_window / dt).round();
+        let values = steps * readings as f64;
+        if values.is_nan() || values > MAX_WINDOW_VALUES {
+            return Err(FieldError::sentence(
+                "sensor_window",
+                format!(
+                    "{} s is {steps:e} steps of {dt:e} s, {readings} readings each: the window may hold at most {MAX_WINDOW_VALUES:e} readings",
+                    psa.params().sensor_window
+                ),
+            ));
+        }
+        let window = (steps as usize).max(1);
+        Ok(PsaSensors {
             window,
             samples: vec![0.0; window * readings],
             sums: vec![0.0; readings],
@@ -38,7 +55,7 @@ impl PsaSensors {
             next: 0,
             previous_centre: None,
             readings,
-        }
+        })
     }
 
     /// Number of readings (3n+3).
@@ -108,7 +125,7 @@ mod tests {
         });
         let psa = Psa::assemble(&mut b, &params, Vec2::new(3.0, 4.0), 1);
         let mut w = b.build().unwrap();
-        let mut s = PsaSensors::new(&psa, 1.0 / 60.0);
+        let mut s = PsaSensors::new(&psa, 1.0 / 60.0).unwrap();
         assert_eq!((s.window(), s.reading_count()), (15, 33));
         let mut out = vec![0.0; 33];
         s.sense(&psa, &w, &mut out);

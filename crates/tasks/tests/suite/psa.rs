@@ -177,3 +177,25 @@ fn absurd_gas_stays_finite_or_is_refused_naming_the_field() {
     let err = episode::run(&robot(f64::MAX), task.task(), 0, TraceLevel::None).unwrap_err();
     assert!(err.to_string().contains("robot.body.gas_mass"), "{err}");
 }
+
+#[test]
+fn a_sensor_window_too_long_for_the_time_step_is_refused_naming_the_field() {
+    use vsrlab_body::psa::PsaBody;
+    use vsrlab_tasks::{episode, PsaRobot, TaskSpec, TraceLevel};
+    let robot = |window: f64| {
+        let mut body = PsaBody::of_size(PsaSize::Small);
+        body.params.sensor_window = window;
+        PsaRobot {
+            body,
+            brain: vsrlab_brain::BrainSpec::parse("constant:0").unwrap(),
+        }
+    };
+    let task = TaskSpec::parse("locomotion:flat").unwrap();
+    let task = task.with_settings(&[("duration", serde_json::json!(0.1))]).unwrap();
+    // 1e300 s of 1/60 s steps used to panic with "capacity overflow"; 1e7 s to abort allocating
+    for window in [1e300, 1e7] {
+        let err = episode::run(&robot(window), task.task(), 0, TraceLevel::None).unwrap_err();
+        assert!(err.to_string().contains("robot.body.sensor_window"), "{window}: {err}");
+    }
+    assert!(episode::run(&robot(1.0), task.task(), 0, TraceLevel::None).is_ok());
+}

@@ -128,7 +128,7 @@ impl Robot for PsaRobot {
         let shape = self.brain_shape();
         let mut brain = self.brain.build(&shape).map_err(|e| FieldError::from(e).at("robot"))?;
         brain.reset();
-        let sensors = PsaSensors::new(&psa, builder.settings().dt);
+        let sensors = PsaSensors::new(&psa, builder.settings().dt).map_err(|e| e.at("robot.body"))?;
         Ok(Box::new(PsaAgent::new(psa, sensors, brain, shape.units())))
     }
 

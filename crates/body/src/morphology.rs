@@ -9,6 +9,9 @@ pub enum MorphologyError {
     /// The name is not a known shape or is malformed.
     #[error("unknown or malformed body '{0}': expected one of worm-WxH, biped-WxH, comb-WxH, box-WxH, tripod-WxH, t-WxH, ball-D, or a text grid of '#' and '.'")]
     BadName(String),
+    /// A named shape beyond the largest size.
+    #[error("body '{0}' is too large: named shapes are at most 100 × 100 voxels (ball-100)")]
+    TooLarge(String),
     /// The body has no voxel.
     #[error("the body is empty: it has no voxel")]
     Empty,
@@ -88,11 +91,15 @@ impl Morphology {
     pub fn parse(s: &str) -> Result<Morphology, MorphologyError> {
         let t = s.trim();
         if t.contains('\n') || t.contains('/') || t.contains('#') || t.chars().all(|c| c == '.') {
-            let rows: Vec<String> = t
-                .split(['\n', '/'])
-                .map(|r| r.trim().to_string())
-                .filter(|r| !r.is_empty())
-                .collect();
+            let rows: Vec<String> = t.split(['\n', '/']).map(|r| r.trim().to_string()).collect();
+            // an empty row inside the grid is a mistake (`###//#.#`), not a row to drop
+            if let Some(i) = rows.iter().position(|r| r.is_empty()) {
+                return Err(MorphologyError::BadGrid {
+                    row: i + 1,
+                    col: 1,
+                    msg: "the row is empty: write a row of '.' for a row without voxels".into(),
+                });
+            }
             return Morphology::from_rows(&rows);
         }
         Morphology::named(t)
@@ -104,7 +111,10 @@ impl Morphology {
         let (kind, dims) = name.split_once('-').ok_or_else(bad)?;
         if kind == "ball" {
             let d: usize = dims.parse().map_err(|_| bad())?;
-            if d == 0 || d > 100 {
+            if d > 100 {
+                return Err(MorphologyError::TooLarge(name.to_string()));
+            }
+            if d == 0 {
                 return Err(bad());
             }
             let r = d as f64 / 2.0;
@@ -115,7 +125,10 @@ impl Morphology {
         }
         let (w, h) = dims.split_once('x').ok_or_else(bad)?;
         let (w, h): (usize, usize) = (w.parse().map_err(|_| bad())?, h.parse().map_err(|_| bad())?);
-        if w == 0 || h == 0 || w > 100 || h > 100 {
+        if w > 100 || h > 100 {
+            return Err(MorphologyError::TooLarge(name.to_string()));
+        }
+        if w == 0 || h == 0 {
             return Err(bad());
         }
         match kind {
@@ -287,6 +300,25 @@ mod tests {
             Err(MorphologyError::BadName(_))
         ));
         assert!(matches!(Morphology::parse("box-0x3"), Err(MorphologyError::BadName(_))));
+        // too large is said so, not "unknown or malformed"
+        for big in ["worm-100000x1", "box-3x101", "ball-1000"] {
+            let e = Morphology::parse(big).unwrap_err();
+            assert_eq!(e, MorphologyError::TooLarge(big.into()));
+            assert!(e.to_string().contains("too large"), "{e}");
+        }
+        // an empty row inside a grid is refused, not dropped
+        assert!(matches!(
+            Morphology::parse("###//#.#"),
+            Err(MorphologyError::BadGrid { row: 2, col: 1, .. })
+        ));
+        assert!(matches!(
+            Morphology::parse("###\n\n###"),
+            Err(MorphologyError::BadGrid { row: 2, .. })
+        ));
+        assert!(
+            Morphology::parse("\n###\n###\n").is_ok(),
+            "blank lines around the grid are fine"
+        );
         // diagonal contact is not a connection
         assert_eq!(Morphology::parse("#.\n.#"), Err(MorphologyError::Disconnected(2)));
     }

@@ -114,7 +114,8 @@ pub fn load_any_robot(path: &Path) -> Result<AnyRobot, FileError> {
             kinds::foreign_format_names().join(", ")
         ),
     })?;
-    any_robot_from_json(&text, &origin)
+    // a byte-order mark (some editors write one) is not part of the JSON, as TOML files allow it
+    any_robot_from_json(text.strip_prefix('\u{feff}').unwrap_or(&text), &origin)
 }
 
 /// Saves a robot in format `format`: `vsrlab` (the robot file), or a foreign format by name
@@ -273,6 +274,32 @@ mod write_atomic_tests {
             .collect();
         names.sort();
         assert_eq!(names, ["a.txt", "taken"]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
+
+#[cfg(test)]
+mod bom_tests {
+    use super::*;
+
+    #[test]
+    fn a_robot_file_with_a_byte_order_mark_reads_as_without() {
+        let dir = std::env::temp_dir().join(format!("vsrlab-bom-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let robot = crate::kinds::from_short_forms(&crate::kinds::RobotArgs {
+            body: "biped-4x3",
+            brain: None,
+            sensors: None,
+            preset: "2021",
+        })
+        .unwrap();
+        let plain = dir.join("plain.json");
+        save_any_robot(&plain, &robot, None).unwrap();
+        let text = std::fs::read_to_string(&plain).unwrap();
+        let marked = dir.join("marked.json");
+        std::fs::write(&marked, format!("\u{feff}{text}")).unwrap();
+        let (a, b) = (load_any_robot(&plain).unwrap(), load_any_robot(&marked).unwrap());
+        assert_eq!(a.to_json(None), b.to_json(None));
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -174,6 +174,25 @@ fn steps(path: &serde_path_to_error::Path) -> Vec<Step> {
         .collect()
 }
 
+/// The dotted path and value of the first NaN or infinite number in `value` (an array's
+/// elements are reported at the array's path): no field of an experiment takes one, and serde
+/// would otherwise read it as `null` ("invalid type: null").
+fn first_non_finite(value: &toml::Value, path: &str) -> Option<(String, f64)> {
+    match value {
+        toml::Value::Float(v) if !v.is_finite() => Some((path.to_string(), *v)),
+        toml::Value::Array(items) => items.iter().find_map(|v| first_non_finite(v, path)),
+        toml::Value::Table(t) => t.iter().find_map(|(k, v)| {
+            let inner = if path.is_empty() {
+                k.clone()
+            } else {
+                format!("{path}.{k}")
+            };
+            first_non_finite(v, &inner)
+        }),
+        _ => None,
+    }
+}
+
 /// Parses an experiment from TOML text; `origin` names the source in errors. Also validates
 /// the values (see [`Experiment::validate`]) and fills in defaults that depend on other fields
 /// (see [`Experiment::resolve`]).
@@ -188,6 +207,16 @@ pub fn parse(text: &str, origin: &str) -> Result<Experiment, ConfigError> {
             message: format!("invalid TOML: {}", e.message()),
         }
     })?;
+    if let Ok(table) = text.parse::<toml::Table>() {
+        if let Some((field, v)) = first_non_finite(&toml::Value::Table(table), "") {
+            return Err(ConfigError::at_field(
+                origin,
+                text,
+                &field,
+                format!("must be a finite number, got {v}"),
+            ));
+        }
+    }
     let file: ExperimentFile = serde_path_to_error::deserialize(deserializer).map_err(|e| {
         let mut path = steps(e.path());
         let inner = e.into_inner();

@@ -389,10 +389,18 @@ fn values_that_mean_nothing_are_refused_naming_the_field() {
             "population_size = 10\nmutation_sigma = 1e300",
             "'optimizer.mutation_sigma'",
         ),
+        ("duration = 5.0", "duration = nan", "'task.duration'"),
+        (
+            "population_size = 10",
+            "population_size = 10\ninit_range = [-1.0, inf]",
+            "'optimizer.init_range'",
+        ),
     ];
     for (from, to, field) in cases {
         let e = error_of(from, to);
         assert!(e.contains(field), "{to}: {e}");
+        // a non-finite number is named as such, not as the `null` serde would read
+        assert!(!e.contains("null"), "{to}: {e}");
     }
     // a finite target and ordinary ranges are fine
     let text = BASE.replacen("evaluations = 100", "evaluations = 100\ntarget_fitness = 1.5", 1);

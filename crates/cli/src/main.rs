@@ -14,6 +14,7 @@ mod plasticity;
 mod reassess;
 mod run;
 mod simulate;
+mod stdout_errors;
 mod validate;
 mod view;
 
@@ -70,6 +71,7 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    stdout_errors::install();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Simulate(a) => simulate::run(*a),
@@ -87,7 +89,9 @@ fn main() -> ExitCode {
         Command::Inflate(a) => inflate::run(a),
         Command::View(a) => view::run(a),
         Command::Completions { shell } => {
-            clap_complete::generate(shell, &mut Cli::command(), "vsrlab", &mut std::io::stdout());
+            let mut script = Vec::new();
+            clap_complete::generate(shell, &mut Cli::command(), "vsrlab", &mut script);
+            print!("{}", String::from_utf8_lossy(&script));
             Ok(())
         }
     };

@@ -272,6 +272,51 @@ fn completions_are_printed_for_bash() {
     assert!(text.contains("_vsrlab") && text.contains("validate"), "{text}");
 }
 
+/// Output into a pipe whose reader is gone (`| head -c 1`) ends quietly with status 0; into a
+/// full disk (`> /dev/full`) with status 1 and a line saying so; never with a panic.
+#[test]
+fn a_closed_pipe_or_a_full_disk_ends_without_a_panic() {
+    let commands: [&[&str]; 3] = [
+        &["completions", "bash"],
+        &["simulate", "--body", "biped-4x3", "--duration", "0.2", "--json"],
+        &[
+            "validate",
+            concat!(env!("CARGO_MANIFEST_DIR"), "/../../experiments/quickstart.toml"),
+        ],
+    ];
+    for args in commands {
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let out = Command::new(VSRLAB)
+            .args(args)
+            .stdout(writer)
+            .stderr(Stdio::piped())
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            out.status.success() && !err.contains("panicked"),
+            "{args:?}: {:?} {err}",
+            out.status
+        );
+        if std::path::Path::new("/dev/full").exists() {
+            let full = std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+            let out = Command::new(VSRLAB)
+                .args(args)
+                .stdout(full)
+                .stderr(Stdio::piped())
+                .output()
+                .unwrap();
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+            assert!(
+                err.contains("cannot write to standard output") && !err.contains("panicked"),
+                "{err}"
+            );
+        }
+    }
+}
+
 #[test]
 fn a_sweep_runs_every_setting_into_its_folder_and_analyze_compares_them() {
     let dir = tempfile::tempdir().unwrap();

@@ -304,6 +304,21 @@ mod tests {
     }
 
     #[test]
+    fn a_checkpoint_written_before_ties_reads_as_one_objective() {
+        let mut ga = GeneticAlgorithm::new(GaConfig::default(), RealVector::thesis(3), 4).unwrap();
+        let sphere = |c: &Candidate<Vec<f64>>| crate::Evaluation::single(sphere(&c.genotype));
+        run_to_budget(&mut ga, sphere, &Stop::generations(2)).unwrap();
+        let mut json = serde_json::to_value(&ga).unwrap();
+        // what an older version wrote: no `senses`, no `ties`
+        json.as_object_mut().unwrap().remove("senses").unwrap();
+        assert!(json["config"].get("ties").is_none(), "empty ties are not written");
+        let mut old: GeneticAlgorithm<RealVector> = serde_json::from_value(json).unwrap();
+        assert_eq!(old.senses(), [Sense::Maximize]);
+        run_to_budget(&mut old, sphere, &Stop::generations(3)).unwrap();
+        assert_eq!(old.generation(), 3);
+    }
+
+    #[test]
     fn population_is_truncated_to_the_best_and_counts_births() {
         let config = GaConfig {
             settings: GaSettings {

@@ -285,30 +285,27 @@ fn a_closed_pipe_or_a_full_disk_ends_without_a_panic() {
         ],
     ];
     for args in commands {
-        let (reader, writer) = std::io::pipe().unwrap();
-        drop(reader);
-        let out = Command::new(VSRLAB)
-            .args(args)
-            .stdout(writer)
-            .stderr(Stdio::piped())
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert!(
-            out.status.success() && !err.contains("panicked"),
-            "{args:?}: {:?} {err}",
-            out.status
-        );
-        if std::path::Path::new("/dev/full").exists() {
-            let full = std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+        // the command's status and standard error, its standard output going to `stdout`
+        let run_into = |stdout: Stdio| {
             let out = Command::new(VSRLAB)
                 .args(args)
-                .stdout(full)
+                .stdout(stdout)
                 .stderr(Stdio::piped())
                 .output()
                 .unwrap();
-            let err = String::from_utf8_lossy(&out.stderr);
-            assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+            (out.status, String::from_utf8_lossy(&out.stderr).into_owned())
+        };
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let (status, err) = run_into(writer.into());
+        assert!(
+            status.success() && !err.contains("panicked"),
+            "{args:?}: {status:?} {err}"
+        );
+        if std::path::Path::new("/dev/full").exists() {
+            let full = std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+            let (status, err) = run_into(full.into());
+            assert_eq!(status.code(), Some(1), "{args:?}: {err}");
             assert!(
                 err.contains("cannot write to standard output") && !err.contains("panicked"),
                 "{err}"

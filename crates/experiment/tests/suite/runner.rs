@@ -237,12 +237,7 @@ fn nsga2_runs_a_two_objective_task_from_a_config() {
         "kind = \"nsga2\"\npopulation_size = 8\noffspring_size = 8",
         "generations = 3",
     ));
-    let dir = tempfile::tempdir().unwrap();
-    run(&experiment, dir.path(), 2);
-    let snapshots = std::fs::read_dir(dir.path().join("run-00/snapshots")).unwrap();
-    let last = snapshots.map(|e| e.unwrap().path()).max().unwrap();
-    let text = std::fs::read_to_string(last).unwrap();
-    let lines: Vec<serde_json::Value> = text.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    let lines = final_snapshot(&experiment);
     assert_eq!(lines.len(), 8);
     for line in &lines {
         let objectives = line["objectives"].as_array().unwrap();
@@ -273,16 +268,10 @@ fn a_single_objective_optimizer_refuses_two_objectives_and_the_ga_ranks_them_lex
         "kind = \"ga\"\npopulation_size = 8\noffspring_size = 8",
         "generations = 3",
     ));
-    let dir = tempfile::tempdir().unwrap();
-    run(&experiment, dir.path(), 2);
-    let snapshots = std::fs::read_dir(dir.path().join("run-00/snapshots")).unwrap();
-    let last = snapshots.map(|e| e.unwrap().path()).max().unwrap();
-    let text = std::fs::read_to_string(last).unwrap();
-    let objectives: Vec<(f64, f64)> = text
-        .lines()
-        .map(|l| {
-            let line: serde_json::Value = serde_json::from_str(l).unwrap();
-            let o = line["objectives"].as_array().unwrap().clone();
+    let objectives: Vec<(f64, f64)> = final_snapshot(&experiment)
+        .iter()
+        .map(|line| {
+            let o = line["objectives"].as_array().unwrap();
             (o[0].as_f64().unwrap(), o[1].as_f64().unwrap())
         })
         .collect();
@@ -294,6 +283,16 @@ fn a_single_objective_optimizer_refuses_two_objectives_and_the_ga_ranks_them_lex
             .all(|w| w[0].0 > w[1].0 || (w[0].0 == w[1].0 && w[0].1 <= w[1].1)),
         "{objectives:?}"
     );
+}
+
+/// Runs `experiment` (2 threads) and returns the rows of run 0's last snapshot.
+fn final_snapshot(experiment: &Experiment) -> Vec<serde_json::Value> {
+    let dir = tempfile::tempdir().unwrap();
+    run(experiment, dir.path(), 2);
+    let snapshots = std::fs::read_dir(dir.path().join("run-00/snapshots")).unwrap();
+    let last = snapshots.map(|e| e.unwrap().path()).max().unwrap();
+    let text = std::fs::read_to_string(last).unwrap();
+    text.lines().map(|l| serde_json::from_str(l).unwrap()).collect()
 }
 
 /// The experiment with two objectives: velocity maximised, voxel count minimised.

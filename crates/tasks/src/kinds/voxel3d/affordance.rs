@@ -485,6 +485,11 @@ mod tests {
         assert!(!decision(&[0.0]), "a vote of 0 is a no");
     }
 
+    /// The outcome of `robot` on `task` (episode seed `seed`, trace `level`).
+    fn episode(task: &Affordance, robot: &crate::AnyRobot, seed: u64, level: TraceLevel) -> Outcome {
+        task.run_episode(robot.as_robot(), seed, level, &mut |_, _| {}).unwrap()
+    }
+
     /// A robot whose every voxel always votes `vote` and never actuates (an Elman brain with
     /// zero weights but the vote's bias).
     fn voter(body: &str, vote: f64) -> crate::AnyRobot {
@@ -526,9 +531,7 @@ mod tests {
             ..Affordance::default()
         };
         let yes = voter("3d:###/###/###/###", 10.0);
-        let o = task
-            .run_episode(yes.as_robot(), 0, TraceLevel::Full, &mut |_, _| {})
-            .unwrap();
+        let o = episode(&task, &yes, 0, TraceLevel::Full);
         assert_eq!(o.metric("sensing-passable-left"), 1.0, "{:?}", o.metrics);
         assert_eq!(o.metric("sensing-passable-right"), 1.0);
         assert_eq!(o.metric("sensing-impassable"), 0.0);
@@ -541,9 +544,7 @@ mod tests {
         );
         assert!(trace.at(VOTE.name, 1).unwrap().iter().all(|&v| v > 0.99));
         let no = voter("3d:###/###/###/###", -10.0);
-        let o = task
-            .run_episode(no.as_robot(), 0, TraceLevel::None, &mut |_, _| {})
-            .unwrap();
+        let o = episode(&task, &no, 0, TraceLevel::None);
         assert_eq!(
             (o.metric("sensing-impassable"), o.metric("sensing-passable-left")),
             (1.0, 0.0)
@@ -559,10 +560,7 @@ mod tests {
             ..Affordance::default()
         };
         let yes = voter("3d:###/###/###/###", 10.0);
-        let run = |task: &Affordance, seed: u64| {
-            task.run_episode(yes.as_robot(), seed, TraceLevel::Full, &mut |_, _| {})
-                .unwrap()
-        };
+        let run = |task: &Affordance, seed: u64| episode(task, &yes, seed, TraceLevel::Full);
         // EvolvedLocomotion: the votes counted are random, so "passable" is no longer unanimous
         let locomotion = Affordance {
             evolved: Evolved::Locomotion,
@@ -601,9 +599,7 @@ mod tests {
         };
         let robot = voter("3d:starfish", 10.0);
         let metrics = |seed: u64| {
-            let o = task
-                .run_episode(robot.as_robot(), seed, TraceLevel::Full, &mut |_, _| {})
-                .unwrap();
+            let o = episode(&task, &robot, seed, TraceLevel::Full);
             let walls = o.trace.unwrap().fixed_values(FIXED_VOXELS.name).to_vec();
             (o.metrics, walls)
         };
@@ -614,8 +610,7 @@ mod tests {
         // every random world builds for the flatworm, whose 5 × 5 body a knee wall would cross
         let flatworm = voter("3d:flatworm", 10.0);
         for seed in 0..40 {
-            task.run_episode(flatworm.as_robot(), seed, TraceLevel::None, &mut |_, _| {})
-                .unwrap();
+            episode(&task, &flatworm, seed, TraceLevel::None);
         }
     }
 
@@ -626,14 +621,7 @@ mod tests {
             d_max: 0.01,
             ..Affordance::default()
         };
-        let o = task
-            .run_episode(
-                voter("3d:flatworm", 10.0).as_robot(),
-                0,
-                TraceLevel::None,
-                &mut |_, _| {},
-            )
-            .unwrap();
+        let o = episode(&task, &voter("3d:flatworm", 10.0), 0, TraceLevel::None);
         assert_eq!(o.metric("sensing"), 0.0);
         // the flatworm starts 2 L voxels (8 cm) and more from its targets
         assert_eq!(o.metric("locomotion"), 0.01);
@@ -650,9 +638,7 @@ mod tests {
         };
         // contracted voxels lift their bottom faces off the floor at once
         let shrinking = biased("3d:###/###/###/###", -10.0, 10.0);
-        let o = task
-            .run_episode(shrinking.as_robot(), 0, TraceLevel::None, &mut |_, _| {})
-            .unwrap();
+        let o = episode(&task, &shrinking, 0, TraceLevel::None);
         assert_eq!(
             (o.metric("locomotion"), o.metric("sensing")),
             (5.0, 0.0),
@@ -664,17 +650,13 @@ mod tests {
             flying: false,
             ..task.clone()
         };
-        let o = default
-            .run_episode(shrinking.as_robot(), 0, TraceLevel::None, &mut |_, _| {})
-            .unwrap();
+        let o = episode(&default, &shrinking, 0, TraceLevel::None);
         assert!(o.metric("locomotion") < 0.1, "{:?}", o.metrics);
         let lenient = Affordance {
             penalties: false,
             ..task.clone()
         };
-        let o = lenient
-            .run_episode(shrinking.as_robot(), 0, TraceLevel::None, &mut |_, _| {})
-            .unwrap();
+        let o = episode(&lenient, &shrinking, 0, TraceLevel::None);
         assert!(
             o.metric("locomotion") < 0.1 && o.metric("sensing-passable-left") == 1.0,
             "{:?}",
@@ -685,9 +667,7 @@ mod tests {
             flying_seconds: 1.0,
             ..task.clone()
         };
-        let o = patient
-            .run_episode(shrinking.as_robot(), 0, TraceLevel::None, &mut |_, _| {})
-            .unwrap();
+        let o = episode(&patient, &shrinking, 0, TraceLevel::None);
         assert!(o.metric("locomotion") < 0.1, "{:?}", o.metrics);
     }
 
@@ -716,7 +696,7 @@ mod tests {
                 flying: true,
                 ..Affordance::default()
             };
-            let o = task.run_episode(robot.as_robot(), seed, TraceLevel::None, &mut |_, _| {}).unwrap();
+            let o = episode(&task, &robot, seed, TraceLevel::None);
             proptest::prop_assert!(o.metrics.values().all(|v| v.is_finite()), "{:?}", o.metrics);
             proptest::prop_assert!((0.0..=5.0).contains(&o.metric("locomotion")));
             proptest::prop_assert!((0.0..=1.0).contains(&o.metric("sensing")));
@@ -732,9 +712,7 @@ mod tests {
             ..Affordance::default()
         };
         let tower = voter("3d:#|#|#", 10.0);
-        let o = task
-            .run_episode(tower.as_robot(), 0, TraceLevel::None, &mut |_, _| {})
-            .unwrap();
+        let o = episode(&task, &tower, 0, TraceLevel::None);
         assert_eq!(
             (o.metric("locomotion"), o.metric("sensing")),
             (5.0, 0.0),
@@ -745,9 +723,7 @@ mod tests {
             penalties: false,
             ..task
         };
-        let o = lenient
-            .run_episode(tower.as_robot(), 0, TraceLevel::None, &mut |_, _| {})
-            .unwrap();
+        let o = episode(&lenient, &tower, 0, TraceLevel::None);
         assert!(o.metric("locomotion") < 0.1, "{:?}", o.metrics);
     }
 

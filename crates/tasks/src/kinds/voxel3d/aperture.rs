@@ -67,13 +67,69 @@ pub struct ApertureWorld {
     pub aperture: (i32, i32),
 }
 
+/// The sizes every world of a body length shares, in lattice cells.
+struct Sizes {
+    /// The body length L.
+    l: i32,
+    /// ⌊1.5 L⌋: the centre of the world across, where the body and the nominal aperture sit.
+    start: i32,
+    /// ⌊L/2⌋.
+    gap: i32,
+    /// y of the wall: 2 gap + 2 L.
+    wall_y: i32,
+}
+
+impl Sizes {
+    fn of(length: usize) -> Sizes {
+        let l = length as i32;
+        let gap = l / 2;
+        Sizes {
+            l,
+            start: (3 * l) / 2,
+            gap,
+            wall_y: 2 * gap + 2 * l,
+        }
+    }
+
+    /// The world with the aperture `[first, end)` carved through the wall, the target at
+    /// `target_x` (beyond the wall when passable, right behind it otherwise), these side walls,
+    /// and the body's `width` × `depth` box placed as the original.
+    fn world(
+        &self,
+        (first, end): (i32, i32),
+        target_x: i32,
+        environment: Environment,
+        (width, depth): (usize, usize),
+        side_walls: Vec<[i32; 3]>,
+    ) -> ApertureWorld {
+        let wall = (0..3 * self.l)
+            .filter(|x| !(first..end).contains(x))
+            .flat_map(|x| [[x, self.wall_y, 0], [x, self.wall_y, 1]])
+            .collect();
+        let target_y = if environment.passable() {
+            self.wall_y + self.l
+        } else {
+            self.wall_y + 1
+        };
+        ApertureWorld {
+            body_origin: [
+                self.start - width as i32 / 2,
+                self.gap + self.start - depth as i32 / 2,
+                0,
+            ],
+            wall,
+            side_walls,
+            target: [target_x, target_y, 0],
+            aperture: (first, end),
+        }
+    }
+}
+
 /// The world of `environment` for a body of length `length` voxels whose bounding box is
 /// `width` × `depth` cells (x, y).
 pub fn aperture_world(environment: Environment, length: usize, width: usize, depth: usize) -> ApertureWorld {
-    let l = length as i32;
-    let start = (3 * l) / 2;
-    let gap = l / 2;
-    let wall_y = 2 * gap + 2 * l;
+    let sizes = Sizes::of(length);
+    let (l, start) = (sizes.l, sizes.start);
     let aperture = if environment.passable() { l - 1 } else { 1 };
     let mut left_bank = start - aperture / 2 - 1;
     let mut right_bank = start + aperture / 2 + 1;
@@ -83,21 +139,13 @@ pub fn aperture_world(environment: Environment, length: usize, width: usize, dep
         Environment::PassableRight => (left_bank, right_bank) = (left_bank + shift, right_bank + shift),
         Environment::Impassable => {}
     }
-    let wall = (0..3 * l)
-        .filter(|x| !(left_bank + 1..right_bank).contains(x))
-        .flat_map(|x| [[x, wall_y, 0], [x, wall_y, 1]])
-        .collect();
-    let target = match environment.passable() {
-        true => [start, wall_y + l, 0],
-        false => [start, wall_y + 1, 0],
-    };
-    ApertureWorld {
-        body_origin: [start - width as i32 / 2, gap + start - depth as i32 / 2, 0],
-        wall,
-        side_walls: Vec::new(),
-        target,
-        aperture: (left_bank + 1, right_bank),
-    }
+    sizes.world(
+        (left_bank + 1, right_bank),
+        start,
+        environment,
+        (width, depth),
+        Vec::new(),
+    )
 }
 
 /// A side wall's shape in a random world.
@@ -123,20 +171,14 @@ pub fn random_aperture_world(
     depth: usize,
     rng: &mut impl Rng,
 ) -> ApertureWorld {
-    let l = length as i32;
-    let start = (3 * l) / 2;
-    let gap = l / 2;
-    let wall_y = 2 * gap + 2 * l;
+    let sizes = Sizes::of(length);
+    let (l, start, gap, wall_y) = (sizes.l, sizes.start, sizes.gap, sizes.wall_y);
     let centre = start - 2 + rng.random_range(0..=l / 2);
     let a = match environment.passable() {
         true => l + rng.random_range(1..=3),
         false => rng.random_range(0..=l / 2),
     };
     let (first, end) = (centre - a / 2, centre + a / 2);
-    let wall = (0..3 * l)
-        .filter(|x| !(first..end).contains(x))
-        .flat_map(|x| [[x, wall_y, 0], [x, wall_y, 1]])
-        .collect();
     let inset = 1..=(l / 3).max(1);
     let left = l.min(first) - rng.random_range(inset.clone());
     let right = (2 * l).max(end) + rng.random_range(inset);
@@ -169,17 +211,8 @@ pub fn random_aperture_world(
     }
     cells.sort_unstable();
     cells.dedup();
-    let target = match environment.passable() {
-        true => [centre, wall_y + l, 0],
-        false => [centre, wall_y + 1, 0],
-    };
-    ApertureWorld {
-        body_origin: [start - width as i32 / 2, gap + start - depth as i32 / 2, 0],
-        wall,
-        side_walls: cells.into_iter().flat_map(|[x, y]| [[x, y, 0], [x, y, 1]]).collect(),
-        target,
-        aperture: (first, end),
-    }
+    let side_walls = cells.into_iter().flat_map(|[x, y]| [[x, y, 0], [x, y, 1]]).collect();
+    sizes.world((first, end), centre, environment, (width, depth), side_walls)
 }
 
 /// The study's body length of its named shapes (flatworm 4, starfish 9, gecko 6).

@@ -69,22 +69,29 @@ fn robot_entry(path: &Path, name: String, shown: bool) -> Result<ViewerEntry, St
 }
 
 /// Replay files, and best robots without a replay, under `dir` (sorted, `depth` levels down).
-fn collect(dir: &Path, depth: usize, found: &mut Vec<PathBuf>) -> Result<(), String> {
+/// Only regular files whose resolved path lies inside `root` (resolved) are listed, each as
+/// (its path, its resolved path, which is what is served): a symbolic link out of the folder, a
+/// FIFO or a device is skipped, so the viewer serves nothing else.
+fn collect(root: &Path, dir: &Path, depth: usize, found: &mut Vec<(PathBuf, PathBuf)>) -> Result<(), String> {
     let mut items: Vec<PathBuf> = std::fs::read_dir(dir)
         .map_err(|e| format!("{}: {e}", dir.display()))?
         .filter_map(|e| e.ok().map(|e| e.path()))
         .collect();
     items.sort();
     for path in items {
+        let Some(resolved) = std::fs::canonicalize(&path).ok().filter(|r| r.starts_with(root)) else {
+            continue;
+        };
         let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("");
-        if path.is_dir() {
-            if depth > 0 {
-                collect(&path, depth - 1, found)?;
+        if resolved.is_dir() {
+            if depth > 0 && resolved == path {
+                collect(root, &path, depth - 1, found)?;
             }
-        } else if name.ends_with(REPLAY_SUFFIX)
-            || (name == BEST_ROBOT_FILE && !path.with_file_name(BEST_REPLAY_FILE).is_file())
+        } else if resolved.is_file()
+            && (name.ends_with(REPLAY_SUFFIX)
+                || (name == BEST_ROBOT_FILE && !path.with_file_name(BEST_REPLAY_FILE).is_file()))
         {
-            found.push(path);
+            found.push((path, resolved));
         }
     }
     Ok(())
@@ -108,7 +115,7 @@ fn short_name(root: &Path, path: &Path) -> String {
 
 /// The labelling data of a `vsrlab label` folder, if `dir` is one.
 fn labelling_of(dir: &Path) -> Option<Vec<u8>> {
-    std::fs::read(dir.join(LABELLING_FILE)).ok()
+    vsrlab_tasks::files::read_bytes(&dir.join(LABELLING_FILE)).ok()
 }
 
 /// A labelling folder's replays, in page order, named by the robots' ids (the page pairs them
@@ -147,16 +154,21 @@ fn entries(paths: &[PathBuf]) -> Result<(Vec<ViewerEntry>, Option<Vec<u8>>), Str
     let mut out = Vec::new();
     for path in paths {
         if path.is_dir() {
+            let root = std::fs::canonicalize(path).map_err(|e| format!("{}: {e}", path.display()))?;
             let mut found = Vec::new();
-            collect(path, MAX_DEPTH, &mut found)?;
+            collect(&root, &root, MAX_DEPTH, &mut found)?;
             if found.is_empty() {
                 return Err(format!(
                     "{}: no replay files ({REPLAY_SUFFIX}) or best robots ({BEST_ROBOT_FILE}) in this folder",
                     path.display()
                 ));
             }
-            for (i, file) in found.iter().enumerate() {
-                out.push(entry(file, short_name(path, file), i == 0)?);
+            for (i, (file, resolved)) in found.iter().enumerate() {
+                let name = match short_name(&root, file) {
+                    whole if whole == root.display().to_string() => path.display().to_string(),
+                    inside => inside,
+                };
+                out.push(entry(resolved, name, i == 0)?);
             }
         } else if path.is_file() {
             let parent = path.parent().unwrap_or(Path::new(""));
@@ -186,6 +198,9 @@ fn entries(paths: &[PathBuf]) -> Result<(Vec<ViewerEntry>, Option<Vec<u8>>), Str
 fn is_replay(path: &Path) -> bool {
     if path.to_string_lossy().ends_with(REPLAY_SUFFIX) {
         return true;
+    }
+    if !path.is_file() {
+        return false; // opening a FIFO to look would block; the robot reader refuses it by name
     }
     let mut head = [0u8; 64];
     let n = std::fs::File::open(path)
@@ -275,5 +290,41 @@ mod tests {
             "{\"version\":1,\"body\":\"vsrlab-replay\"}"
         )));
         assert!(!is_replay(&dir.path().join("missing.json")));
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn links_out_of_the_folder_fifos_and_devices_are_not_listed() {
+        let outside = tempfile::tempdir().unwrap();
+        let secret = outside.path().join("secret.replay.json");
+        std::fs::write(&secret, "{}").unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let inside = dir.path().join("walk.replay.json");
+        std::fs::write(&inside, "{}").unwrap();
+        let link = |target: &Path, name: &str| std::os::unix::fs::symlink(target, dir.path().join(name)).unwrap();
+        link(&secret, "leak.replay.json");
+        link(Path::new("/etc/passwd"), "passwd.replay.json");
+        link(Path::new("/dev/zero"), "zero.replay.json");
+        link(outside.path(), "elsewhere");
+        link(&inside, "alias.replay.json");
+        let fifo = dir.path().join("hang.replay.json");
+        assert!(std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap()
+            .success());
+        let (listed, _) = entries(&[dir.path().to_path_buf()]).unwrap();
+        let names: Vec<&str> = listed.iter().map(|e| e.name.as_str()).collect();
+        assert_eq!(
+            names,
+            ["alias", "walk"],
+            "a link inside the folder is served as its target"
+        );
+        for e in &listed {
+            match &e.source {
+                ReplaySource::File(path) => assert_eq!(path, &std::fs::canonicalize(&inside).unwrap()),
+                ReplaySource::Make(_) => panic!("{} is not a replay file", e.name),
+            }
+        }
     }
 }

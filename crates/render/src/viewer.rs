@@ -13,7 +13,7 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
-use vsrlab_tasks::files::FileError;
+use vsrlab_tasks::files::read_bytes;
 
 /// The page.
 pub const INDEX_HTML: &str = include_str!("../web/index.html");
@@ -120,13 +120,8 @@ impl Viewer {
             return Some(done.clone());
         }
         let made: Made = match &entry.source {
-            ReplaySource::File(path) => std::fs::read(path).map_err(|source| {
-                Arc::new(FileError::Io {
-                    path: path.display().to_string(),
-                    source,
-                }) as _
-            }),
-            ReplaySource::Make(make) => make().map_err(Arc::from),
+            ReplaySource::File(path) => read_bytes(path).map_err(|e| Arc::new(e) as _),
+            ReplaySource::Make(make) => made_safely(make),
         }
         .map(Arc::new);
         self.cache.lock().ok()?.insert(index, made.clone());
@@ -169,16 +164,28 @@ impl Viewer {
         let mut reader = BufReader::new(stream.try_clone()?.take(MAX_REQUEST));
         let mut request_line = String::new();
         reader.read_line(&mut request_line)?;
+        let mut foreign_host = None;
         loop {
             let mut header = String::new();
             if reader.read_line(&mut header)? == 0 || header == "\r\n" || header == "\n" {
                 break;
             }
+            if let Some((name, value)) = header.split_once(':') {
+                if name.trim().eq_ignore_ascii_case("host") && !is_loopback_host(value) {
+                    foreign_host = Some(value.trim().to_string());
+                }
+            }
         }
         let mut parts = request_line.split_whitespace();
         let (method, target) = (parts.next().unwrap_or(""), parts.next().unwrap_or(""));
-        let response = match method {
-            "GET" | "HEAD" => self.respond(target),
+        let response = match (method, foreign_host) {
+            (_, Some(host)) => Response::text(
+                "403 Forbidden",
+                format!(
+                    "host {host:?} is not this machine's loopback: the viewer answers only localhost and 127.0.0.1"
+                ),
+            ),
+            ("GET" | "HEAD", None) => self.respond(target),
             _ => Response::text("405 Method Not Allowed", "only GET and HEAD".to_string()),
         };
         let mut out = stream;
@@ -196,12 +203,52 @@ impl Viewer {
     }
 }
 
+/// Runs a replay maker, turning a panic inside it (a simulation that breaks an invariant) into
+/// an error the page shows, so that one bad robot never takes the server down.
+fn made_safely(make: &ReplayMaker) -> Result<Vec<u8>, Arc<dyn std::error::Error + Send + Sync>> {
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(make)) {
+        Ok(made) => made.map_err(Arc::from),
+        Err(panic) => {
+            let what = panic
+                .downcast_ref::<String>()
+                .map(String::as_str)
+                .or_else(|| panic.downcast_ref::<&str>().copied())
+                .unwrap_or("no message");
+            Err(Arc::from(MakeError::from(format!(
+                "making this replay failed inside vsrlab ({what}); please report it"
+            ))))
+        }
+    }
+}
+
+/// Whether a request's `Host` header names this machine's loopback interface (`localhost`,
+/// `127.x.x.x`, `[::1]`, with or without a port). A page from elsewhere that rebinds its own
+/// host name to 127.0.0.1 (DNS rebinding) sends its own name, and is refused.
+fn is_loopback_host(host: &str) -> bool {
+    let host = host.trim();
+    let name = if let Some(rest) = host.strip_prefix('[') {
+        rest.split(']').next().unwrap_or("")
+    } else {
+        host.rsplit_once(':').map_or(host, |(name, port)| {
+            if port.chars().all(|c| c.is_ascii_digit()) {
+                name
+            } else {
+                host
+            }
+        })
+    };
+    let name = name.trim_end_matches('.').to_ascii_lowercase();
+    name == "localhost"
+        || name.ends_with(".localhost")
+        || name.parse::<std::net::IpAddr>().is_ok_and(|ip| ip.is_loopback())
+}
+
 /// Binds the viewer's port on 127.0.0.1 (0: any free port).
 pub fn bind(port: u16) -> std::io::Result<TcpListener> {
     TcpListener::bind(SocketAddr::from((Ipv4Addr::LOCALHOST, port)))
 }
 
-/// Serves `viewer` on `listener` until `stop` is set (checked every 50 ms).
+/// Serves `viewer` on `listener` until `stop` is set (checked every 5 ms while idle).
 pub fn serve(listener: TcpListener, viewer: Arc<Viewer>, stop: &AtomicBool) -> std::io::Result<()> {
     listener.set_nonblocking(true)?;
     while !stop.load(Ordering::SeqCst) {
@@ -213,7 +260,7 @@ pub fn serve(listener: TcpListener, viewer: Arc<Viewer>, stop: &AtomicBool) -> s
                     let _ = viewer.handle(stream);
                 });
             }
-            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => std::thread::sleep(Duration::from_millis(50)),
+            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => std::thread::sleep(Duration::from_millis(5)),
             Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
             Err(e) => return Err(e),
         }
@@ -226,12 +273,137 @@ mod tests {
     use super::*;
 
     fn get(addr: SocketAddr, target: &str) -> (String, String) {
+        get_from(addr, target, "localhost:8765")
+    }
+
+    fn get_from(addr: SocketAddr, target: &str, host: &str) -> (String, String) {
         let mut s = TcpStream::connect(addr).unwrap();
-        write!(s, "GET {target} HTTP/1.1\r\nHost: x\r\n\r\n").unwrap();
+        write!(s, "GET {target} HTTP/1.1\r\nHost: {host}\r\n\r\n").unwrap();
         let mut text = String::new();
         s.read_to_string(&mut text).unwrap();
         let (head, body) = text.split_once("\r\n\r\n").unwrap();
         (head.lines().next().unwrap().to_string(), body.to_string())
+    }
+
+    /// Serves `entries` on a free port until the returned flag is set.
+    fn start(
+        entries: Vec<ViewerEntry>,
+    ) -> (
+        SocketAddr,
+        Arc<AtomicBool>,
+        std::thread::JoinHandle<std::io::Result<()>>,
+    ) {
+        let listener = bind(0).unwrap();
+        let addr = listener.local_addr().unwrap();
+        let viewer = Arc::new(Viewer::new(entries));
+        let stop = Arc::new(AtomicBool::new(false));
+        let server = {
+            let stop = stop.clone();
+            std::thread::spawn(move || serve(listener, viewer, &stop))
+        };
+        (addr, stop, server)
+    }
+
+    #[test]
+    fn only_loopback_host_names_are_answered() {
+        for ok in [
+            "localhost",
+            "localhost:8765",
+            "127.0.0.1:80",
+            "127.1.2.3",
+            "[::1]:8765",
+            "LOCALHOST.",
+            "a.localhost",
+        ] {
+            assert!(is_loopback_host(ok), "{ok}");
+        }
+        for foreign in [
+            "evil.example:8765",
+            "192.168.1.2",
+            "localhost.evil.example",
+            "[::2]",
+            "",
+            "127.0.0.1.evil.example",
+        ] {
+            assert!(!is_loopback_host(foreign), "{foreign}");
+        }
+        let (addr, stop, server) = start(Vec::new());
+        let (status, body) = get_from(addr, "/api/replays", "attacker.example:8765");
+        assert!(
+            status.contains("403") && body.contains("attacker.example"),
+            "{status} {body}"
+        );
+        assert!(get_from(addr, "/api/replays", "127.0.0.1:8765").0.contains("200"));
+        stop.store(true, Ordering::SeqCst);
+        server.join().unwrap().unwrap();
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_thousand_mixed_requests_with_panicking_makers_and_a_fifo_leave_it_serving() {
+        let dir = std::env::temp_dir().join(format!("vsrlab-viewer-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let fifo = dir.join("hang.replay.json");
+        assert!(std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap()
+            .success());
+        let good = dir.join("good.replay.json");
+        std::fs::write(&good, b"{\"format\":\"vsrlab-replay\"}").unwrap();
+        let entries = vec![
+            ViewerEntry {
+                name: "good".into(),
+                source: ReplaySource::File(good),
+                shown: true,
+            },
+            ViewerEntry {
+                name: "fifo".into(),
+                source: ReplaySource::File(fifo),
+                shown: false,
+            },
+            ViewerEntry {
+                name: "panics".into(),
+                source: ReplaySource::Make(Box::new(|| panic!("a body with no voxels"))),
+                shown: false,
+            },
+            ViewerEntry {
+                name: "fails".into(),
+                source: ReplaySource::Make(Box::new(|| Err("the episode became non-finite".into()))),
+                shown: false,
+            },
+        ];
+        let (addr, stop, server) = start(entries);
+        let cases: [(&str, &str, &str); 8] = [
+            ("/replay/0", "localhost", "200"),
+            ("/replay/1", "localhost", "not a regular file"),
+            ("/replay/2", "localhost", "a body with no voxels"),
+            ("/replay/3", "127.0.0.1", "non-finite"),
+            ("/replay/9", "localhost", "404"),
+            ("/api/replays", "rebound.example", "403"),
+            ("/../../etc/passwd", "localhost", "404"),
+            ("/", "[::1]:1", "200"),
+        ];
+        let workers: Vec<_> = (0..4)
+            .map(|w| {
+                std::thread::spawn(move || {
+                    for i in 0..250 {
+                        let (target, host, expect) = cases[(i * 7 + w) % cases.len()];
+                        let (status, body) = get_from(addr, target, host);
+                        assert!(
+                            status.contains(expect) || body.contains(expect),
+                            "{target}: {status} {body}"
+                        );
+                    }
+                })
+            })
+            .collect();
+        for w in workers {
+            w.join().unwrap();
+        }
+        stop.store(true, Ordering::SeqCst);
+        server.join().unwrap().unwrap();
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

@@ -78,11 +78,55 @@ pub fn write_text(path: &Path, text: &str) -> Result<(), FileError> {
     })
 }
 
-/// Reads a text file, naming it in the error.
+/// Largest file vsrlab reads (bytes): far above any robot, replay or experiment file it writes,
+/// far below what exhausts memory.
+pub const MAX_FILE_BYTES: u64 = 1 << 30;
+
+/// Reads a file's bytes, naming it in the error. Only regular files are read (a FIFO would block
+/// and a device such as `/dev/zero` never end), at most [`MAX_FILE_BYTES`] of them.
+pub fn read_bytes(path: &Path) -> Result<Vec<u8>, FileError> {
+    read_bytes_within(path, MAX_FILE_BYTES)
+}
+
+/// [`read_bytes`] with another size limit.
+pub fn read_bytes_within(path: &Path, limit: u64) -> Result<Vec<u8>, FileError> {
+    use std::io::Read;
+    let origin = || path.display().to_string();
+    let io = |source| FileError::Io { path: origin(), source };
+    // metadata before open: opening a FIFO for reading blocks until someone writes to it
+    let meta = std::fs::metadata(path).map_err(io)?;
+    if !meta.is_file() {
+        let what = if meta.is_dir() {
+            "a folder"
+        } else {
+            "not a regular file (a device, pipe or socket)"
+        };
+        return Err(FileError::Invalid {
+            path: origin(),
+            msg: format!("{what}: vsrlab reads only regular files"),
+        });
+    }
+    let too_large = |size: u64| FileError::Invalid {
+        path: origin(),
+        msg: format!("{size} bytes or more: larger than the {limit} bytes vsrlab reads from one file"),
+    };
+    if meta.len() > limit {
+        return Err(too_large(meta.len()));
+    }
+    let file = std::fs::File::open(path).map_err(io)?;
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    file.take(limit + 1).read_to_end(&mut bytes).map_err(io)?;
+    if bytes.len() as u64 > limit {
+        return Err(too_large(bytes.len() as u64));
+    }
+    Ok(bytes)
+}
+
+/// Reads a UTF-8 text file (regular, bounded as [`read_bytes`]), naming it in the error.
 pub fn read_text(path: &Path) -> Result<String, FileError> {
-    std::fs::read_to_string(path).map_err(|source| FileError::Io {
+    String::from_utf8(read_bytes(path)?).map_err(|e| FileError::Invalid {
         path: path.display().to_string(),
-        source,
+        msg: format!("not UTF-8 text: byte {} is not valid", e.utf8_error().valid_up_to()),
     })
 }
 
@@ -99,10 +143,7 @@ pub fn any_robot_from_json(text: &str, origin: &str) -> Result<AnyRobot, FileErr
 /// another program that a kind reads ([`kinds::ForeignFormat`], e.g. EvoGym's `.npz`).
 pub fn load_any_robot(path: &Path) -> Result<AnyRobot, FileError> {
     let origin = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|source| FileError::Io {
-        path: origin.clone(),
-        source,
-    })?;
+    let bytes = read_bytes(path)?;
     if let Some(format) = kinds::foreign_format_of(&bytes) {
         return (format.read)(&bytes, &origin);
     }
@@ -300,6 +341,49 @@ mod bom_tests {
         std::fs::write(&marked, format!("\u{feff}{text}")).unwrap();
         let (a, b) = (load_any_robot(&plain).unwrap(), load_any_robot(&marked).unwrap());
         assert_eq!(a.to_json(None), b.to_json(None));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
+
+#[cfg(test)]
+mod read_bytes_tests {
+    use super::*;
+
+    #[test]
+    fn devices_folders_and_oversized_files_are_refused_naming_the_file() {
+        let dir = std::env::temp_dir().join(format!("vsrlab-read-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let refused = |path: &Path, limit: u64| match read_bytes_within(path, limit) {
+            Err(FileError::Invalid { path: named, msg }) => {
+                assert_eq!(named, path.display().to_string());
+                msg
+            }
+            other => panic!("{}: {other:?}", path.display()),
+        };
+        assert!(refused(Path::new("/dev/zero"), MAX_FILE_BYTES).contains("not a regular file"));
+        assert!(refused(&dir, MAX_FILE_BYTES).contains("a folder"));
+        let file = dir.join("ten.json");
+        std::fs::write(&file, b"0123456789").unwrap();
+        assert!(refused(&file, 9).contains("larger than the 9 bytes"));
+        assert_eq!(read_bytes_within(&file, 10).unwrap(), b"0123456789");
+        assert!(matches!(
+            load_any_robot(Path::new("/dev/zero")),
+            Err(FileError::Invalid { .. })
+        ));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_fifo_is_refused_without_blocking() {
+        let dir = std::env::temp_dir().join(format!("vsrlab-fifo-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let fifo = dir.join("robot.json");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status().unwrap();
+        assert!(made.success());
+        // a blocking open would hang this test: the refusal comes from the metadata alone
+        let error = read_text(&fifo).unwrap_err().to_string();
+        assert!(error.contains("not a regular file"), "{error}");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -280,16 +280,27 @@ pub fn parse(text: &str, origin: &str) -> Result<Experiment, ConfigError> {
     Ok(experiment)
 }
 
+/// An experiment file's text (a regular file of bounded size, as every file vsrlab reads).
+fn read_experiment_text(path: &std::path::Path) -> Result<String, ConfigError> {
+    vsrlab_tasks::files::read_text(path).map_err(|e| {
+        let message = match e {
+            vsrlab_tasks::files::FileError::Io { source, .. } => source.to_string(),
+            vsrlab_tasks::files::FileError::Invalid { msg, .. } => msg,
+        };
+        ConfigError {
+            origin: path.display().to_string(),
+            line: None,
+            column: None,
+            field: String::new(),
+            message,
+        }
+    })
+}
+
 /// Reads and parses an experiment file.
 pub fn load(path: &std::path::Path) -> Result<Experiment, ConfigError> {
     let origin = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| ConfigError {
-        origin: origin.clone(),
-        line: None,
-        column: None,
-        field: String::new(),
-        message: e.to_string(),
-    })?;
+    let text = read_experiment_text(path)?;
     let mut experiment = parse(&text, &origin)?;
     if experiment.name.is_none() {
         let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned());
@@ -321,13 +332,7 @@ pub fn load_task(path: &std::path::Path) -> Result<vsrlab_tasks::TaskSpec, Confi
 /// Reads an experiment file that may hold a `[sweep]`: its experiments, one per setting (one
 /// when there is no sweep, exactly as [`load`] gives it).
 pub fn load_all(path: &std::path::Path) -> Result<Vec<Experiment>, ConfigError> {
-    let text = std::fs::read_to_string(path).map_err(|e| ConfigError {
-        origin: path.display().to_string(),
-        line: None,
-        column: None,
-        field: String::new(),
-        message: e.to_string(),
-    })?;
+    let text = read_experiment_text(path)?;
     if !text.contains("sweep") {
         return load(path).map(|e| vec![e]);
     }

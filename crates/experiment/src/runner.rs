@@ -189,6 +189,39 @@ pub struct RunSummary {
     /// verified when an experiment is resumed.
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub files: BTreeMap<String, String>,
+    /// Content hash of this summary as written without its seal, so that `--resume` can tell an
+    /// edited or damaged summary from the one the run wrote (absent in older summaries).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seal: Option<String>,
+}
+
+impl RunSummary {
+    /// This summary's file text, sealed.
+    fn sealed_text(&self) -> String {
+        let unsealed = RunSummary {
+            seal: None,
+            ..self.clone()
+        };
+        let sealed = RunSummary {
+            seal: Some(content_hash(unsealed.unsealed_text().as_bytes())),
+            ..self.clone()
+        };
+        serde_json::to_string_pretty(&sealed).expect("summaries serialise")
+    }
+
+    fn unsealed_text(&self) -> String {
+        serde_json::to_string_pretty(&RunSummary {
+            seal: None,
+            ..self.clone()
+        })
+        .expect("summaries serialise")
+    }
+
+    /// Whether the seal matches the content (`None`: no seal, an older vsrlab's summary).
+    fn seal_holds(&self) -> Option<bool> {
+        let seal = self.seal.as_ref()?;
+        Some(*seal == content_hash(self.unsealed_text().as_bytes()))
+    }
 }
 
 /// What the runner needs of an experiment besides its optimizer and evaluator.
@@ -777,9 +810,9 @@ fn finish_run<G: Genotype, O: SearchOptimizer<G>>(
         episode_cpu_seconds: state.episode_cpu_seconds,
         threads: session.pool.current_num_threads(),
         files: manifest,
+        seal: None,
     };
-    let text = serde_json::to_string_pretty(&summary).expect("summaries serialise");
-    write_file(&files.summary_json(), text.as_bytes())?;
+    write_file(&files.summary_json(), summary.sealed_text().as_bytes())?;
     let _ = std::fs::remove_file(files.checkpoint_json());
     Ok(summary)
 }
@@ -941,6 +974,13 @@ fn damaged_run(files: &RunFiles, damaged: &[String]) -> RunError {
 
 /// Verifies the files of a finished run against the hashes in its `summary.json`.
 fn verify_finished(files: &RunFiles, summary: &RunSummary, observer: &mut dyn Observer) -> Result<(), RunError> {
+    if summary.seal_holds() == Some(false) {
+        let what = format!(
+            "{} (content differs from its seal: edited or damaged)",
+            files.summary_json().display()
+        );
+        return Err(damaged_run(files, &[what]));
+    }
     if summary.files.is_empty() {
         observer.notice(&format!(
             "{}: written by an older vsrlab without file hashes; its files are not verified",

@@ -468,7 +468,21 @@ fn missing_or_damaged_files_are_reported_on_resume() {
     assert!(err.contains("best.robot.json") && err.contains("differs"), "{err}");
     assert!(err.contains("delete the folder and resume again"), "{err}");
 
+    std::fs::write(&best, &text).unwrap();
+
+    // The finished run's summary, edited: its best fitness raised.
+    let summary = run_dir(&resumed, 0, 2).join("summary.json");
+    let original = std::fs::read_to_string(&summary).unwrap();
+    let mut edited: serde_json::Value = serde_json::from_str(&original).unwrap();
+    edited["best_fitness"] = serde_json::json!(1e6);
+    std::fs::write(&summary, serde_json::to_string_pretty(&edited).unwrap()).unwrap();
+    let err = resume(&experiment, &resumed, &mut Silent).unwrap_err().to_string();
+    assert!(err.contains("summary.json") && err.contains("seal"), "{err}");
+    std::fs::write(&summary, &original).unwrap();
+    resume(&experiment, &resumed, &mut Silent).unwrap();
+
     // Doing what the message says gives the uninterrupted result back.
+    std::fs::write(&best, &text[..text.len() / 2]).unwrap();
     std::fs::remove_dir_all(run_dir(&resumed, 0, 2)).unwrap();
     resume(&experiment, &resumed, &mut Silent).unwrap();
     assert_eq!(files_of(&straight), files_of(&resumed));

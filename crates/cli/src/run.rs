@@ -172,16 +172,27 @@ impl Observer for Bars {
             bar.finish_and_clear();
             self.multi.remove(&bar);
         }
-        let line = format!(
-            "run {}/{}: best {} after {} evaluations ({}), {:.1} s, {:.1}% outside episodes",
-            s.run + 1,
-            self.runs,
-            s.best_fitness.map_or("-".to_string(), fitness),
-            s.evaluations,
-            s.stop_reason,
-            s.wall_seconds,
-            100.0 * s.overhead_fraction
-        );
+        let line = if s.evaluations > 0 && s.failures >= s.evaluations {
+            format!(
+                "run {}/{}: every one of its {} evaluations failed, so it has no best robot \
+                 (`vsrlab validate` on the experiment file shows why an evaluation fails), {:.1} s",
+                s.run + 1,
+                self.runs,
+                s.evaluations,
+                s.wall_seconds
+            )
+        } else {
+            format!(
+                "run {}/{}: best {} after {} evaluations ({}), {:.1} s, {:.1}% outside episodes",
+                s.run + 1,
+                self.runs,
+                s.best_fitness.map_or("-".to_string(), fitness),
+                s.evaluations,
+                s.stop_reason,
+                s.wall_seconds,
+                100.0 * s.overhead_fraction
+            )
+        };
         self.say(line);
         self.overall.set_position(self.finished as u64 * TICKS);
         self.overall

@@ -198,12 +198,8 @@ pub struct RunSummary {
 impl RunSummary {
     /// This summary's file text, sealed.
     fn sealed_text(&self) -> String {
-        let unsealed = RunSummary {
-            seal: None,
-            ..self.clone()
-        };
         let sealed = RunSummary {
-            seal: Some(content_hash(unsealed.unsealed_text().as_bytes())),
+            seal: Some(content_hash(self.unsealed_text().as_bytes())),
             ..self.clone()
         };
         serde_json::to_string_pretty(&sealed).expect("summaries serialise")
@@ -572,9 +568,10 @@ fn finished_summary(files: &RunFiles, observer: &mut dyn Observer) -> Result<Opt
     let Ok(text) = std::fs::read_to_string(&summary_path) else {
         return Ok(None);
     };
-    let summary: RunSummary =
+    let mut summary: RunSummary =
         serde_json::from_str(&text).map_err(|e| RunError::Mismatch(format!("{}: {e}", summary_path.display())))?;
     verify_finished(files, &summary, observer)?;
+    summary.seal = None; // as a run that finishes in this session reports it
     Ok(Some(summary))
 }
 
@@ -774,7 +771,10 @@ fn finish_run<G: Genotype, O: SearchOptimizer<G>>(
     if state.last_snapshot != Some(optimizer.evaluations()) {
         write_snapshot(files, optimizer, state)?;
     }
-    let best = optimizer.best();
+    // a run whose every evaluation failed has no best robot: its summary says so (no best
+    // fitness, as many failures as evaluations) instead of the run failing on its replay
+    let all_failed = optimizer.evaluations() > 0 && state.failures >= optimizer.evaluations();
+    let best = optimizer.best().filter(|_| !all_failed);
     let mut manifest = BTreeMap::new();
     manifest.insert(GENERATIONS_FILE.to_string(), content_hash(logs.csv.as_bytes()));
     for snapshot in &state.snapshots {
@@ -787,7 +787,7 @@ fn finish_run<G: Genotype, O: SearchOptimizer<G>>(
         }
     }
     let overhead = (wall_seconds - state.evaluation_seconds).max(0.0);
-    let best_record = state.best.as_ref().map(|b| &b.1);
+    let best_record = state.best.as_ref().map(|b| &b.1).filter(|_| !all_failed);
     let summary = RunSummary {
         run,
         seed,

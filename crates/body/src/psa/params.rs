@@ -199,6 +199,33 @@ impl PsaParams {
         3 * self.masses + 3
     }
 
+    /// The fields that must be positive, by name.
+    fn positive_fields(&self) -> [(&'static str, f64); 12] {
+        [
+            ("radius", self.radius),
+            ("mass_side", self.mass_side),
+            ("density", self.density),
+            ("spring_frequency", self.spring_frequency),
+            ("molar_mass", self.molar_mass),
+            ("temperature", self.temperature),
+            ("gas_constant", self.gas_constant),
+            ("max_pressure_factor", self.max_pressure_factor),
+            ("sensor_window", self.sensor_window),
+            ("position_scale", self.position_scale),
+            ("displacement_scale", self.displacement_scale),
+            ("min_length", self.min_length),
+        ]
+    }
+
+    /// The fields that may be zero but not negative, by name.
+    fn non_negative_fields(&self) -> [(&'static str, f64); 3] {
+        [
+            ("friction", self.friction),
+            ("spring_damping", self.spring_damping),
+            ("gas_mass", self.gas_mass),
+        ]
+    }
+
     /// Checks every field; the error names it (`masses`, `radius`, `gas_mass`, …).
     pub fn validate(&self) -> Result<(), FieldError> {
         if self.masses < 3 {
@@ -213,33 +240,37 @@ impl PsaParams {
                 format!("must be at most {MAX_MASSES}, got {}", self.masses),
             ));
         }
-        let positive = [
-            ("radius", self.radius),
-            ("mass_side", self.mass_side),
-            ("density", self.density),
-            ("spring_frequency", self.spring_frequency),
-            ("molar_mass", self.molar_mass),
-            ("temperature", self.temperature),
-            ("gas_constant", self.gas_constant),
-            ("max_pressure_factor", self.max_pressure_factor),
-            ("sensor_window", self.sensor_window),
-            ("position_scale", self.position_scale),
-            ("displacement_scale", self.displacement_scale),
-            ("min_length", self.min_length),
-        ];
+        let positive = self.positive_fields();
+        let thesis = PsaParams::of_size(PsaSize::Small);
+        let thesis_fields = [thesis.positive_fields().to_vec(), thesis.non_negative_fields().to_vec()].concat();
+        let thesis_value = |name: &str| thesis_fields.iter().find(|f| f.0 == name).map_or(1.0, |f| f.1);
         for (name, v) in positive {
             if !(v.is_finite() && v > 0.0) {
                 return Err(FieldError::sentence(name, format!("must be finite and > 0, got {v}")));
             }
+            let typical = thesis_value(name);
+            let (low, high) = (typical / SCALE_RANGE, typical * SCALE_RANGE);
+            if !(low..=high).contains(&v) {
+                return Err(FieldError::sentence(
+                    name,
+                    format!(
+                        "must be within [{low:e}, {high:e}] (a factor {SCALE_RANGE:e} either side of the thesis's \
+                         {typical}; beyond it the solver's forces overflow or vanish), got {v:e}"
+                    ),
+                ));
+            }
         }
-        let non_negative = [
-            ("friction", self.friction),
-            ("spring_damping", self.spring_damping),
-            ("gas_mass", self.gas_mass),
-        ];
+        let non_negative = self.non_negative_fields();
         for (name, v) in non_negative {
             if !(v.is_finite() && v >= 0.0) {
                 return Err(FieldError::sentence(name, format!("must be finite and ≥ 0, got {v}")));
+            }
+            let high = thesis_value(name).max(1.0) * SCALE_RANGE;
+            if v > high {
+                return Err(FieldError::sentence(
+                    name,
+                    format!("must be at most {high:e} (a factor {SCALE_RANGE:e} above the thesis's value), got {v:e}"),
+                ));
             }
         }
         if !(self.min_pressure_fraction.is_finite() && (0.0..=1.0).contains(&self.min_pressure_fraction)) {
@@ -289,6 +320,11 @@ impl PsaParams {
     }
 }
 
+/// How far (as a factor, either way) a physical constant may stray from the thesis's value: far
+/// enough for any study of the model, near enough that masses, forces and pressures stay
+/// representable and the step stays meaningful.
+pub const SCALE_RANGE: f64 = 1e6;
+
 /// Most masses a membrane may have (a brain sees each as a unit of a one-row grid).
 pub const MAX_MASSES: usize = 200;
 /// Molar mass of N₂ (kg/mol), the original code's 28.0134 g/mol.
@@ -302,6 +338,27 @@ pub const SI_GAS_MASS_PER_ORIGINAL_UNIT: f64 = 28.0134 * 0.028_013_4;
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn constants_far_from_the_thesis_scale_are_refused_naming_the_field() {
+        for size in [PsaSize::Small, PsaSize::Medium, PsaSize::Large] {
+            PsaParams::of_size(size).validate().unwrap();
+        }
+        let refused = |change: fn(&mut PsaParams), field: &str| {
+            let mut p = PsaParams::of_size(PsaSize::Small);
+            change(&mut p);
+            let e = p.validate().unwrap_err().to_string();
+            assert!(e.contains(field) && e.contains("thesis"), "{field}: {e}");
+        };
+        refused(|p| p.radius = 1e150, "radius");
+        refused(|p| p.mass_side = 1e-300, "mass_side");
+        refused(|p| p.density = 1e308, "density");
+        refused(|p| p.temperature = 1e300, "temperature");
+        refused(|p| p.friction = 1e300, "friction");
+        let mut edge = PsaParams::of_size(PsaSize::Small);
+        edge.density *= 0.99 * SCALE_RANGE;
+        edge.validate().unwrap();
+    }
 
     #[test]
     fn default_gas_equals_the_original_amount_and_gives_its_pressures() {

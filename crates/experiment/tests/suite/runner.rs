@@ -8,7 +8,7 @@ use common::Killer;
 use std::path::Path;
 use vsrlab_evolution::Sense;
 use vsrlab_experiment::config::{self, Experiment};
-use vsrlab_experiment::evaluator::{Evaluated, Evaluator, Record, RobotEvaluator};
+use vsrlab_experiment::evaluator::{Evaluated, Evaluator, EvaluatorError, Record, RobotEvaluator};
 use vsrlab_experiment::genotypes::vector::run_vectors;
 use vsrlab_experiment::optimizers::AnyOptimizer;
 use vsrlab_experiment::runner::{run_dir, run_search, Observer, Plan, RunError, RunOptions, Silent};
@@ -229,6 +229,52 @@ fn failed_and_panicking_evaluations_get_the_worst_fitness_and_are_counted() {
     // Survivors are never failed ones once enough good genotypes exist.
     let last: Vec<&str> = csv.lines().last().unwrap().split(',').collect();
     assert_ne!(last[8], "NaN", "population median");
+}
+
+/// Fails every evaluation, and its replay as a robot evaluator's would (it re-simulates).
+struct AlwaysFails;
+
+impl Evaluator<Vec<f64>> for AlwaysFails {
+    fn evaluate(&self, _genotype: &Vec<f64>, seed: u64) -> Evaluated {
+        self.failure(seed, "the simulation exploded".into())
+    }
+    fn save_replay(&self, _genotype: &Vec<f64>, _path: &Path, _title: &str) -> Result<(), EvaluatorError> {
+        Err(EvaluatorError::NoTrace)
+    }
+}
+
+#[test]
+fn a_run_whose_every_evaluation_fails_ends_with_a_summary_saying_so_and_resumes() {
+    let experiment = tiny("kind = \"cma-es\"\npopulation_size = 4", "evaluations = 8");
+    let dir = tempfile::tempdir().unwrap();
+    let new_optimizer = |seed: u64| -> Result<AnyOptimizer, RunError> {
+        Ok(experiment.optimizer.kind().build(3, &[Sense::Maximize], seed)?)
+    };
+    let plan = Plan::of(&experiment);
+    let run = |resume: bool| {
+        run_search(
+            &plan,
+            &new_optimizer,
+            &AlwaysFails,
+            dir.path(),
+            &RunOptions {
+                resume,
+                ..common::two_threads(false)
+            },
+            &mut Silent,
+        )
+    };
+    let summaries = run(false).unwrap();
+    for s in &summaries {
+        assert_eq!((s.failures, s.evaluations, s.best_fitness), (8, 8, None), "{s:?}");
+    }
+    let run0 = dir.path().join("run-00");
+    assert!(run0.join("summary.json").is_file() && !run0.join("checkpoint.json").exists());
+    assert!(
+        !run0.join("best.robot.json").exists(),
+        "no best robot when nothing succeeded"
+    );
+    assert_eq!(run(true).unwrap(), summaries, "the finished runs resume as they ended");
 }
 
 #[test]

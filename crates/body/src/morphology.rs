@@ -12,6 +12,14 @@ pub enum MorphologyError {
     /// A named shape beyond the largest size.
     #[error("body '{0}' is too large: named shapes are at most 100 × 100 voxels (ball-100)")]
     TooLarge(String),
+    /// A text grid beyond the largest size.
+    #[error("the body grid is {width} × {height} cells: at most {MAX_SIDE} × {MAX_SIDE}, as the named shapes")]
+    GridTooLarge {
+        /// Cells per row.
+        width: usize,
+        /// Rows.
+        height: usize,
+    },
     /// The body has no voxel.
     #[error("the body is empty: it has no voxel")]
     Empty,
@@ -29,6 +37,10 @@ pub enum MorphologyError {
         msg: String,
     },
 }
+
+/// Most cells along either side of a body grid (named or written out): 10,000 voxels at most,
+/// already hundreds of times the thesis's bodies and minutes of simulation per episode.
+pub const MAX_SIDE: usize = 100;
 
 /// A grid of cells, each with or without a voxel; validated to be non-empty and connected.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
@@ -111,7 +123,7 @@ impl Morphology {
         let (kind, dims) = name.split_once('-').ok_or_else(bad)?;
         if kind == "ball" {
             let d: usize = dims.parse().map_err(|_| bad())?;
-            if d > 100 {
+            if d > MAX_SIDE {
                 return Err(MorphologyError::TooLarge(name.to_string()));
             }
             if d == 0 {
@@ -125,7 +137,7 @@ impl Morphology {
         }
         let (w, h) = dims.split_once('x').ok_or_else(bad)?;
         let (w, h): (usize, usize) = (w.parse().map_err(|_| bad())?, h.parse().map_err(|_| bad())?);
-        if w > 100 || h > 100 {
+        if w > MAX_SIDE || h > MAX_SIDE {
             return Err(MorphologyError::TooLarge(name.to_string()));
         }
         if w == 0 || h == 0 {
@@ -148,6 +160,9 @@ impl Morphology {
         }
         let width = rows[0].as_ref().chars().count();
         let height = rows.len();
+        if width > MAX_SIDE || height > MAX_SIDE {
+            return Err(MorphologyError::GridTooLarge { width, height });
+        }
         let mut cells = vec![false; width * height];
         for (r, row) in rows.iter().enumerate() {
             let row = row.as_ref();
@@ -301,6 +316,15 @@ mod tests {
         ));
         assert!(matches!(Morphology::parse("box-0x3"), Err(MorphologyError::BadName(_))));
         // too large is said so, not "unknown or malformed"
+        let wide = vec!["#".repeat(MAX_SIDE + 1)];
+        assert_eq!(
+            Morphology::from_rows(&wide),
+            Err(MorphologyError::GridTooLarge {
+                width: MAX_SIDE + 1,
+                height: 1
+            })
+        );
+        assert!(Morphology::from_rows(&vec!["#"; MAX_SIDE]).is_ok());
         for big in ["worm-100000x1", "box-3x101", "ball-1000"] {
             let e = Morphology::parse(big).unwrap_err();
             assert_eq!(e, MorphologyError::TooLarge(big.into()));

@@ -200,15 +200,18 @@ impl Observer for Bars {
     }
 }
 
+/// The bytes of `--max-memory-gib`, refusing a value that is not a positive number.
+pub fn memory_limit(gib: f64) -> Result<u64, String> {
+    if !(gib.is_finite() && gib > 0.0) {
+        return Err(format!("--max-memory-gib must be a positive number, got {gib}"));
+    }
+    Ok((gib * (1u64 << 30) as f64).min(u64::MAX as f64) as u64)
+}
+
 /// Runs `vsrlab run`: one experiment, or every setting of a sweep one after the other (each in
 /// its own folder under the output folder).
 pub fn run(a: RunArgs) -> Result<(), String> {
-    if !(a.max_memory_gib.is_finite() && a.max_memory_gib > 0.0) {
-        return Err(format!(
-            "--max-memory-gib must be a positive number, got {}",
-            a.max_memory_gib
-        ));
-    }
+    memory_limit(a.max_memory_gib)?;
     if !(a.log_every.is_finite() && a.log_every >= 0.0) {
         return Err(format!(
             "--log-every must be a number of seconds ≥ 0, got {}",
@@ -245,7 +248,7 @@ fn run_one(experiment: &Experiment, out: &Path, a: &RunArgs) -> Result<(), Strin
     let options = RunOptions {
         threads: a.threads.unwrap_or(0),
         resume: a.resume,
-        memory_limit: Some((a.max_memory_gib * (1u64 << 30) as f64).min(u64::MAX as f64) as u64),
+        memory_limit: Some(memory_limit(a.max_memory_gib)?),
     };
     let threads = worker_threads(options.threads);
     let size = experiment.genotype_kind().size(experiment).map_err(|e| e.to_string())?;

@@ -20,10 +20,14 @@ pub struct ValidateArgs {
     /// Print only the summary line of each file, not its resolved configuration.
     #[arg(long)]
     pub brief: bool,
+    /// Refuse, as `vsrlab run` would, a file whose estimated memory per run exceeds this many GiB.
+    #[arg(long, default_value_t = 8.0, value_name = "GIB")]
+    pub max_memory_gib: f64,
 }
 
 /// Runs `vsrlab validate`: fails on the first bad file.
 pub fn run(a: ValidateArgs) -> Result<(), String> {
+    let limit = crate::run::memory_limit(a.max_memory_gib)?;
     let files: Vec<(PathBuf, Experiment)> = a
         .experiments
         .iter()
@@ -41,6 +45,7 @@ pub fn run(a: ValidateArgs) -> Result<(), String> {
             _ => path.display().to_string(),
         };
         let v = validate(experiment, a.threads.unwrap_or(0)).map_err(|e| format!("{shown}: {e}"))?;
+        v.memory.check(limit).map_err(|e| format!("{shown}: {e}"))?;
         if !a.brief {
             println!("# {shown} (resolved)\n{}", v.resolved);
         }

@@ -4,7 +4,8 @@
 //!
 //! The estimate counts what grows with the settings: every genotype the optimizer holds at once
 //! (population, offspring, the batch being evaluated, an archive), its matrices (CMA-ES), and the
-//! per-thread copies of a genotype during evaluation. Each gene costs 8 bytes in memory and about
+//! per-thread copies of a genotype during evaluation, and each thread's episode (a generous
+//! figure, plus the buffers a body's settings size, such as a PSA's sensor window). Each gene costs 8 bytes in memory and about
 //! 24 bytes of JSON text in each of the checkpoint and the snapshot being written: 64 bytes per
 //! gene in all. It is a rough upper figure, not a measurement.
 
@@ -41,9 +42,11 @@ impl MemoryEstimate {
             .saturating_mul(genes as u128)
             .saturating_add(kind.held_matrix_floats(genes))
             .saturating_add((threads.max(1) as u128).saturating_mul(2 * genes as u128));
+        let dt = experiment.task.spec.task().step_seconds();
+        let per_thread = BYTES_PER_THREAD.saturating_add(experiment.representation.body.episode_bytes(dt));
         let bytes = floats
             .saturating_mul(BYTES_PER_GENE)
-            .saturating_add((threads.max(1) as u128).saturating_mul(BYTES_PER_THREAD));
+            .saturating_add((threads.max(1) as u128).saturating_mul(per_thread));
         MemoryEstimate {
             genes,
             genotypes,
@@ -115,5 +118,23 @@ mod tests {
         let cma = MemoryEstimate::of(&experiment("kind = \"cma-es\""), 100_000, 1);
         assert!(cma.bytes > 3 * 100_000u128 * 100_000 * 8);
         assert!(cma.check(DEFAULT_MEMORY_LIMIT).is_err());
+    }
+
+    #[test]
+    fn a_psa_sensor_window_counts_in_each_thread() {
+        let psa = |window: &str| {
+            let text = format!(
+                "[representation]\nbody = {{ kind = \"psa\", size = \"small\", sensor_window = {window} }}\n\
+                 brain = {{ kind = \"heads\", linear_outputs = 1 }}\n\
+                 [task]\nterrain = \"flat\"\n[optimizer]\nkind = \"cma-es\"\n[stop]\nevaluations = 100\n"
+            );
+            MemoryEstimate::of(&config::parse(&text, "psa.toml").unwrap(), 374, 4)
+        };
+        let (usual, long) = (psa("0.25"), psa("1e4"));
+        // 1e4 s at 60 Hz: 6e5 steps of 33 readings, 8 bytes each, in each of 4 threads
+        let window = 6e5 * 33.0 * 8.0 * 4.0;
+        let grown = (long.bytes - usual.bytes) as f64;
+        assert!((grown - window).abs() / window < 0.01, "{grown} vs {window}");
+        assert!(long.check(512 << 20).is_err() && usual.check(512 << 20).is_ok());
     }
 }

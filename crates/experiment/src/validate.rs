@@ -9,6 +9,10 @@ use std::time::Instant;
 
 /// Initial genotypes timed for the estimate.
 const TIMED_EVALUATIONS: usize = 3;
+/// Steps of each timed episode, at most (10 s at the usual 60 Hz): a longer episode is timed on
+/// its first steps and the time scaled up, so that validating a file of absurd length
+/// (`dt = 1e-12`) takes seconds, not the episode's length.
+const TIMED_STEPS: f64 = 600.0;
 
 /// What an experiment will do.
 #[derive(Debug, Clone, PartialEq)]
@@ -38,9 +42,10 @@ pub fn validate(experiment: &Experiment, threads: usize) -> Result<Validation, F
     let threads = crate::runner::worker_threads(threads);
     let start = Instant::now();
     let kind = experiment.genotype_kind();
-    kind.time_evaluations(experiment, TIMED_EVALUATIONS)?;
+    let (timed, scale) = shortened(experiment);
+    kind.time_evaluations(timed.as_ref().unwrap_or(experiment), TIMED_EVALUATIONS)?;
+    let seconds_per_evaluation = scale * start.elapsed().as_secs_f64() / TIMED_EVALUATIONS as f64;
     let genes = kind.size(experiment)?.genes;
-    let seconds_per_evaluation = start.elapsed().as_secs_f64() / TIMED_EVALUATIONS as f64;
     let optimizer = experiment.optimizer.kind();
     let stop = &experiment.stop;
     let evaluations_per_run = stop.evaluations.or(stop.births).or_else(|| {
@@ -63,6 +68,30 @@ pub fn validate(experiment: &Experiment, threads: usize) -> Result<Validation, F
     })
 }
 
+/// The experiment whose episodes are timed, when it is not `experiment` itself: the same with
+/// its task's `duration` cut to [`TIMED_STEPS`] steps; and the factor from that episode's
+/// length to the full one's. An episode of an engine without a step (or a task without a
+/// `duration`) is timed whole.
+fn shortened(experiment: &Experiment) -> (Option<Experiment>, f64) {
+    let task = experiment.task.spec.task();
+    let (duration, dt) = (task.duration(), task.step_seconds());
+    if !(dt > 0.0 && duration / dt > TIMED_STEPS) {
+        return (None, 1.0);
+    }
+    let short = TIMED_STEPS * dt;
+    let Ok(mut table) = experiment.to_toml().parse::<toml::Table>() else {
+        return (None, 1.0);
+    };
+    match table.get_mut("task").and_then(|t| t.get_mut("duration")) {
+        Some(value @ toml::Value::Float(_)) => *value = toml::Value::Float(short),
+        _ => return (None, 1.0),
+    }
+    match crate::config::parse(&table.to_string(), "timed copy") {
+        Ok(copy) => (Some(copy), duration / short),
+        Err(_) => (None, 1.0),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -79,6 +108,25 @@ mod tests {
         assert!(v.seconds_per_evaluation > 0.0);
         let estimate = v.estimated_seconds.unwrap();
         assert!((estimate - 8000.0 * v.seconds_per_evaluation / 2.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn an_episode_of_absurd_length_is_timed_on_its_first_steps() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../experiments/quickstart.toml");
+        let text = std::fs::read_to_string(path)
+            .unwrap()
+            .replace("duration = 10.0", "duration = 10.0\nphysics = { dt = 1e-9 }");
+        let experiment = config::parse(&text, "tiny-dt.toml").unwrap();
+        let start = Instant::now();
+        let v = validate(&experiment, 2).unwrap();
+        assert!(start.elapsed().as_secs_f64() < 60.0, "{:?}", start.elapsed());
+        // 1e10 steps per episode, timed on 600 of them: hours per evaluation, not milliseconds
+        assert!(v.seconds_per_evaluation > 1e3, "{}", v.seconds_per_evaluation);
+        let (copy, scale) = shortened(&experiment);
+        assert!((scale - 1e10 / TIMED_STEPS).abs() / scale < 1e-9, "{scale}");
+        assert!((copy.unwrap().task.spec.task().duration() - 6e-7).abs() < 1e-15);
+        let quickstart = config::load(path.as_ref()).unwrap();
+        assert!(shortened(&quickstart).0.is_none(), "600 steps are timed whole");
     }
 
     #[test]

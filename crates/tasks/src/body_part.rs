@@ -31,6 +31,11 @@ pub trait BodySource: Debug + Send + Sync + BodyFormCopy {
     ) -> Result<AnyRobot, EvaluationError>;
     /// Units of the largest body it makes (for memory estimates): grid cells, a PSA's masses.
     fn size(&self) -> usize;
+    /// Bytes one episode holds beyond the usual simulation state, for buffers whose size follows
+    /// from the settings (a PSA's sensor window at time step `dt`); for memory estimates.
+    fn episode_bytes(&self, _dt: f64) -> u128 {
+        0
+    }
     /// The body's fixed voxel grid, when it is one (graph genotypes, analyses of voxel robots).
     fn fixed_grid(&self) -> Option<&Morphology> {
         None

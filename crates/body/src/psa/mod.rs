@@ -9,6 +9,6 @@ pub mod sensors;
 pub mod spec;
 
 pub use membrane::Psa;
-pub use params::{GasAmount, PressureLength, PsaParams, PsaSize};
+pub use params::{GasAmount, PressureLength, PsaParams, PsaSize, SCALE_RANGE};
 pub use sensors::PsaSensors;
 pub use spec::PsaBody;

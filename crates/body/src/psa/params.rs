@@ -255,7 +255,7 @@ impl PsaParams {
                     name,
                     format!(
                         "must be within [{low:e}, {high:e}] (a factor {SCALE_RANGE:e} either side of the thesis's \
-                         {typical}; beyond it the solver's forces overflow or vanish), got {v:e}"
+                         {typical}; beyond it the model's masses, forces or buffers overflow or vanish), got {v:e}"
                     ),
                 ));
             }

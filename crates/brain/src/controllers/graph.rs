@@ -41,6 +41,10 @@ pub const MAX_OUTPUT: f64 = 1e9;
 
 /// Most neurons or edges of one graph.
 pub const MAX_GRAPH_ITEMS: usize = 1_000_000;
+/// Most neurons `grow` may add. Each addition draws its edge among all pairs of neurons, so
+/// growing costs the cube of this (measured: 300 in 0.5 s, 1,000 in 19 s), and the thesis's
+/// evolved graphs have tens to hundreds of neurons.
+pub const MAX_GROW: usize = 500;
 
 /// One neuron of a graph brain, located in the voxel at grid cell (x, y).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -165,7 +169,7 @@ impl GraphSpec {
             sigma: 0.0,
         };
         let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(GROW_SEED);
-        for _ in 0..self.grow.min(MAX_GRAPH_ITEMS / 3) {
+        for _ in 0..self.grow.min(MAX_GROW) {
             g = crate::graph_ops::apply(&g, crate::graph_ops::Operator::AddNode, &anywhere, &mut rng);
         }
         (g.neurons, g.edges)
@@ -263,6 +267,7 @@ impl BrainKind for GraphSpec {
     }
 
     fn parameter_count(&self, shape: &BrainShape) -> Result<usize, BrainError> {
+        check_at_most("grow", "added neurons", self.grow, MAX_GROW)?;
         let (neurons, edges) = self.topology(shape);
         self.check(shape, &neurons, &edges)?;
         Ok(2 * edges.len())
@@ -284,6 +289,7 @@ impl BrainKind for GraphSpec {
 impl GraphSpec {
     /// [`BrainKind::build`], as the concrete controller (to look at its neurons' outputs).
     pub fn controller(&self, shape: &BrainShape) -> Result<GraphController, BrainError> {
+        check_at_most("grow", "added neurons", self.grow, MAX_GROW)?;
         let (neurons, edges) = self.topology(shape);
         self.check(shape, &neurons, &edges)?;
         check_count("parameters", 2 * edges.len(), self.parameters.len())?;
@@ -480,6 +486,16 @@ mod tests {
         assert_eq!(neurons.len(), 50);
         assert_eq!(edges[0], EdgeSpec { from: 0, to: 4 });
         assert_eq!(neurons[4], NeuronSpec::Actuator { x: 0, y: 0 });
+    }
+
+    #[test]
+    fn growing_beyond_the_limit_is_refused_before_any_growing() {
+        let (m, rpv) = biped();
+        let spec = BrainSpec::parse("graph:100000").unwrap();
+        let start = std::time::Instant::now();
+        assert_invalid(&spec.parameter_count(&BrainShape::grid(&m, &rpv)).unwrap_err(), "grow");
+        assert_invalid(&spec.build(&BrainShape::grid(&m, &rpv)).err().unwrap(), "grow");
+        assert!(start.elapsed().as_secs_f64() < 1.0, "refused at once");
     }
 
     #[test]

@@ -262,6 +262,12 @@ fn validate_prints_the_resolved_configuration_of_every_shipped_experiment() {
     let out = vsrlab(&["validate", bad.to_str().unwrap()]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("task.duration"));
+    // what `run` would refuse for its memory estimate, validate refuses too
+    let file = dir.path().join("fine.toml");
+    std::fs::write(&file, EXPERIMENT).unwrap();
+    let out = vsrlab(&["validate", "--max-memory-gib", "0.01", file.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && err.contains("--max-memory-gib"), "{err}");
 }
 
 #[test]

@@ -170,12 +170,16 @@ fn absurd_gas_stays_finite_or_is_refused_naming_the_field() {
         }
     };
     let task = TaskSpec::parse("carrier").unwrap();
-    // forces of 1e303: the engine caps each body's travel per step, the state stays finite
-    let out = episode::run(&robot(1e300), task.task(), 0, TraceLevel::None).unwrap();
+    // the most gas allowed (a million times the thesis's): huge forces, and the engine caps each
+    // body's travel per step, so the state stays finite
+    let most = PsaBody::of_size(PsaSize::Small).params.gas_mass.max(1.0) * vsrlab_body::psa::SCALE_RANGE;
+    let out = episode::run(&robot(most), task.task(), 0, TraceLevel::None).unwrap();
     assert!(out.fitness.iter().all(|f| f.is_finite()), "{out:?}");
-    // an amount of gas whose pressure overflows is refused before the episode, naming the field
-    let err = episode::run(&robot(f64::MAX), task.task(), 0, TraceLevel::None).unwrap_err();
-    assert!(err.to_string().contains("robot.body.gas_mass"), "{err}");
+    // more, up to a pressure that overflows, is refused before the episode, naming the field
+    for gas in [most * 1.01, 1e300, f64::MAX] {
+        let err = episode::run(&robot(gas), task.task(), 0, TraceLevel::None).unwrap_err();
+        assert!(err.to_string().contains("robot.body.gas_mass"), "{gas}: {err}");
+    }
 }
 
 #[test]

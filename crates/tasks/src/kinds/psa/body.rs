@@ -80,4 +80,11 @@ impl BodySource for PsaTable {
     fn size(&self) -> usize {
         self.body.params.masses + 1
     }
+
+    fn episode_bytes(&self, dt: f64) -> u128 {
+        let params = &self.body.params;
+        // the sensors' ring buffer: a window of steps, every reading, 8 bytes each
+        let steps = (params.sensor_window / dt).round().max(1.0);
+        (steps * params.reading_count() as f64 * 8.0) as u128
+    }
 }

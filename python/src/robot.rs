@@ -24,8 +24,8 @@ impl PyRobot {
     /// `psa[:small|medium|large]`; `brain` (default `phase`, `heads` for a PSA); `sensors` and
     /// `preset` for voxel bodies.
     #[new]
-    #[pyo3(signature = (body = "biped-4x3", brain = None, sensors = None, preset = "2021"))]
-    fn new(body: &str, brain: Option<&str>, sensors: Option<&str>, preset: &str) -> PyResult<Self> {
+    #[pyo3(signature = (body = "biped-4x3", brain = None, sensors = None, preset = None))]
+    fn new(body: &str, brain: Option<&str>, sensors: Option<&str>, preset: Option<&str>) -> PyResult<Self> {
         let robot = kinds::from_short_forms(&RobotArgs {
             body,
             brain,

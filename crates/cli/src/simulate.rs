@@ -79,9 +79,9 @@ pub struct SimulateArgs {
     /// Seed of the episode (random terrains, sensor noise).
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
-    /// Physical preset: 2021 (thesis era, default) or 2022 (2D-VSR-Sim HEAD).
-    #[arg(long, default_value = "2021")]
-    pub preset: String,
+    /// Physical preset of voxel robots: 2021 (thesis era, default) or 2022 (2D-VSR-Sim HEAD).
+    #[arg(long)]
+    pub preset: Option<String>,
     /// Physics sub-steps per step (default: the engine's default).
     #[arg(long)]
     pub substeps: Option<u32>,
@@ -308,7 +308,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
             body: &a.body,
             brain: a.brain.as_deref(),
             sensors: a.sensors.as_deref(),
-            preset: &a.preset,
+            preset: a.preset.as_deref(),
         })
         .map_err(|e| robot_option_error(&e))?,
     };

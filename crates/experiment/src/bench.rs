@@ -391,7 +391,7 @@ impl<'a> Case<'a> {
                 false => standard.brain,
             },
             sensors: standard.takes_options.then_some(options.sensors.as_str()),
-            preset: &options.preset,
+            preset: standard.takes_options.then_some(options.preset.as_str()),
         })?;
         let task_error = |e: String| BenchError::Terrain(format!("{}: {e}", standard.task));
         let mut task = TaskSpec::parse(standard.task).map_err(|e| task_error(e.to_string()))?;

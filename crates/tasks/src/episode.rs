@@ -79,6 +79,9 @@ pub struct Episode {
     damage: Option<(f64, Vec<bool>)>,
     dt: f64,
     duration: f64,
+    /// Steps of the whole episode ([`crate::task::episode_steps`]) and steps taken.
+    steps: u64,
+    taken: u64,
     t: f64,
     center: Vec2,
     stopped: bool,
@@ -108,6 +111,8 @@ impl Episode {
             damage,
             dt: task.physics().dt,
             duration: task.duration(),
+            steps: crate::task::episode_steps(task.duration(), task.physics().dt),
+            taken: 0,
             t: 0.0,
             center,
             stopped: false,
@@ -134,6 +139,7 @@ impl Episode {
         }
         let dt = self.dt;
         self.t += dt;
+        self.taken += 1;
         let t = self.t;
         self.world
             .step()
@@ -176,7 +182,7 @@ impl Episode {
 
     /// Whether the episode is over: the task stopped it, or its duration has passed.
     pub fn is_over(&self) -> bool {
-        self.stopped || self.t >= self.duration
+        self.stopped || self.taken >= self.steps
     }
 
     /// Whether the task stopped the episode before its duration (e.g. a robot that escaped).
@@ -270,7 +276,7 @@ struct Recorder {
 
 impl Recorder {
     fn new(level: TraceLevel, task: &dyn RigidTask, scene: &Scene, agent: &mut dyn Agent) -> Recorder {
-        let steps = (task.duration() / task.physics().dt).ceil() as usize + 1;
+        let steps = crate::task::episode_steps(task.duration(), task.physics().dt) as usize + 1;
         let mut trace = Trace {
             dt: task.physics().dt,
             ..Default::default()

@@ -331,7 +331,7 @@ mod bom_tests {
             body: "biped-4x3",
             brain: None,
             sensors: None,
-            preset: "2021",
+            preset: None,
         })
         .unwrap();
         let plain = dir.join("plain.json");

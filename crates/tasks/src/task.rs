@@ -175,6 +175,14 @@ pub trait RigidTask: Task {
     fn start(&self) -> Box<dyn TaskEpisode>;
 }
 
+/// Steps of an episode of `duration` seconds at `dt` seconds per step: the fewest whose total
+/// reaches the duration, at least one. A duration within a millionth of a step of a whole number
+/// of steps is that number, whatever the float rounding of `duration / dt` (5 s at 1/60 s is 300
+/// steps, 1 s is 60, 10 s is 600); docs/experiments.md.
+pub fn episode_steps(duration: f64, dt: f64) -> u64 {
+    ((duration / dt) - 1e-6).ceil().max(1.0) as u64
+}
+
 /// The fitness values of `objectives` read from `metrics` (NaN for a missing metric, which
 /// [`Task::validate`] rules out).
 pub fn fitness_values(objectives: &[Objective], metrics: &Metrics) -> Vec<f64> {
@@ -220,4 +228,22 @@ pub fn check_episode(
 /// An error on a field of the task's table, placed under `task`.
 pub fn task_field(error: FieldError) -> EpisodeError {
     EpisodeError::Field(error.at("task"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::episode_steps;
+
+    #[test]
+    fn whole_numbers_of_steps_do_not_depend_on_float_rounding() {
+        let dt = 1.0 / 60.0;
+        // 300 steps of dt add up to less than 5 s in floats (the old rule took a 301st step)
+        assert!((0..300).fold(0.0, |t, _| t + dt) < 5.0);
+        for (duration, steps) in [(1.0, 60), (5.0, 300), (10.0, 600), (30.0, 1800), (0.1, 6)] {
+            assert_eq!(episode_steps(duration, dt), steps, "{duration} s");
+        }
+        // a duration between steps rounds up, and an episode has at least one step
+        assert_eq!(episode_steps(1.01, dt), 61);
+        assert_eq!(episode_steps(1e-9, dt), 1);
+    }
 }

@@ -303,7 +303,7 @@ fn args(body: &str) -> RobotArgs<'_> {
         body,
         brain: None,
         sensors: None,
-        preset: "2021",
+        preset: None,
     }
 }
 

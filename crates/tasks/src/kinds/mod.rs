@@ -82,8 +82,21 @@ pub struct RobotArgs<'a> {
     pub brain: Option<&'a str>,
     /// The sensors' short form; `None`: the kind's default.
     pub sensors: Option<&'a str>,
-    /// The physical preset (`2021`, `2022`).
-    pub preset: &'a str,
+    /// The physical preset (`2021`, `2022`); `None`: the kind's default. Kinds without presets
+    /// refuse one ([`refuse_preset`]) rather than ignore it.
+    pub preset: Option<&'a str>,
+}
+
+/// The error of a kind that has no presets when the command line gives one: `what` says where
+/// its constants are instead.
+pub fn refuse_preset(args: &RobotArgs, what: &str) -> Result<(), RobotArgsError> {
+    match args.preset {
+        None => Ok(()),
+        Some(preset) => Err(RobotArgsError::Kind {
+            part: RobotPart::Preset,
+            message: format!("'{preset}' is a preset of voxel robots; {what}: leave the preset out"),
+        }),
+    }
 }
 
 /// A robot of a registered kind, as robot files and the command line describe it.
@@ -270,7 +283,7 @@ mod tests {
                 body,
                 brain: None,
                 sensors: None,
-                preset: "2021",
+                preset: None,
             };
             let robot = from_short_forms(&args).unwrap_or_else(|e| panic!("{body}: {e}"));
             assert_eq!(robot.kind().name, kind, "{body}");
@@ -287,9 +300,21 @@ mod tests {
             body: "psa:small",
             brain: None,
             sensors: Some("uniform-a-0"),
-            preset: "2021",
+            preset: None,
         };
         let e = from_short_forms(&args).unwrap_err();
         assert_eq!(e.part(), RobotPart::Sensors);
+        // a preset, which only voxel robots have, is refused by the others, not ignored
+        for body in ["psa:small", "evogym:Walker:3334/3334", "3d:##"] {
+            let args = RobotArgs {
+                body,
+                brain: None,
+                sensors: None,
+                preset: Some("2022"),
+            };
+            let e = from_short_forms(&args).unwrap_err();
+            assert_eq!(e.part(), RobotPart::Preset, "{body}: {e}");
+            assert!(from_short_forms(&RobotArgs { preset: None, ..args }).is_ok(), "{body}");
+        }
     }
 }

@@ -96,6 +96,7 @@ fn from_short_forms(args: &RobotArgs) -> Result<AnyRobot, RobotArgsError> {
             "an EvoGym robot observes what its task gives (docs/evogym-envs.md); leave sensors out".into(),
         ));
     }
+    super::super::refuse_preset(args, "an EvoGym robot's constants are EvoGym's (docs/evogym-model.md)")?;
     let rest = args.body.strip_prefix("evogym:").unwrap_or(args.body);
     let (env, rows) = match rest.split_once(':') {
         Some((env, rows)) => (env.to_string(), rows),

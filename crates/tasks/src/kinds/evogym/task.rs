@@ -54,7 +54,7 @@ impl EvoGym {
     fn steps(&self, which: EvoGymTask) -> u64 {
         let own = which.episode_steps() as u64;
         match self.duration {
-            Some(d) => own.min((d / STEP_SECONDS).ceil().max(1.0) as u64),
+            Some(d) => own.min(crate::task::episode_steps(d, STEP_SECONDS)),
             None => own,
         }
     }
@@ -309,7 +309,7 @@ mod tests {
             body,
             brain: Some(brain),
             sensors: None,
-            preset: "2021",
+            preset: None,
         })
         .unwrap()
     }

@@ -33,6 +33,7 @@ fn from_short_forms(args: &RobotArgs) -> Result<AnyRobot, RobotArgsError> {
             message: "a PSA's sensors are fixed (docs/psa.md); leave sensors out".into(),
         });
     }
+    super::refuse_preset(args, "a PSA's constants are in its body table (docs/psa.md)")?;
     PsaRobot::from_short_forms(args.body, args.brain.unwrap_or("heads")).map(AnyRobot::new)
 }
 

@@ -32,7 +32,7 @@ pub const KIND: RobotKind = RobotKind {
 fn from_short_forms(args: &RobotArgs) -> Result<AnyRobot, RobotArgsError> {
     RobotSpec::from_short_forms(
         args.body,
-        args.preset,
+        args.preset.unwrap_or("2021"),
         args.sensors.unwrap_or(DEFAULT_SENSORS),
         args.brain.unwrap_or("phase"),
     )

@@ -193,7 +193,7 @@ impl Affordance {
     ) -> Result<(Scores, u64, Option<Trace>), EpisodeError> {
         let mut built = self.build(grid, layout)?;
         let (dt, n) = (built.dt, built.body.len());
-        let steps = (self.duration / dt).ceil() as u64;
+        let steps = crate::task::episode_steps(self.duration, dt);
         let (min_x, max_x, top) = bounds(&built);
         let bottom: Vec<VoxelId> = built
             .body
@@ -502,7 +502,7 @@ mod tests {
             body,
             brain: Some("elman"),
             sensors: None,
-            preset: "2021",
+            preset: None,
         })
         .unwrap();
         let r = robot.downcast_ref::<Voxel3dRobot>().unwrap();
@@ -733,7 +733,7 @@ mod tests {
             body: "3d:flatworm",
             brain: Some("phase"),
             sensors: None,
-            preset: "2021",
+            preset: None,
         })
         .unwrap();
         let e = Affordance::default()

@@ -34,6 +34,7 @@ pub const DEFAULT_BRAIN: &str = "phase";
 
 fn from_short_forms(args: &RobotArgs) -> Result<AnyRobot, RobotArgsError> {
     let kind = |part, message: String| RobotArgsError::Kind { part, message };
+    super::super::refuse_preset(args, "a 3D voxel's constants are Voxelyze's (docs/voxels3d.md)")?;
     let mut robot = Voxel3dRobot {
         body: args.body.strip_prefix("3d:").unwrap_or(args.body).to_string(),
         sensors: args.sensors.unwrap_or(DEFAULT_SENSORS).to_string(),

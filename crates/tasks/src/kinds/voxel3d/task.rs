@@ -124,7 +124,7 @@ impl Task for Locomotion3d {
         brain.reset();
         let mut built = self.physics.build(&grid, &self.obstacles).map_err(task_field)?;
         let (dt, n) = (built.dt, built.body.len());
-        let steps = (self.duration / dt).ceil() as u64;
+        let steps = crate::task::episode_steps(self.duration, dt);
         let mut readings = vec![0.0; n * sensors.len()];
         let mut actuation = vec![0.0; n];
         let mut recorder = Recorder::new(level, &built, self.frame_rate);
@@ -184,7 +184,7 @@ mod tests {
             body,
             brain: Some(brain),
             sensors: None,
-            preset: "2021",
+            preset: None,
         })
         .unwrap()
     }
@@ -318,7 +318,7 @@ mod properties {
             brain in prop_oneof![Just("mlp"), Just("distributed-mlp"), Just("phase")],
             seconds in 0.05f64..0.3,
         ) {
-            let args = RobotArgs { body: &body_text(w, h, d, &bits), brain: Some(brain), sensors: None, preset: "2021" };
+            let args = RobotArgs { body: &body_text(w, h, d, &bits), brain: Some(brain), sensors: None, preset: None };
             let Ok(robot) = from_short_forms(&args) else {
                 return Ok(()); // a body in pieces is refused, naming why (tested in grid.rs)
             };

@@ -372,7 +372,48 @@ const voteColours = await pageVotes.evaluate(() => {
 await pageVotes.screenshot({ path: join(shots, "solid-3d-votes.png") });
 check("a 3D replay with votes colours each voxel by its vote", voteColours.red > 1000 && voteColours.blue < 50, JSON.stringify(voteColours));
 viewVotes.proc.kill("SIGINT");
-check("no script errors on the later pages (labelling, unit fill, 3D)", consoleErrors.length === 0, consoleErrors.join("; "));
+// The live monitor: `vsrlab view OUT` on a quickstart that is still running shows each run's
+// curves and best so far, and they advance as generations land.
+const liveFile = join(work, "live.toml");
+writeFileSync(liveFile, readFileSync(join(root, "experiments/quickstart.toml"), "utf8")
+  .replace("runs = 1", "runs = 2").replace("duration = 10.0", "duration = 2.0")
+  .replace("population_size = 40", "population_size = 8").replace("offspring_size = 40", "offspring_size = 8")
+  .replace("evaluations = 8000", "evaluations = 1000000").replace("snapshot_every = 40", "snapshot_every = 8"));
+const liveOut = join(work, "live-out");
+const running = spawn(bin, ["run", liveFile, "--out", liveOut, "--threads", "1"], { cwd: root, stdio: "ignore" });
+const waitFor = async (cond, ms, what) => {
+  const until = Date.now() + ms;
+  while (!cond()) { if (Date.now() > until) throw new Error(`timed out waiting for ${what}`); await new Promise((r) => setTimeout(r, 100)); }
+};
+await waitFor(() => { try { return statSync(join(liveOut, "run-00", "generations.csv")).size > 0; } catch { return false; } }, 60000, "the first generation");
+const viewLive = await startViewer([liveOut]);
+const pageLive = await browser.newPage({ viewport: { width: 1100, height: 900 } });
+pageLive.on("pageerror", (e) => consoleErrors.push(String(e)));
+await pageLive.addInitScript(() => { window.addEventListener("load", () => { if (window.viewer) window.viewer.monitor.interval = 500; }); });
+await pageLive.goto(viewLive.url);
+await pageLive.waitForFunction(() => window.viewer && window.viewer.monitor.polls >= 1, null, { timeout: 30000 });
+const liveState = () => pageLive.evaluate(() => {
+  const r = window.viewer.monitor.data.experiments[0].runs[0];
+  const c = document.getElementById("monitor-chart");
+  const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+  let coloured = 0;
+  for (let p = 0; p < d.length; p += 4) if (Math.max(d[p], d[p + 1], d[p + 2]) - Math.min(d[p], d[p + 1], d[p + 2]) > 60) coloured++;
+  return { state: r.state, evaluations: r.evaluations, points: r.curve.length, eta: r.eta, coloured,
+    line: document.querySelector('#monitor-lines .run[data-run="0/0"] .text').textContent,
+    panes: window.viewer.state.panes.map((p) => p.replay ? p.replay.title : p.name) };
+});
+const before = await liveState();
+await pageLive.waitForFunction((n) => window.viewer.monitor.data.experiments[0].runs[0].evaluations > n, before.evaluations, { timeout: 60000 });
+await pageLive.waitForFunction(() => window.viewer.state.panes.some((p) => p.replay && p.replay.title.includes("best so far")), null, { timeout: 60000 });
+const after = await liveState();
+await pageLive.screenshot({ path: join(shots, "live-monitor.png") });
+check("the live monitor shows a running run's progress and ETA", before.state === "running" && /generation \d+ · \d+ evaluations · best .* · ETA /.test(after.line), after.line);
+check("the live monitor's curves advance as generations land", after.evaluations > before.evaluations && after.points > before.points && after.coloured > 200,
+  `${before.points} → ${after.points} points, ${before.evaluations} → ${after.evaluations} evaluations, ${after.coloured} coloured pixels`);
+check("the live monitor shows the running run's best robot so far", after.panes.some((t) => /run 0: best so far \(after \d+ evaluations/.test(t)), JSON.stringify(after.panes));
+running.kill("SIGINT");
+viewLive.proc.kill("SIGINT");
+check("no script errors on the later pages (labelling, unit fill, 3D, live monitor)", consoleErrors.length === 0, consoleErrors.join("; "));
 await browser.close();
 
 // Ctrl-C stops the server cleanly.

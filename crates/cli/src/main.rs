@@ -9,6 +9,7 @@ mod evaluate;
 mod inflate;
 mod label;
 mod modules;
+mod monitor;
 mod overrides;
 mod plasticity;
 mod reassess;

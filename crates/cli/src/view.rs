@@ -24,7 +24,8 @@ const MAX_SHOWN: usize = 4;
 #[derive(Args, Debug)]
 pub struct ViewArgs {
     /// Replay files (`vsrlab simulate --replay`), robot files (simulated when first shown), or
-    /// folders: a `vsrlab run` output (every run's best robot), a `vsrlab label` folder (its robots
+    /// folders: a `vsrlab run` output (every run's best robot, and a live monitor of its runs'
+    /// curves and best so far, also while it runs), a `vsrlab label` folder (its robots
     /// with the labelling choices and "Save labels.csv"), or any folder holding replay files.
     #[arg(required = true)]
     pub paths: Vec<PathBuf>,
@@ -157,7 +158,8 @@ fn entries(paths: &[PathBuf]) -> Result<(Vec<ViewerEntry>, Option<Vec<u8>>), Str
             let root = std::fs::canonicalize(path).map_err(|e| format!("{}: {e}", path.display()))?;
             let mut found = Vec::new();
             collect(&root, &root, MAX_DEPTH, &mut found)?;
-            if found.is_empty() {
+            // an experiment that has no best robot yet is watched by the live monitor alone
+            if found.is_empty() && crate::monitor::experiment_folders(path).is_empty() {
                 return Err(format!(
                     "{}: no replay files ({REPLAY_SUFFIX}) or best robots ({BEST_ROBOT_FILE}) in this folder",
                     path.display()
@@ -227,6 +229,16 @@ fn entry(path: &Path, name: String, shown: bool) -> Result<ViewerEntry, String> 
 pub fn run(args: ViewArgs) -> Result<(), String> {
     let (entries, labelling) = entries(&args.paths)?;
     let count = entries.len();
+    let watched: Vec<PathBuf> = args
+        .paths
+        .iter()
+        .filter(|p| p.is_dir())
+        .flat_map(|p| crate::monitor::experiment_folders(p))
+        .collect();
+    let monitor = match watched.is_empty() {
+        true => None,
+        false => Some(crate::monitor::Monitor::new(&watched)?),
+    };
     let listener = viewer::bind(args.port).map_err(|e| {
         if e.kind() == std::io::ErrorKind::AddrInUse {
             format!(
@@ -247,6 +259,13 @@ pub fn run(args: ViewArgs) -> Result<(), String> {
     use std::io::Write as _;
     let _ = std::io::stdout().flush();
     let mut viewer = Viewer::new(entries);
+    if let Some(monitor) = monitor {
+        println!(
+            "live monitor: {} experiment(s); the page shows each run's curves and best so far, refreshed as generations land",
+            watched.len()
+        );
+        viewer = viewer.with_live(Box::new(monitor));
+    }
     if let Some(data) = labelling {
         println!("labelling: pick a morphology and a behaviour beside each robot, then \"Save labels.csv\" into the labelling folder");
         viewer = viewer.with_labelling(data);

@@ -425,20 +425,12 @@ fn first_sense<G, O: SearchOptimizer<G>>(optimizer: &O) -> Sense {
 }
 
 fn fraction<G, O: SearchOptimizer<G>>(stop: &StopConfig, optimizer: &O, wall: f64) -> f64 {
-    let mut f: f64 = 0.0;
-    if let Some(n) = stop.evaluations {
-        f = f.max(optimizer.evaluations() as f64 / n.max(1) as f64);
-    }
-    if let Some(n) = stop.births {
-        f = f.max(optimizer.births() as f64 / n.max(1) as f64);
-    }
-    if let Some(n) = stop.generations {
-        f = f.max(optimizer.generation() as f64 / n.max(1) as f64);
-    }
-    if let Some(s) = stop.wall_seconds {
-        f = f.max(wall / s);
-    }
-    f.clamp(0.0, 1.0)
+    stop.fraction(
+        optimizer.evaluations(),
+        optimizer.births(),
+        optimizer.generation(),
+        wall,
+    )
 }
 
 /// Reads a file and cuts it to `bytes` (what the checkpoint covers).

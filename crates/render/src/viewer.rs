@@ -4,7 +4,9 @@
 //! Only the page's three files and `/replay/<index>` of the listed replays are served: no URL is
 //! ever turned into a file-system path, so nothing outside them can be read. One thread per
 //! connection, one request per connection; replays are produced on first request (read from a
-//! file, or simulated) and kept.
+//! file, or simulated) and kept. A viewer of experiments in progress also has a [`LiveSource`]:
+//! `/api/monitor` (their state now) and `/live/<experiment>/<run>` (a run's best so far), asked
+//! afresh on every request.
 
 use std::collections::HashMap;
 use std::io::{BufRead, BufReader, Read, Write};
@@ -53,11 +55,21 @@ pub struct ViewerEntry {
     pub shown: bool,
 }
 
+/// Experiments watched while they run (`vsrlab view OUT` on a run's output folder).
+pub trait LiveSource: Send + Sync {
+    /// Their state now, as the JSON the page's monitor reads (docs/viewer.md).
+    fn status(&self) -> Result<Vec<u8>, MakeError>;
+    /// A replay of the best robot so far of run `run` of experiment `experiment`; `None` when
+    /// there is no such run or it has no best yet.
+    fn best_replay(&self, experiment: usize, run: usize) -> Option<Result<Vec<u8>, MakeError>>;
+}
+
 /// The served page and replays.
 pub struct Viewer {
     entries: Vec<ViewerEntry>,
     cache: Mutex<HashMap<usize, Made>>,
     labelling: Option<Vec<u8>>,
+    live: Option<Box<dyn LiveSource>>,
 }
 
 /// An HTTP response: status, content type, body.
@@ -91,7 +103,14 @@ impl Viewer {
             entries,
             cache: Mutex::new(HashMap::new()),
             labelling: None,
+            live: None,
         }
+    }
+
+    /// The same viewer, also monitoring experiments in progress ([`LiveSource`]).
+    pub fn with_live(mut self, live: Box<dyn LiveSource>) -> Viewer {
+        self.live = Some(live);
+        self
     }
 
     /// The same viewer, also serving a `vsrlab label` folder's `labelling.json` (robots and
@@ -140,6 +159,14 @@ impl Viewer {
                 Some(bytes) => Response::ok("application/json", bytes.clone()),
                 None => Response::text("404 Not Found", "not a labelling folder".to_string()),
             },
+            "/api/monitor" => match &self.live {
+                Some(live) => match guarded(|| live.status()) {
+                    Ok(bytes) => Response::ok("application/json", bytes),
+                    Err(e) => Response::text("500 Internal Server Error", e.to_string()),
+                },
+                None => Response::text("404 Not Found", "no experiment in progress is watched".to_string()),
+            },
+            _ if path.starts_with("/live/") => self.live_best(path),
             _ => match path.strip_prefix("/replay/").and_then(|i| i.parse::<usize>().ok()) {
                 Some(i) => match self.replay(i) {
                     Some(Ok(bytes)) => Response {
@@ -155,6 +182,28 @@ impl Viewer {
                     "not found: this server only serves the viewer and its listed replays".to_string(),
                 ),
             },
+        }
+    }
+
+    /// `/live/<experiment>/<run>`: that run's best so far.
+    fn live_best(&self, path: &str) -> Response {
+        let mut parts = path["/live/".len()..].split('/').map(|p| p.parse::<usize>().ok());
+        let (Some(live), Some(experiment), Some(run), None) =
+            (&self.live, parts.next().flatten(), parts.next().flatten(), parts.next())
+        else {
+            return Response::text("404 Not Found", "not a run being watched".to_string());
+        };
+        let mut missing = false;
+        let made = guarded(|| {
+            live.best_replay(experiment, run).unwrap_or_else(|| {
+                missing = true;
+                Err(format!("run {run} of experiment {experiment} has no best robot yet").into())
+            })
+        });
+        match made {
+            Ok(bytes) => Response::ok("application/json", bytes),
+            Err(e) if missing => Response::text("404 Not Found", e.to_string()),
+            Err(e) => Response::text("500 Internal Server Error", e.to_string()),
         }
     }
 
@@ -206,17 +255,22 @@ impl Viewer {
 /// Runs a replay maker, turning a panic inside it (a simulation that breaks an invariant) into
 /// an error the page shows, so that one bad robot never takes the server down.
 fn made_safely(make: &ReplayMaker) -> Result<Vec<u8>, Arc<dyn std::error::Error + Send + Sync>> {
+    guarded(make).map_err(Arc::from)
+}
+
+/// Runs `make`, turning a panic inside it into an error.
+fn guarded(make: impl FnOnce() -> Result<Vec<u8>, MakeError>) -> Result<Vec<u8>, MakeError> {
     match std::panic::catch_unwind(std::panic::AssertUnwindSafe(make)) {
-        Ok(made) => made.map_err(Arc::from),
+        Ok(made) => made,
         Err(panic) => {
             let what = panic
                 .downcast_ref::<String>()
                 .map(String::as_str)
                 .or_else(|| panic.downcast_ref::<&str>().copied())
                 .unwrap_or("no message");
-            Err(Arc::from(MakeError::from(format!(
+            Err(MakeError::from(format!(
                 "making this replay failed inside vsrlab ({what}); please report it"
-            ))))
+            )))
         }
     }
 }

@@ -1199,5 +1199,144 @@ async function start() {
   window.viewer.ready = true;
 }
 
-window.viewer = { state, stats, setTime, setPlaying, draw, ready: false, readReplay };
-start();
+// ---------------------------------------------------------------- live monitor
+
+// An experiment folder served by `vsrlab view OUT` (docs/viewer.md): each run's curves, progress
+// and ETA, polled every `interval` ms, and the best robot so far of each followed run, reloaded
+// when a newer one lands.
+const monitor = { data: null, interval: 2000, polls: 0, stamps: {}, follow: {}, loading: false };
+
+function humanSeconds(s) {
+  if (s === null || s === undefined || !isFinite(s)) return "–";
+  if (s < 60) return `${Math.round(s)} s`;
+  if (s < 3600) return `${Math.floor(s / 60)} min ${Math.round(s % 60)} s`;
+  return `${Math.floor(s / 3600)} h ${Math.round((s % 3600) / 60)} min`;
+}
+
+function fitnessText(v) {
+  return v === null || v === undefined || !isFinite(v) ? "–" : Number(v).toPrecision(4);
+}
+
+function monitorRuns() {
+  const out = [];
+  (monitor.data ? monitor.data.experiments : []).forEach((e, ei) => e.runs.forEach((r) => out.push({ e, ei, r })));
+  return out;
+}
+
+function bestPaneName(e, r) { return `${e.name} ${r.name} best so far`; }
+
+function renderMonitorLines() {
+  const box = document.getElementById("monitor-lines");
+  box.replaceChildren();
+  let k = 0;
+  for (const [ei, e] of monitor.data.experiments.entries()) {
+    const head = document.createElement("div");
+    head.className = "experiment";
+    const eta = e.eta === null ? "" : ` · ETA ${humanSeconds(e.eta)}`;
+    head.textContent = `${e.name}${eta}`;
+    box.appendChild(head);
+    for (const r of e.runs) {
+      const line = document.createElement("div");
+      line.className = "run";
+      line.dataset.run = `${ei}/${r.run}`;
+      const swatch = document.createElement("span");
+      swatch.className = "swatch";
+      swatch.style.background = PANE_COLOURS[k++ % PANE_COLOURS.length];
+      const text = document.createElement("span");
+      text.className = "text";
+      const eta = r.eta === null ? "" : ` · ETA ${humanSeconds(r.eta)}`;
+      text.textContent = r.state === "waiting" ? `${r.name}: waiting`
+        : `${r.name}: ${r.state} · generation ${r.generation} · ${r.evaluations} evaluations · best ${fitnessText(r.best)} · ${Math.round(100 * r.fraction)}%${eta}`;
+      const follow = document.createElement("label");
+      const check = document.createElement("input");
+      check.type = "checkbox";
+      check.checked = !!monitor.follow[`${ei}/${r.run}`];
+      check.disabled = r.best_stamp === null;
+      check.addEventListener("change", () => {
+        monitor.follow[`${ei}/${r.run}`] = check.checked;
+        if (!check.checked) { removePane(bestPaneName(e, r)); delete monitor.stamps[`${ei}/${r.run}`]; draw(); }
+        followBest();
+      });
+      follow.append(check, " watch best so far");
+      line.append(swatch, text, follow);
+      box.appendChild(line);
+    }
+  }
+}
+
+function renderMonitorChart() {
+  const canvas = document.getElementById("monitor-chart");
+  const runs = monitorRuns();
+  const values = [];
+  let xMax = 1;
+  for (const { r } of runs) for (const [x, b, m] of r.curve) {
+    xMax = Math.max(xMax, x);
+    for (const v of [b, m]) if (v !== null && isFinite(v)) values.push(v);
+  }
+  const yMin = values.length ? Math.min(...values) : 0, yMax = values.length ? Math.max(...values) : 1;
+  const f = chartFrame(canvas, "fitness per run: best so far (solid), population median (dashed)", xMax, yMin, yMax);
+  const { ctx, X, Y, m, w, h } = f;
+  ctx.fillStyle = "#fff"; ctx.fillRect(m.l, m.t + h + 2, w, 16);
+  ctx.fillStyle = "#444"; ctx.font = "10px sans-serif";
+  ctx.fillText("0", m.l, m.t + h + 14);
+  ctx.fillText(`${xMax} evaluations`, m.l + w - 90, m.t + h + 14);
+  runs.forEach(({ r }, k) => {
+    for (const [column, dash] of [[1, false], [2, true]]) {
+      ctx.beginPath();
+      let open = false;
+      for (const point of r.curve) {
+        const v = point[column];
+        if (v === null || !isFinite(v)) { open = false; continue; }
+        if (open) ctx.lineTo(X(point[0]), Y(v)); else ctx.moveTo(X(point[0]), Y(v));
+        open = true;
+      }
+      ctx.setLineDash(dash ? [4, 3] : []);
+      ctx.strokeStyle = PANE_COLOURS[k % PANE_COLOURS.length]; ctx.lineWidth = 1.5; ctx.stroke();
+      ctx.setLineDash([]);
+    }
+  });
+}
+
+// Loads the best so far of every followed run whose best changed since it was shown.
+async function followBest() {
+  if (monitor.loading) return;
+  monitor.loading = true;
+  try {
+    for (const { e, ei, r } of monitorRuns()) {
+      const key = `${ei}/${r.run}`;
+      if (!monitor.follow[key] || r.best_stamp === null || monitor.stamps[key] === r.best_stamp) continue;
+      const fetched = await fetchReplay(`live/${ei}/${r.run}`, bestPaneName(e, r));
+      const time = state.time;
+      removePane(bestPaneName(e, r));
+      addFetched(fetched, bestPaneName(e, r));
+      setTime(time);
+      monitor.stamps[key] = r.best_stamp;
+      draw();
+    }
+  } finally {
+    monitor.loading = false;
+  }
+}
+
+async function pollMonitor() {
+  let response;
+  try { response = await fetch("api/monitor"); } catch (e) { return; }
+  if (!response.ok) return;
+  const first = monitor.data === null;
+  monitor.data = await response.json();
+  monitor.polls += 1;
+  if (first) {
+    // follow the first run that is running, else the first with a best
+    const runs = monitorRuns();
+    const pick = runs.find(({ r }) => r.state === "running") || runs.find(({ r }) => r.best_stamp !== null) || runs[0];
+    if (pick) monitor.follow[`${pick.ei}/${pick.r.run}`] = true;
+  }
+  document.getElementById("monitor").hidden = false;
+  renderMonitorLines();
+  renderMonitorChart();
+  await followBest();
+  setTimeout(pollMonitor, monitor.interval);
+}
+
+window.viewer = { state, stats, setTime, setPlaying, draw, ready: false, readReplay, monitor };
+start().then(pollMonitor);

@@ -76,9 +76,44 @@ fn runs_write_best_replays_and_view_serves_a_results_folder_until_ctrl_c() {
     assert!(status.contains("200") && page.contains("viewer.js"), "{status}");
     assert!(get(&address, "/../exp.toml").0.contains("404"));
 
+    // The live monitor: both runs finished, with a curve point per generation.
+    let monitor = json(&get(&address, "/api/monitor").1);
+    let runs = monitor["experiments"][0]["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), 2);
+    for run in runs {
+        assert_eq!(run["state"], "finished", "{run}");
+        assert_eq!(run["curve"].as_array().unwrap().len(), 2, "two generations: {run}");
+        assert_eq!(run["best_stamp"], "final");
+    }
+    assert!(monitor["experiments"][0]["eta"].is_null(), "nothing left");
     let (stopped, rest) = viewer.interrupt();
     assert!(stopped, "{rest}");
     assert!(rest.contains("viewer stopped"), "{rest}");
+
+    // A run caught in progress (no summary yet): running, with an ETA, and its best so far made
+    // from its latest snapshot.
+    std::fs::remove_file(out.join("run-01/summary.json")).unwrap();
+    std::fs::remove_file(out.join("run-01/best.robot.json")).unwrap();
+    let viewer = common::start_viewer(&["view", out.to_str().unwrap(), "--port", "0"], dir.path());
+    let address = viewer.address();
+    let monitor = json(&get(&address, "/api/monitor").1);
+    let run = &monitor["experiments"][0]["runs"][1];
+    assert_eq!(run["state"], "running", "{run}");
+    assert_eq!(run["best_stamp"], 12, "the snapshot after 12 evaluations: {run}");
+    assert!(run["eta"].is_number(), "{run}");
+    let (status, body) = get(&address, "/live/0/1");
+    assert!(status.contains("200"), "{status}: {body}");
+    let replay = json(&body);
+    assert!(
+        replay["title"]
+            .as_str()
+            .unwrap()
+            .contains("best so far (after 12 evaluations"),
+        "{}",
+        replay["title"]
+    );
+    assert!(get(&address, "/live/0/2").0.contains("404"));
+    assert!(viewer.interrupt().0);
 }
 
 #[test]

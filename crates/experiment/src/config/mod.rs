@@ -132,6 +132,20 @@ pub struct StopConfig {
     pub target_fitness: Option<f64>,
 }
 
+impl StopConfig {
+    /// How much of a run is done, in [0, 1]: the largest share of any budget it has used after
+    /// these counts and wall seconds (progress bars, ETAs, the live monitor).
+    pub fn fraction(&self, evaluations: u64, births: u64, generations: u64, wall_seconds: f64) -> f64 {
+        let share = |done: u64, budget: Option<u64>| budget.map_or(0.0, |n| done as f64 / n.max(1) as f64);
+        let wall = self.wall_seconds.map_or(0.0, |s| wall_seconds / s);
+        share(evaluations, self.evaluations)
+            .max(share(births, self.births))
+            .max(share(generations, self.generations))
+            .max(wall)
+            .clamp(0.0, 1.0)
+    }
+}
+
 /// What a run writes besides its per-generation CSV and its checkpoint.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

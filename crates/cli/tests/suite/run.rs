@@ -282,13 +282,38 @@ fn completions_are_printed_for_bash() {
 /// full disk (`> /dev/full`) with status 1 and a line saying so; never with a panic.
 #[test]
 fn a_closed_pipe_or_a_full_disk_ends_without_a_panic() {
-    let commands: [&[&str]; 3] = [
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("tiny.toml");
+    std::fs::write(&file, EXPERIMENT.replace("generations = 60", "generations = 1")).unwrap();
+    let (file, out) = (file.to_str().unwrap(), dir.path().join("o"));
+    let commands: [&[&str]; 6] = [
         &["completions", "bash"],
         &["simulate", "--body", "biped-4x3", "--duration", "0.2", "--json"],
+        &[
+            "simulate",
+            "--body",
+            "biped-4x3",
+            "--duration",
+            "0.2",
+            "--ensemble",
+            "4",
+        ],
         &[
             "validate",
             concat!(env!("CARGO_MANIFEST_DIR"), "/../../experiments/quickstart.toml"),
         ],
+        &[
+            "bench",
+            "--robots",
+            "biped-4x3",
+            "--duration",
+            "0.2",
+            "--min-seconds",
+            "0",
+            "--single-only",
+        ],
+        // --resume: each of the runs below goes on from (or finds finished) the one before
+        &["run", file, "--out", out.to_str().unwrap(), "--resume"],
     ];
     for args in commands {
         // the command's status and standard error, its standard output going to `stdout`

@@ -211,12 +211,17 @@ impl Viewer {
     fn handle(&self, stream: TcpStream) -> std::io::Result<()> {
         stream.set_read_timeout(Some(Duration::from_secs(10)))?;
         let mut reader = BufReader::new(stream.try_clone()?.take(MAX_REQUEST));
-        let mut request_line = String::new();
-        reader.read_line(&mut request_line)?;
+        // lines as bytes: a request that is not UTF-8 gets an answer too (405 or 404)
+        let line = |reader: &mut BufReader<_>| -> std::io::Result<String> {
+            let mut bytes = Vec::new();
+            reader.read_until(b'\n', &mut bytes)?;
+            Ok(String::from_utf8_lossy(&bytes).into_owned())
+        };
+        let request_line = line(&mut reader)?;
         let mut foreign_host = None;
         loop {
-            let mut header = String::new();
-            if reader.read_line(&mut header)? == 0 || header == "\r\n" || header == "\n" {
+            let header = line(&mut reader)?;
+            if header.is_empty() || header == "\r\n" || header == "\n" {
                 break;
             }
             if let Some((name, value)) = header.split_once(':') {

@@ -1,5 +1,6 @@
-//! Malformed inputs thrown at the binary: generated experiment files, robot files and command-line
-//! values (seeded, so every run of the suite throws the same ones). For each: no panic, no abort,
+//! Malformed inputs thrown at the binary: generated experiment files, robot files, command-line
+//! values, PSA bodies, sweeps, files read by `transfer.from` and `genotype.initial`, and requests
+//! to the viewer (seeded, so every run of the suite throws the same ones). For each: no panic, no abort,
 //! no timeout; a failure exits non-zero and names the field (or the line) it is about; nothing is
 //! written outside the case's own folder.
 
@@ -436,6 +437,302 @@ fn malformed_command(rng: &mut ChaCha8Rng, results: &Path) -> (Vec<String>, Vec<
     (args, names)
 }
 
+/// The PSA constants a `[representation] body` table may set.
+const PSA_KEYS: &[&str] = &[
+    "masses",
+    "radius",
+    "mass_side",
+    "density",
+    "friction",
+    "spring_frequency",
+    "spring_damping",
+    "min_length",
+    "max_length",
+    "gas_mass",
+    "molar_mass",
+    "temperature",
+    "gas_constant",
+    "max_pressure_factor",
+    "min_pressure_fraction",
+    "sensor_window",
+    "position_scale",
+    "displacement_scale",
+    "spring_control",
+    "pressure_control",
+    "gas_amount",
+    "pressure_length",
+];
+
+/// Extreme numbers, besides [`BAD_VALUES`], for physical constants.
+const EXTREMES: &[&str] = &[
+    "1e300",
+    "1e-300",
+    "1e150",
+    "1e7",
+    "1e-7",
+    "5e-324",
+    "1.7976931348623157e308",
+    "3",
+    "1000",
+    "0.5",
+];
+
+/// One PSA experiment with a constant set to a bad or extreme value: (what, file, names).
+fn malformed_psa(rng: &mut ChaCha8Rng) -> (String, String, Vec<String>) {
+    let key = *PSA_KEYS.choose(rng).unwrap();
+    let value = if rng.random_bool(0.5) {
+        BAD_VALUES.choose(rng).unwrap()
+    } else {
+        EXTREMES.choose(rng).unwrap()
+    };
+    let text = format!(
+        "name = \"fuzz-psa\"\nruns = 1\nseed = 3\n[representation]\n\
+         body = {{ kind = \"psa\", size = \"small\", {key} = {value} }}\n\
+         brain = {{ kind = \"heads\", linear_outputs = 1 }}\n\
+         [task]\nkind = \"locomotion\"\nterrain = \"flat\"\nduration = 0.2\n\
+         [optimizer]\nkind = \"cma-es\"\npopulation_size = 2\n[stop]\nevaluations = 2\n"
+    );
+    (format!("psa {key} = {value}"), text, vec![key.to_string()])
+}
+
+/// One sweep over a setting, with colliding, bad or unknown values: (what, file, names).
+fn malformed_sweep(rng: &mut ChaCha8Rng) -> (String, String, Vec<String>) {
+    let key = *[
+        "seed",
+        "runs",
+        "name",
+        "task.duration",
+        "task.terrain",
+        "optimizer.population_size",
+        "representation.body",
+        "stop.evaluations",
+        "nosuch.key",
+        "task",
+        "",
+    ]
+    .choose(rng)
+    .unwrap();
+    let a = BAD_VALUES.choose(rng).unwrap();
+    let values = match rng.random_range(0..4) {
+        0 => format!("[{a}, {a}]"),
+        1 => format!("[{a}, {}]", BAD_VALUES.choose(rng).unwrap()),
+        2 => (*a).to_string(),
+        _ => "[]".to_string(),
+    };
+    let text = format!("{EXPERIMENT}\n[sweep]\n\"{key}\" = {values}\n");
+    let mut names = vec!["sweep".to_string(), "line".to_string()];
+    names.extend(key.rsplit('.').next().map(str::to_string));
+    (format!("sweep \"{key}\" = {values}"), text, names)
+}
+
+/// Files a `transfer.from` or `genotype.initial` may name: (what, path relative to the case
+/// folder, after making it there).
+fn odd_file(rng: &mut ChaCha8Rng, dir: &Path, robot: &serde_json::Value) -> (String, String) {
+    match rng.random_range(0..7) {
+        0 => ("/dev/zero".into(), "/dev/zero".into()),
+        1 => {
+            let made = Command::new("mkfifo").arg(dir.join("fifo.json")).status();
+            assert!(made.is_ok_and(|s| s.success()), "mkfifo");
+            ("a FIFO".into(), "fifo.json".into())
+        }
+        2 => ("a folder".into(), ".".into()),
+        3 => ("a missing file".into(), "missing.json".into()),
+        4 => {
+            let (what, bytes, _) = malformed_robot(rng, robot);
+            std::fs::write(dir.join("bad.json"), bytes).unwrap();
+            (format!("a robot file: {what}"), "bad.json".into())
+        }
+        5 => {
+            std::fs::write(dir.join("empty.json"), b"").unwrap();
+            ("an empty file".into(), "empty.json".into())
+        }
+        _ => {
+            std::fs::write(dir.join("good.json"), serde_json::to_vec(robot).unwrap()).unwrap();
+            ("a robot file of another brain".into(), "good.json".into())
+        }
+    }
+}
+
+/// One experiment that reads a file when it is read: a `[transfer]` or a graph genotype's
+/// `initial`, naming an odd file: (what, file, names).
+fn file_reading_experiment(
+    rng: &mut ChaCha8Rng,
+    dir: &Path,
+    robot: &serde_json::Value,
+) -> (String, String, Vec<String>) {
+    let (what, path) = odd_file(rng, dir, robot);
+    if rng.random_bool(0.5) {
+        let text = format!("{EXPERIMENT}\n[transfer]\nfrom = \"{path}\"\n");
+        (format!("transfer.from = {what}"), text, vec!["transfer".into()])
+    } else {
+        let text = EXPERIMENT.replace(
+            "brain = { kind = \"distributed-mlp\", layout = \"homogeneous\", signals = 1, hidden = [] }",
+            "brain = { kind = \"graph\" }",
+        ) + &format!("\n[genotype]\nkind = \"graph\"\ninitial = \"{path}\"\n");
+        (
+            format!("genotype.initial = {what}"),
+            text,
+            vec!["genotype.initial".into()],
+        )
+    }
+}
+
+/// What the viewer answered to one request: its status code, `None` when it closed the
+/// connection without one (a request it could not read), or `Err` for a hung connection.
+fn viewer_request(address: &str, request: &[u8]) -> Result<(Option<u16>, Vec<u8>), String> {
+    use std::io::{Read, Write};
+    let mut stream = std::net::TcpStream::connect(address).map_err(|e| e.to_string())?;
+    stream.set_read_timeout(Some(Duration::from_secs(20))).unwrap();
+    let _ = stream.write_all(request);
+    let _ = stream.shutdown(std::net::Shutdown::Write);
+    let mut answer = Vec::new();
+    if let Err(e) = stream.read_to_end(&mut answer) {
+        if e.kind() == std::io::ErrorKind::WouldBlock || e.kind() == std::io::ErrorKind::TimedOut {
+            return Err("no answer within 20 s".into());
+        }
+    }
+    let head = String::from_utf8_lossy(&answer[..answer.len().min(64)]).into_owned();
+    let code = head
+        .strip_prefix("HTTP/1.1 ")
+        .and_then(|rest| rest.get(..3))
+        .and_then(|c| c.parse().ok());
+    Ok((code, answer))
+}
+
+/// One random request to the viewer.
+fn random_request(rng: &mut ChaCha8Rng) -> (String, Vec<u8>) {
+    let method = *["GET", "GET", "GET", "HEAD", "POST", "DELETE", "get", ""]
+        .choose(rng)
+        .unwrap();
+    let path = match rng.random_range(0..12) {
+        0 => "/".to_string(),
+        1 => "/api/replays".to_string(),
+        2 => "/api/monitor".to_string(),
+        3 => format!("/replay/{}", rng.random_range(0..6)),
+        4 => format!("/live/{}/{}", rng.random_range(0..3), rng.random_range(0..3)),
+        5 => "/../../../../etc/passwd".to_string(),
+        6 => "/%2e%2e/%2e%2e/etc/passwd".to_string(),
+        7 => format!("/replay/{}", u64::MAX),
+        8 => format!("/{}", "a".repeat(rng.random_range(1..20_000))),
+        9 => format!("/{}", random_text(rng)),
+        10 => "/live/0/0/0".to_string(),
+        _ => "/viewer.js?x=../../etc/passwd".to_string(),
+    };
+    let host = *[
+        "localhost:1",
+        "127.0.0.1",
+        "[::1]:80",
+        "evil.example",
+        "localhost.evil.example",
+        "",
+    ]
+    .choose(rng)
+    .unwrap();
+    match rng.random_range(0..10) {
+        0 => {
+            let junk: Vec<u8> = (0..rng.random_range(0..64)).map(|_| rng.random()).collect();
+            (format!("{} junk bytes", junk.len()), junk)
+        }
+        1 => (
+            format!("{method} {path} cut short"),
+            format!("{method} {path}").into_bytes(),
+        ),
+        _ => {
+            let host_line = if host.is_empty() {
+                String::new()
+            } else {
+                format!("Host: {host}\r\n")
+            };
+            (
+                format!("{method} {} Host {host:?}", &path[..path.len().min(60)]),
+                format!("{method} {path} HTTP/1.1\r\n{host_line}\r\n").into_bytes(),
+            )
+        }
+    }
+}
+
+/// Throws `count` random requests at `vsrlab view` on a folder holding a replay, a run's output,
+/// a FIFO named like a replay and links to a secret file outside and to `/etc/passwd`; checks
+/// each answer (a known status, or a closed connection for an unreadable request, never a hang,
+/// never a byte of the files outside), that the server is still serving at the end and that it
+/// never panicked. Returns the tally.
+fn fuzz_viewer(rng: &mut ChaCha8Rng, sandbox: &mut Sandbox, results: &Path, count: usize) -> Tally {
+    let dir = sandbox.case();
+    let served = dir.join("served");
+    std::fs::create_dir_all(&served).unwrap();
+    let secret = dir.join("secret.replay.json");
+    std::fs::write(&secret, "{\"format\":\"vsrlab-replay\",\"title\":\"SECRET-OUTSIDE\"}").unwrap();
+    let (code, stderr, _) = run(
+        &["simulate", "--duration", "0.2", "--replay", "served/walk.replay.json"],
+        &dir,
+    );
+    assert_eq!(code, Some(0), "{stderr}");
+    std::os::unix::fs::symlink(&secret, served.join("leak.replay.json")).unwrap();
+    std::os::unix::fs::symlink("/etc/passwd", served.join("passwd.replay.json")).unwrap();
+    assert!(Command::new("mkfifo")
+        .arg(served.join("hang.replay.json"))
+        .status()
+        .unwrap()
+        .success());
+    let mut child = Command::new(VSRLAB)
+        .args(["view", "served", results.to_str().unwrap(), "--port", "0"])
+        .current_dir(&dir)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdout = std::io::BufReader::new(child.stdout.take().unwrap());
+    let mut first = String::new();
+    std::io::BufRead::read_line(&mut stdout, &mut first).unwrap();
+    let address = first
+        .split("http://")
+        .nth(1)
+        .and_then(|r| r.split('/').next())
+        .unwrap_or_else(|| panic!("no URL: {first}"))
+        .to_string();
+    let mut tally = Tally::default();
+    let mut statuses = BTreeMap::<String, usize>::new();
+    for _ in 0..count {
+        let (what, request) = random_request(rng);
+        let (code, stderr, timed_out) = match viewer_request(&address, &request) {
+            Ok((code, answer)) => {
+                *statuses
+                    .entry(code.map_or("closed".into(), |c| c.to_string()))
+                    .or_default() += 1;
+                let text = String::from_utf8_lossy(&answer);
+                let leaked = text.contains("SECRET-OUTSIDE") || text.contains("root:");
+                let known = matches!(code, None | Some(200 | 403 | 404 | 405 | 500));
+                // a status the server may give: 0 for the right answers, 1 otherwise
+                let verdict = if leaked || !known { 1 } else { 0 };
+                (
+                    Some(verdict),
+                    format!("status {code:?}{}", if leaked { ", served a file outside" } else { "" }),
+                    false,
+                )
+            }
+            Err(e) => (None, e, true),
+        };
+        tally.check(
+            &Case {
+                what: format!("viewer: {what}"),
+                code,
+                stderr,
+                timed_out,
+            },
+            &["status"],
+        );
+    }
+    let (still, answer) = viewer_request(&address, b"GET / HTTP/1.1\r\nHost: localhost\r\n\r\n").unwrap();
+    let _ = child.kill();
+    let mut err = String::new();
+    let _ = std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut err);
+    let _ = child.wait();
+    eprintln!("viewer requests: HTTP statuses {statuses:?}");
+    assert_eq!(still, Some(200), "still serving: {}", String::from_utf8_lossy(&answer));
+    assert!(!err.contains("panicked"), "{err}");
+    tally
+}
+
 #[test]
 fn malformed_inputs_never_crash_and_always_name_the_field() {
     let tmp = tempfile::tempdir().unwrap();
@@ -498,6 +795,56 @@ fn malformed_inputs_never_crash_and_always_name_the_field() {
         tallies.entry("command lines").or_default().check(&case, &names);
     }
 
+    for _ in 0..60 {
+        let dir = sandbox.case();
+        let (what, text, names) = malformed_psa(&mut rng);
+        std::fs::write(dir.join("exp.toml"), text).unwrap();
+        let (code, stderr, timed_out) = run(&["run", "exp.toml", "--threads", "1"], &dir);
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        let case = Case {
+            what: format!("experiment: {what}"),
+            code,
+            stderr,
+            timed_out,
+        };
+        tallies.entry("PSA bodies").or_default().check(&case, &names);
+    }
+    for _ in 0..60 {
+        let dir = sandbox.case();
+        let (what, text, names) = malformed_sweep(&mut rng);
+        std::fs::write(dir.join("exp.toml"), text).unwrap();
+        let (code, stderr, timed_out) = run(&["validate", "--brief", "--threads", "1", "exp.toml"], &dir);
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        let case = Case {
+            what: format!("experiment: {what}"),
+            code,
+            stderr,
+            timed_out,
+        };
+        tallies.entry("sweeps").or_default().check(&case, &names);
+    }
+    for _ in 0..40 {
+        let dir = sandbox.case();
+        let (what, text, names) = file_reading_experiment(&mut rng, &dir, &robot);
+        std::fs::write(dir.join("exp.toml"), text).unwrap();
+        let (code, stderr, timed_out) = run(&["validate", "--brief", "--threads", "1", "exp.toml"], &dir);
+        let names: Vec<&str> = names.iter().map(String::as_str).collect();
+        let case = Case {
+            what: format!("experiment: {what}"),
+            code,
+            stderr,
+            timed_out,
+        };
+        tallies
+            .entry("transfer and initial files")
+            .or_default()
+            .check(&case, &names);
+    }
+    tallies.insert(
+        "viewer requests",
+        fuzz_viewer(&mut rng, &mut sandbox, &base.join("out/fuzz"), 400),
+    );
+
     let outside = sandbox.outside_writes();
     let mut report = String::new();
     let mut broken = Vec::new();
@@ -510,7 +857,7 @@ fn malformed_inputs_never_crash_and_always_name_the_field() {
     }
     eprintln!("{report}");
     let total: usize = tallies.values().map(|t| t.cases).sum();
-    assert!(total >= 500, "{total} cases");
+    assert!(total >= 1000, "{total} cases");
     assert!(outside.is_empty(), "written outside the case folders: {outside:?}");
     assert!(
         broken.is_empty(),

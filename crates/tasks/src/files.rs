@@ -134,9 +134,15 @@ pub fn read_text(path: &Path) -> Result<String, FileError> {
 /// file holds; a file with none is read as a voxel robot file, whose errors then name what is
 /// missing).
 pub fn any_robot_from_json(text: &str, origin: &str) -> Result<AnyRobot, FileError> {
-    let value = serde_json::from_str::<serde_json::Value>(text).unwrap_or_default();
-    let kind = kinds::kind_of_file(&value).unwrap_or_else(kinds::default_kind);
-    (kind.from_file)(text, origin)
+    let kind = match serde_json::from_str::<serde_json::Value>(text) {
+        Ok(value) => kinds::kind_of_file(&value),
+        // not JSON (a number like 1e999, a cut file): the kind whose key the text names, so
+        // that its own parser reports the fault where it is rather than a wrong kind's
+        Err(_) => kinds::ROBOT_KINDS.iter().find(|k| {
+            k.file_keys.iter().any(|key| text.contains(&format!("\"{key}\""))) && k.name != kinds::default_kind().name
+        }),
+    };
+    (kind.unwrap_or_else(kinds::default_kind).from_file)(text, origin)
 }
 
 /// Loads and validates a robot file of any registered kind: vsrlab's JSON, or a file of
@@ -385,5 +391,47 @@ mod read_bytes_tests {
         let error = read_text(&fifo).unwrap_err().to_string();
         assert!(error.contains("not a regular file"), "{error}");
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
+
+#[cfg(test)]
+mod kind_of_broken_files_tests {
+    use super::*;
+
+    #[test]
+    fn a_robot_file_that_is_not_json_is_reported_by_its_own_kind() {
+        let args = crate::kinds::RobotArgs {
+            body: "psa:small",
+            brain: None,
+            sensors: None,
+            preset: None,
+        };
+        let text = crate::kinds::from_short_forms(&args).unwrap().to_json(None);
+        let radius = text.lines().find(|l| l.contains("\"radius\"")).unwrap();
+        for bad in ["1e999", "NaN"] {
+            let broken = text.replace(radius, &format!("\"radius\": {bad},"));
+            let e = any_robot_from_json(&broken, "psa.json").unwrap_err().to_string();
+            assert!(
+                e.contains("psa.body.radius") && !e.contains("unknown field"),
+                "{bad}: {e}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_psa_brain_short_form_is_named_as_given() {
+        let args = crate::kinds::RobotArgs {
+            body: "psa:small",
+            brain: Some("heads:0"),
+            sensors: None,
+            preset: None,
+        };
+        let e = crate::kinds::from_short_forms(&args).unwrap_err();
+        assert_eq!(e.part(), crate::kinds::voxel::short_forms::RobotPart::Brain);
+        assert!(
+            e.message().starts_with("'heads:0' (linear_outputs)") && !e.message().contains("robot."),
+            "{}",
+            e.message()
+        );
     }
 }

@@ -290,6 +290,7 @@ impl PsaRobot {
                 ))
             }
         };
+        let brain_text = brain;
         let brain = BrainSpec::parse(brain).map_err(RobotArgsError::Brain)?;
         let mut robot = PsaRobot {
             body: PsaBody::of_size(size),
@@ -303,13 +304,18 @@ impl PsaRobot {
                 .with_random_parameters(RANDOM_BRAIN_SEED, &shape)
                 .map_err(RobotArgsError::Brain)?;
         }
-        robot.validate().map_err(|e| {
-            let part = if e.path == "brain" || e.path.starts_with("brain.") {
-                RobotPart::Brain
-            } else {
-                RobotPart::Body
-            };
-            kind_error(part, e.at("robot").to_string())
+        robot.validate().map_err(|e| match e.path.strip_prefix("brain") {
+            // the command line gave the brain as a short form: name it, not a file's field
+            Some(inner) => {
+                let field = inner.trim_start_matches('.');
+                let field = if field.is_empty() {
+                    String::new()
+                } else {
+                    format!(" ({field})")
+                };
+                kind_error(RobotPart::Brain, format!("'{brain_text}'{field}: {}", e.message))
+            }
+            None => kind_error(RobotPart::Body, e.at("robot").to_string()),
         })?;
         Ok(robot)
     }

@@ -13,6 +13,11 @@ const TIMED_EVALUATIONS: usize = 3;
 /// its first steps and the time scaled up, so that validating a file of absurd length
 /// (`dt = 1e-12`) takes seconds, not the episode's length.
 const TIMED_STEPS: f64 = 600.0;
+/// Steps of the probe that sizes the timed episodes, and the fewest steps they are cut to.
+const PROBE_STEPS: f64 = 10.0;
+/// Wall seconds the timed evaluations aim at in all: a body so large that 600 steps would take
+/// longer (100 × 100 voxels: a minute per evaluation) is timed on fewer.
+const TIMING_BUDGET: f64 = 3.0;
 
 /// What an experiment will do.
 #[derive(Debug, Clone, PartialEq)]
@@ -42,9 +47,20 @@ pub fn validate(experiment: &Experiment, threads: usize) -> Result<Validation, F
     let threads = crate::runner::worker_threads(threads);
     let start = Instant::now();
     let kind = experiment.genotype_kind();
-    let (timed, scale) = shortened(experiment);
-    kind.time_evaluations(timed.as_ref().unwrap_or(experiment), TIMED_EVALUATIONS)?;
-    let seconds_per_evaluation = scale * start.elapsed().as_secs_f64() / TIMED_EVALUATIONS as f64;
+    // a probe of a few steps says how many steps the timed episodes can afford
+    let (probe, probe_scale) = shortened(experiment, PROBE_STEPS);
+    kind.time_evaluations(probe.as_ref().unwrap_or(experiment), 1)?;
+    let per_step = start.elapsed().as_secs_f64() / PROBE_STEPS;
+    let affordable = (TIMING_BUDGET / (TIMED_EVALUATIONS as f64 * per_step)).floor();
+    let seconds_per_evaluation = if probe.is_none() && probe_scale == 1.0 {
+        // an episode of a few steps (or one that cannot be cut): the probe timed it whole
+        time_whole(experiment, kind)?
+    } else {
+        let (timed, scale) = shortened(experiment, affordable.clamp(PROBE_STEPS, TIMED_STEPS));
+        let start = Instant::now();
+        kind.time_evaluations(timed.as_ref().unwrap_or(experiment), TIMED_EVALUATIONS)?;
+        scale * start.elapsed().as_secs_f64() / TIMED_EVALUATIONS as f64
+    };
     let genes = kind.size(experiment)?.genes;
     let optimizer = experiment.optimizer.kind();
     let stop = &experiment.stop;
@@ -68,17 +84,24 @@ pub fn validate(experiment: &Experiment, threads: usize) -> Result<Validation, F
     })
 }
 
+/// Mean seconds of [`TIMED_EVALUATIONS`] evaluations of the experiment as it is.
+fn time_whole(experiment: &Experiment, kind: &dyn crate::genotypes::GenotypeKind) -> Result<f64, FieldError> {
+    let start = Instant::now();
+    kind.time_evaluations(experiment, TIMED_EVALUATIONS)?;
+    Ok(start.elapsed().as_secs_f64() / TIMED_EVALUATIONS as f64)
+}
+
 /// The experiment whose episodes are timed, when it is not `experiment` itself: the same with
-/// its task's `duration` cut to [`TIMED_STEPS`] steps; and the factor from that episode's
-/// length to the full one's. An episode of an engine without a step (or a task without a
-/// `duration`) is timed whole.
-fn shortened(experiment: &Experiment) -> (Option<Experiment>, f64) {
+/// its task's `duration` cut to `steps` steps; and the factor from that episode's length to the
+/// full one's. An episode of an engine without a step (or a task without a `duration`) is timed
+/// whole.
+fn shortened(experiment: &Experiment, steps: f64) -> (Option<Experiment>, f64) {
     let task = experiment.task.spec.task();
     let (duration, dt) = (task.duration(), task.step_seconds());
-    if !(dt > 0.0 && duration / dt > TIMED_STEPS) {
+    if !(dt > 0.0 && duration / dt > steps) {
         return (None, 1.0);
     }
-    let short = TIMED_STEPS * dt;
+    let short = steps * dt;
     let Ok(mut table) = experiment.to_toml().parse::<toml::Table>() else {
         return (None, 1.0);
     };
@@ -122,11 +145,34 @@ mod tests {
         assert!(start.elapsed().as_secs_f64() < 60.0, "{:?}", start.elapsed());
         // 1e10 steps per episode, timed on 600 of them: hours per evaluation, not milliseconds
         assert!(v.seconds_per_evaluation > 1e3, "{}", v.seconds_per_evaluation);
-        let (copy, scale) = shortened(&experiment);
+        let (copy, scale) = shortened(&experiment, TIMED_STEPS);
         assert!((scale - 1e10 / TIMED_STEPS).abs() / scale < 1e-9, "{scale}");
         assert!((copy.unwrap().task.spec.task().duration() - 6e-7).abs() < 1e-15);
         let quickstart = config::load(path.as_ref()).unwrap();
-        assert!(shortened(&quickstart).0.is_none(), "600 steps are timed whole");
+        assert!(
+            shortened(&quickstart, TIMED_STEPS).0.is_none(),
+            "600 steps are timed whole"
+        );
+    }
+
+    #[test]
+    fn the_largest_body_is_timed_on_as_many_steps_as_fit_in_the_budget() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../experiments/quickstart.toml");
+        let rows = vec!["#".repeat(100); 100].join("/");
+        let text = std::fs::read_to_string(path)
+            .unwrap()
+            .replace("body = \"biped-4x3\"", &format!("body = \"{rows}\""));
+        let experiment = config::parse(&text, "box-100.toml").unwrap();
+        let start = Instant::now();
+        let v = validate(&experiment, 2).unwrap();
+        let took = start.elapsed().as_secs_f64();
+        // a whole evaluation takes a minute or more: the timing stays near its budget
+        assert!(took < 4.0 * TIMING_BUDGET, "{took} s");
+        assert!(
+            v.seconds_per_evaluation > took / TIMED_EVALUATIONS as f64,
+            "{} vs {took}",
+            v.seconds_per_evaluation
+        );
     }
 
     #[test]

@@ -87,6 +87,10 @@ mod tests {
         assert_eq!(DirectBody::new(5, 3).gene_count(), 15);
         assert_eq!(DirectBody::new(usize::MAX, 2).gene_count(), usize::MAX);
         assert!(DirectBody::new(usize::MAX, 2).validate().is_err());
+        // every body grid is at most 100 × 100, encoded or written out
+        assert!(DirectBody::new(100, 100).validate().is_ok());
+        let e = DirectBody::new(1024, 1024).validate().unwrap_err().to_string();
+        assert!(e.contains("between 1 and 100"), "{e}");
     }
 
     #[test]

@@ -29,8 +29,9 @@ pub use largest_component::largest_component;
 use crate::{Morphology, MorphologyError};
 use serde::{Deserialize, Serialize};
 
-/// Largest accepted grid side (width or height), in cells.
-pub const MAX_SIDE: usize = 1024;
+/// Largest accepted grid side (width or height), in cells: that of every body
+/// ([`crate::morphology::MAX_SIDE`]).
+pub use crate::morphology::MAX_SIDE;
 
 /// Why a genotype could not be decoded into a body.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

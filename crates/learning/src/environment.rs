@@ -1,0 +1,25 @@
+//! What PPO needs of an environment: observations, actions, rewards and the end of an episode.
+
+/// The result of one step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Transition {
+    /// The observation after the step.
+    pub observation: Vec<f64>,
+    /// The step's reward.
+    pub reward: f64,
+    /// Whether the episode ended with this step (the next step starts from a reset).
+    pub done: bool,
+}
+
+/// An episodic environment with continuous actions. Implementations must be deterministic in
+/// the reset seed and the actions.
+pub trait Environment: Send {
+    /// Values per observation.
+    fn observation_size(&self) -> usize;
+    /// Values per action (the policy's output; the environment clips them to its own range).
+    fn action_size(&self) -> usize;
+    /// Starts an episode; `seed` makes it reproducible.
+    fn reset(&mut self, seed: u64) -> Vec<f64>;
+    /// One step with `action`.
+    fn step(&mut self, action: &[f64]) -> Transition;
+}

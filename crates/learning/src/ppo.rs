@@ -1,0 +1,560 @@
+//! Proximal policy optimisation (Schulman et al. 2017, the clipped objective) with a diagonal
+//! Gaussian policy (a state-independent log σ per action) and a separate value network, as the
+//! EvoGym examples' PPO: rollouts of `steps_per_environment` steps in each environment, GAE,
+//! advantages normalised over the batch, `epochs` passes over `minibatches` shuffled
+//! minibatches, one Adam over every parameter with the gradient clipped to a global norm, the
+//! learning rate decayed linearly to 0 over the iterations.
+
+use crate::adam::Adam;
+use crate::environment::Environment;
+use crate::gaussian::{add_log_prob_gradient, entropy, log_prob};
+use crate::mlp::{standard_normal, Mlp};
+use crate::normalizer::Normalizer;
+use crate::rollout::Rollout;
+use rand::seq::SliceRandom;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+/// PPO's settings; the defaults are the EvoGym examples' (docs/learning.md).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PpoConfig {
+    /// Iterations (rollout, then update) of one training.
+    pub iterations: usize,
+    /// Steps of each environment per iteration (128).
+    pub steps_per_environment: usize,
+    /// Passes over the iteration's steps (4).
+    pub epochs: usize,
+    /// Minibatches per pass (4).
+    pub minibatches: usize,
+    /// Adam's step size at the first iteration (2.5e-4).
+    pub learning_rate: f64,
+    /// Whether the step size falls linearly to 0 over the iterations (yes).
+    pub decay_learning_rate: bool,
+    /// The ratio's clip range ε (0.1).
+    pub clip: f64,
+    /// Discount γ (0.99).
+    pub gamma: f64,
+    /// GAE's λ (0.95).
+    pub lambda: f64,
+    /// Weight of the value loss (0.5).
+    pub value_coefficient: f64,
+    /// Weight of the entropy bonus (0.01).
+    pub entropy_coefficient: f64,
+    /// The gradient is scaled down to this global norm when longer (0.5).
+    pub max_gradient_norm: f64,
+    /// Hidden layers of both networks, tanh ([64, 64]).
+    pub hidden: Vec<usize>,
+    /// Initial log σ of every action (0: σ = 1).
+    pub initial_log_std: f64,
+}
+
+impl Default for PpoConfig {
+    fn default() -> Self {
+        PpoConfig {
+            iterations: 1000,
+            steps_per_environment: 128,
+            epochs: 4,
+            minibatches: 4,
+            learning_rate: 2.5e-4,
+            decay_learning_rate: true,
+            clip: 0.1,
+            gamma: 0.99,
+            lambda: 0.95,
+            value_coefficient: 0.5,
+            entropy_coefficient: 0.01,
+            max_gradient_norm: 0.5,
+            hidden: vec![64, 64],
+            initial_log_std: 0.0,
+        }
+    }
+}
+
+/// Why PPO cannot start or go on.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PpoError {
+    /// A setting out of its range; names the field.
+    #[error("{field}: {message}")]
+    Invalid {
+        /// The setting.
+        field: &'static str,
+        /// What is wrong.
+        message: String,
+    },
+    /// The environments disagree with the policy (sizes, count).
+    #[error("environments: {0}")]
+    Environment(String),
+    /// An environment gave a non-finite observation or reward, or an update made a parameter
+    /// non-finite.
+    #[error("non-finite {0}")]
+    NonFinite(String),
+}
+
+impl PpoConfig {
+    /// Checks every setting, naming the field.
+    pub fn validate(&self) -> Result<(), PpoError> {
+        let invalid = |field, message: String| Err(PpoError::Invalid { field, message });
+        let counts = [
+            ("iterations", self.iterations, 1_000_000),
+            ("steps_per_environment", self.steps_per_environment, 1_000_000),
+            ("epochs", self.epochs, 1000),
+            ("minibatches", self.minibatches, 1_000_000),
+        ];
+        for (field, value, most) in counts {
+            if value == 0 || value > most {
+                return invalid(field, format!("must be in 1..={most}, got {value}"));
+            }
+        }
+        let ranges = [
+            ("learning_rate", self.learning_rate, 0.0, 1.0),
+            ("clip", self.clip, 0.0, 1.0),
+            ("gamma", self.gamma, 0.0, 1.0),
+            ("lambda", self.lambda, 0.0, 1.0),
+            ("value_coefficient", self.value_coefficient, 0.0, 1e6),
+            ("entropy_coefficient", self.entropy_coefficient, 0.0, 1e6),
+            ("max_gradient_norm", self.max_gradient_norm, 0.0, f64::MAX),
+            ("initial_log_std", self.initial_log_std, -20.0, 5.0),
+        ];
+        for (field, value, low, high) in ranges {
+            if !(value.is_finite() && (low..=high).contains(&value)) {
+                return invalid(field, format!("must be a number in [{low}, {high:e}], got {value}"));
+            }
+        }
+        if self.hidden.len() > 16 || self.hidden.iter().any(|&n| n == 0 || n > 4096) {
+            return invalid(
+                "hidden",
+                format!("at most 16 layers of 1 to 4096 neurons, got {:?}", self.hidden),
+            );
+        }
+        Ok(())
+    }
+}
+
+/// What one iteration did.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct IterationStats {
+    /// Iteration, from 0.
+    pub iteration: usize,
+    /// Mean reward per step of the rollouts.
+    pub mean_reward: f64,
+    /// Mean return of the episodes that ended during the rollouts (`None`: none ended).
+    pub mean_episode_return: Option<f64>,
+    /// Episodes that ended during the rollouts.
+    pub episodes: usize,
+    /// Mean clipped surrogate loss of the last epoch.
+    pub policy_loss: f64,
+    /// Mean value loss (½ squared error) of the last epoch.
+    pub value_loss: f64,
+    /// The policy's entropy after the update.
+    pub entropy: f64,
+    /// The step size used.
+    pub learning_rate: f64,
+}
+
+/// One environment's state between steps.
+#[derive(Debug, Clone)]
+struct Slot {
+    observation: Vec<f64>,
+    episode_return: f64,
+    episodes: u64,
+}
+
+/// A PPO learner: policy, value network, optimiser state and observation statistics.
+#[derive(Debug, Clone)]
+pub struct Ppo {
+    config: PpoConfig,
+    actor: Mlp,
+    log_std: Vec<f64>,
+    critic: Mlp,
+    adam: Adam,
+    normalizer: Normalizer,
+    seed: u64,
+}
+
+/// A seed from a base seed and two indices (SplitMix64 steps), for per-environment and
+/// per-iteration generators.
+fn mix(seed: u64, a: u64, b: u64) -> u64 {
+    let mut z = seed ^ a.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ b.wrapping_mul(0xD1B5_4A32_D192_ED03);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+impl Ppo {
+    /// A learner for observations of `observations` values and actions of `actions` values.
+    pub fn new(observations: usize, actions: usize, config: PpoConfig, seed: u64) -> Result<Ppo, PpoError> {
+        config.validate()?;
+        if observations == 0 || actions == 0 {
+            return Err(PpoError::Environment(format!(
+                "{observations} observation and {actions} action values: PPO needs at least one of each"
+            )));
+        }
+        let mut rng = ChaCha8Rng::seed_from_u64(mix(seed, u64::MAX, 0));
+        let sizes = |outputs: usize| [vec![observations], config.hidden.clone(), vec![outputs]].concat();
+        let actor = Mlp::new(&sizes(actions), 0.01, &mut rng);
+        let critic = Mlp::new(&sizes(1), 1.0, &mut rng);
+        let adam = Adam::new(actor.parameters.len() + actions + critic.parameters.len());
+        Ok(Ppo {
+            log_std: vec![config.initial_log_std; actions],
+            actor,
+            critic,
+            adam,
+            normalizer: Normalizer::new(observations),
+            config,
+            seed,
+        })
+    }
+
+    /// The policy's action for an observation: its mean, without noise.
+    pub fn act(&self, observation: &[f64]) -> Vec<f64> {
+        self.actor
+            .forward(&self.normalizer.normalize(observation))
+            .output()
+            .to_vec()
+    }
+
+    /// Trains for the configured iterations on `environments` (stepped in parallel); returns
+    /// what each iteration did.
+    pub fn train<E: Environment>(&mut self, environments: &mut [E]) -> Result<Vec<IterationStats>, PpoError> {
+        self.check_environments(environments)?;
+        let mut slots: Vec<Slot> = environments
+            .iter_mut()
+            .enumerate()
+            .map(|(e, env)| Slot {
+                observation: env.reset(mix(self.seed, e as u64, 0)),
+                episode_return: 0.0,
+                episodes: 0,
+            })
+            .collect();
+        (0..self.config.iterations)
+            .map(|iteration| self.iterate(iteration, environments, &mut slots))
+            .collect()
+    }
+
+    fn check_environments<E: Environment>(&self, environments: &[E]) -> Result<(), PpoError> {
+        if environments.is_empty() {
+            return Err(PpoError::Environment("none given".into()));
+        }
+        let (observations, actions) = (self.normalizer.len(), self.log_std.len());
+        for (e, env) in environments.iter().enumerate() {
+            if env.observation_size() != observations || env.action_size() != actions {
+                return Err(PpoError::Environment(format!(
+                    "environment {e} has {} observation and {} action values, the policy {observations} and {actions}",
+                    env.observation_size(),
+                    env.action_size()
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// One rollout in every environment, then the update.
+    fn iterate<E: Environment>(
+        &mut self,
+        iteration: usize,
+        environments: &mut [E],
+        slots: &mut [Slot],
+    ) -> Result<IterationStats, PpoError> {
+        let rollouts: Vec<Rollout> = environments
+            .par_iter_mut()
+            .zip(slots.par_iter_mut())
+            .enumerate()
+            .map(|(e, (env, slot))| self.roll_out(iteration, e, env, slot))
+            .collect::<Result<_, _>>()?;
+        let raw: Vec<Vec<f64>> = rollouts
+            .iter()
+            .flat_map(|r| r.raw_observations.iter().cloned())
+            .collect();
+        let (policy_loss, value_loss, learning_rate) = self.update(iteration, &rollouts)?;
+        self.normalizer.update(&raw);
+        let steps: usize = rollouts.iter().map(|r| r.rewards.len()).sum();
+        let returns: Vec<f64> = rollouts
+            .iter()
+            .flat_map(|r| r.episode_returns.iter().copied())
+            .collect();
+        Ok(IterationStats {
+            iteration,
+            mean_reward: rollouts.iter().flat_map(|r| r.rewards.iter()).sum::<f64>() / steps.max(1) as f64,
+            mean_episode_return: (!returns.is_empty()).then(|| returns.iter().sum::<f64>() / returns.len() as f64),
+            episodes: returns.len(),
+            policy_loss,
+            value_loss,
+            entropy: entropy(&self.log_std),
+            learning_rate,
+        })
+    }
+
+    /// `steps_per_environment` steps of environment `e` from its slot, actions sampled from the
+    /// policy with a generator of (seed, iteration, e).
+    fn roll_out<E: Environment>(
+        &self,
+        iteration: usize,
+        e: usize,
+        env: &mut E,
+        slot: &mut Slot,
+    ) -> Result<Rollout, PpoError> {
+        let mut rng = ChaCha8Rng::seed_from_u64(mix(self.seed, iteration as u64 + 1, e as u64));
+        let std: Vec<f64> = self.log_std.iter().map(|s| s.exp()).collect();
+        let mut r = Rollout::default();
+        for _ in 0..self.config.steps_per_environment {
+            let observation = self.normalizer.normalize(&slot.observation);
+            let mean = self.actor.forward(&observation).output().to_vec();
+            let action: Vec<f64> = mean
+                .iter()
+                .zip(&std)
+                .map(|(m, s)| m + s * standard_normal(&mut rng))
+                .collect();
+            r.log_probs.push(log_prob(&action, &mean, &self.log_std));
+            r.values.push(self.critic.forward(&observation).output()[0]);
+            let step = env.step(&action);
+            if !step.reward.is_finite() || step.observation.iter().any(|v| !v.is_finite()) {
+                return Err(PpoError::NonFinite(format!(
+                    "reward or observation from environment {e}"
+                )));
+            }
+            r.raw_observations
+                .push(std::mem::replace(&mut slot.observation, step.observation));
+            r.observations.push(observation);
+            r.actions.push(action);
+            r.rewards.push(step.reward);
+            r.dones.push(step.done);
+            slot.episode_return += step.reward;
+            if step.done {
+                r.episode_returns.push(slot.episode_return);
+                slot.episode_return = 0.0;
+                slot.episodes += 1;
+                slot.observation = env.reset(mix(self.seed, e as u64, slot.episodes));
+            }
+        }
+        r.last_value = self
+            .critic
+            .forward(&self.normalizer.normalize(&slot.observation))
+            .output()[0];
+        Ok(r)
+    }
+
+    /// The update: `epochs` passes of minibatch Adam steps on the clipped objective, the value
+    /// loss and the entropy bonus. Returns the last epoch's mean policy and value losses and the
+    /// step size.
+    fn update(&mut self, iteration: usize, rollouts: &[Rollout]) -> Result<(f64, f64, f64), PpoError> {
+        let c = self.config.clone();
+        let mut samples = Vec::new(); // (rollout, step, advantage, return)
+        for (k, r) in rollouts.iter().enumerate() {
+            let (advantages, returns) = r.advantages(c.gamma, c.lambda);
+            samples.extend((0..r.rewards.len()).map(|t| (k, t, advantages[t], returns[t])));
+        }
+        let n = samples.len() as f64;
+        let mean = samples.iter().map(|s| s.2).sum::<f64>() / n;
+        let sd = (samples.iter().map(|s| (s.2 - mean).powi(2)).sum::<f64>() / n).sqrt();
+        for s in &mut samples {
+            s.2 = (s.2 - mean) / (sd + 1e-8);
+        }
+        let learning_rate = if c.decay_learning_rate {
+            c.learning_rate * (1.0 - iteration as f64 / c.iterations as f64)
+        } else {
+            c.learning_rate
+        };
+        let (actor_len, actions) = (self.actor.parameters.len(), self.log_std.len());
+        let mut rng = ChaCha8Rng::seed_from_u64(mix(self.seed, iteration as u64 + 1, u64::MAX));
+        let size = samples.len().div_ceil(c.minibatches).max(1);
+        let (mut policy_loss, mut value_loss) = (0.0, 0.0);
+        for _ in 0..c.epochs {
+            samples.shuffle(&mut rng);
+            (policy_loss, value_loss) = (0.0, 0.0);
+            for batch in samples.chunks(size) {
+                let mut gradient = vec![0.0; self.adam_len()];
+                let (actor_g, rest) = gradient.split_at_mut(actor_len);
+                let (log_std_g, critic_g) = rest.split_at_mut(actions);
+                let inv = 1.0 / batch.len() as f64;
+                for &(k, t, advantage, target) in batch {
+                    let r = &rollouts[k];
+                    let pass = self.actor.forward(&r.observations[t]);
+                    let new = log_prob(&r.actions[t], pass.output(), &self.log_std);
+                    let ratio = (new - r.log_probs[t]).exp();
+                    let unclipped = ratio * advantage;
+                    let clipped = ratio.clamp(1.0 - c.clip, 1.0 + c.clip) * advantage;
+                    policy_loss -= unclipped.min(clipped) * inv;
+                    if unclipped <= clipped {
+                        // d(−ratio·A)/d ln p = −ratio·A
+                        let mut d_mean = vec![0.0; actions];
+                        add_log_prob_gradient(
+                            &r.actions[t],
+                            pass.output(),
+                            &self.log_std,
+                            -unclipped * inv,
+                            &mut d_mean,
+                            log_std_g,
+                        );
+                        self.actor.backward(&pass, &d_mean, actor_g);
+                    }
+                    let value_pass = self.critic.forward(&r.observations[t]);
+                    let error = value_pass.output()[0] - target;
+                    value_loss += 0.5 * error * error * inv;
+                    self.critic
+                        .backward(&value_pass, &[c.value_coefficient * error * inv], critic_g);
+                }
+                for g in log_std_g.iter_mut() {
+                    *g -= c.entropy_coefficient; // the bonus: −coefficient · ∂ entropy / ∂ log σ
+                }
+                self.adam_step(&gradient, learning_rate)?;
+            }
+        }
+        // the sums above add each minibatch's mean: their mean over the minibatches
+        let batches = samples.len().div_ceil(size) as f64;
+        Ok((policy_loss / batches, value_loss / batches, learning_rate))
+    }
+
+    fn adam_len(&self) -> usize {
+        self.actor.parameters.len() + self.log_std.len() + self.critic.parameters.len()
+    }
+
+    /// One Adam step over (actor, log σ, critic).
+    fn adam_step(&mut self, gradient: &[f64], learning_rate: f64) -> Result<(), PpoError> {
+        let mut all = [self.actor.parameters.as_slice(), &self.log_std, &self.critic.parameters].concat();
+        self.adam
+            .step(&mut all, gradient, learning_rate, self.config.max_gradient_norm);
+        if all.iter().any(|p| !p.is_finite()) {
+            return Err(PpoError::NonFinite("parameter after an update".into()));
+        }
+        let (actor, rest) = all.split_at(self.actor.parameters.len());
+        let (log_std, critic) = rest.split_at(self.log_std.len());
+        self.actor.parameters.copy_from_slice(actor);
+        self.log_std.copy_from_slice(log_std);
+        self.critic.parameters.copy_from_slice(critic);
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::environment::Transition;
+    use rand::Rng;
+
+    /// A point on a line, pushed by the action (clipped to ±1) towards 0: reward −|x| per step,
+    /// 20 steps per episode, starting anywhere in [−1, 1].
+    struct Reach {
+        x: f64,
+        t: usize,
+    }
+
+    impl Environment for Reach {
+        fn observation_size(&self) -> usize {
+            1
+        }
+        fn action_size(&self) -> usize {
+            1
+        }
+        fn reset(&mut self, seed: u64) -> Vec<f64> {
+            self.x = ChaCha8Rng::seed_from_u64(seed).random_range(-1.0..1.0);
+            self.t = 0;
+            vec![self.x]
+        }
+        fn step(&mut self, action: &[f64]) -> Transition {
+            self.x += 0.2 * action[0].clamp(-1.0, 1.0);
+            self.t += 1;
+            Transition {
+                observation: vec![self.x],
+                reward: -self.x.abs(),
+                done: self.t == 20,
+            }
+        }
+    }
+
+    fn reach(n: usize) -> Vec<Reach> {
+        (0..n).map(|_| Reach { x: 0.0, t: 0 }).collect()
+    }
+
+    fn small(iterations: usize) -> PpoConfig {
+        PpoConfig {
+            iterations,
+            steps_per_environment: 64,
+            learning_rate: 3e-3,
+            hidden: vec![16, 16],
+            ..PpoConfig::default()
+        }
+    }
+
+    #[test]
+    fn it_learns_to_reach_the_target() {
+        let mut ppo = Ppo::new(1, 1, small(60), 7).unwrap();
+        let stats = ppo.train(&mut reach(4)).unwrap();
+        let first = stats[0].mean_reward;
+        let last = stats[stats.len() - 5..].iter().map(|s| s.mean_reward).sum::<f64>() / 5.0;
+        assert!(last > first + 0.1, "mean reward per step {first:.3} → {last:.3}");
+        // the learned policy pushes towards 0 from either side
+        assert!(
+            ppo.act(&[0.8])[0] < -0.2 && ppo.act(&[-0.8])[0] > 0.2,
+            "{:?} {:?}",
+            ppo.act(&[0.8]),
+            ppo.act(&[-0.8])
+        );
+        assert!(stats
+            .iter()
+            .all(|s| s.episodes > 0 && s.policy_loss.is_finite() && s.value_loss.is_finite()));
+    }
+
+    #[test]
+    fn training_is_bit_identical_whatever_the_thread_count() {
+        let train = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| {
+                let mut ppo = Ppo::new(1, 1, small(3), 11).unwrap();
+                let stats = ppo.train(&mut reach(4)).unwrap();
+                (format!("{stats:?}"), ppo.act(&[0.3]), ppo.act(&[-0.6]))
+            })
+        };
+        let one = train(1);
+        assert_eq!(one, train(2));
+        assert_eq!(one, train(1), "and run to run");
+    }
+
+    #[test]
+    fn bad_settings_and_environments_are_refused_naming_what() {
+        let bad = PpoConfig {
+            clip: f64::NAN,
+            ..PpoConfig::default()
+        };
+        assert!(matches!(
+            Ppo::new(1, 1, bad, 0),
+            Err(PpoError::Invalid { field: "clip", .. })
+        ));
+        let none = PpoConfig {
+            minibatches: 0,
+            ..PpoConfig::default()
+        };
+        assert!(matches!(
+            Ppo::new(1, 1, none, 0),
+            Err(PpoError::Invalid {
+                field: "minibatches",
+                ..
+            })
+        ));
+        let mut two = Ppo::new(2, 1, small(1), 0).unwrap();
+        let e = two.train(&mut reach(1)).unwrap_err().to_string();
+        assert!(e.contains("environment 0 has 1 observation"), "{e}");
+        struct Broken;
+        impl Environment for Broken {
+            fn observation_size(&self) -> usize {
+                1
+            }
+            fn action_size(&self) -> usize {
+                1
+            }
+            fn reset(&mut self, _: u64) -> Vec<f64> {
+                vec![0.0]
+            }
+            fn step(&mut self, _: &[f64]) -> Transition {
+                Transition {
+                    observation: vec![f64::NAN],
+                    reward: 0.0,
+                    done: false,
+                }
+            }
+        }
+        let mut ppo = Ppo::new(1, 1, small(1), 0).unwrap();
+        assert!(matches!(ppo.train(&mut [Broken]), Err(PpoError::NonFinite(_))));
+    }
+}

@@ -46,6 +46,7 @@
 pub mod error;
 mod kmeans;
 pub mod linalg;
+pub mod neat;
 pub mod operators;
 pub mod optimizer;
 pub mod optimizers;
@@ -65,6 +66,7 @@ pub use optimizers::cma_es::{CmaEs, CmaEsConfig, CmaParameters, CmaSettings, Res
 pub use optimizers::cma_termination::{CmaTermination, Criterion};
 pub use optimizers::ga::{GaConfig, GaSettings, GeneticAlgorithm};
 pub use optimizers::map_elites::{GridAxis, MapElites, MapElitesConfig, MapElitesSettings};
+pub use optimizers::neat::{Neat, NeatConfig, NeatSettings};
 pub use optimizers::nsga2::{Nsga2, Nsga2Config, Nsga2Settings};
 pub use optimizers::speciated::{FeatureProvider, GenotypeFeatures, SeConfig, SeSettings, SpeciatedEvolver, Species};
 pub use run::{run_to_budget, RunSummary, Stop, StopReason};

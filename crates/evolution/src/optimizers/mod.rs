@@ -6,5 +6,6 @@ pub mod cma_es;
 pub mod cma_termination;
 pub mod ga;
 pub mod map_elites;
+pub mod neat;
 pub mod nsga2;
 pub mod speciated;

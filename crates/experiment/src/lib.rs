@@ -49,6 +49,7 @@ pub mod evaluator;
 pub mod features;
 pub mod genotype;
 pub mod genotypes;
+pub mod learning_env;
 pub mod memory;
 pub mod optimizers;
 pub mod output_lock;

@@ -24,14 +24,14 @@ impl Environment for Reach {
         self.t = 0;
         vec![self.x]
     }
-    fn step(&mut self, action: &[f64]) -> Transition {
+    fn step(&mut self, action: &[f64]) -> Result<Transition, String> {
         self.x += 0.2 * action[0].clamp(-1.0, 1.0);
         self.t += 1;
-        Transition {
+        Ok(Transition {
             observation: vec![self.x],
             reward: -self.x.abs(),
             done: self.t == 20,
-        }
+        })
     }
 }
 

@@ -20,6 +20,7 @@ pub trait Environment: Send {
     fn action_size(&self) -> usize;
     /// Starts an episode; `seed` makes it reproducible.
     fn reset(&mut self, seed: u64) -> Vec<f64>;
-    /// One step with `action`.
-    fn step(&mut self, action: &[f64]) -> Transition;
+    /// One step with `action`; an error (the simulation failed in a way the environment cannot
+    /// turn into the end of an episode) stops the training, with this message.
+    fn step(&mut self, action: &[f64]) -> Result<Transition, String>;
 }

@@ -308,7 +308,9 @@ impl Ppo {
                 .collect();
             r.log_probs.push(log_prob(&action, &mean, &self.log_std));
             r.values.push(self.critic.forward(&observation).output()[0]);
-            let step = env.step(&action);
+            let step = env
+                .step(&action)
+                .map_err(|message| PpoError::Environment(format!("environment {e}: {message}")))?;
             if !step.reward.is_finite() || step.observation.iter().any(|v| !v.is_finite()) {
                 return Err(PpoError::NonFinite(format!(
                     "reward or observation from environment {e}"
@@ -452,14 +454,14 @@ mod tests {
             self.t = 0;
             vec![self.x]
         }
-        fn step(&mut self, action: &[f64]) -> Transition {
+        fn step(&mut self, action: &[f64]) -> Result<Transition, String> {
             self.x += 0.2 * action[0].clamp(-1.0, 1.0);
             self.t += 1;
-            Transition {
+            Ok(Transition {
                 observation: vec![self.x],
                 reward: -self.x.abs(),
                 done: self.t == 20,
-            }
+            })
         }
     }
 
@@ -546,12 +548,12 @@ mod tests {
             fn reset(&mut self, _: u64) -> Vec<f64> {
                 vec![0.0]
             }
-            fn step(&mut self, _: &[f64]) -> Transition {
-                Transition {
+            fn step(&mut self, _: &[f64]) -> Result<Transition, String> {
+                Ok(Transition {
                     observation: vec![f64::NAN],
                     reward: 0.0,
                     done: false,
-                }
+                })
             }
         }
         let mut ppo = Ppo::new(1, 1, small(1), 0).unwrap();

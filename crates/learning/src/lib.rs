@@ -14,6 +14,7 @@ pub mod gaussian;
 pub mod mlp;
 pub mod normalizer;
 pub mod ppo;
+pub mod reach;
 pub mod rollout;
 
 pub use adam::Adam;

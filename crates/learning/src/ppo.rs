@@ -433,40 +433,10 @@ impl Ppo {
 mod tests {
     use super::*;
     use crate::environment::Transition;
-    use rand::Rng;
-
-    /// A point on a line, pushed by the action (clipped to ±1) towards 0: reward −|x| per step,
-    /// 20 steps per episode, starting anywhere in [−1, 1].
-    struct Reach {
-        x: f64,
-        t: usize,
-    }
-
-    impl Environment for Reach {
-        fn observation_size(&self) -> usize {
-            1
-        }
-        fn action_size(&self) -> usize {
-            1
-        }
-        fn reset(&mut self, seed: u64) -> Vec<f64> {
-            self.x = ChaCha8Rng::seed_from_u64(seed).random_range(-1.0..1.0);
-            self.t = 0;
-            vec![self.x]
-        }
-        fn step(&mut self, action: &[f64]) -> Result<Transition, String> {
-            self.x += 0.2 * action[0].clamp(-1.0, 1.0);
-            self.t += 1;
-            Ok(Transition {
-                observation: vec![self.x],
-                reward: -self.x.abs(),
-                done: self.t == 20,
-            })
-        }
-    }
+    use crate::reach::Reach;
 
     fn reach(n: usize) -> Vec<Reach> {
-        (0..n).map(|_| Reach { x: 0.0, t: 0 }).collect()
+        vec![Reach::default(); n]
     }
 
     fn small(iterations: usize) -> PpoConfig {

@@ -733,6 +733,27 @@ fn fuzz_viewer(rng: &mut ChaCha8Rng, sandbox: &mut Sandbox, results: &Path, coun
     tally
 }
 
+/// Runs `vsrlab args…` in `dir` and checks the case under `kind`: `names` are the words one of
+/// which its error must contain.
+fn throw<'a>(
+    tallies: &mut BTreeMap<&'a str, Tally>,
+    kind: &'a str,
+    dir: &Path,
+    args: &[&str],
+    what: String,
+    names: &[String],
+) {
+    let (code, stderr, timed_out) = run(args, dir);
+    let names: Vec<&str> = names.iter().map(String::as_str).collect();
+    let case = Case {
+        what,
+        code,
+        stderr,
+        timed_out,
+    };
+    tallies.entry(kind).or_default().check(&case, &names);
+}
+
 #[test]
 fn malformed_inputs_never_crash_and_always_name_the_field() {
     let tmp = tempfile::tempdir().unwrap();
@@ -755,90 +776,79 @@ fn malformed_inputs_never_crash_and_always_name_the_field() {
         let dir = sandbox.case();
         let (what, bytes, names) = malformed_experiment(&mut rng);
         std::fs::write(dir.join("exp.toml"), &bytes).unwrap();
-        let (code, stderr, timed_out) = run(&["run", "exp.toml", "--threads", "1"], &dir);
-        let names: Vec<&str> = names.iter().map(String::as_str).collect();
-        let case = Case {
-            what: format!("experiment: {what}"),
-            code,
-            stderr,
-            timed_out,
-        };
-        tallies.entry("experiment files").or_default().check(&case, &names);
+        let args = ["run", "exp.toml", "--threads", "1"];
+        throw(
+            &mut tallies,
+            "experiment files",
+            &dir,
+            &args,
+            format!("experiment: {what}"),
+            &names,
+        );
     }
     for _ in 0..120 {
         let dir = sandbox.case();
         let (what, bytes, names) = malformed_robot(&mut rng, &robot);
         std::fs::write(dir.join("r.robot.json"), &bytes).unwrap();
-        let (code, stderr, timed_out) = run(&["simulate", "--robot", "r.robot.json", "--duration", "0.1"], &dir);
-        let names: Vec<&str> = names.iter().map(String::as_str).collect();
-        let case = Case {
-            what: format!("robot file: {what}"),
-            code,
-            stderr,
-            timed_out,
-        };
-        tallies.entry("robot files").or_default().check(&case, &names);
+        let args = ["simulate", "--robot", "r.robot.json", "--duration", "0.1"];
+        throw(
+            &mut tallies,
+            "robot files",
+            &dir,
+            &args,
+            format!("robot file: {what}"),
+            &names,
+        );
     }
     for _ in 0..120 {
         let dir = sandbox.case();
         std::fs::write(dir.join("exp.toml"), EXPERIMENT).unwrap();
         let (args, names) = malformed_command(&mut rng, &base.join("out"));
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
-        let (code, stderr, timed_out) = run(&args, &dir);
-        let names: Vec<&str> = names.iter().map(String::as_str).collect();
-        let case = Case {
-            what: format!("command: vsrlab {}", args.join(" ")),
-            code,
-            stderr,
-            timed_out,
-        };
-        tallies.entry("command lines").or_default().check(&case, &names);
+        let what = format!("command: vsrlab {}", args.join(" "));
+        throw(&mut tallies, "command lines", &dir, &args, what, &names);
     }
-
+    let validate = ["validate", "--brief", "--threads", "1", "exp.toml"];
     for _ in 0..60 {
         let dir = sandbox.case();
         let (what, text, names) = malformed_psa(&mut rng);
         std::fs::write(dir.join("exp.toml"), text).unwrap();
-        let (code, stderr, timed_out) = run(&["run", "exp.toml", "--threads", "1"], &dir);
-        let names: Vec<&str> = names.iter().map(String::as_str).collect();
-        let case = Case {
-            what: format!("experiment: {what}"),
-            code,
-            stderr,
-            timed_out,
-        };
-        tallies.entry("PSA bodies").or_default().check(&case, &names);
+        let args = ["run", "exp.toml", "--threads", "1"];
+        throw(
+            &mut tallies,
+            "PSA bodies",
+            &dir,
+            &args,
+            format!("experiment: {what}"),
+            &names,
+        );
     }
     for _ in 0..60 {
         let dir = sandbox.case();
         let (what, text, names) = malformed_sweep(&mut rng);
         std::fs::write(dir.join("exp.toml"), text).unwrap();
-        let (code, stderr, timed_out) = run(&["validate", "--brief", "--threads", "1", "exp.toml"], &dir);
-        let names: Vec<&str> = names.iter().map(String::as_str).collect();
-        let case = Case {
-            what: format!("experiment: {what}"),
-            code,
-            stderr,
-            timed_out,
-        };
-        tallies.entry("sweeps").or_default().check(&case, &names);
+        throw(
+            &mut tallies,
+            "sweeps",
+            &dir,
+            &validate,
+            format!("experiment: {what}"),
+            &names,
+        );
     }
     for _ in 0..40 {
         let dir = sandbox.case();
         let (what, text, names) = file_reading_experiment(&mut rng, &dir, &robot);
         std::fs::write(dir.join("exp.toml"), text).unwrap();
-        let (code, stderr, timed_out) = run(&["validate", "--brief", "--threads", "1", "exp.toml"], &dir);
-        let names: Vec<&str> = names.iter().map(String::as_str).collect();
-        let case = Case {
-            what: format!("experiment: {what}"),
-            code,
-            stderr,
-            timed_out,
-        };
-        tallies
-            .entry("transfer and initial files")
-            .or_default()
-            .check(&case, &names);
+        let what = format!("experiment: {what}");
+        throw(
+            &mut tallies,
+            "transfer and initial files",
+            &dir,
+            &validate,
+            what,
+            &names,
+        );
     }
     tallies.insert(
         "viewer requests",

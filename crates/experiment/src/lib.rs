@@ -44,6 +44,7 @@ pub mod batch;
 pub mod bench;
 pub mod checkpoint;
 pub mod config;
+pub mod cppn_body;
 pub mod cpu_time;
 pub mod evaluator;
 pub mod features;

@@ -62,14 +62,7 @@ mod tests {
     /// A CPPN with no connections whose outputs are their biases, plus one connection from `d`
     /// to the vertical-actuator output with weight `w`.
     fn cppn(biases: [f64; 5], w: f64) -> NetworkGenome {
-        let mut nodes: Vec<NodeGene> = (0..3)
-            .map(|id| NodeGene {
-                id,
-                kind: NodeKind::Input,
-                bias: 0.0,
-                activation: Activation::Identity,
-            })
-            .collect();
+        let mut nodes: Vec<NodeGene> = (0..3).map(NodeGene::input).collect();
         for (k, &bias) in biases.iter().enumerate() {
             nodes.push(NodeGene {
                 id: 3 + k as u32,

@@ -48,18 +48,19 @@ pub fn validate(experiment: &Experiment, threads: usize) -> Result<Validation, F
     let start = Instant::now();
     let kind = experiment.genotype_kind();
     // a probe of a few steps says how many steps the timed episodes can afford
-    let (probe, probe_scale) = shortened(experiment, PROBE_STEPS);
-    kind.time_evaluations(probe.as_ref().unwrap_or(experiment), 1)?;
-    let per_step = start.elapsed().as_secs_f64() / PROBE_STEPS;
-    let affordable = (TIMING_BUDGET / (TIMED_EVALUATIONS as f64 * per_step)).floor();
-    let seconds_per_evaluation = if probe.is_none() && probe_scale == 1.0 {
-        // an episode of a few steps (or one that cannot be cut): the probe timed it whole
-        time_whole(experiment, kind)?
-    } else {
-        let (timed, scale) = shortened(experiment, affordable.clamp(PROBE_STEPS, TIMED_STEPS));
-        let start = Instant::now();
-        kind.time_evaluations(timed.as_ref().unwrap_or(experiment), TIMED_EVALUATIONS)?;
-        scale * start.elapsed().as_secs_f64() / TIMED_EVALUATIONS as f64
+    let seconds_per_evaluation = match shortened(experiment, PROBE_STEPS).0 {
+        // an episode of a few steps, or one that cannot be cut: timed whole
+        None => time_whole(experiment, kind)?,
+        Some(probe) => {
+            // the probe's genotypes are the timed ones, so "all failed" means the same
+            kind.time_evaluations(&probe, TIMED_EVALUATIONS)?;
+            let per_step = start.elapsed().as_secs_f64() / (TIMED_EVALUATIONS as f64 * PROBE_STEPS);
+            let affordable = (TIMING_BUDGET / (TIMED_EVALUATIONS as f64 * per_step)).floor();
+            let (timed, scale) = shortened(experiment, affordable.clamp(PROBE_STEPS, TIMED_STEPS));
+            let start = Instant::now();
+            kind.time_evaluations(timed.as_ref().unwrap_or(experiment), TIMED_EVALUATIONS)?;
+            scale * start.elapsed().as_secs_f64() / TIMED_EVALUATIONS as f64
+        }
     };
     let genes = kind.size(experiment)?.genes;
     let optimizer = experiment.optimizer.kind();

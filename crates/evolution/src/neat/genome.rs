@@ -92,6 +92,18 @@ impl Default for Mutation {
     }
 }
 
+impl NodeGene {
+    /// Input node `id` (no bias, identity).
+    pub fn input(id: u32) -> NodeGene {
+        NodeGene {
+            id,
+            kind: NodeKind::Input,
+            bias: 0.0,
+            activation: Activation::Identity,
+        }
+    }
+}
+
 impl NetworkGenome {
     /// `inputs` inputs fully connected to `outputs` outputs, weights and biases from N(0, 1),
     /// output activation `output`.
@@ -102,14 +114,7 @@ impl NetworkGenome {
         innovations: &mut Innovations,
         rng: &mut SeededRng,
     ) -> NetworkGenome {
-        let mut nodes: Vec<NodeGene> = (0..inputs as u32)
-            .map(|id| NodeGene {
-                id,
-                kind: NodeKind::Input,
-                bias: 0.0,
-                activation: Activation::Identity,
-            })
-            .collect();
+        let mut nodes: Vec<NodeGene> = (0..inputs as u32).map(NodeGene::input).collect();
         for o in 0..outputs as u32 {
             nodes.push(NodeGene {
                 id: inputs as u32 + o,

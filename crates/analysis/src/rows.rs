@@ -26,6 +26,11 @@ pub struct Record {
     /// Every fitness value, for multi-objective tasks.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub objectives: Option<Vec<f64>>,
+    /// Sequences an evaluation recorded, by name: a named channel for what a kind of evaluation
+    /// measures over its course (the co-design loop's `learning_curve`: the off-line reward per
+    /// step after each PPO iteration). Finite values only.
+    #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    pub series: std::collections::BTreeMap<String, Vec<f64>>,
 }
 
 /// One population member of a snapshot (a JSON line): where it stands in the run, its
@@ -219,6 +224,7 @@ mod tests {
             body: Some("##/##".into()),
             error: None,
             objectives: None,
+            series: Default::default(),
         };
         let genotype = vec![0.5, -0.25];
         let written = SnapshotRow {

@@ -5,6 +5,7 @@
 
 mod analyze;
 mod bench;
+mod codesign;
 mod evaluate;
 mod inflate;
 mod label;
@@ -53,6 +54,9 @@ enum Command {
     Reassess(reassess::ReassessArgs),
     /// Frozen-weight test and weight histograms of evolved Hebbian robots (docs/ch5.3.md).
     Plasticity(plasticity::PlasticityArgs),
+    /// Learning curves, learning radius and morphology over evolution of co-design runs
+    /// (docs/ch5.2.md).
+    Codesign(codesign::CodesignArgs),
     /// Discover the most compact module of every evolved graph brain (docs/ch4.1.md).
     Modules(modules::ModulesArgs),
     /// Reassemble evolved graph brains from two runs' robots and write their re-optimisation
@@ -84,6 +88,7 @@ fn main() -> ExitCode {
         Command::Label(a) => label::run(a),
         Command::Reassess(a) => reassess::run(a),
         Command::Plasticity(a) => plasticity::run(a),
+        Command::Codesign(a) => codesign::run(a),
         Command::Modules(a) => modules::run_modules(a),
         Command::Reassemble(a) => modules::run_reassemble(a),
         Command::Transferability(a) => modules::run_transferability(a),

@@ -104,6 +104,7 @@ pub trait Evaluator<G>: Sync {
                 body: None,
                 error: Some(error),
                 objectives: None,
+                series: Default::default(),
             },
             seconds: 0.0,
         }
@@ -229,6 +230,7 @@ impl<M> RobotEvaluator<M> {
                 body: body.map(|b| b.text.clone()),
                 error: Some(error),
                 objectives: None,
+                series: Default::default(),
             },
             seconds: start.elapsed().as_secs_f64(),
         }
@@ -293,6 +295,7 @@ impl<G, M: Mapper<G>> Evaluator<G> for RobotEvaluator<M> {
                 body: body.map(|b| b.text),
                 error: None,
                 objectives: (outcome.fitness.len() > 1).then(|| outcome.fitness.clone()),
+                series: Default::default(),
             },
             objectives: outcome.fitness,
             seconds: start.elapsed().as_secs_f64(),

@@ -13,6 +13,10 @@ pub struct EvoGymLearning {
     env: EvoGymEnv,
     /// The policy's action shifted to EvoGym's units.
     targets: Vec<f64>,
+    /// Steps after which an episode ends, when fewer than the task's own length.
+    cap: Option<usize>,
+    /// Steps of the current episode.
+    steps: usize,
 }
 
 impl EvoGymLearning {
@@ -22,7 +26,15 @@ impl EvoGymLearning {
         Ok(EvoGymLearning {
             targets: vec![1.0; env.action_count()],
             env,
+            cap: None,
+            steps: 0,
         })
+    }
+
+    /// The same with episodes ending after at most `steps` steps (a task's `duration`).
+    pub fn with_episode_steps(mut self, steps: usize) -> EvoGymLearning {
+        self.cap = Some(steps);
+        self
     }
 }
 
@@ -36,6 +48,7 @@ impl Environment for EvoGymLearning {
     }
 
     fn reset(&mut self, seed: u64) -> Vec<f64> {
+        self.steps = 0;
         self.env.reset(seed).to_vec()
     }
 
@@ -44,10 +57,12 @@ impl Environment for EvoGymLearning {
             *target = 1.0 + a;
         }
         let step = self.env.step(&self.targets).map_err(|e| e.to_string())?;
+        self.steps += 1;
+        let capped = self.cap.is_some_and(|cap| self.steps >= cap);
         Ok(Transition {
             observation: step.observation.to_vec(),
             reward: step.reward,
-            done: step.done || step.truncated,
+            done: step.done || step.truncated || capped,
         })
     }
 }
@@ -89,6 +104,12 @@ mod tests {
             }
         }
         assert_eq!(steps, EvoGymTask::Walker.episode_steps());
+        let mut short = walker().with_episode_steps(7);
+        for episode in 0..2 {
+            short.reset(episode);
+            let ends: Vec<bool> = (0..7).map(|_| short.step(&action).unwrap().done).collect();
+            assert_eq!(ends, [false, false, false, false, false, false, true]);
+        }
     }
 
     #[test]

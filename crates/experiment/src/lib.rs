@@ -11,6 +11,8 @@
 //! - [`genotypes`]: the registry of genotype kinds (`[genotype] kind`: flat vectors, the graph
 //!   of the self-organizing controller) and [`run_configured`], which runs any experiment file.
 //! - [`evaluator`]: genotype → fitness values, descriptor, speciation features, snapshot record.
+//! - [`codesign`]: body–brain co-design (thesis ch. 5.2): material-grid bodies whose fitness is
+//!   what PPO learns for them on an EvoGym task ([`learning_env`]: those tasks as environments).
 //! - [`features`]: simple morphology descriptors, dynamic pose and behaviour spectrum.
 //! - [`runner`]: the ask → parallel evaluate → tell loop, with CSV logs, snapshots, the best
 //!   robot, checkpoints and resume; [`checkpoint`]: checkpoint files and the content hashes
@@ -43,8 +45,8 @@
 pub mod batch;
 pub mod bench;
 pub mod checkpoint;
+pub mod codesign;
 pub mod config;
-pub mod cppn_body;
 pub mod cpu_time;
 pub mod evaluator;
 pub mod features;

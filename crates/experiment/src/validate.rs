@@ -62,6 +62,7 @@ pub fn validate(experiment: &Experiment, threads: usize) -> Result<Validation, F
             scale * start.elapsed().as_secs_f64() / TIMED_EVALUATIONS as f64
         }
     };
+    let seconds_per_evaluation = seconds_per_evaluation * kind.timing_scale(experiment);
     let genes = kind.size(experiment)?.genes;
     let optimizer = experiment.optimizer.kind();
     let stop = &experiment.stop;

@@ -23,6 +23,9 @@ use serde::{Deserialize, Serialize};
 pub struct PpoConfig {
     /// Iterations (rollout, then update) of one training.
     pub iterations: usize,
+    /// Environments stepped in parallel, for callers that build them (4, the EvoGym examples';
+    /// the thesis wrote 32).
+    pub environments: usize,
     /// Steps of each environment per iteration (128).
     pub steps_per_environment: usize,
     /// Passes over the iteration's steps (4).
@@ -55,6 +58,7 @@ impl Default for PpoConfig {
     fn default() -> Self {
         PpoConfig {
             iterations: 1000,
+            environments: 4,
             steps_per_environment: 128,
             epochs: 4,
             minibatches: 4,
@@ -98,6 +102,7 @@ impl PpoConfig {
         let invalid = |field, message: String| Err(PpoError::Invalid { field, message });
         let counts = [
             ("iterations", self.iterations, 1_000_000),
+            ("environments", self.environments, 1024),
             ("steps_per_environment", self.steps_per_environment, 1_000_000),
             ("epochs", self.epochs, 1000),
             ("minibatches", self.minibatches, 1_000_000),
@@ -218,7 +223,19 @@ impl Ppo {
     /// Trains for the configured iterations on `environments` (stepped in parallel); returns
     /// what each iteration did.
     pub fn train<E: Environment>(&mut self, environments: &mut [E]) -> Result<Vec<IterationStats>, PpoError> {
+        self.train_observed(environments, |_, _| Ok(()))
+    }
+
+    /// [`Ppo::train`] calling `after` with the learner and the iteration's statistics after every
+    /// iteration (and once before the first, with `None`): how the co-design loop records a
+    /// learning curve. An error from `after` stops the training.
+    pub fn train_observed<E: Environment>(
+        &mut self,
+        environments: &mut [E],
+        mut after: impl FnMut(&Ppo, Option<&IterationStats>) -> Result<(), PpoError>,
+    ) -> Result<Vec<IterationStats>, PpoError> {
         self.check_environments(environments)?;
+        after(self, None)?;
         let mut slots: Vec<Slot> = environments
             .iter_mut()
             .enumerate()
@@ -229,8 +246,33 @@ impl Ppo {
             })
             .collect();
         (0..self.config.iterations)
-            .map(|iteration| self.iterate(iteration, environments, &mut slots))
+            .map(|iteration| {
+                let stats = self.iterate(iteration, environments, &mut slots)?;
+                after(self, Some(&stats))?;
+                Ok(stats)
+            })
             .collect()
+    }
+
+    /// One episode of the policy's mean action (no noise, no learning) from a reset with `seed`,
+    /// at most `max_steps` steps: the total reward and the steps taken. The thesis's "off-line"
+    /// simulation (§5.2.4, eq. 5.7).
+    pub fn episode<E: Environment>(&self, env: &mut E, seed: u64, max_steps: usize) -> Result<(f64, usize), PpoError> {
+        let mut observation = env.reset(seed);
+        let (mut total, mut steps) = (0.0, 0);
+        while steps < max_steps {
+            let step = env.step(&self.act(&observation)).map_err(PpoError::Environment)?;
+            if !step.reward.is_finite() || step.observation.iter().any(|v| !v.is_finite()) {
+                return Err(PpoError::NonFinite("reward or observation of an episode".into()));
+            }
+            total += step.reward;
+            steps += 1;
+            observation = step.observation;
+            if step.done {
+                break;
+            }
+        }
+        Ok((total, steps))
     }
 
     fn check_environments<E: Environment>(&self, environments: &[E]) -> Result<(), PpoError> {
@@ -466,6 +508,35 @@ mod tests {
         assert!(stats
             .iter()
             .all(|s| s.episodes > 0 && s.policy_loss.is_finite() && s.value_loss.is_finite()));
+    }
+
+    #[test]
+    fn the_observer_sees_every_iteration_and_episodes_use_the_mean_action() {
+        let mut ppo = Ppo::new(1, 1, small(5), 3).unwrap();
+        let mut seen = Vec::new();
+        let stats = ppo
+            .train_observed(&mut reach(2), |p, s| {
+                let (total, steps) = p.episode(&mut Reach::default(), 9, 1000)?;
+                seen.push((s.map(|s| s.iteration), total, steps));
+                Ok(())
+            })
+            .unwrap();
+        assert_eq!(stats.len(), 5);
+        let iterations: Vec<_> = seen.iter().map(|s| s.0).collect();
+        assert_eq!(iterations, [None, Some(0), Some(1), Some(2), Some(3), Some(4)]);
+        // the episode is deterministic and ends where the environment ends it
+        let again = ppo.episode(&mut Reach::default(), 9, 1000).unwrap();
+        assert_eq!(again, (seen[5].1, seen[5].2));
+        assert!(again.1 > 0 && again.1 < 1000 && again.0.is_finite());
+        assert_eq!(ppo.episode(&mut Reach::default(), 9, 3).unwrap().1, 3);
+        // an observer's error stops the training
+        let err = ppo
+            .train_observed(&mut reach(2), |_, s| match s {
+                Some(_) => Err(PpoError::NonFinite("stop".into())),
+                None => Ok(()),
+            })
+            .unwrap_err();
+        assert_eq!(err, PpoError::NonFinite("stop".into()));
     }
 
     #[test]

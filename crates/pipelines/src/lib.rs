@@ -1,6 +1,6 @@
 //! # vsrlab-pipelines
 //!
-//! The analysis pipelines behind `vsrlab analyze`, `label`, `reassess`, `plasticity`,
+//! The analysis pipelines behind `vsrlab analyze`, `label`, `reassess`, `plasticity`, `codesign`,
 //! `modules`, `reassemble`, `transferability` and `inflate`: each takes an options struct, reads
 //! the output folders of `vsrlab run`, replays robots where features are needed, writes its files
 //! and returns a typed report. They come after `vsrlab-experiment`, so they read experiment files
@@ -16,6 +16,7 @@ mod best_robots;
 mod candidates;
 mod classes;
 mod classifiers;
+pub mod codesign;
 pub mod error;
 mod figures;
 pub mod inflation;
@@ -36,6 +37,7 @@ pub mod votes;
 
 pub use analyze::{analyze, AnalysisReport, AnalyzeOptions, FigureNote};
 pub use classes::{parse_classes, THESIS_BEHAVIOURS, THESIS_SHAPES};
+pub use codesign::{codesign, CodesignOptions, CodesignReport};
 pub use error::AnalysisError;
 pub use inflation::{inflation, InflationOptions, InflationReport, InflationSummary};
 pub use label::{label, LabelOptions, LabelReport, VideoSpec, VideoWriter, LABELLING_FILE};

@@ -45,8 +45,12 @@ pub fn format_tick(v: f64) -> String {
         format!("{}", v.round())
     } else if a >= 1.0 {
         trim(format!("{v:.2}"))
-    } else {
+    } else if a >= 0.01 {
         trim(format!("{v:.3}"))
+    } else {
+        // small values (rewards per step): two significant digits, never a bare "0"
+        let decimals = (-a.log10()).ceil() as usize + 1;
+        trim(format!("{v:.decimals$}"))
     }
 }
 
@@ -80,5 +84,8 @@ mod tests {
         assert_eq!(format_tick(2.5), "2.5");
         assert_eq!(format_tick(0.125), "0.125");
         assert_eq!(format_tick(0.0), "0");
+        assert_eq!(format_tick(0.0004), "0.0004");
+        assert_eq!(format_tick(-0.00015), "-0.00015");
+        assert_eq!(format_tick(0.005), "0.005");
     }
 }

@@ -4,6 +4,7 @@
 mod analyze;
 mod attention;
 mod bench;
+mod codesign;
 mod common;
 mod ensemble;
 mod evaluate;

@@ -41,6 +41,10 @@ pub struct GaSettings {
     pub mutation_probability: f64,
     /// Re-evaluate the survivors every generation (noisy tasks).
     pub reevaluate_survivors: bool,
+    /// Random genotypes of the first generation; absent: `population_size` (thesis ch. 5.2's
+    /// direct GA starts from its whole population, 25, and then keeps the best 5).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub initial_population_size: Option<usize>,
 }
 
 impl Default for GaSettings {
@@ -51,6 +55,7 @@ impl Default for GaSettings {
             tournament_size: 5,
             mutation_probability: 0.2,
             reevaluate_survivors: false,
+            initial_population_size: None,
         }
     }
 }
@@ -104,6 +109,9 @@ impl<R: Representation> GeneticAlgorithm<R> {
         ensure(config.settings.offspring_size > 0, || {
             "GA: offspring_size must be > 0".into()
         })?;
+        ensure(config.settings.initial_population_size != Some(0), || {
+            "GA: initial_population_size must be > 0".into()
+        })?;
         ensure(config.settings.tournament_size > 0, || {
             "GA: tournament_size must be > 0".into()
         })?;
@@ -146,7 +154,9 @@ impl<R: Representation> Optimizer for GeneticAlgorithm<R> {
             return pending;
         }
         let (genotypes, first_reevaluation) = if self.population.is_empty() {
-            let genotypes = random_genotypes(&self.representation, &self.state, self.config.settings.population_size);
+            let settings = &self.config.settings;
+            let size = settings.initial_population_size.unwrap_or(settings.population_size);
+            let genotypes = random_genotypes(&self.representation, &self.state, size);
             let n = genotypes.len();
             (genotypes, n)
         } else {
@@ -256,6 +266,46 @@ mod tests {
             let b = minimise(rosenbrock, 10, 2.0, seed, 20_000);
             assert!(b < 15.0, "rosenbrock seed {seed}: {b}");
         }
+    }
+
+    #[test]
+    fn a_larger_first_generation_is_cut_to_the_population() {
+        // thesis ch. 5.2's direct GA: 25 random genotypes, then the best 5 and 20 children
+        let config = GaConfig {
+            settings: GaSettings {
+                population_size: 5,
+                offspring_size: 20,
+                tournament_size: 1,
+                mutation_probability: 1.0,
+                initial_population_size: Some(25),
+                ..GaSettings::default()
+            },
+            ..GaConfig::default()
+        };
+        let mut ga = GeneticAlgorithm::new(config.clone(), RealVector::thesis(2), 4).unwrap();
+        let first = ga.ask();
+        assert_eq!(first.len(), 25);
+        let told = |batch: &[Candidate<Vec<f64>>]| {
+            batch
+                .iter()
+                .map(|c| c.told(crate::Evaluation::single(-sphere(&c.genotype))))
+                .collect::<Vec<_>>()
+        };
+        let mut best: Vec<f64> = first.iter().map(|c| -sphere(&c.genotype)).collect();
+        best.sort_by(|a, b| b.total_cmp(a));
+        ga.tell(told(&first)).unwrap();
+        let kept: Vec<f64> = ga.population().iter().map(|i| i.objectives[0]).collect();
+        assert_eq!(kept, best[..5]);
+        assert_eq!(ga.ask().len(), 20);
+        let zero = GaSettings {
+            initial_population_size: Some(0),
+            ..config.settings
+        };
+        let config = GaConfig {
+            settings: zero,
+            ..GaConfig::default()
+        };
+        assert!(GeneticAlgorithm::new(config, RealVector::thesis(2), 4).is_err());
     }
 
     #[test]

@@ -68,7 +68,8 @@ struct ExperimentFile {
     runs: usize,
     #[serde(default)]
     seed: u64,
-    representation: Representation,
+    #[serde(default)]
+    representation: Option<Representation>,
     #[serde(default)]
     genotype: Option<toml::Table>,
     task: toml::Table,
@@ -257,7 +258,19 @@ pub fn parse(text: &str, origin: &str) -> Result<Experiment, ConfigError> {
     let at_field = |e: FieldError| ConfigError::at_field(origin, text, &e.path, e.message);
     let in_table = |table: &str, e: FieldError| at_field(e.at(table));
     let task = TaskConfig::decode(file.task).map_err(|e| in_table("task", e))?;
-    let mut representation = file.representation;
+    let mut genotype = file
+        .genotype
+        .map(genotypes::decode_table)
+        .transpose()
+        .map_err(|e| in_table("genotype", e))?;
+    let implied = genotype.as_ref().and_then(|kind| kind.implied_representation(&task));
+    let mut representation = file.representation.or(implied).ok_or_else(|| ConfigError {
+        origin: origin.to_string(),
+        line: None,
+        column: None,
+        field: "representation".into(),
+        message: "missing: give a [representation] table (body, sensors, brain)".into(),
+    })?;
     if let Some(transfer) = &file.transfer {
         let field = |message: String| ConfigError::at_field(origin, text, "transfer.from", message);
         let source = vsrlab_tasks::files::load_robot(&transfer.from).map_err(|e| field(e.to_string()))?;
@@ -267,11 +280,6 @@ pub fn parse(text: &str, origin: &str) -> Result<Experiment, ConfigError> {
             .transfer_from(&source.brain)
             .map_err(|e| field(format!("{}: {e}", transfer.from.display())))?;
     }
-    let mut genotype = file
-        .genotype
-        .map(genotypes::decode_table)
-        .transpose()
-        .map_err(|e| in_table("genotype", e))?;
     if let Some(kind) = &mut genotype {
         kind.kind_mut().load_files(&mut representation).map_err(at_field)?;
     }

@@ -12,13 +12,15 @@
 //! Adding a kind: a module here (or anywhere, for a kind used from code: set
 //! `Experiment::genotype` to a [`GenotypeConfig`]) and one line in [`GENOTYPES`].
 
+pub mod cppn;
 pub mod graph;
+pub mod material_grid;
 mod operators;
 pub mod vector;
 
 pub use operators::{check_operators, run_with_operators, time_with_operators};
 
-use crate::config::Experiment;
+use crate::config::{Experiment, TaskConfig};
 use crate::optimizers::FieldError;
 use crate::runner::{Observer, RunError, RunOptions, RunSummary};
 use serde::{Serialize, Serializer};
@@ -48,6 +50,12 @@ pub trait GenotypeKind: Debug + Send + Sync + GenotypeCopy {
     fn load_files(&mut self, _representation: &mut Representation) -> Result<(), FieldError> {
         Ok(())
     }
+    /// The representation an experiment of this kind has when its file gives no
+    /// `[representation]` table (the co-design kinds make their bodies and learn their brains, so
+    /// they need none); `None`: the file must give one.
+    fn implied_representation(&self, _task: &TaskConfig) -> Option<Representation> {
+        None
+    }
     /// Checks the table against the rest of the experiment; errors name the field.
     fn validate(&self, experiment: &Experiment) -> Result<(), FieldError>;
     /// The size of its genotypes in this experiment.
@@ -63,6 +71,12 @@ pub trait GenotypeKind: Debug + Send + Sync + GenotypeCopy {
     /// Evaluates `count` initial genotypes (the time estimate of `vsrlab validate`); an error
     /// when every one of them failed, as every run would.
     fn time_evaluations(&self, experiment: &Experiment, count: usize) -> Result<(), FieldError>;
+    /// How many times longer a real evaluation takes than one [`GenotypeKind::time_evaluations`]
+    /// runs, for kinds that time a shortened evaluation (the co-design kinds time a few PPO
+    /// iterations of the many each evaluation runs). Default 1.
+    fn timing_scale(&self, _experiment: &Experiment) -> f64 {
+        1.0
+    }
     /// Its genotypes as snapshots and checkpoints store them → robots: how analyses replay the
     /// individuals of a run.
     fn stored(&self, experiment: &Experiment) -> Result<Arc<dyn StoredGenotypes>, FieldError>;
@@ -166,7 +180,7 @@ pub struct GenotypeEntry {
 }
 
 /// Every genotype kind an experiment file can name.
-pub const GENOTYPES: &[GenotypeEntry] = &[vector::ENTRY, graph::ENTRY];
+pub const GENOTYPES: &[GenotypeEntry] = &[vector::ENTRY, graph::ENTRY, material_grid::ENTRY, cppn::ENTRY];
 
 /// Builds a genotype table from its `[genotype]` table, naming the field on error.
 pub fn decode_table(table: toml::Table) -> Result<GenotypeConfig, FieldError> {

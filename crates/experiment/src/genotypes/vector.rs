@@ -48,8 +48,18 @@ impl GenotypeKind for VectorGenotype {
         "vector"
     }
 
-    /// The representation's own checks cover the genes.
-    fn validate(&self, _experiment: &Experiment) -> Result<(), FieldError> {
+    /// The representation's own checks cover the genes; the optimizer must evolve vectors.
+    fn validate(&self, experiment: &Experiment) -> Result<(), FieldError> {
+        let optimizer = experiment.optimizer.kind();
+        if !optimizer.flat_vectors() {
+            return Err(FieldError::new(
+                "optimizer.kind",
+                format!(
+                    "{} does not evolve flat vectors of genes: give a [genotype] kind it evolves (NEAT: kind = \"cppn\")",
+                    optimizer.name()
+                ),
+            ));
+        }
         Ok(())
     }
 

@@ -19,6 +19,7 @@ mod cma_es;
 mod es;
 mod ga;
 mod map_elites;
+mod neat;
 mod nsga2;
 mod over_operators;
 mod se;
@@ -28,6 +29,7 @@ pub use cma_es::CmaParams;
 pub use es::EsParams;
 pub use ga::GaParams;
 pub use map_elites::{Axis, Descriptor, MapElitesParams};
+pub use neat::NeatParams;
 pub use nsga2::Nsga2Params;
 pub use over_operators::{OperatorOptimizer, OperatorPlan};
 pub use se::{SeFeatures, SeParams};
@@ -59,6 +61,11 @@ pub trait OptimizerKind {
     /// `None` when there are none to fill.
     fn resolved(&self, _cells: usize, _genes: Option<usize>) -> Option<OptimizerConfig> {
         None
+    }
+    /// Whether it evolves flat vectors of real genes (every optimizer but NEAT, which evolves
+    /// networks); a flat-vector experiment needs one that does.
+    fn flat_vectors(&self) -> bool {
+        true
     }
     /// Whether it optimizes several objectives at once.
     fn multi_objective(&self) -> bool {
@@ -114,6 +121,8 @@ pub enum OptimizerConfig {
     MapElites(MapElitesParams),
     /// NSGA-II, multi-objective (thesis ch. 5.1).
     Nsga2(Nsga2Params),
+    /// NEAT over network genomes (thesis ch. 5.2's CPPN bodies).
+    Neat(NeatParams),
 }
 
 impl OptimizerConfig {
@@ -126,6 +135,7 @@ impl OptimizerConfig {
             OptimizerConfig::Se(p) => p,
             OptimizerConfig::MapElites(p) => p,
             OptimizerConfig::Nsga2(p) => p,
+            OptimizerConfig::Neat(p) => p,
         }
     }
 
@@ -158,6 +168,7 @@ pub const OPTIMIZERS: &[OptimizerEntry] = &[
     se::ENTRY,
     map_elites::ENTRY,
     nsga2::ENTRY,
+    neat::ENTRY,
 ];
 
 /// Builds an optimizer config from its `[optimizer]` table, naming the field on error.

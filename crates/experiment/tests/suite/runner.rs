@@ -186,6 +186,7 @@ impl Evaluator<Vec<f64>> for Flaky {
                 body: None,
                 error: (!ok).then(|| "negative first gene".to_string()),
                 objectives: None,
+                series: Default::default(),
             },
             seconds: 0.0,
         }

@@ -1,10 +1,14 @@
-//! A CPPN's EvoGym body (thesis §5.2; EvoGym's CPPN-NEAT, commit 7db4202
-//! `examples/cppn_neat/run.py`): the network is queried once per cell with the cell's row i,
-//! column j (cell indices, as EvoGym's `meshgrid` of the structure shape) and its distance d from
-//! the grid's centre; its five outputs score empty, rigid, soft, horizontal and vertical
-//! actuator, and the cell takes the material of the largest. As the thesis, the largest
-//! 4-connected piece of present cells is kept (EvoGym instead refuses a disconnected body); a
-//! body without an actuator is refused.
+//! Material grids → the bodies a co-design loop trains (thesis §5.2.4): the largest 4-connected
+//! piece of present cells is kept, and a body without an actuator is refused (PPO would have no
+//! action to learn). Two encodings make the grids:
+//!
+//! - **direct** ([`kept_body`] of the genotype's own cells);
+//! - **CPPN** ([`cppn_body`], EvoGym's CPPN-NEAT, commit 7db4202 `examples/cppn_neat/run.py`):
+//!   the network is queried once per cell with the cell's row i, column j (cell indices, as
+//!   EvoGym's `meshgrid` of the structure shape) and its distance d from the grid's centre; its
+//!   five outputs score empty, rigid, soft, horizontal and vertical actuator, and the cell takes
+//!   the material of the largest. As the thesis, the largest piece is kept where EvoGym instead
+//!   refuses a disconnected body.
 
 use vsrlab_body::encodings::largest_component;
 use vsrlab_evolution::neat::NetworkGenome;
@@ -20,8 +24,7 @@ pub const OUTPUT_MATERIALS: [Material; 5] = [
     Material::VerticalActuator,
 ];
 
-/// The body `cppn` draws on a `width × height` grid (see the module docs); an error when
-/// nothing present, or no actuator, remains.
+/// The body `cppn` draws on a `width × height` grid (see the module docs), as [`kept_body`].
 pub fn cppn_body(cppn: &NetworkGenome, width: usize, height: usize) -> Result<MaterialGrid, FieldError> {
     let centre = ((height as f64 - 1.0) / 2.0, (width as f64 - 1.0) / 2.0);
     let mut cells = Vec::with_capacity(width * height);
@@ -41,6 +44,13 @@ pub fn cppn_body(cppn: &NetworkGenome, width: usize, height: usize) -> Result<Ma
             cells.push(OUTPUT_MATERIALS[best]);
         }
     }
+    kept_body(width, height, cells)
+}
+
+/// The body of a `width × height` grid of cells (row by row, top first): its largest
+/// 4-connected piece of present cells, the rest emptied; an error naming `body` when nothing
+/// present, or no actuator, remains.
+pub fn kept_body(width: usize, height: usize, cells: Vec<Material>) -> Result<MaterialGrid, FieldError> {
     let present: Vec<bool> = cells.iter().map(|m| m.is_present()).collect();
     let kept = largest_component(width, height, &present).map_err(|e| FieldError::new("body", e.to_string()))?;
     let cells: Vec<Material> = cells
@@ -49,7 +59,7 @@ pub fn cppn_body(cppn: &NetworkGenome, width: usize, height: usize) -> Result<Ma
         .map(|(m, keep)| if keep { m } else { Material::Empty })
         .collect();
     if !cells.iter().any(|m| m.is_actuator()) {
-        return Err(FieldError::new("body", "the CPPN's body has no actuator"));
+        return Err(FieldError::new("body", "the body has no actuator"));
     }
     MaterialGrid::new(width, height, cells)
 }
@@ -119,6 +129,23 @@ mod tests {
         g.connections = vec![link(0, 0, 8, 1.0), link(1, 8, 7, 1.0), link(2, 1, 7, 0.3)];
         let body = cppn_body(&g, 5, 5).unwrap();
         assert_eq!(body.to_rows(), "00000/00000/00000/00004/44444");
+    }
+
+    #[test]
+    fn a_direct_grid_keeps_its_largest_piece() {
+        let m = |c: char| Material::from_char(c).unwrap();
+        // a piece of 4 cells at the top, one of 5 at the bottom
+        let cells: Vec<Material> = "33000/01100/00000/04400/02220"
+            .chars()
+            .filter(|&c| c != '/')
+            .map(m)
+            .collect();
+        assert_eq!(
+            kept_body(5, 5, cells).unwrap().to_rows(),
+            "00000/00000/00000/04400/02220"
+        );
+        let soft: Vec<Material> = std::iter::repeat_n(Material::Soft, 25).collect();
+        assert!(kept_body(5, 5, soft).unwrap_err().to_string().contains("no actuator"));
     }
 
     #[test]

@@ -1,0 +1,213 @@
+//! Co-design end to end (thesis ch. 5.2): both encodings run with PPO inside evolution, resume
+//! from their checkpoints, and `vsrlab codesign` draws their learning curves; bad tables are
+//! refused naming the field.
+
+use crate::common::{ok, vsrlab};
+
+/// A tiny co-design experiment: Walker cut to 40 steps, 2 PPO iterations of small rollouts.
+fn experiment(name: &str, genotype: &str, optimizer: &str) -> String {
+    format!(
+        r#"name = "{name}"
+runs = 2
+seed = 3
+
+[genotype]
+{genotype}
+width = 3
+height = 3
+
+[genotype.ppo]
+iterations = 2
+environments = 2
+steps_per_environment = 16
+hidden = [8]
+
+[task]
+kind = "evogym"
+env = "Walker-v0"
+duration = 0.12
+
+[optimizer]
+{optimizer}
+
+[stop]
+evaluations = 8
+
+[output]
+snapshot_every = 4
+"#
+    )
+}
+
+const DIRECT: &str = "kind = \"material-grid\"";
+const GA: &str = "kind = \"ga\"\npopulation_size = 2\noffspring_size = 4\ntournament_size = 1\nmutation_probability = 1.0\ninitial_population_size = 4";
+const CPPN: &str = "kind = \"cppn\"";
+const NEAT: &str = "kind = \"neat\"\npopulation_size = 4\nmutation = { activations = [\"sigmoid\"] }";
+
+#[test]
+fn both_encodings_run_resume_and_are_analysed() {
+    let dir = tempfile::tempdir().unwrap();
+    let root = dir.path();
+    for (name, genotype, optimizer) in [("direct", DIRECT, GA), ("cppn", CPPN, NEAT)] {
+        let file = root.join(format!("{name}.toml"));
+        std::fs::write(&file, experiment(name, genotype, optimizer)).unwrap();
+        let out = root.join("out").join(name);
+        let text = ok(&[
+            "run",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--threads",
+            "2",
+        ]);
+        assert!(text.contains("each trained by 2 PPO iterations"), "{text}");
+        let generations = std::fs::read_to_string(out.join("run-00/generations.csv")).unwrap();
+        assert!(generations
+            .lines()
+            .next()
+            .unwrap()
+            .ends_with("best_size,best_rigid,best_soft,best_horizontal,best_vertical"));
+        let snapshot = std::fs::read_to_string(out.join("run-00/snapshots/evaluations-0000008.jsonl")).unwrap();
+        let row: serde_json::Value = serde_json::from_str(snapshot.lines().next().unwrap()).unwrap();
+        let curve = row["series"]["learning_curve"].as_array().unwrap();
+        assert_eq!(curve.len(), 3, "{row}");
+        assert_eq!(row["fitness"], curve[2]);
+        // resuming a finished experiment changes nothing
+        let before = std::fs::read(out.join("run-01/generations.csv")).unwrap();
+        ok(&[
+            "run",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--resume",
+        ]);
+        assert_eq!(std::fs::read(out.join("run-01/generations.csv")).unwrap(), before);
+    }
+    let figures = root.join("figures");
+    let text = ok(&[
+        "codesign",
+        root.join("out").to_str().unwrap(),
+        "--out",
+        figures.to_str().unwrap(),
+        "--window",
+        "2",
+    ]);
+    assert!(
+        text.contains("| direct | 2 |") && text.contains("| cppn | 2 |"),
+        "{text}"
+    );
+    for stem in [
+        "learning-curves",
+        "learning-radius",
+        "learning-over-evolution",
+        "materials",
+        "fitness",
+    ] {
+        assert!(figures.join(format!("{stem}.png")).is_file(), "{stem}");
+    }
+    let curves = std::fs::read_to_string(figures.join("learning-curves.csv")).unwrap();
+    assert!(
+        curves.starts_with("setting,stage,run,evaluations,iteration,median_reward\n")
+            && curves.contains("direct,end,1,8,1,"),
+        "{curves}"
+    );
+}
+
+#[test]
+fn bad_codesign_tables_name_the_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        (experiment("a", DIRECT, NEAT), "optimizer.kind"),
+        (experiment("b", CPPN, GA), "optimizer.kind"),
+        (
+            experiment("c", DIRECT, GA).replace("iterations = 2", "iterations = 0"),
+            "genotype.ppo.iterations",
+        ),
+        (
+            experiment("d", DIRECT, GA).replace("width = 3", "width = 300"),
+            "genotype.width",
+        ),
+        (
+            experiment("e", DIRECT, GA).replace(
+                "kind = \"evogym\"\nenv = \"Walker-v0\"\nduration = 0.12",
+                "terrain = \"flat\"",
+            ),
+            "task.kind",
+        ),
+        (
+            experiment("f", DIRECT, GA).replace("mutation_probability = 1.0", "mutation_probability = 0.5"),
+            "optimizer.mutation_probability",
+        ),
+        (
+            experiment("g", DIRECT, GA).replace("height = 3", "height = 3\nmutation_rate = 1.5"),
+            "genotype.mutation_rate",
+        ),
+        (
+            experiment("h", DIRECT, GA).replace("hidden = [8]", "hiden = [8]"),
+            "genotype.ppo",
+        ),
+    ];
+    for (i, (text, field)) in cases.iter().enumerate() {
+        let file = dir.path().join(format!("bad-{i}.toml"));
+        std::fs::write(&file, text).unwrap();
+        let (success, out) = vsrlab(&["validate", file.to_str().unwrap()]);
+        assert!(!success && out.contains(field), "case {i}: expected {field}:\n{out}");
+    }
+    // a flat-vector experiment cannot name NEAT
+    let quickstart = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../experiments/quickstart.toml"
+    ))
+    .unwrap();
+    let start = quickstart.find("[optimizer]").unwrap();
+    let end = start + quickstart[start..].find("\n[").unwrap();
+    let file = dir.path().join("vector-neat.toml");
+    std::fs::write(
+        &file,
+        format!(
+            "{}[optimizer]\nkind = \"neat\"\n{}",
+            &quickstart[..start],
+            &quickstart[end..]
+        ),
+    )
+    .unwrap();
+    let (success, out) = vsrlab(&["validate", file.to_str().unwrap()]);
+    assert!(
+        !success && out.contains("optimizer.kind") && out.contains("cppn"),
+        "{out}"
+    );
+}
+
+#[test]
+fn the_chapter_files_hold_the_thesis_settings() {
+    use vsrlab_experiment::config::load_all;
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../experiments/ch5.2");
+    let mut checked = 0;
+    for task in ["bridge-walker", "beam-toppler", "cave-crawler"] {
+        for encoding in ["direct", "cppn"] {
+            let path = std::path::PathBuf::from(format!("{dir}/{task}-{encoding}.toml"));
+            let experiments = load_all(&path).unwrap_or_else(|e| panic!("{e}"));
+            let e = &experiments[0];
+            let toml = e.to_toml();
+            assert!(
+                toml.contains("iterations = 1000") && toml.contains("environments = 4"),
+                "{toml}"
+            );
+            let budget = if task == "cave-crawler" { 1000 } else { 500 };
+            assert_eq!((e.runs, e.stop.evaluations), (10, Some(budget)), "{task}-{encoding}");
+            let kind = if encoding == "direct" { "material-grid" } else { "cppn" };
+            assert_eq!(e.genotype_kind().name(), kind);
+            checked += 1;
+        }
+    }
+    for encoding in ["direct", "cppn"] {
+        let path = std::path::PathBuf::from(format!("{dir}/reduced-{encoding}.toml"));
+        assert_eq!(
+            load_all(&path).unwrap_or_else(|e| panic!("{e}")).len(),
+            3,
+            "three tasks"
+        );
+        checked += 1;
+    }
+    assert_eq!(checked, 8);
+}

@@ -1,0 +1,78 @@
+//! One inner loop of the co-design: PPO trains a policy for one body on one EvoGym task, and
+//! off-line episodes of its mean action measure what it learned (thesis §5.2.4, eq. 5.7, and the
+//! learning curves of §5.2.5.6).
+
+use crate::learning_env::EvoGymLearning;
+use vsrlab_learning::{Environment, Ppo, PpoConfig, PpoError};
+use vsrlab_tasks::kinds::evogym::{EvoGymTask, MaterialGrid};
+
+/// The name of the learning curve among an evaluation's series: the off-line reward per step
+/// before training and after each PPO iteration (`iterations + 1` values).
+pub const LEARNING_CURVE: &str = "learning_curve";
+
+/// The name of the training rewards among an evaluation's series: the mean reward per step of
+/// each iteration's rollouts (noisy actions; `iterations` values, always recorded).
+pub const TRAINING_REWARD: &str = "training_reward";
+
+/// What one training gave.
+#[derive(Debug, Clone)]
+pub struct Learned {
+    /// The fitness: the off-line mean reward per step after the last iteration.
+    pub fitness: f64,
+    /// The learning curve (empty unless asked for).
+    pub curve: Vec<f64>,
+    /// The mean reward per step of each iteration's rollouts.
+    pub training: Vec<f64>,
+    /// The learner with its final policy.
+    pub ppo: Ppo,
+}
+
+/// An EvoGym task and the steps of its episodes (its own length, or fewer when the experiment's
+/// `task.duration` says so).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Episode {
+    /// The task.
+    pub task: EvoGymTask,
+    /// Steps of an episode (n_sim).
+    pub steps: usize,
+}
+
+/// Trains PPO (`config`, `config.environments` copies of the task stepped in parallel) for
+/// `body` on `episode`'s task from `seed`. With `curve`, an off-line episode after every iteration (and
+/// before the first) gives the learning curve; otherwise only the last one is run. An episode's
+/// reward per step divides its total by the episode's full length (eq. 5.7's n_sim), also when
+/// it ended early.
+pub fn learn(
+    body: &MaterialGrid,
+    episode: Episode,
+    config: &PpoConfig,
+    curve: bool,
+    seed: u64,
+) -> Result<Learned, String> {
+    let Episode { task, steps } = episode;
+    let env = EvoGymLearning::new(task, body)
+        .map_err(|e| e.to_string())?
+        .with_episode_steps(steps);
+    let mut ppo =
+        Ppo::new(env.observation_size(), env.action_size(), config.clone(), seed).map_err(|e| e.to_string())?;
+    let mut environments = vec![env.clone(); config.environments];
+    let mut offline = env;
+    let mut points = Vec::new();
+    let stats = ppo
+        .train_observed(&mut environments, |p, stats| {
+            let last = stats.is_some_and(|s| s.iteration + 1 == config.iterations);
+            if curve || last {
+                let (total, _) = p.episode(&mut offline, seed, steps)?;
+                points.push(total / steps as f64);
+            }
+            Ok::<(), PpoError>(())
+        })
+        .map_err(|e| e.to_string())?;
+    let fitness = *points.last().ok_or("PPO ran no iteration")?;
+    Ok(Learned {
+        fitness,
+        curve: if curve { points } else { Vec::new() },
+        training: stats.iter().map(|s| s.mean_reward).collect(),
+        ppo,
+    })
+}

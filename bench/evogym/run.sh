@@ -14,8 +14,11 @@
 set -euo pipefail
 
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-VENV="$HERE/.venv"
-REQ="$HERE/requirements.txt"
+# EVOGYM_VENV, EVOGYM_REQUIREMENTS and EVOGYM_SCRIPT let ppo.sh reuse this set-up for its own
+# venv (torch and stable-baselines3 beside EvoGym) and script.
+VENV="${EVOGYM_VENV:-$HERE/.venv}"
+REQ="${EVOGYM_REQUIREMENTS:-$HERE/requirements.txt}"
+SCRIPT="${EVOGYM_SCRIPT:-$HERE/compare.py}"
 
 log() { echo "[run.sh] $*" >&2; }
 
@@ -89,4 +92,4 @@ log "setup took $(( $(date +%s) - setup_start )) s"
 
 # One thread for everything numeric, so process_time() measures a single thread.
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
-exec "$VENV/bin/python" "$HERE/compare.py" "$@"
+exec "$VENV/bin/python" "$SCRIPT" "$@"

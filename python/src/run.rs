@@ -6,7 +6,7 @@ use crate::value_error;
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use std::path::{Path, PathBuf};
-use vsrlab_experiment::evaluator::{Evaluated, Evaluator, EvaluatorError, RobotEvaluator};
+use vsrlab_experiment::evaluator::{Evaluated, Evaluator, EvaluatorError, Record, RobotEvaluator};
 use vsrlab_experiment::genotypes::vector::run_vectors;
 use vsrlab_experiment::runner::{self, Flow, Observer, Progress, RunOptions, RunSummary};
 use vsrlab_experiment::{config, Experiment};
@@ -53,8 +53,14 @@ impl Evaluator<Vec<f64>> for Remote {
         Ok(evaluated)
     }
 
-    fn save_robot(&self, genotype: &Vec<f64>, path: &Path, note: &str) -> Result<(), EvaluatorError> {
-        self.local.save_robot(genotype, path, note)
+    fn save_robot(
+        &self,
+        genotype: &Vec<f64>,
+        record: Option<&Record>,
+        path: &Path,
+        note: &str,
+    ) -> Result<(), EvaluatorError> {
+        self.local.save_robot(genotype, record, path, note)
     }
 
     fn save_replay(&self, genotype: &Vec<f64>, path: &Path, title: &str) -> Result<(), EvaluatorError> {

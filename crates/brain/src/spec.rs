@@ -10,6 +10,7 @@ use crate::controllers::heads::HeadsSpec;
 use crate::controllers::hebbian::HebbianSpec;
 use crate::controllers::phase::PhaseSpec;
 use crate::controllers::phase_grid::PhaseGridSpec;
+use crate::controllers::policy::PolicySpec;
 use crate::controllers::random::RandomSpec;
 use crate::controllers::smoothed::SmoothedSpec;
 use crate::controllers::step::StepSpec;
@@ -48,6 +49,8 @@ use serde::{Deserialize, Serialize};
 /// {"kind": "graph", "neurons": [{"kind": "sensing", "x": 0, "y": 0, "reading": 0}, ...],
 ///  "edges": [{"from": 0, "to": 4}, ...], "parameters": [...]}
 /// {"kind": "heads", "linear_outputs": 1, "weights": [...]}
+/// {"kind": "policy", "hidden": [64, 64], "mean": [...], "var": [...], "scale": 2.0,
+///  "offset": -0.2, "weights": [...]}
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "kebab-case")]
@@ -78,6 +81,8 @@ pub enum BrainSpec {
     Heads(HeadsSpec),
     /// The affordance study's Elman network in every voxel, with a vote ([`ElmanSpec`]).
     Elman(ElmanSpec),
+    /// A policy learned by PPO in the co-design loop ([`PolicySpec`]).
+    Policy(PolicySpec),
 }
 
 /// Every `kind` tag, in the order of [`BrainSpec`]'s variants.
@@ -94,6 +99,8 @@ const KINDS: &[&str] = &[
     "attention",
     "graph",
     "heads",
+    "elman",
+    "policy",
 ];
 
 impl<'de> Deserialize<'de> for BrainSpec {
@@ -125,6 +132,7 @@ impl<'de> Deserialize<'de> for BrainSpec {
             "graph" => BrainSpec::Graph(payload(fields)?),
             "heads" => BrainSpec::Heads(payload(fields)?),
             "elman" => BrainSpec::Elman(payload(fields)?),
+            "policy" => BrainSpec::Policy(payload(fields)?),
             other => {
                 return Err(D::Error::custom(format!(
                     "kind: unknown brain kind `{other}`, expected one of {}",
@@ -171,6 +179,7 @@ impl BrainSpec {
             BrainSpec::Graph(kind) => kind,
             BrainSpec::Heads(kind) => kind,
             BrainSpec::Elman(kind) => kind,
+            BrainSpec::Policy(kind) => kind,
         }
     }
 
@@ -190,6 +199,7 @@ impl BrainSpec {
             BrainSpec::Graph(kind) => kind,
             BrainSpec::Heads(kind) => kind,
             BrainSpec::Elman(kind) => kind,
+            BrainSpec::Policy(kind) => kind,
         }
     }
 

@@ -123,8 +123,16 @@ pub trait Evaluator<G>: Sync {
             .map(|(g, &seed)| evaluate_guarded(self, g, seed))
             .collect())
     }
-    /// Saves the robot of a genotype to a file (the best of a run); a no-op by default.
-    fn save_robot(&self, _genotype: &G, _path: &Path, _note: &str) -> Result<(), EvaluatorError> {
+    /// Saves the robot of a genotype to a file (the best of a run); `record`: its evaluation's
+    /// record when the run kept it (evaluators whose robots depend on the evaluation's seed, as a
+    /// brain learned during it, read the seed there). A no-op by default.
+    fn save_robot(
+        &self,
+        _genotype: &G,
+        _record: Option<&Record>,
+        _path: &Path,
+        _note: &str,
+    ) -> Result<(), EvaluatorError> {
         Ok(())
     }
     /// Saves the episode of a genotype's robot as a replay file for the browser viewer (the best
@@ -319,7 +327,13 @@ impl<G, M: Mapper<G>> Evaluator<G> for RobotEvaluator<M> {
         Ok(self.mapper.robot(genotype).map(drop)?)
     }
 
-    fn save_robot(&self, genotype: &G, path: &Path, note: &str) -> Result<(), EvaluatorError> {
+    fn save_robot(
+        &self,
+        genotype: &G,
+        _record: Option<&Record>,
+        path: &Path,
+        note: &str,
+    ) -> Result<(), EvaluatorError> {
         let robot = self.mapper.robot(genotype)?;
         let text = robot
             .description()

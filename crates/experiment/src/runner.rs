@@ -774,7 +774,8 @@ fn finish_run<G: Genotype, O: SearchOptimizer<G>>(
         manifest.insert(name, snapshot.hash.clone());
     }
     if let (true, Some(best)) = (session.plan.output.save_best, best) {
-        if let Some(hash) = save_best(session, slot, optimizer, best)? {
+        let record = state.best.as_ref().filter(|b| b.0 == best.genotype.key()).map(|b| &b.1);
+        if let Some(hash) = save_best(session, slot, optimizer, best, record)? {
             manifest.insert(BEST_ROBOT_FILE.to_string(), hash);
         }
     }
@@ -815,6 +816,7 @@ fn save_best<G: Genotype, O: SearchOptimizer<G>>(
     slot: &RunSlot<'_>,
     optimizer: &O,
     best: &Individual<G>,
+    record: Option<&Record>,
 ) -> Result<Option<String>, RunError> {
     let RunSlot { run, seed, files } = *slot;
     let name = session.plan.name.as_deref().unwrap_or("experiment");
@@ -826,7 +828,7 @@ fn save_best<G: Genotype, O: SearchOptimizer<G>>(
     );
     session
         .evaluator
-        .save_robot(&best.genotype, &files.best_robot(), &note)
+        .save_robot(&best.genotype, record, &files.best_robot(), &note)
         .map_err(|e| RunError::Other(format!("best robot of run {run}: {e}")))?;
     let hash = std::fs::read(files.best_robot()).ok().map(|bytes| content_hash(&bytes));
     let title = format!("{name} run {run}: best, fitness {}", best.fitness());

@@ -13,6 +13,7 @@ pub mod environment;
 pub mod gaussian;
 pub mod mlp;
 pub mod normalizer;
+pub mod pendulum;
 pub mod ppo;
 pub mod reach;
 pub mod rollout;

@@ -50,7 +50,12 @@ impl Mlp {
         }
     }
 
-    /// Number of outputs.
+    /// Layer sizes, input first.
+    pub fn sizes(&self) -> &[usize] {
+        &self.sizes
+    }
+
+    /// Values of the output layer.
     pub fn outputs(&self) -> usize {
         *self.sizes.last().expect("checked at construction")
     }

@@ -44,6 +44,16 @@ impl Normalizer {
         self.count += n;
     }
 
+    /// The running mean of each value.
+    pub fn mean(&self) -> &[f64] {
+        &self.mean
+    }
+
+    /// The running variance of each value.
+    pub fn var(&self) -> &[f64] {
+        &self.var
+    }
+
     /// Values per vector.
     pub fn len(&self) -> usize {
         self.mean.len()

@@ -212,6 +212,16 @@ impl Ppo {
         })
     }
 
+    /// The policy network (its output is the Gaussian's mean).
+    pub fn actor(&self) -> &Mlp {
+        &self.actor
+    }
+
+    /// The observation statistics the policy normalises its input with.
+    pub fn normalizer(&self) -> &Normalizer {
+        &self.normalizer
+    }
+
     /// The policy's action for an observation: its mean, without noise.
     pub fn act(&self, observation: &[f64]) -> Vec<f64> {
         self.actor

@@ -10,6 +10,7 @@ pub mod heads;
 pub mod hebbian;
 pub mod phase;
 pub mod phase_grid;
+pub mod policy;
 pub mod random;
 pub mod smoothed;
 pub mod step;

@@ -72,6 +72,30 @@ fn both_encodings_run_resume_and_are_analysed() {
         let curve = row["series"]["learning_curve"].as_array().unwrap();
         assert_eq!(curve.len(), 3, "{row}");
         assert_eq!(row["fitness"], curve[2]);
+        // the best robot carries the policy its fitness came from: replayed on the experiment's
+        // task, it earns the fitness (reward per step) times the 40 steps
+        let best = out.join("run-00/best.robot.json");
+        let robot = std::fs::read_to_string(&best).unwrap();
+        assert!(robot.contains("\"kind\": \"policy\""), "{robot}");
+        let replay = ok(&[
+            "simulate",
+            "--robot",
+            best.to_str().unwrap(),
+            "--task-of",
+            out.to_str().unwrap(),
+            "--json",
+        ]);
+        let replay: serde_json::Value = serde_json::from_str(&replay).unwrap();
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("run-00/summary.json")).unwrap()).unwrap();
+        let (reward, fitness) = (
+            replay["reward"].as_f64().unwrap(),
+            summary["best_fitness"].as_f64().unwrap(),
+        );
+        assert!(
+            (reward - 40.0 * fitness).abs() <= 1e-9 * reward.abs().max(1e-6),
+            "{reward} vs 40 × {fitness}"
+        );
         // resuming a finished experiment changes nothing
         let before = std::fs::read(out.join("run-01/generations.csv")).unwrap();
         ok(&[

@@ -438,6 +438,76 @@ mod tests {
         (neat.generation(), best, neat)
     }
 
+    /// Whether a genome classifies the four XOR cases (output on the right side of 0.5), the
+    /// NEAT paper's "solved".
+    fn classifies_xor(genome: &NetworkGenome) -> bool {
+        [
+            ([0.0, 0.0], false),
+            ([0.0, 1.0], true),
+            ([1.0, 0.0], true),
+            ([1.0, 1.0], false),
+        ]
+        .iter()
+        .all(|(x, y)| (genome.evaluate(x)[0] > 0.5) == *y)
+    }
+
+    /// Evaluations until a genome of a told batch classifies XOR (None within `limit`
+    /// generations).
+    fn evaluations_to_classify(seed: u64, limit: u64) -> Option<u64> {
+        let mut neat = Neat::new(xor_config(), seed).unwrap();
+        while neat.generation() < limit {
+            let batch = neat.ask();
+            let mut told = Vec::with_capacity(batch.len());
+            for (k, c) in batch.iter().enumerate() {
+                if classifies_xor(&c.genotype) {
+                    return Some(neat.evaluations() + k as u64 + 1);
+                }
+                told.push(c.told(Evaluation::single(xor_fitness(&c.genotype))));
+            }
+            neat.tell(told).unwrap();
+        }
+        None
+    }
+
+    /// Median evaluations to classify XOR over `seeds` runs of at most 100 generations (unsolved
+    /// runs count as never: the median is then over the solved ones only if more than half
+    /// solved), and the runs solved.
+    fn xor_median(seeds: std::ops::Range<u64>) -> (f64, usize) {
+        let n = seeds.end - seeds.start;
+        let mut counts: Vec<f64> = seeds
+            .map(|s| evaluations_to_classify(s, 100).map_or(f64::INFINITY, |e| e as f64))
+            .collect();
+        counts.sort_by(f64::total_cmp);
+        let solved = counts.iter().filter(|c| c.is_finite()).count();
+        (counts[n as usize / 2], solved)
+    }
+
+    /// The NEAT paper (Stanley & Miikkulainen 2002, §4.1): XOR solved in 4,755 evaluations on
+    /// average over 100 runs (150 genomes, never failing); ours, with neat-python's defaults, on
+    /// 20 seeds here and 100 in the ignored test below (docs/ch5.2.md has the figures).
+    #[test]
+    fn xor_is_classified_in_evaluations_comparable_to_the_paper() {
+        let (median, solved) = xor_median(0..20);
+        eprintln!("XOR: median {median} evaluations, {solved} of 20 runs solved within 100 generations");
+        assert!(solved >= 18, "{solved} of 20 solved");
+        assert!(median < 2.0 * 4755.0, "median {median} evaluations");
+    }
+
+    /// `cargo test -p vsrlab-evolution --release xor_over_100 -- --ignored --nocapture`
+    #[test]
+    #[ignore = "100 runs: a measurement for docs/ch5.2.md"]
+    fn xor_over_100_runs() {
+        let (median, solved) = xor_median(0..100);
+        let mut counts: Vec<u64> = (0..100).filter_map(|s| evaluations_to_classify(s, 100)).collect();
+        counts.sort_unstable();
+        let mean = counts.iter().sum::<u64>() as f64 / counts.len() as f64;
+        eprintln!(
+            "XOR over 100 runs: {solved} solved within 100 generations; median {median}, mean {mean:.0}, min {}, max {} evaluations",
+            counts[0],
+            counts[counts.len() - 1]
+        );
+    }
+
     #[test]
     fn it_evolves_xor_with_hidden_nodes() {
         let mut solved = 0;

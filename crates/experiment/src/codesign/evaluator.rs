@@ -1,13 +1,16 @@
 //! [`CodesignEvaluator`]: a genotype's body, trained by PPO on the experiment's EvoGym task, as
 //! one evaluation for the runner.
 
-use super::learn::{learn, Episode, LEARNING_CURVE, TRAINING_REWARD};
-use crate::evaluator::{Evaluated, Evaluator, Record};
+use super::learn::{learn, learned_robot, Episode, LEARNING_CURVE, TRAINING_REWARD};
+use crate::evaluator::{Evaluated, Evaluator, EvaluatorError, Record};
 use std::collections::BTreeMap;
+use std::path::Path;
 use std::time::Instant;
 use vsrlab_field::FieldError;
 use vsrlab_learning::PpoConfig;
 use vsrlab_tasks::kinds::evogym::{Material, MaterialGrid};
+use vsrlab_tasks::kinds::RobotDescription;
+use vsrlab_tasks::EvaluationError;
 
 /// The morphology descriptors logged for the best body of every generation (`best_<name>` in
 /// `generations.csv`), thesis §5.2.5.8: the share of the grid's cells present, and the shares of
@@ -91,6 +94,25 @@ impl<G: Sync> Evaluator<G> for CodesignEvaluator<G> {
 
     fn genotype_columns(&self) -> &'static [&'static str] {
         &MATERIAL_COLUMNS
+    }
+
+    /// Trains the body again with its evaluation's seed (training is deterministic, so this is
+    /// the policy its fitness came from) and writes the body with that policy as an EvoGym
+    /// robot file.
+    fn save_robot(&self, genotype: &G, record: Option<&Record>, path: &Path, note: &str) -> Result<(), EvaluatorError> {
+        let genotype_error = |m: String| EvaluatorError::Robot(EvaluationError::Genotype(m));
+        let seed = record.map(|r| r.seed).ok_or_else(|| {
+            genotype_error("its evaluation record (the seed its brain was learned with) was not kept".into())
+        })?;
+        let body = (self.body)(genotype).map_err(|e| genotype_error(e.to_string()))?;
+        let learned = learn(&body, self.episode, &self.ppo, false, seed).map_err(genotype_error)?;
+        let robot = learned_robot(&body, self.episode, &learned.ppo);
+        vsrlab_tasks::files::write_atomic(path, robot.to_json(Some(note)).as_bytes()).map_err(|source| {
+            EvaluatorError::File {
+                path: path.to_path_buf(),
+                source,
+            }
+        })
     }
 
     fn genotype_stats(&self, genotype: &G) -> Vec<f64> {

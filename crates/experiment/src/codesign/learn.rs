@@ -3,8 +3,9 @@
 //! learning curves of §5.2.5.6).
 
 use crate::learning_env::EvoGymLearning;
+use vsrlab_brain::{BrainSpec, PolicySpec};
 use vsrlab_learning::{Environment, Ppo, PpoConfig, PpoError};
-use vsrlab_tasks::kinds::evogym::{EvoGymTask, MaterialGrid};
+use vsrlab_tasks::kinds::evogym::{EvoGymRobot, EvoGymTask, MaterialGrid};
 
 /// The name of the learning curve among an evaluation's series: the off-line reward per step
 /// before training and after each PPO iteration (`iterations + 1` values).
@@ -75,4 +76,28 @@ pub fn learn(
         training: stats.iter().map(|s| s.mean_reward).collect(),
         ppo,
     })
+}
+
+/// The learned policy as a brain of an EvoGym robot: its mean action a drives an actuator to
+/// EvoGym's target 1 + a clipped into [0.6, 1.6], which is the robot's actuation 2a − 0.2 clamped
+/// to [−1, 1] (an EvoGym robot's actuation o is the target 1.1 + 0.5 o).
+pub fn policy_brain(ppo: &Ppo) -> BrainSpec {
+    let sizes = ppo.actor().sizes();
+    BrainSpec::Policy(PolicySpec {
+        hidden: sizes[1..sizes.len() - 1].to_vec(),
+        mean: ppo.normalizer().mean().to_vec(),
+        var: ppo.normalizer().var().to_vec(),
+        scale: 2.0,
+        offset: -0.2,
+        weights: ppo.actor().parameters.clone(),
+    })
+}
+
+/// The robot a training made: the body with its learned policy, on the episode's task.
+pub fn learned_robot(body: &MaterialGrid, episode: Episode, ppo: &Ppo) -> EvoGymRobot {
+    EvoGymRobot {
+        body: body.to_rows(),
+        env: episode.task.name().to_string(),
+        brain: policy_brain(ppo),
+    }
 }

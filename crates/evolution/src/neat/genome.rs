@@ -72,6 +72,10 @@ pub struct Mutation {
     pub add_connection: f64,
     /// Probability of splitting a connection with a node (0.2).
     pub add_node: f64,
+    /// Probability of deleting a connection gene (0; EvoGym's CPPN-NEAT: 0.2).
+    pub delete_connection: f64,
+    /// Probability of deleting a hidden node with its connections (0; EvoGym's CPPN-NEAT: 0.2).
+    pub delete_node: f64,
     /// Probability that a node's activation is drawn anew (0.1).
     pub activation_rate: f64,
     /// Activations new and mutated nodes draw from.
@@ -86,6 +90,8 @@ impl Default for Mutation {
             weight_replace_rate: 0.1,
             add_connection: 0.5,
             add_node: 0.2,
+            delete_connection: 0.0,
+            delete_node: 0.0,
             activation_rate: 0.1,
             activations: Activation::ALL.to_vec(),
         }
@@ -300,6 +306,14 @@ impl NetworkGenome {
         if rng.uniform() < settings.add_connection {
             self.add_connection(innovations, rng);
         }
+        // the deletions draw only when they may happen, so that runs without them keep their
+        // random streams
+        if settings.delete_node > 0.0 && rng.uniform() < settings.delete_node {
+            self.delete_node(rng);
+        }
+        if settings.delete_connection > 0.0 && rng.uniform() < settings.delete_connection {
+            self.delete_connection(rng);
+        }
         let change = |value: &mut f64, rng: &mut SeededRng| {
             if rng.uniform() < settings.weight_rate {
                 *value = if rng.uniform() < settings.weight_replace_rate {
@@ -364,6 +378,31 @@ impl NetworkGenome {
         self.connections.sort_by_key(|c| c.innovation);
     }
 
+    /// Removes a random hidden node and every connection into or out of it (neat-python's
+    /// node deletion); nothing when there is no hidden node.
+    fn delete_node(&mut self, rng: &mut SeededRng) {
+        let hidden: Vec<u32> = self
+            .nodes
+            .iter()
+            .filter(|n| n.kind == NodeKind::Hidden)
+            .map(|n| n.id)
+            .collect();
+        if hidden.is_empty() {
+            return;
+        }
+        let id = hidden[rng.below(hidden.len())];
+        self.nodes.retain(|n| n.id != id);
+        self.connections.retain(|c| c.from != id && c.to != id);
+    }
+
+    /// Removes a random connection gene; nothing when there is none.
+    fn delete_connection(&mut self, rng: &mut SeededRng) {
+        if !self.connections.is_empty() {
+            let k = rng.below(self.connections.len());
+            self.connections.remove(k);
+        }
+    }
+
     /// Adds a connection between two unconnected nodes (never into an input, never closing a
     /// cycle), weight from N(0, 1); re-enables it if it exists disabled.
     fn add_connection(&mut self, innovations: &mut Innovations, rng: &mut SeededRng) {
@@ -403,6 +442,30 @@ mod tests {
 
     fn rng(i: u64) -> SeededRng {
         SeededRng::derive(1, 0, i, Stream::Variation)
+    }
+
+    #[test]
+    fn deletions_remove_a_hidden_node_with_its_connections_or_one_connection() {
+        let mut innovations = Innovations::new(3);
+        let mut g = NetworkGenome::initial(2, 1, Activation::Identity, &mut innovations, &mut rng(0));
+        let settings = Mutation::default();
+        g.add_node(&settings, &mut innovations, &mut rng(1));
+        let hidden = g.nodes.iter().find(|n| n.kind == NodeKind::Hidden).unwrap().id;
+        g.delete_node(&mut rng(2));
+        assert_eq!(g.nodes.len(), 3, "the inputs and the output stay");
+        assert!(g.connections.iter().all(|c| c.from != hidden && c.to != hidden));
+        assert_eq!(g.connections.len(), 2, "the disabled original and the other input's");
+        g.delete_node(&mut rng(3));
+        assert_eq!(g.nodes.len(), 3, "no hidden node: nothing deleted");
+        g.delete_connection(&mut rng(4));
+        g.delete_connection(&mut rng(5));
+        g.delete_connection(&mut rng(6));
+        assert!(g.connections.is_empty());
+        assert_eq!(
+            g.evaluate(&[0.3, 0.4]).len(),
+            1,
+            "a network without connections still answers"
+        );
     }
 
     #[test]

@@ -139,6 +139,8 @@ impl Neat {
             ("weight_replace_rate", m.weight_replace_rate),
             ("add_connection", m.add_connection),
             ("add_node", m.add_node),
+            ("delete_connection", m.delete_connection),
+            ("delete_node", m.delete_node),
             ("activation_rate", m.activation_rate),
         ] {
             ensure((0.0..=1.0).contains(&p), || {

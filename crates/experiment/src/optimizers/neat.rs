@@ -82,6 +82,8 @@ impl OptimizerKind for NeatParams {
             ("mutation.weight_replace_rate", m.weight_replace_rate),
             ("mutation.add_connection", m.add_connection),
             ("mutation.add_node", m.add_node),
+            ("mutation.delete_connection", m.delete_connection),
+            ("mutation.delete_node", m.delete_node),
             ("mutation.activation_rate", m.activation_rate),
         ] {
             probability(field, p)?;

@@ -40,7 +40,13 @@ fn main() -> Result<(), PpoError> {
         let done = stats.map_or(0, |s| s.iteration + 1);
         if done % every == 0 {
             let (total, steps) = p.episode(&mut evaluation, 0, task.episode_steps())?;
-            println!("after {done:4} iterations: return of the mean policy {total:+.3} over {steps} steps");
+            let training = stats.map_or(String::new(), |s| {
+                format!(
+                    "; rollouts: {:+.5} per step, entropy {:.2}, value loss {:.2e}",
+                    s.mean_reward, s.entropy, s.value_loss
+                )
+            });
+            println!("after {done:4} iterations: return of the mean policy {total:+.3} over {steps} steps{training}");
         }
         last = std::time::Instant::now();
         Ok(())

@@ -63,6 +63,7 @@ impl Environment for EvoGymLearning {
             observation: step.observation.to_vec(),
             reward: step.reward,
             done: step.done || step.truncated || capped,
+            truncated: !step.done && (step.truncated || capped),
         })
     }
 }

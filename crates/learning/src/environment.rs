@@ -9,6 +9,9 @@ pub struct Transition {
     pub reward: f64,
     /// Whether the episode ended with this step (the next step starts from a reset).
     pub done: bool,
+    /// Whether it ended only because a time limit cut it (`done` is then true too): a learner
+    /// may bootstrap from the value of `observation`, as if the episode went on.
+    pub truncated: bool,
 }
 
 /// An episodic environment with continuous actions. Implementations must be deterministic in

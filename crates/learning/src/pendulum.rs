@@ -61,6 +61,7 @@ impl Environment for Pendulum {
             observation: self.observation(),
             reward: -cost,
             done: self.t == PENDULUM_STEPS,
+            truncated: self.t == PENDULUM_STEPS,
         })
     }
 }

@@ -52,6 +52,11 @@ pub struct PpoConfig {
     pub hidden: Vec<usize>,
     /// Initial log σ of every action (0: σ = 1).
     pub initial_log_std: f64,
+    /// Whether an episode cut by a time limit is bootstrapped with the value of the observation
+    /// it was cut at (stable-baselines3's PPO, which EvoGym 2.0 uses) or ends as if the robot had
+    /// died (false: the EvoGym 2022 examples' PPO without `--use-proper-time-limits`, which the
+    /// thesis ran).
+    pub bootstrap_time_limits: bool,
 }
 
 impl Default for PpoConfig {
@@ -72,6 +77,7 @@ impl Default for PpoConfig {
             max_gradient_norm: 0.5,
             hidden: vec![64, 64],
             initial_log_std: 0.0,
+            bootstrap_time_limits: false,
         }
     }
 }
@@ -368,6 +374,16 @@ impl Ppo {
                     "reward or observation from environment {e}"
                 )));
             }
+            let bootstrap = if step.truncated && self.config.bootstrap_time_limits {
+                self.config.gamma
+                    * self
+                        .critic
+                        .forward(&self.normalizer.normalize(&step.observation))
+                        .output()[0]
+            } else {
+                0.0
+            };
+            r.bootstraps.push(bootstrap);
             r.raw_observations
                 .push(std::mem::replace(&mut slot.observation, step.observation));
             r.observations.push(observation);
@@ -550,6 +566,21 @@ mod tests {
     }
 
     #[test]
+    fn a_time_limit_is_bootstrapped_only_when_asked() {
+        let run = |bootstrap: bool| {
+            let config = PpoConfig {
+                bootstrap_time_limits: bootstrap,
+                ..small(2)
+            };
+            let mut ppo = Ppo::new(1, 1, config, 5).unwrap();
+            format!("{:?}", ppo.train(&mut reach(2)).unwrap())
+        };
+        // Reach's episodes end by their time limit: the value estimates differ, so do the updates
+        assert_ne!(run(true), run(false));
+        assert_eq!(run(true), run(true));
+    }
+
+    #[test]
     fn training_is_bit_identical_whatever_the_thread_count() {
         let train = |threads: usize| {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
@@ -604,6 +635,7 @@ mod tests {
                     observation: vec![f64::NAN],
                     reward: 0.0,
                     done: false,
+                    truncated: false,
                 })
             }
         }

@@ -38,6 +38,7 @@ impl Environment for Reach {
             observation: vec![self.x],
             reward: -self.x.abs(),
             done: self.t == REACH_STEPS,
+            truncated: self.t == REACH_STEPS,
         })
     }
 }

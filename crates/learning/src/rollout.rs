@@ -14,6 +14,9 @@ pub struct Rollout {
     pub log_probs: Vec<f64>,
     /// Rewards.
     pub rewards: Vec<f64>,
+    /// What a step's return adds for a time limit that cut its episode: γ × the value of the
+    /// observation it was cut at (0 for every other step).
+    pub bootstraps: Vec<f64>,
     /// Whether the step ended an episode.
     pub dones: Vec<bool>,
     /// The value network's estimate of each observation.
@@ -34,7 +37,8 @@ impl Rollout {
         let mut next_value = self.last_value;
         for t in (0..n).rev() {
             let go_on = if self.dones[t] { 0.0 } else { 1.0 };
-            let delta = self.rewards[t] + gamma * next_value * go_on - self.values[t];
+            let bootstrap = self.bootstraps.get(t).copied().unwrap_or(0.0);
+            let delta = self.rewards[t] + bootstrap + gamma * next_value * go_on - self.values[t];
             next_advantage = delta + gamma * lambda * go_on * next_advantage;
             advantages[t] = next_advantage;
             next_value = self.values[t];

@@ -265,10 +265,7 @@ fn curves_figure(names: &[String], populations: &[PopulationLearning], window: u
         title: "Learning curves at four stages of evolution".into(),
         panels,
         legend_title: "population".into(),
-        note: vec![
-            "line: median across runs of the population's median".into(),
-            "band: ± sd across runs".into(),
-        ],
+        note: population_note(),
     };
     (figure, csv)
 }
@@ -347,6 +344,15 @@ fn over_evolution(
         .collect()
 }
 
+/// The note of curves of population medians, median ± sd across runs.
+fn population_note() -> Vec<String> {
+    vec![
+        "line: median over runs".into(),
+        "of the population's median".into(),
+        "band: ± sd over runs".into(),
+    ]
+}
+
 fn panel(title: &str, y_label: &str, series: Vec<BandSeries>) -> BandChart {
     BandChart {
         title: title.into(),
@@ -414,10 +420,7 @@ pub fn codesign(options: &CodesignOptions, progress: &dyn Progress) -> Result<Co
             ),
         ],
         legend_title: "setting".into(),
-        note: vec![
-            "line: median across runs of the population's median".into(),
-            "band: ± sd across runs".into(),
-        ],
+        note: population_note(),
     };
     files.extend(plot::save(&learning, &options.out.join("learning-over-evolution"))?);
     let materials = BandFigure {

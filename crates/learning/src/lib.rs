@@ -22,4 +22,4 @@ pub use adam::Adam;
 pub use environment::{Environment, Transition};
 pub use mlp::Mlp;
 pub use normalizer::Normalizer;
-pub use ppo::{IterationStats, Ppo, PpoConfig, PpoError};
+pub use ppo::{IterationStats, ObservationStatistics, Ppo, PpoConfig, PpoError};

@@ -57,6 +57,22 @@ pub struct PpoConfig {
     /// died (false: the EvoGym 2022 examples' PPO without `--use-proper-time-limits`, which the
     /// thesis ran).
     pub bootstrap_time_limits: bool,
+    /// When the observation statistics take in new observations: once per iteration after the
+    /// update (the default, what every figure in docs/learning.md and docs/ch5.2.md used), or at
+    /// every step, each new observation before the policy sees it (the reference's
+    /// `VecNormalize`). Neither closes the gap to EvoGym's own PPO on Walker (docs/learning.md).
+    pub observation_statistics: ObservationStatistics,
+}
+
+/// When PPO's observation statistics are updated ([`PpoConfig::observation_statistics`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ObservationStatistics {
+    /// With all of an iteration's observations, after its update.
+    #[default]
+    EveryIteration,
+    /// With every step's new observations, environments in order (deterministic).
+    EveryStep,
 }
 
 impl Default for PpoConfig {
@@ -78,6 +94,7 @@ impl Default for PpoConfig {
             hidden: vec![64, 64],
             initial_log_std: 0.0,
             bootstrap_time_limits: false,
+            observation_statistics: ObservationStatistics::EveryIteration,
         }
     }
 }
@@ -261,6 +278,9 @@ impl Ppo {
                 episodes: 0,
             })
             .collect();
+        if self.config.observation_statistics == ObservationStatistics::EveryStep {
+            self.observe(&slots);
+        }
         (0..self.config.iterations)
             .map(|iteration| {
                 let stats = self.iterate(iteration, environments, &mut slots)?;
@@ -315,18 +335,15 @@ impl Ppo {
         environments: &mut [E],
         slots: &mut [Slot],
     ) -> Result<IterationStats, PpoError> {
-        let rollouts: Vec<Rollout> = environments
-            .par_iter_mut()
-            .zip(slots.par_iter_mut())
-            .enumerate()
-            .map(|(e, (env, slot))| self.roll_out(iteration, e, env, slot))
-            .collect::<Result<_, _>>()?;
-        let raw: Vec<Vec<f64>> = rollouts
-            .iter()
-            .flat_map(|r| r.raw_observations.iter().cloned())
-            .collect();
+        let rollouts = self.roll_out(iteration, environments, slots)?;
         let (policy_loss, value_loss, learning_rate) = self.update(iteration, &rollouts)?;
-        self.normalizer.update(&raw);
+        if self.config.observation_statistics == ObservationStatistics::EveryIteration {
+            let raw: Vec<Vec<f64>> = rollouts
+                .iter()
+                .flat_map(|r| r.raw_observations.iter().cloned())
+                .collect();
+            self.normalizer.update(&raw);
+        }
         let steps: usize = rollouts.iter().map(|r| r.rewards.len()).sum();
         let returns: Vec<f64> = rollouts
             .iter()
@@ -344,65 +361,106 @@ impl Ppo {
         })
     }
 
-    /// `steps_per_environment` steps of environment `e` from its slot, actions sampled from the
-    /// policy with a generator of (seed, iteration, e).
+    /// Adds the slots' current observations (environments in order) to the statistics.
+    fn observe(&mut self, slots: &[Slot]) {
+        let observations: Vec<Vec<f64>> = slots.iter().map(|s| s.observation.clone()).collect();
+        self.normalizer.update(&observations);
+    }
+
+    /// `steps_per_environment` steps of every environment from its slot, stepped in parallel,
+    /// actions sampled from the policy with a generator of (seed, iteration, environment). With
+    /// statistics updated at every step, the environments go in lockstep and each step's new
+    /// observations join the statistics (in environment order) before the next step.
     fn roll_out<E: Environment>(
-        &self,
+        &mut self,
         iteration: usize,
+        environments: &mut [E],
+        slots: &mut [Slot],
+    ) -> Result<Vec<Rollout>, PpoError> {
+        let n = environments.len();
+        let mut rngs: Vec<ChaCha8Rng> = (0..n)
+            .map(|e| ChaCha8Rng::seed_from_u64(mix(self.seed, iteration as u64 + 1, e as u64)))
+            .collect();
+        let mut rollouts = vec![Rollout::default(); n];
+        let steps = self.config.steps_per_environment;
+        let (chunk, rounds) = match self.config.observation_statistics {
+            ObservationStatistics::EveryStep => (1, steps),
+            ObservationStatistics::EveryIteration => (steps, 1),
+        };
+        for _ in 0..rounds {
+            let this = &*self;
+            environments
+                .par_iter_mut()
+                .zip(slots.par_iter_mut())
+                .zip(rngs.par_iter_mut())
+                .zip(rollouts.par_iter_mut())
+                .enumerate()
+                .try_for_each(|(e, (((env, slot), rng), r))| {
+                    (0..chunk).try_for_each(|_| this.step_once(e, env, slot, rng, r))
+                })?;
+            if chunk == 1 {
+                self.observe(slots);
+            }
+        }
+        for (r, slot) in rollouts.iter_mut().zip(slots.iter()) {
+            r.last_value = self
+                .critic
+                .forward(&self.normalizer.normalize(&slot.observation))
+                .output()[0];
+        }
+        Ok(rollouts)
+    }
+
+    /// One step of environment `e` from its slot, recorded into `r`.
+    fn step_once<E: Environment>(
+        &self,
         e: usize,
         env: &mut E,
         slot: &mut Slot,
-    ) -> Result<Rollout, PpoError> {
-        let mut rng = ChaCha8Rng::seed_from_u64(mix(self.seed, iteration as u64 + 1, e as u64));
-        let std: Vec<f64> = self.log_std.iter().map(|s| s.exp()).collect();
-        let mut r = Rollout::default();
-        for _ in 0..self.config.steps_per_environment {
-            let observation = self.normalizer.normalize(&slot.observation);
-            let mean = self.actor.forward(&observation).output().to_vec();
-            let action: Vec<f64> = mean
-                .iter()
-                .zip(&std)
-                .map(|(m, s)| m + s * standard_normal(&mut rng))
-                .collect();
-            r.log_probs.push(log_prob(&action, &mean, &self.log_std));
-            r.values.push(self.critic.forward(&observation).output()[0]);
-            let step = env
-                .step(&action)
-                .map_err(|message| PpoError::Environment(format!("environment {e}: {message}")))?;
-            if !step.reward.is_finite() || step.observation.iter().any(|v| !v.is_finite()) {
-                return Err(PpoError::NonFinite(format!(
-                    "reward or observation from environment {e}"
-                )));
-            }
-            let bootstrap = if step.truncated && self.config.bootstrap_time_limits {
-                self.config.gamma
-                    * self
-                        .critic
-                        .forward(&self.normalizer.normalize(&step.observation))
-                        .output()[0]
-            } else {
-                0.0
-            };
-            r.bootstraps.push(bootstrap);
-            r.raw_observations
-                .push(std::mem::replace(&mut slot.observation, step.observation));
-            r.observations.push(observation);
-            r.actions.push(action);
-            r.rewards.push(step.reward);
-            r.dones.push(step.done);
-            slot.episode_return += step.reward;
-            if step.done {
-                r.episode_returns.push(slot.episode_return);
-                slot.episode_return = 0.0;
-                slot.episodes += 1;
-                slot.observation = env.reset(mix(self.seed, e as u64, slot.episodes));
-            }
+        rng: &mut ChaCha8Rng,
+        r: &mut Rollout,
+    ) -> Result<(), PpoError> {
+        let observation = self.normalizer.normalize(&slot.observation);
+        let mean = self.actor.forward(&observation).output().to_vec();
+        let action: Vec<f64> = mean
+            .iter()
+            .zip(&self.log_std)
+            .map(|(m, s)| m + s.exp() * standard_normal(rng))
+            .collect();
+        r.log_probs.push(log_prob(&action, &mean, &self.log_std));
+        r.values.push(self.critic.forward(&observation).output()[0]);
+        let step = env
+            .step(&action)
+            .map_err(|message| PpoError::Environment(format!("environment {e}: {message}")))?;
+        if !step.reward.is_finite() || step.observation.iter().any(|v| !v.is_finite()) {
+            return Err(PpoError::NonFinite(format!(
+                "reward or observation from environment {e}"
+            )));
         }
-        r.last_value = self
-            .critic
-            .forward(&self.normalizer.normalize(&slot.observation))
-            .output()[0];
-        Ok(r)
+        let bootstrap = if step.truncated && self.config.bootstrap_time_limits {
+            self.config.gamma
+                * self
+                    .critic
+                    .forward(&self.normalizer.normalize(&step.observation))
+                    .output()[0]
+        } else {
+            0.0
+        };
+        r.bootstraps.push(bootstrap);
+        r.raw_observations
+            .push(std::mem::replace(&mut slot.observation, step.observation));
+        r.observations.push(observation);
+        r.actions.push(action);
+        r.rewards.push(step.reward);
+        r.dones.push(step.done);
+        slot.episode_return += step.reward;
+        if step.done {
+            r.episode_returns.push(slot.episode_return);
+            slot.episode_return = 0.0;
+            slot.episodes += 1;
+            slot.observation = env.reset(mix(self.seed, e as u64, slot.episodes));
+        }
+        Ok(())
     }
 
     /// The update: `epochs` passes of minibatch Adam steps on the clipped objective, the value
@@ -578,6 +636,25 @@ mod tests {
         // Reach's episodes end by their time limit: the value estimates differ, so do the updates
         assert_ne!(run(true), run(false));
         assert_eq!(run(true), run(true));
+    }
+
+    #[test]
+    fn statistics_at_every_step_are_deterministic_and_differ_from_once_per_iteration() {
+        let train = |statistics: ObservationStatistics, threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| {
+                let config = PpoConfig {
+                    observation_statistics: statistics,
+                    ..small(3)
+                };
+                let mut ppo = Ppo::new(1, 1, config, 11).unwrap();
+                let stats = ppo.train(&mut reach(4)).unwrap();
+                (format!("{stats:?}"), ppo.act(&[0.3]))
+            })
+        };
+        let every_step = train(ObservationStatistics::EveryStep, 1);
+        assert_eq!(every_step, train(ObservationStatistics::EveryStep, 2));
+        assert_ne!(every_step, train(ObservationStatistics::EveryIteration, 1));
     }
 
     #[test]

@@ -326,22 +326,32 @@ fn over_evolution(
         .enumerate()
         .map(|(i, name)| {
             let runs = runs_of(populations, name);
-            let series: Vec<Vec<f64>> = runs.iter().map(|r| r.iter().map(|p| value(p)).collect()).collect();
-            let refs: Vec<&[f64]> = series.iter().map(Vec::as_slice).collect();
-            let (center, spread) = across_runs(&refs);
-            let x = runs
-                .first()
-                .map(|r| r.iter().map(|p| p.evaluations as f64).take(center.len()).collect())
-                .unwrap_or_default();
-            BandSeries {
-                label: name.clone(),
-                color: i,
-                x,
-                center,
-                spread,
-            }
+            let points: Vec<Vec<(f64, f64)>> = runs
+                .iter()
+                .map(|r| r.iter().map(|p| (p.evaluations as f64, value(p))).collect())
+                .collect();
+            band(name, i, &points)
         })
         .collect()
+}
+
+/// One setting's curve from its runs' (x, y) points: median ± sd of y across runs at each
+/// point of the shortest run, at the first run's x.
+fn band(name: &str, color: usize, runs: &[Vec<(f64, f64)>]) -> BandSeries {
+    let values: Vec<Vec<f64>> = runs.iter().map(|r| r.iter().map(|p| p.1).collect()).collect();
+    let refs: Vec<&[f64]> = values.iter().map(Vec::as_slice).collect();
+    let (center, spread) = across_runs(&refs);
+    let x = runs
+        .first()
+        .map(|r| r.iter().map(|p| p.0).take(center.len()).collect())
+        .unwrap_or_default();
+    BandSeries {
+        label: name.to_string(),
+        color,
+        x,
+        center,
+        spread,
+    }
 }
 
 /// The note of curves of population medians, median ± sd across runs.
@@ -499,20 +509,7 @@ fn fitness_series(names: &[String], experiments: &[ExperimentData]) -> Vec<BandS
                         .collect()
                 })
                 .collect();
-            let values: Vec<Vec<f64>> = runs.iter().map(|r| r.iter().map(|p| p.1).collect()).collect();
-            let refs: Vec<&[f64]> = values.iter().map(Vec::as_slice).collect();
-            let (center, spread) = across_runs(&refs);
-            let x = runs
-                .first()
-                .map(|r| r.iter().map(|p| p.0).take(center.len()).collect())
-                .unwrap_or_default();
-            BandSeries {
-                label: name.clone(),
-                color: i,
-                x,
-                center,
-                spread,
-            }
+            band(name, i, &runs)
         })
         .collect()
 }

@@ -60,6 +60,22 @@ pub fn implied_representation(task: &crate::config::TaskConfig, width: usize, he
     serde_json::from_value(table).ok()
 }
 
+/// The evaluator of a co-design kind: bodies from `body`, trained with `ppo` on the
+/// experiment's EvoGym task.
+pub fn codesign_evaluator<G>(
+    experiment: &Experiment,
+    body: super::BodyOf<G>,
+    ppo: PpoConfig,
+    learning_curve: bool,
+) -> Result<CodesignEvaluator<G>, FieldError> {
+    Ok(CodesignEvaluator::new(
+        body,
+        evogym_task(experiment)?,
+        ppo,
+        learning_curve,
+    ))
+}
+
 /// Checks the grid's size and PPO's settings of a co-design kind, and its task; errors name the
 /// field (`genotype.width`, `genotype.ppo.clip`, `task.kind`).
 pub fn validate_codesign(

@@ -95,8 +95,7 @@ impl CppnGenotype {
         experiment: &Experiment,
         ppo: PpoConfig,
     ) -> Result<CodesignEvaluator<NetworkGenome>, FieldError> {
-        let task = codesign::evogym_task(experiment)?;
-        Ok(CodesignEvaluator::new(self.body(), task, ppo, self.learning_curve))
+        codesign::codesign_evaluator(experiment, self.body(), ppo, self.learning_curve)
     }
 }
 

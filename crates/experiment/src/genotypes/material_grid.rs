@@ -180,8 +180,7 @@ impl MaterialGridGenotype {
         experiment: &Experiment,
         ppo: PpoConfig,
     ) -> Result<CodesignEvaluator<MaterialCells>, FieldError> {
-        let task = codesign::evogym_task(experiment)?;
-        Ok(CodesignEvaluator::new(self.body(), task, ppo, self.learning_curve))
+        codesign::codesign_evaluator(experiment, self.body(), ppo, self.learning_curve)
     }
 }
 

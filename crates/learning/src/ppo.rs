@@ -60,7 +60,7 @@ pub struct PpoConfig {
     /// When the observation statistics take in new observations: once per iteration after the
     /// update (the default, what every figure in docs/learning.md and docs/ch5.2.md used), or at
     /// every step, each new observation before the policy sees it (the reference's
-    /// `VecNormalize`). Neither closes the gap to EvoGym's own PPO on Walker (docs/learning.md).
+    /// `VecNormalize`; it did not change Walker's seed-1 training, docs/learning.md).
     pub observation_statistics: ObservationStatistics,
 }
 

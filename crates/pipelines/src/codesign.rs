@@ -12,7 +12,8 @@
 //!   across the final population of a run; one value per run, boxplots per setting with the
 //!   Mann–Whitney p-value of the two encodings of a task (settings named `…-direct-<task>` and
 //!   `…-cppn-<task>`).
-//! - **Learning over evolution**: the population's median ρ, initial and final r̄′ at every
+//! - **Learning over evolution**: the population's median ρ, initial and final r̄′, and learning
+//!   speed (the gain in the first third of training, r̄′(⌊(n − 1)/3⌋) − r̄′(0)) at every
 //!   snapshot.
 //! - **Morphology descriptors** (fig. 5.19): the population's mean share of cells present and
 //!   of rigid, soft, horizontal and vertical actuator voxels at every snapshot.
@@ -63,6 +64,9 @@ pub struct PopulationLearning {
     pub initial: f64,
     /// Median across members of the smoothed curve's last value.
     pub last: f64,
+    /// Learning speed: median across members of the gain in the first third of training,
+    /// r̄′(⌊(len − 1)/3⌋) − r̄′(0), the share of ρ learned early.
+    pub early_gain: f64,
     /// Mean across members of the five morphology descriptors.
     pub materials: [f64; 5],
 }
@@ -137,6 +141,7 @@ fn population(
         radius: median(&curves.iter().map(|c| c[c.len() - 1] - c[0]).collect::<Vec<_>>()),
         initial: median(&curves.iter().map(|c| c[0]).collect::<Vec<_>>()),
         last: median(&curves.iter().map(|c| c[c.len() - 1]).collect::<Vec<_>>()),
+        early_gain: median(&curves.iter().map(|c| c[(c.len() - 1) / 3] - c[0]).collect::<Vec<_>>()),
         materials,
     })
 }
@@ -428,6 +433,11 @@ pub fn codesign(options: &CodesignOptions, progress: &dyn Progress) -> Result<Co
                 "reward per step",
                 over_evolution(&names, &populations, &|p| p.last),
             ),
+            panel(
+                "learning speed: gain in the first third",
+                "reward per step",
+                over_evolution(&names, &populations, &|p| p.early_gain),
+            ),
         ],
         legend_title: "setting".into(),
         note: population_note(),
@@ -455,7 +465,7 @@ pub fn codesign(options: &CodesignOptions, progress: &dyn Progress) -> Result<Co
         note: plot::band::median_sd_note(),
     };
     files.extend(plot::save(&fitness, &options.out.join("fitness"))?);
-    let mut radius_csv = String::from("setting,run,evaluations,radius,initial,final");
+    let mut radius_csv = String::from("setting,run,evaluations,radius,initial,final,early_gain");
     for d in DESCRIPTORS {
         let _ = write!(radius_csv, ",mean_{d}");
     }
@@ -463,8 +473,8 @@ pub fn codesign(options: &CodesignOptions, progress: &dyn Progress) -> Result<Co
     for p in &populations {
         let _ = write!(
             radius_csv,
-            "{},{},{},{},{},{}",
-            p.setting, p.run, p.evaluations, p.radius, p.initial, p.last
+            "{},{},{},{},{},{},{}",
+            p.setting, p.run, p.evaluations, p.radius, p.initial, p.last, p.early_gain
         );
         for m in p.materials {
             let _ = write!(radius_csv, ",{m}");
@@ -588,6 +598,14 @@ mod tests {
         assert_eq!((p.initial, p.last, p.radius), (1.0, 1.5, 1.0));
         assert!((p.materials[0] - (0.5 + 1.0 + 1.0) / 3.0).abs() < 1e-12);
         assert!(population("s", 0, 10, &[], 2).is_none());
+        // learning speed: the gain by a third of the curve (index 2 of 7), median of 4, 0, 1
+        let rows = vec![
+            member(&[0.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0], "3"),
+            member(&[1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0], "3"),
+            member(&[0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0], "3"),
+        ];
+        let p = population("s", 0, 10, &rows, 1).unwrap();
+        assert_eq!((p.early_gain, p.radius), (1.0, 3.0));
     }
 
     #[test]
@@ -600,6 +618,7 @@ mod tests {
             radius: 0.0,
             initial: 0.0,
             last: 0.0,
+            early_gain: 0.0,
             materials: [0.0; 5],
         };
         let all = [p(25), p(125), p(175), p(350), p(500)];

@@ -41,7 +41,10 @@ pub fn format_tick(v: f64) -> String {
         } else {
             format!("{k:.1}k")
         }
-    } else if a >= 100.0 || a == 0.0 {
+    } else if a < 1e-12 {
+        // a tick at 0 that rounding moved off it
+        "0".to_string()
+    } else if a >= 100.0 {
         format!("{}", v.round())
     } else if a >= 1.0 {
         trim(format!("{v:.2}"))
@@ -87,5 +90,6 @@ mod tests {
         assert_eq!(format_tick(0.0004), "0.0004");
         assert_eq!(format_tick(-0.00015), "-0.00015");
         assert_eq!(format_tick(0.005), "0.005");
+        assert_eq!(format_tick(-6.8e-21), "0");
     }
 }

@@ -110,13 +110,18 @@ fn run_case(i: usize, only: Option<usize>, solver: Solver) -> Result<(f64, f64),
     Ok((lo, hi))
 }
 
-/// 1,000 random connected bodies up to 10×10, random actuation, 30 s, cycling through every
-/// terrain and both presets. Every case must stay finite; at most 0.5 % of cases may leave the
-/// sane area bounds (a known, rare tangle of very large bodies tumbling down steep slopes in the
-/// rope-less 2022 preset: docs/physics.md, "Known limitations"). Failures are printed.
+/// 400 random connected bodies up to 10×10, random actuation, 30 s, cycling through every
+/// terrain and both presets (ROBUSTNESS_CASES=n runs more; 1,000 and 10,000 were run before
+/// releases). Every case must stay finite; at most 0.5 % of cases may leave the sane area bounds
+/// (a known, rare tangle of very large bodies tumbling down steep slopes in the rope-less 2022
+/// preset: docs/physics.md, "Known limitations"). Failures are printed.
 #[test]
-fn a_thousand_random_bodies_stay_finite_and_sane_on_every_terrain() {
-    random_bodies_stay_finite_and_sane(1000, Solver::SoftSubsteps);
+fn random_bodies_stay_finite_and_sane_on_every_terrain() {
+    let cases = std::env::var("ROBUSTNESS_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(400);
+    random_bodies_stay_finite_and_sane(cases, Solver::SoftSubsteps);
 }
 
 /// The same under the sequential-impulse solver (dyn4j's pipeline), on fewer cases: it is slower.
@@ -126,7 +131,7 @@ fn random_bodies_stay_finite_and_sane_under_sequential_impulses() {
     let cases = std::env::var("ROBUSTNESS_SEQUENTIAL_CASES")
         .ok()
         .and_then(|v| v.parse().ok())
-        .unwrap_or(120);
+        .unwrap_or(80);
     random_bodies_stay_finite_and_sane(cases, Solver::SequentialImpulses);
 }
 

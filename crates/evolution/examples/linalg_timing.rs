@@ -1,7 +1,9 @@
 //! Timing of the CMA-ES eigendecomposition (`vsrlab_evolution::linalg`): a cold
 //! `symmetric_eigen` of a random symmetric positive-definite matrix, then a warm
 //! `symmetric_eigen_from` of a small perturbation of it (the next generation's covariance) from
-//! the first basis, with the residual ‖B V − V Λ‖_max / ‖B‖_max on a few columns.
+//! the first basis, with the residual ‖B V − V Λ‖_max / ‖B‖_max on a few columns and a
+//! checksum of the result's bits (equal checksums: bit-identical decompositions, e.g. before
+//! and after a speed change, or on CPUs with and without AVX).
 //!
 //! ```text
 //! cargo run --release -p vsrlab-evolution --example linalg_timing -- [374 784 1344]
@@ -65,6 +67,12 @@ fn main() {
                 residual = residual.max((bv - values[k] * vectors[i * n + k]).abs() / scale);
             }
         }
-        println!("n {n}: symmetric_eigen {cold:.3?}, symmetric_eigen_from (warm) {warm:.3?}, residual {residual:.1e}");
+        let checksum = values
+            .iter()
+            .chain(&vectors)
+            .fold(0u64, |h, v| h.rotate_left(5) ^ v.to_bits());
+        println!(
+            "n {n}: symmetric_eigen {cold:.3?}, symmetric_eigen_from (warm) {warm:.3?}, residual {residual:.1e}, bits {checksum:016x}"
+        );
     }
 }

@@ -43,6 +43,7 @@
 //! ```
 #![warn(missing_docs)]
 
+mod dense;
 pub mod error;
 mod kmeans;
 pub mod linalg;
@@ -56,6 +57,7 @@ pub mod run;
 pub mod search_state;
 mod selection;
 pub mod serde_float;
+mod simd;
 pub mod test_functions;
 
 pub use error::EvolutionError;

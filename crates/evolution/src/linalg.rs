@@ -5,22 +5,29 @@
 //! Why this method: CMA-ES needs `C = B D² Bᵀ` for n up to ~1,500 genes. Householder + QL costs
 //! a fixed ≈ 7n³ flops, does no sweeps, and is written so that every O(n³) loop runs over
 //! contiguous rows. The cyclic Jacobi method used before touched two strided columns per
-//! rotation and needed several O(n³) sweeps: 15–30 s against ≈ 0.45 s now for n = 784 (release
-//! build, shared 2-core machine). Householder + QL is backward stable:
+//! rotation and needed several O(n³) sweeps: 15–30 s against ≈ 0.26 s now for n = 784 (release
+//! build, 2 threads with AVX, shared 2-core machine). Householder + QL is backward stable:
 //! eigenvalues are accurate to ≈ ε‖C‖ in absolute terms and the eigenvectors are orthonormal to
 //! working precision. Hand-written to avoid a linear-algebra dependency; single-threaded, with a
 //! fixed order of operations (Rust does not fuse multiply-adds), so the same input gives the
-//! same bits.
+//! same bits, with or without AVX (`simd`) and for any number of threads.
 //!
 //! Layout (all matrices row-major):
 //! - the reduction works on the upper triangle, row by row; the symmetric matrix-vector product
 //!   and the rank-2 update both stream along rows;
-//! - the orthogonal factor Q is accumulated from the reflectors row by row, then transposed, so
-//!   that each QL (Givens) rotation combines two contiguous rows;
+//! - the orthogonal factor Q is accumulated from the reflectors row by row, then transposed into
+//!   strips of 32 columns, so that each QL (Givens) rotation combines two contiguous rows of a
+//!   strip;
 //! - the rotations of several QL sweeps are recorded (they depend only on the tridiagonal
-//!   matrix) and then applied a strip of columns at a time, so the strip stays in cache. Each
-//!   entry sees the same operations in the same order as without strips, so the strip width
-//!   does not change the result.
+//!   matrix) and then applied strip by strip, in parallel, each strip staying in cache. Each
+//!   entry sees the same operations in the same order as without strips, so neither the strip
+//!   width nor the thread count changes the result;
+//! - the row updates of the reduction and of the accumulation (each row on its own) are spread
+//!   over threads for large blocks, and every kernel runs with AVX where the CPU has it
+//!   (`simd`: the same bits).
+
+use crate::simd;
+use rayon::prelude::*;
 
 /// Eigenvalues and orthonormal eigenvectors of the symmetric `n × n` row-major matrix `a`:
 /// returns `(values, vectors)` with eigenvector `k` in column `k` of the row-major `vectors`
@@ -57,19 +64,26 @@ const ROTATIONS_PER_ROW: usize = 16;
 /// Columns per strip when applying recorded rotations.
 const STRIP: usize = 32;
 
+/// Trailing blocks with at least this many rows get their rank-2 (reduction) and rank-1
+/// (accumulation) updates spread over threads, a band of rows per task.
+const PARALLEL_ROWS: usize = 128;
+
 fn decompose(a: &[f64], n: usize) -> (Vec<f64>, Vec<f64>) {
+    if n == 0 {
+        return (Vec::new(), Vec::new());
+    }
     if (0..n).any(|i| a[i * n + i..(i + 1) * n].iter().any(|x| !x.is_finite())) {
         return (vec![f64::NAN; n], vec![f64::NAN; n * n]);
     }
     let mut work = a.to_vec();
     let (mut values, mut off_diagonal, taus) = tridiagonalize(&mut work, n);
-    let mut vectors = accumulate_reflectors(&work, &taus, n);
+    let q = accumulate_reflectors(&work, &taus, n);
     drop(work);
     // Rows of Qᵀ are the columns of Q, the eigenvector candidates; QL rotates pairs of them.
-    transpose_in_place(&mut vectors, n);
-    tridiagonal_ql(&mut values, &mut off_diagonal, &mut vectors, n);
-    transpose_in_place(&mut vectors, n);
-    (values, vectors)
+    let mut candidates = Strips::transposed(&q, n);
+    drop(q);
+    tridiagonal_ql(&mut values, &mut off_diagonal, &mut candidates, n);
+    (values, candidates.transposed_back())
 }
 
 /// Reduces the symmetric `a` (upper triangle, overwritten) to tridiagonal `T = Qᵀ a Q` with
@@ -78,6 +92,24 @@ fn decompose(a: &[f64], n: usize) -> (Vec<f64>, Vec<f64>) {
 /// `u_k` is left in row `k`, columns `k+1..n` of `a` (with `u_k[0] = 1`). `τ_k = 0` means
 /// `H_k = I` (the row was already reduced), which keeps diagonal matrices exact.
 fn tridiagonalize(a: &mut [f64], n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    #[cfg(target_arch = "x86_64")]
+    if simd::avx() {
+        // SAFETY: `simd::avx` checked that the CPU supports AVX.
+        return unsafe { tridiagonalize_avx(a, n) };
+    }
+    tridiagonalize_body(a, n)
+}
+
+/// [`tridiagonalize`] compiled with AVX (the same operations: see [`simd`]).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[inline(never)]
+unsafe fn tridiagonalize_avx(a: &mut [f64], n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    tridiagonalize_body(a, n)
+}
+
+#[inline(always)]
+fn tridiagonalize_body(a: &mut [f64], n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
     let mut d = vec![0.0; n];
     let mut e = vec![0.0; n];
     let mut taus = vec![0.0; n];
@@ -120,12 +152,14 @@ fn tridiagonalize(a: &mut [f64], n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
         let kappa = 0.5 * tau * dot(p, u);
         p.iter_mut().zip(u).for_each(|(w, &uj)| *w -= kappa * uj);
         let w: &[f64] = p;
-        for r in 0..m {
-            let row = &mut tail[r * n + k + 1 + r..(r + 1) * n];
-            let (ur, wr) = (u[r], w[r]);
-            for ((a, &wj), &uj) in row.iter_mut().zip(&w[r..]).zip(&u[r..]) {
-                *a -= ur * wj + wr * uj;
-            }
+        let update = |(r, row): (usize, &mut [f64])| {
+            rank_two_update(&mut row[k + 1 + r..], &u[r..], &w[r..], u[r], w[r]);
+        };
+        let rows = &mut tail[..m * n];
+        if m >= PARALLEL_ROWS {
+            rows.par_chunks_mut(n).enumerate().with_min_len(16).for_each(update);
+        } else {
+            rows.chunks_mut(n).enumerate().for_each(update);
         }
     }
     if n >= 2 {
@@ -136,6 +170,31 @@ fn tridiagonalize(a: &mut [f64], n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
         d[n - 1] = a[n * n - 1];
     }
     (d, e, taus)
+}
+
+/// `row[j] −= ur·w[j] + wr·u[j]`: one row of the reduction's update `A ← A − u wᵀ − w uᵀ`.
+fn rank_two_update(row: &mut [f64], u: &[f64], w: &[f64], ur: f64, wr: f64) {
+    #[cfg(target_arch = "x86_64")]
+    if simd::avx() {
+        // SAFETY: `simd::avx` checked that the CPU supports AVX.
+        return unsafe { rank_two_update_avx(row, u, w, ur, wr) };
+    }
+    rank_two_update_body(row, u, w, ur, wr)
+}
+
+/// [`rank_two_update`] compiled with AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[inline(never)]
+unsafe fn rank_two_update_avx(row: &mut [f64], u: &[f64], w: &[f64], ur: f64, wr: f64) {
+    rank_two_update_body(row, u, w, ur, wr)
+}
+
+#[inline(always)]
+fn rank_two_update_body(row: &mut [f64], u: &[f64], w: &[f64], ur: f64, wr: f64) {
+    for ((a, &wj), &uj) in row.iter_mut().zip(w).zip(u) {
+        *a -= ur * wj + wr * uj;
+    }
 }
 
 /// `Q = H₀ H₁ ⋯ H_{n−3}` (row-major) from the reflectors left by [`tridiagonalize`], by
@@ -159,16 +218,92 @@ fn accumulate_reflectors(reflectors: &[f64], taus: &[f64], n: usize) -> Vec<f64>
         let w = &mut w[..m];
         w.fill(0.0);
         for (r, &ur) in u.iter().enumerate() {
-            let row = &q[(c0 + r) * n + c0..(c0 + r + 1) * n];
-            w.iter_mut().zip(row).for_each(|(wj, &qj)| *wj += ur * qj);
+            axpy(ur, &q[(c0 + r) * n + c0..(c0 + r + 1) * n], w);
         }
-        for (r, &ur) in u.iter().enumerate() {
-            let f = tau * ur;
-            let row = &mut q[(c0 + r) * n + c0..(c0 + r + 1) * n];
-            row.iter_mut().zip(w.iter()).for_each(|(qj, &wj)| *qj -= f * wj);
+        let w: &[f64] = w;
+        let update = |(r, row): (usize, &mut [f64])| axpy(-(tau * u[r]), w, &mut row[c0..]);
+        let rows = &mut q[c0 * n..];
+        if m >= PARALLEL_ROWS {
+            rows.par_chunks_mut(n).enumerate().with_min_len(16).for_each(update);
+        } else {
+            rows.chunks_mut(n).enumerate().for_each(update);
         }
     }
     q
+}
+
+/// `y[j] += f·x[j]`. (Adding `(−f)·x` is subtracting `f·x`: the same bits.)
+fn axpy(f: f64, x: &[f64], y: &mut [f64]) {
+    #[cfg(target_arch = "x86_64")]
+    if simd::avx() {
+        // SAFETY: `simd::avx` checked that the CPU supports AVX.
+        return unsafe { axpy_avx(f, x, y) };
+    }
+    axpy_body(f, x, y)
+}
+
+/// [`axpy`] compiled with AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[inline(never)]
+unsafe fn axpy_avx(f: f64, x: &[f64], y: &mut [f64]) {
+    axpy_body(f, x, y)
+}
+
+#[inline(always)]
+fn axpy_body(f: f64, x: &[f64], y: &mut [f64]) {
+    for (yj, &xj) in y.iter_mut().zip(x) {
+        *yj += f * xj;
+    }
+}
+
+/// A row-major `n × n` matrix stored as strips of [`STRIP`] columns (each strip `n` rows of
+/// `STRIP` entries, contiguous; the last strip padded with zeros), so that strips can be
+/// rotated independently, in parallel, each staying in cache.
+struct Strips {
+    n: usize,
+    data: Vec<f64>,
+}
+
+impl Strips {
+    /// `Mᵀ` of the row-major `m`, in strips.
+    fn transposed(m: &[f64], n: usize) -> Self {
+        let count = n.div_ceil(STRIP);
+        let mut data = vec![0.0; count * n * STRIP];
+        // (Mᵀ)[r][c] = M[c][r]
+        for (c, row) in m.chunks_exact(n).enumerate() {
+            let (strip, lane) = (c / STRIP, c % STRIP);
+            let block = &mut data[strip * n * STRIP..(strip + 1) * n * STRIP];
+            for (r, &v) in row.iter().enumerate() {
+                block[r * STRIP + lane] = v;
+            }
+        }
+        Self { n, data }
+    }
+
+    /// The transpose of the stored matrix, row-major.
+    fn transposed_back(&self) -> Vec<f64> {
+        let n = self.n;
+        let mut out = vec![0.0; n * n];
+        for (i, row) in out.chunks_exact_mut(n).enumerate() {
+            let (strip, lane) = (i / STRIP, i % STRIP);
+            let block = &self.data[strip * n * STRIP..(strip + 1) * n * STRIP];
+            for (k, v) in row.iter_mut().enumerate() {
+                *v = block[k * STRIP + lane];
+            }
+        }
+        out
+    }
+
+    /// Applies `rotations` in order to the rows, every strip on its own (in parallel).
+    fn rotate(&mut self, rotations: &[Rotation]) {
+        if rotations.is_empty() {
+            return;
+        }
+        self.data
+            .par_chunks_mut(self.n * STRIP)
+            .for_each(|strip| rotate_strip(strip, rotations));
+    }
 }
 
 /// Implicit QL with Wilkinson shifts on the symmetric tridiagonal matrix (diagonal `d`,
@@ -176,7 +311,7 @@ fn accumulate_reflectors(reflectors: &[f64], taus: &[f64], n: usize) -> Vec<f64>
 /// the rotations `G` of all iterations have been applied to pairs of rows of `zt`
 /// (`zt ← Gᵀ zt`): rows that started as the columns of Q end as the eigenvectors of `Q T Qᵀ`,
 /// row `k` belonging to `d[k]`.
-fn tridiagonal_ql(d: &mut [f64], e: &mut [f64], zt: &mut [f64], n: usize) {
+fn tridiagonal_ql(d: &mut [f64], e: &mut [f64], zt: &mut Strips, n: usize) {
     let mut rotations: Vec<Rotation> = Vec::with_capacity(ROTATIONS_PER_ROW * n + n);
     for l in 0..n {
         let mut iterations = 0;
@@ -230,11 +365,11 @@ fn tridiagonal_ql(d: &mut [f64], e: &mut [f64], zt: &mut [f64], n: usize) {
             }
         }
         if rotations.len() >= ROTATIONS_PER_ROW * n {
-            apply_rotations(zt, n, &rotations);
+            zt.rotate(&rotations);
             rotations.clear();
         }
     }
-    apply_rotations(zt, n, &rotations);
+    zt.rotate(&rotations);
 }
 
 /// A Givens rotation of rows `i` and `i + 1`: `(z_i, z_{i+1}) ← (c z_i − s z_{i+1}, s z_i + c z_{i+1})`.
@@ -245,27 +380,41 @@ struct Rotation {
     s: f64,
 }
 
-/// Applies `rotations` in order to the rows of `zt`, one strip of [`STRIP`] columns at a time.
-fn apply_rotations(zt: &mut [f64], n: usize, rotations: &[Rotation]) {
-    let mut c0 = 0;
-    while c0 < n {
-        let c1 = (c0 + STRIP).min(n);
-        for &Rotation { i, c, s } in rotations {
-            let (upper, lower) = zt.split_at_mut((i + 1) * n);
-            let zi = &mut upper[i * n + c0..i * n + c1];
-            let zi1 = &mut lower[c0..c1];
-            for (x, y) in zi.iter_mut().zip(zi1.iter_mut()) {
-                let (a, b) = (*x, *y);
-                *x = c * a - s * b;
-                *y = s * a + c * b;
-            }
+/// Applies `rotations` in order to the rows of one strip (`STRIP` entries per row).
+fn rotate_strip(strip: &mut [f64], rotations: &[Rotation]) {
+    #[cfg(target_arch = "x86_64")]
+    if simd::avx() {
+        // SAFETY: `simd::avx` checked that the CPU supports AVX.
+        return unsafe { rotate_strip_avx(strip, rotations) };
+    }
+    rotate_strip_body(strip, rotations)
+}
+
+/// [`rotate_strip`] compiled with AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[inline(never)]
+unsafe fn rotate_strip_avx(strip: &mut [f64], rotations: &[Rotation]) {
+    rotate_strip_body(strip, rotations)
+}
+
+#[inline(always)]
+fn rotate_strip_body(strip: &mut [f64], rotations: &[Rotation]) {
+    for &Rotation { i, c, s } in rotations {
+        let (upper, lower) = strip.split_at_mut((i + 1) * STRIP);
+        let zi: &mut [f64; STRIP] = (&mut upper[i * STRIP..]).try_into().expect("a strip row");
+        let zi1: &mut [f64; STRIP] = (&mut lower[..STRIP]).try_into().expect("a strip row");
+        for (x, y) in zi.iter_mut().zip(zi1.iter_mut()) {
+            let (a, b) = (*x, *y);
+            *x = c * a - s * b;
+            *y = s * a + c * b;
         }
-        c0 = c1;
     }
 }
 
 /// `Σ row[t]·u[t]` (eight interleaved partial sums, in a fixed order) while adding `f·row[t]`
 /// to `y[t]`; all three slices have the same length.
+#[inline(always)]
 fn dot_and_axpy(row: &[f64], u: &[f64], f: f64, y: &mut [f64]) -> f64 {
     const LANES: usize = 8;
     let split = row.len() - row.len() % LANES;
@@ -289,22 +438,9 @@ fn dot_and_axpy(row: &[f64], u: &[f64], f: f64, y: &mut [f64]) -> f64 {
 }
 
 /// `Σ x[t]·y[t]`, summed in order.
+#[inline(always)]
 fn dot(x: &[f64], y: &[f64]) -> f64 {
     x.iter().zip(y).map(|(a, b)| a * b).sum()
-}
-
-/// Transposes the row-major `n × n` matrix `m` in place, in 16 × 16 tiles.
-fn transpose_in_place(m: &mut [f64], n: usize) {
-    const TILE: usize = 16;
-    for i0 in (0..n).step_by(TILE) {
-        for j0 in (i0..n).step_by(TILE) {
-            for i in i0..(i0 + TILE).min(n) {
-                for j in j0.max(i + 1)..(j0 + TILE).min(n) {
-                    m.swap(i * n + j, j * n + i);
-                }
-            }
-        }
-    }
 }
 
 #[cfg(test)]
@@ -339,6 +475,24 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// AVX or not, one thread or several: the same bits (n = 300 spans several strips and the
+    /// parallel row updates).
+    #[test]
+    fn bits_do_not_depend_on_avx_or_threads() {
+        let n = 300;
+        let a = random_spd(n, 11);
+        let bits = |(values, vectors): (Vec<f64>, Vec<f64>)| -> Vec<u64> {
+            values.iter().chain(&vectors).map(|v| v.to_bits()).collect()
+        };
+        let reference = bits(symmetric_eigen(&a, n));
+        let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+        assert!(one.install(|| bits(symmetric_eigen(&a, n)) == reference), "one thread");
+        crate::simd::FORCE_PORTABLE.store(true, std::sync::atomic::Ordering::Relaxed);
+        let portable = bits(symmetric_eigen(&a, n));
+        crate::simd::FORCE_PORTABLE.store(false, std::sync::atomic::Ordering::Relaxed);
+        assert!(portable == reference, "portable kernels");
     }
 
     #[test]

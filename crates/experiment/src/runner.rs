@@ -621,7 +621,9 @@ fn evaluate_generation<G: Genotype, O: SearchOptimizer<G>>(
     optimizer: &mut O,
     state: &mut RunState,
 ) -> Result<BatchResult, RunError> {
-    let batch = optimizer.ask();
+    // The optimizer's own parallel steps (CMA-ES's sampling, covariance update and
+    // decomposition) run on the run's pool too, so `--threads` bounds them as well.
+    let batch = session.pool.install(|| optimizer.ask());
     let evaluation_start = Instant::now();
     let genotypes: Vec<&G> = batch.iter().map(|c| &c.genotype).collect();
     let seeds: Vec<u64> = batch.iter().map(|c| c.seed).collect();
@@ -654,7 +656,7 @@ fn evaluate_generation<G: Genotype, O: SearchOptimizer<G>>(
             },
         });
     }
-    optimizer.tell(told)?;
+    session.pool.install(|| optimizer.tell(told))?;
     if let Some(best) = optimizer.best() {
         let hash = best.genotype.key();
         if state.best.as_ref().map(|b| b.0) != Some(hash) {

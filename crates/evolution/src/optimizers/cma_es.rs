@@ -19,7 +19,8 @@
 //!   afresh each time, the previous eigenbasis is not used, so the order and signs of the axes
 //!   in B may change from one decomposition to the next) after every generation in which at
 //!   least `1/(10 n (c_1 + c_μ))` generations have passed since the last one (lazy update of the
-//!   tutorial; < 1 for n ≲ 100, i.e. every generation). Eigenvalues are floored at
+//!   tutorial and pycma; < 1 for n ≲ 100, i.e. every generation; `updatecovwait` sets another
+//!   gap, as pycma's option of that name). Eigenvalues are floored at
 //!   `1e-20 × max` so C stays positive definite.
 //! - Flat fitness (best equal to the ⌈0.7λ⌉-th best): σ ← σ·exp(0.2 + c_σ/d_σ), as in Hansen's
 //!   reference code and jgea, so the run does not stall on plateaus.
@@ -37,6 +38,7 @@
 //!   1e-300; a mean update that would not be finite is skipped.
 
 use super::cma_termination::{CmaTermination, Monitor, Snapshot};
+use crate::dense::{transform_all, CovarianceUpdate};
 use crate::error::EvolutionError;
 use crate::linalg::symmetric_eigen_from;
 use crate::optimizer::{ensure, Candidate, Individual, Optimizer, Sense, Tell, Told};
@@ -71,6 +73,12 @@ pub struct CmaSettings {
     /// whenever the small regime has used fewer evaluations than the large one).
     #[serde(skip_serializing_if = "is_ipop")]
     pub restart_strategy: RestartStrategy,
+    /// Generations between two eigendecompositions of C (pycma's option of the same name).
+    /// Default: the tutorial's and pycma's lazy gap `1/(10 n (c_1 + c_μ))` (≈ 6.9 at n = 784,
+    /// λ = 24; below 1, i.e. every generation, for n ≲ 100). Hansen's purecma waits five times
+    /// as long. The O(n³) decomposition dominates the optimizer's time at high dimension.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub updatecovwait: Option<f64>,
 }
 
 impl Default for CmaSettings {
@@ -82,6 +90,7 @@ impl Default for CmaSettings {
             restarts: 0,
             restart_increase: 2.0,
             restart_strategy: RestartStrategy::Ipop,
+            updatecovwait: None,
         }
     }
 }
@@ -266,6 +275,18 @@ pub struct CmaEs {
     /// checkpoints).
     #[serde(default)]
     regimes: Regimes,
+    /// The z and y = B D z of the batch handed out by the last `ask`, so that `tell` need not
+    /// compute them again (not saved: after a resume they are recomputed, to the same bits).
+    #[serde(skip)]
+    samples: Option<Samples>,
+}
+
+/// The draws behind one generation's samples, by candidate index.
+#[derive(Debug, Clone)]
+struct Samples {
+    generation: u64,
+    zs: Vec<Vec<f64>>,
+    ys: Vec<Vec<f64>>,
 }
 
 /// Evaluations per BIPOP regime and the large regime's population.
@@ -318,6 +339,10 @@ impl CmaEs {
             config.settings.restart_increase.is_finite() && config.settings.restart_increase >= 1.0,
             || "CMA-ES: restart_increase must be a finite number ≥ 1".into(),
         )?;
+        ensure(
+            config.settings.updatecovwait.is_none_or(|g| g.is_finite() && g >= 0.0),
+            || "CMA-ES: updatecovwait must be a finite number ≥ 0".into(),
+        )?;
         let identity = identity(n);
         Ok(Self {
             sigma: config.settings.sigma0,
@@ -340,6 +365,7 @@ impl CmaEs {
                 large_lambda: lambda,
                 ..Regimes::default()
             },
+            samples: None,
         })
     }
 
@@ -424,17 +450,27 @@ impl CmaEs {
         self.state.rng(index, Stream::Sampling).normal_vec(self.mean.len())
     }
 
-    /// `B · (scales ∘ z)` (pass all-ones scales for `B z`).
-    fn transform(&self, z: &[f64], scaled: bool) -> Vec<f64> {
-        let n = z.len();
-        let dz: Vec<f64> = if scaled {
-            z.iter().zip(&self.scales).map(|(a, d)| a * d).collect()
-        } else {
-            z.to_vec()
-        };
-        (0..n)
-            .map(|i| (0..n).map(|k| self.basis[i * n + k] * dz[k]).sum())
-            .collect()
+    /// `y_k = B · (scales ∘ z_k)` for every `z_k` (`scaled = false`: `B z_k`).
+    fn transform(&self, zs: &[Vec<f64>], scaled: bool) -> Vec<Vec<f64>> {
+        let scales = scaled.then_some(self.scales.as_slice());
+        transform_all(&self.basis, scales, zs)
+    }
+
+    /// The z and y of the samples in `order`: those `ask` computed for this generation, or
+    /// the same drawn and transformed again (after a resume from a checkpoint).
+    fn ranked_samples(&mut self, order: &[usize], generation: u64) -> (Vec<Vec<f64>>, Vec<Vec<f64>>) {
+        match self.samples.take() {
+            Some(mut s) if s.generation == generation && order.iter().all(|&k| k < s.zs.len()) => {
+                let zs = order.iter().map(|&k| std::mem::take(&mut s.zs[k])).collect();
+                let ys = order.iter().map(|&k| std::mem::take(&mut s.ys[k])).collect();
+                (zs, ys)
+            }
+            _ => {
+                let zs: Vec<Vec<f64>> = order.iter().map(|&k| self.z(k)).collect();
+                let ys = self.transform(&zs, true);
+                (zs, ys)
+            }
+        }
     }
 
     /// Eigendecomposition of C; eigenvalues are floored at `1e-20 × max`, and C is rebuilt
@@ -536,12 +572,17 @@ impl Optimizer for CmaEs {
         if let Some(pending) = self.state.pending_batch() {
             return pending;
         }
-        let genotypes: Vec<Vec<f64>> = (0..self.lambda)
-            .map(|k| {
-                let y = self.transform(&self.z(k), true);
-                self.mean.iter().zip(y).map(|(m, y)| m + self.sigma * y).collect()
-            })
+        let zs: Vec<Vec<f64>> = (0..self.lambda).map(|k| self.z(k)).collect();
+        let ys = self.transform(&zs, true);
+        let genotypes: Vec<Vec<f64>> = ys
+            .iter()
+            .map(|y| self.mean.iter().zip(y).map(|(m, y)| m + self.sigma * y).collect())
             .collect();
+        self.samples = Some(Samples {
+            generation: self.state.generation(),
+            zs,
+            ys,
+        });
         self.state.hand_out(genotypes, self.lambda)
     }
 
@@ -581,8 +622,7 @@ impl<O> Tell<O> for CmaEs {
         let nf = n as f64;
         let order = rank_best_first(&self.last, sense);
         // Ranked z and y = B D z of every sample.
-        let zs: Vec<Vec<f64>> = order.iter().map(|&k| self.z(k)).collect();
-        let ys: Vec<Vec<f64>> = zs.iter().map(|z| self.transform(z, true)).collect();
+        let (zs, ys) = self.ranked_samples(&order, generation);
 
         // Mean: m ← m + σ <y>_w (c_m = 1).
         let mut y_w = vec![0.0; n];
@@ -605,7 +645,7 @@ impl<O> Tell<O> for CmaEs {
         }
 
         // Step-size path with C^{-1/2} <y>_w = B <z>_w.
-        let c_inv_sqrt_y = self.transform(&z_w, false);
+        let c_inv_sqrt_y = self.transform(std::slice::from_ref(&z_w), false).remove(0);
         let ps_factor = (p.c_sigma * (2.0 - p.c_sigma) * p.mu_eff).sqrt();
         for (ps, v) in self.path_sigma.iter_mut().zip(&c_inv_sqrt_y) {
             *ps = (1.0 - p.c_sigma) * *ps + ps_factor * v;
@@ -640,20 +680,15 @@ impl<O> Tell<O> for CmaEs {
                 }
             })
             .collect();
-        for i in 0..n {
-            for j in i..n {
-                let mut rank_mu = 0.0;
-                for (w, y) in adjusted.iter().zip(&ys) {
-                    if *w != 0.0 {
-                        rank_mu += w * y[i] * y[j];
-                    }
-                }
-                let value =
-                    decay * self.covariance[i * n + j] + p.c_1 * self.path_c[i] * self.path_c[j] + p.c_mu * rank_mu;
-                self.covariance[i * n + j] = value;
-                self.covariance[j * n + i] = value;
-            }
+        CovarianceUpdate {
+            decay,
+            c_1: p.c_1,
+            c_mu: p.c_mu,
+            path: &self.path_c,
+            weights: &adjusted,
+            ys: &ys,
         }
+        .apply(&mut self.covariance);
 
         // Step size (cumulative step-size adaptation), with the flat-fitness escape.
         let exponent = (p.c_sigma / p.d_sigma) * (ps_norm / p.chi_n - 1.0);
@@ -665,7 +700,11 @@ impl<O> Tell<O> for CmaEs {
 
         self.keep_finite();
         self.state.advance(&batch);
-        let gap = 1.0 / (10.0 * nf * (p.c_1 + p.c_mu));
+        let gap = self
+            .config
+            .settings
+            .updatecovwait
+            .unwrap_or(1.0 / (10.0 * nf * (p.c_1 + p.c_mu)));
         if (self.state.generation() - self.eigen_generation) as f64 >= gap {
             self.decompose();
         }

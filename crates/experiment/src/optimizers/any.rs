@@ -11,7 +11,7 @@ use vsrlab_evolution::{
 
 /// An optimizer as the runner drives it: ask, tell, counters, best and population, and serde
 /// for checkpoints. Evaluations carry the speciation features as their outcome.
-pub trait SearchOptimizer<G>: Serialize + DeserializeOwned {
+pub trait SearchOptimizer<G>: Serialize + DeserializeOwned + Send {
     /// The batch to evaluate now (the same batch again until [`SearchOptimizer::tell`]).
     fn ask(&mut self) -> Vec<Candidate<G>>;
     /// Hands back the results of the pending batch.
@@ -69,7 +69,7 @@ pub trait WrapsOptimizer<G: Clone> {
 impl<G, T> SearchOptimizer<G> for T
 where
     G: Clone,
-    T: WrapsOptimizer<G> + Serialize + DeserializeOwned,
+    T: WrapsOptimizer<G> + Serialize + DeserializeOwned + Send,
 {
     fn ask(&mut self) -> Vec<Candidate<G>> {
         self.optimizer_mut().ask()

@@ -65,6 +65,12 @@ impl OptimizerKind for CmaParams {
                 format!("must be ≥ 1, got {}", cma.restart_increase),
             ));
         }
+        if let Some(gap) = cma.updatecovwait.filter(|g| !(g.is_finite() && *g >= 0.0)) {
+            return Err(FieldError::new(
+                "updatecovwait",
+                format!("must be a number of generations ≥ 0, got {gap}"),
+            ));
+        }
         if cma.restarts > 0 && !self.termination.enabled {
             return Err(FieldError::new(
                 "restarts",

@@ -114,6 +114,12 @@ fn errors_name_the_field_and_the_line() {
         ),
         (
             "kind = \"ga\"\npopulation_size = 10",
+            "kind = \"cma-es\"\nupdatecovwait = -2.0",
+            "",
+            "'optimizer.updatecovwait'",
+        ),
+        (
+            "kind = \"ga\"\npopulation_size = 10",
             "kind = \"cma-es\"\nrestarts = 3\nrestart_strategy = \"tripop\"",
             "",
             "'optimizer.restart_strategy'",
@@ -344,6 +350,7 @@ fn optimizer_fields_written_at_their_default_are_known_and_misspelt_ones_refused
     };
     let cases = [
         ("kind = \"cma-es\"\nrestarts = 0\nrestart_strategy = \"ipop\"", None),
+        ("kind = \"cma-es\"\nupdatecovwait = 34", None),
         ("kind = \"es\"\nsigma = 0.35", None),
         ("kind = \"map-elites\"\nbatch_size = 20", None),
         ("kind = \"se\"\nalpha = 0.75", None),

@@ -23,7 +23,8 @@ pub struct BenchArgs {
     #[arg(long, default_value = "2021")]
     pub preset: String,
     /// Only these robots (comma-separated: biped-4x3, worm-10x4, box-5x5, box-10x10, psa:small, psa:medium, psa:large,
-    /// evogym-walker, evogym-bridge-walker, evogym-beam-toppler, evogym-cave-crawler, 3d-quadruped, 3d-box-6x6x6, affordance-starfish).
+    /// evogym-walker, evogym-bridge-walker, evogym-beam-toppler, evogym-cave-crawler, 3d-quadruped, 3d-box-6x6x6, affordance-starfish,
+    /// and the PPO rows ppo-walker, ppo-bridge-walker: PPO iterations, "episodes" counting iterations).
     #[arg(long)]
     pub robots: Option<String>,
     /// Physics sub-steps per step (default: the engine's default).

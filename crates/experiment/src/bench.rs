@@ -9,7 +9,10 @@
 //! steps/s (psa-model.md, flat, MLP controller). The EvoGym rows run a full 5 × 5 body of
 //! horizontal actuators with a random centralized MLP on each of EvoGym's four tasks, on the
 //! mass-spring engine, compared with EvoGym 2.0.0's own environments (docs/multimaterial.md).
+//! The learning rows (`ppo-walker`, `ppo-bridge-walker`, `bench_learning`) time PPO iterations
+//! on two of those tasks against EvoGym's own PPO.
 
+use crate::bench_learning::LEARNING_CASES;
 use crate::cpu_time::{process_cpu_seconds, thread_cpu_seconds};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -305,7 +308,11 @@ pub enum BenchError {
 /// Checks the options that no episode would reject: known robots, a finite positive time budget
 /// and duration, a sane thread count.
 fn check_options(options: &BenchOptions) -> Result<(), BenchError> {
-    let known: Vec<&str> = STANDARD_CASES.iter().map(|c| c.name).collect();
+    let known: Vec<&str> = STANDARD_CASES
+        .iter()
+        .map(|c| c.name)
+        .chain(LEARNING_CASES.iter().map(|c| c.name))
+        .collect();
     if let Some(unknown) = options.robots.iter().flatten().find(|r| !known.contains(&r.as_str())) {
         return Err(BenchError::Option(format!(
             "robots: unknown robot '{unknown}': expected some of {}",
@@ -346,6 +353,9 @@ pub fn run_bench(options: &BenchOptions) -> Result<BenchReport, BenchError> {
             let parallel = case.measure_parallel(&pool, episodes)?;
             rows.push(case.row(Mode::Parallel, threads, parallel));
         }
+    }
+    for learning in LEARNING_CASES.iter().filter(|c| is_selected(options, c.name)) {
+        rows.extend(learning.rows(options, &pool)?);
     }
     Ok(BenchReport {
         dt: Locomotion::default().physics.dt,

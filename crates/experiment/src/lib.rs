@@ -44,6 +44,7 @@
 
 pub mod batch;
 pub mod bench;
+pub mod bench_learning;
 pub mod checkpoint;
 pub mod codesign;
 pub mod config;

@@ -57,6 +57,25 @@ pub fn format_tick(v: f64) -> String {
     }
 }
 
+/// Tick label on an axis spanning `span`: as [`format_tick`], with more decimals where its
+/// precision would give neighbouring ticks the same label (a narrow range far from 0, e.g.
+/// rewards per step of 0.00122 … 0.00134).
+pub fn format_tick_within(v: f64, span: f64) -> String {
+    let plain = format_tick(v);
+    let a = v.abs();
+    if !(span.is_finite() && span > 0.0 && (1e-12..10_000.0).contains(&a)) {
+        return plain;
+    }
+    // ticks are at least span/20 apart
+    let needed = (-(span / 20.0).log10()).ceil().clamp(0.0, 15.0) as usize;
+    let shown = plain.split('.').nth(1).map_or(0, str::len);
+    if shown >= needed {
+        plain
+    } else {
+        trim(format!("{v:.needed$}"))
+    }
+}
+
 fn trim(s: String) -> String {
     if s.contains('.') {
         s.trim_end_matches('0').trim_end_matches('.').to_string()
@@ -91,5 +110,20 @@ mod tests {
         assert_eq!(format_tick(-0.00015), "-0.00015");
         assert_eq!(format_tick(0.005), "0.005");
         assert_eq!(format_tick(-6.8e-21), "0");
+    }
+
+    #[test]
+    fn ticks_of_a_narrow_range_stay_distinct() {
+        let labels: Vec<String> = (0..7)
+            .map(|k| format_tick_within(0.00122 + 0.00002 * k as f64, 0.00015))
+            .collect();
+        let mut distinct = labels.clone();
+        distinct.dedup();
+        assert_eq!(distinct.len(), 7, "{labels:?}");
+        assert_eq!(labels[0], "0.00122");
+        assert_eq!(format_tick_within(250.5, 4.0), "250.5");
+        // a wide range keeps the short labels
+        assert_eq!(format_tick_within(0.0004, 0.01), "0.0004");
+        assert_eq!(format_tick_within(30_000.0, 1.0), "30k");
     }
 }

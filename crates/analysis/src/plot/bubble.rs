@@ -1,6 +1,6 @@
 //! Bubble plots: the species of populations, bubble area ∝ share, colour = value.
 
-use super::axes::{data_range, format_tick};
+use super::axes::{data_range, format_tick_within};
 use super::colors::viridis;
 use super::frame::{chart, Axis, FrameStyle};
 use super::text::{anchored, text_style};
@@ -172,7 +172,7 @@ impl BubbleFigure {
                 .map_err(err)?;
             let v = vmin + (vmax - vmin) * t;
             bar.draw(&Text::new(
-                format_tick(v),
+                format_tick_within(v, vmax - vmin),
                 (54, y),
                 anchored(13, HPos::Left, VPos::Center),
             ))

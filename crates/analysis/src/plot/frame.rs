@@ -1,7 +1,7 @@
 //! Chart frames: the titled cartesian chart every figure kind draws its data in, with its axes
 //! (numbers or class names), their labels and the grid.
 
-use super::axes::{class_tick, format_tick};
+use super::axes::{class_tick, format_tick_within};
 use super::text::text_style;
 use super::{err, DrawError};
 use plotters::coord::cartesian::Cartesian2d;
@@ -24,7 +24,7 @@ pub(super) struct Axis<'a> {
 }
 
 impl<'a> Axis<'a> {
-    /// A numeric axis over `range`, labelled `label`, ticks by [`format_tick`].
+    /// A numeric axis over `range`, labelled `label`, ticks by [`format_tick_within`].
     pub(super) fn numbers(range: Range<f64>, label: &'a str) -> Axis<'a> {
         Axis {
             range,
@@ -46,7 +46,7 @@ impl<'a> Axis<'a> {
     fn tick(&self, v: f64) -> String {
         match self.classes {
             Some(classes) => class_tick(v, classes),
-            None => format_tick(v),
+            None => format_tick_within(v, self.range.end - self.range.start),
         }
     }
 

@@ -19,7 +19,7 @@ mod legend;
 pub mod scatter;
 mod text;
 
-pub use axes::format_tick;
+pub use axes::{format_tick, format_tick_within};
 pub use band::{BandChart, BandFigure, BandSeries};
 pub use boxplot::{format_p, BoxFigure, BoxGroup};
 pub use bubble::{Bubble, BubbleFigure, BubblePanel};

@@ -117,22 +117,19 @@ fn run_case(i: usize, only: Option<usize>, solver: Solver) -> Result<(f64, f64),
 /// preset: docs/physics.md, "Known limitations"). Failures are printed.
 #[test]
 fn random_bodies_stay_finite_and_sane_on_every_terrain() {
-    let cases = std::env::var("ROBUSTNESS_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(400);
-    random_bodies_stay_finite_and_sane(cases, Solver::SoftSubsteps);
+    random_bodies_stay_finite_and_sane(cases("ROBUSTNESS_CASES", 400), Solver::SoftSubsteps);
 }
 
 /// The same under the sequential-impulse solver (dyn4j's pipeline), on fewer cases: it is slower.
 /// ROBUSTNESS_SEQUENTIAL_CASES=n runs more.
 #[test]
 fn random_bodies_stay_finite_and_sane_under_sequential_impulses() {
-    let cases = std::env::var("ROBUSTNESS_SEQUENTIAL_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(80);
-    random_bodies_stay_finite_and_sane(cases, Solver::SequentialImpulses);
+    random_bodies_stay_finite_and_sane(cases("ROBUSTNESS_SEQUENTIAL_CASES", 80), Solver::SequentialImpulses);
+}
+
+/// The number of cases in environment variable `name`, or `default`.
+fn cases(name: &str, default: usize) -> usize {
+    std::env::var(name).ok().and_then(|v| v.parse().ok()).unwrap_or(default)
 }
 
 fn random_bodies_stay_finite_and_sane(cases: usize, solver: Solver) {

@@ -19,6 +19,8 @@ const MIN_ROWS_PER_TASK: usize = 16;
 const SAMPLES: usize = 4;
 /// Rows of B per block of the sampling kernel: `ROWS × SAMPLES` independent sums in registers.
 const ROWS: usize = 8;
+/// Columns per block of the rank-μ kernel: that many independent sums in registers.
+const COLUMNS: usize = 32;
 
 /// `y_k = B (scales ∘ z_k)` for every `z_k` of `zs` (`scales = None`: `y_k = B z_k`), with `B`
 /// row-major `n × n`. Each entry is `Σ_k B_ik (scales_k z_k)` summed over k in order.
@@ -196,9 +198,6 @@ impl CovarianceUpdate<'_> {
         }
     }
 }
-
-/// Columns per block of the rank-μ kernel: that many independent sums in registers.
-const COLUMNS: usize = 32;
 
 /// Copies the upper triangle of the row-major `n × n` matrix onto the lower one, in tiles.
 fn mirror_upper(m: &mut [f64], n: usize) {

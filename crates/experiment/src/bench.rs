@@ -303,6 +303,9 @@ pub enum BenchError {
     /// An option is out of range or names nothing; the message names the option.
     #[error("{0}")]
     Option(String),
+    /// A learning row's training failed; the message names the row.
+    #[error("{0}")]
+    Learning(String),
 }
 
 /// Checks the options that no episode would reject: known robots, a finite positive time budget
@@ -382,14 +385,6 @@ struct Case<'a> {
     preset: &'a str,
 }
 
-/// Episodes, steps and time of one measurement.
-struct Measurement {
-    episodes: usize,
-    steps: u64,
-    cpu_seconds: f64,
-    wall_seconds: f64,
-}
-
 impl<'a> Case<'a> {
     /// The case's robot with the options' preset (and sensors and brain, where it takes them) on
     /// its task, for the options' duration (the robot kind's physics on a rigid-body task).
@@ -463,35 +458,66 @@ impl<'a> Case<'a> {
         })
     }
 
+    /// The row of a measurement.
+    fn row(&self, mode: Mode, threads: usize, m: Measurement) -> Row {
+        let what = Measured {
+            robot: self.name,
+            terrain: self.terrain,
+            step_seconds: self.task.task().step_seconds(),
+            voxels: self.robot.description().size(),
+            mode,
+            threads,
+        };
+        Row::measured(what, m, original_speed(self.preset, self.name))
+    }
+}
+
+/// Episodes (or iterations), steps and time of one measurement.
+pub(crate) struct Measurement {
+    pub episodes: usize,
+    pub steps: u64,
+    pub cpu_seconds: f64,
+    pub wall_seconds: f64,
+}
+
+/// What a row measured: the robot, its world, its step and size, and how it was run.
+pub(crate) struct Measured<'a> {
+    pub robot: &'a str,
+    pub terrain: &'a str,
+    pub step_seconds: f64,
+    pub voxels: usize,
+    pub mode: Mode,
+    pub threads: usize,
+}
+
+impl Row {
     /// The row of a measurement. Single-threaded rates use CPU time (robust to other load on the
     /// machine); parallel rates use wall time (throughput of the whole machine); the
-    /// cross-simulator unit always uses CPU time.
-    fn row(&self, mode: Mode, threads: usize, m: Measurement) -> Row {
-        let voxels = self.robot.description().size();
-        let steps_per_s = match mode {
+    /// cross-simulator unit always uses CPU time. The ratio to `original` is for single rows.
+    pub(crate) fn measured(what: Measured<'_>, m: Measurement, original: Option<OriginalSpeed>) -> Row {
+        let steps_per_s = match what.mode {
             Mode::Single => m.steps as f64 / m.cpu_seconds,
             Mode::Parallel => m.steps as f64 / m.wall_seconds,
         };
-        let original = original_speed(self.preset, self.name);
-        let dt = self.task.task().step_seconds();
+        let voxels = what.voxels as f64;
         Row {
-            robot: self.name.into(),
-            terrain: self.terrain.into(),
-            step_seconds: dt,
-            voxels,
-            mode,
-            threads,
+            robot: what.robot.into(),
+            terrain: what.terrain.into(),
+            step_seconds: what.step_seconds,
+            voxels: what.voxels,
+            mode: what.mode,
+            threads: what.threads,
             episodes: m.episodes,
             steps: m.steps,
             cpu_seconds: m.cpu_seconds,
             wall_seconds: m.wall_seconds,
             steps_per_s,
-            voxel_steps_per_s: steps_per_s * voxels as f64,
-            voxel_seconds_per_cpu_s: voxels as f64 * m.steps as f64 * dt / m.cpu_seconds,
+            voxel_steps_per_s: steps_per_s * voxels,
+            voxel_seconds_per_cpu_s: voxels * m.steps as f64 * what.step_seconds / m.cpu_seconds,
             original_steps_per_s: original.map(|o| o.steps_per_s),
             original_version: original.map(|o| o.version),
             ratio_to_original: original
-                .filter(|_| mode == Mode::Single)
+                .filter(|_| what.mode == Mode::Single)
                 .map(|o| steps_per_s / o.steps_per_s),
         }
     }

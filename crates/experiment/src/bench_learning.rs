@@ -4,7 +4,7 @@
 //! EvoGym 2.0's own PPO (stable-baselines3 2.8.0, one torch thread, the same settings), timed in
 //! the same session by `bench/evogym/ppo.sh` (docs/learning.md).
 
-use crate::bench::{BenchError, BenchOptions, Mode, Row};
+use crate::bench::{BenchError, BenchOptions, Measured, Measurement, Mode, OriginalSpeed, Row};
 use crate::cpu_time::{process_cpu_seconds, thread_cpu_seconds};
 use crate::learning_env::EvoGymLearning;
 use std::time::Instant;
@@ -41,14 +41,6 @@ pub const LEARNING_CASES: [LearningCase; 2] = [
 /// The body of every learning row.
 const BODY: &str = "33333/33333/33333/33333/33333";
 
-/// Iterations and steps of one measurement, and the time they took.
-struct Timing {
-    iterations: usize,
-    steps: u64,
-    cpu_seconds: f64,
-    wall_seconds: f64,
-}
-
 impl LearningCase {
     /// A single-threaded row and, with `options.parallel`, one on `pool` (PPO steps its four
     /// environments in parallel; the update is sequential).
@@ -65,8 +57,8 @@ impl LearningCase {
 
     /// One warm-up iteration, then iterations of one training until `min_cpu_seconds` of
     /// `cpu_seconds` (at least one).
-    fn measure(&self, min_cpu_seconds: f64, cpu_seconds: fn() -> f64) -> Result<Timing, BenchError> {
-        let failed = |e: String| BenchError::Option(format!("{}: {e}", self.name));
+    fn measure(&self, min_cpu_seconds: f64, cpu_seconds: fn() -> f64) -> Result<Measurement, BenchError> {
+        let failed = |e: String| BenchError::Learning(format!("{}: {e}", self.name));
         let task = EvoGymTask::from_name(self.task).ok_or_else(|| failed("unknown task".into()))?;
         let body = MaterialGrid::from_rows(BODY).map_err(|e| failed(e.to_string()))?;
         let config = PpoConfig {
@@ -87,8 +79,8 @@ impl LearningCase {
             ppo.train(&mut envs).map_err(|e| failed(e.to_string()))?;
             iterations += 1;
         }
-        Ok(Timing {
-            iterations,
+        Ok(Measurement {
+            episodes: iterations,
             steps: iterations as u64 * steps_per_iteration,
             cpu_seconds: cpu_seconds() - c0,
             wall_seconds: w0.elapsed().as_secs_f64(),
@@ -97,32 +89,21 @@ impl LearningCase {
 
     /// The row: steps are environment steps of the collection, their rate counts the update's
     /// time too; "episodes" are iterations.
-    fn row(&self, mode: Mode, threads: usize, t: Timing) -> Row {
-        let voxels = 25;
-        let steps_per_s = match mode {
-            Mode::Single => t.steps as f64 / t.cpu_seconds,
-            Mode::Parallel => t.steps as f64 / t.wall_seconds,
+    fn row(&self, mode: Mode, threads: usize, m: Measurement) -> Row {
+        let steps_per_iteration = m.steps as f64 / m.episodes as f64;
+        let evogym = OriginalSpeed {
+            steps_per_s: steps_per_iteration / (self.evogym_ms_per_iteration / 1000.0),
+            version: "EvoGym 2.0.0 PPO (SB3 2.8.0)",
         };
-        let steps_per_iteration = t.steps as f64 / t.iterations as f64;
-        let evogym_steps_per_s = steps_per_iteration / (self.evogym_ms_per_iteration / 1000.0);
-        Row {
-            robot: self.name.into(),
-            terrain: self.task.into(),
+        let what = Measured {
+            robot: self.name,
+            terrain: self.task,
             step_seconds: STEP_SECONDS,
-            voxels,
+            voxels: 25,
             mode,
             threads,
-            episodes: t.iterations,
-            steps: t.steps,
-            cpu_seconds: t.cpu_seconds,
-            wall_seconds: t.wall_seconds,
-            steps_per_s,
-            voxel_steps_per_s: steps_per_s * voxels as f64,
-            voxel_seconds_per_cpu_s: voxels as f64 * t.steps as f64 * STEP_SECONDS / t.cpu_seconds,
-            original_steps_per_s: Some(evogym_steps_per_s),
-            original_version: Some("EvoGym 2.0.0 PPO (SB3 2.8.0)"),
-            ratio_to_original: (mode == Mode::Single).then_some(steps_per_s / evogym_steps_per_s),
-        }
+        };
+        Row::measured(what, m, Some(evogym))
     }
 }
 

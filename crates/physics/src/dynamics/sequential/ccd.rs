@@ -27,6 +27,9 @@ use crate::math::{Rot, Vec2};
 
 /// Most steps of conservative advancement (dyn4j's default).
 const MAX_ITERATIONS: usize = 30;
+/// Conservative advancement's distance tolerance, ∛ε (dyn4j's); a literal, as `cbrt` is not a
+/// `const fn` and cost 2 % of a step computed per call (a test checks it is the same number).
+const TOLERANCE: f64 = 6.0554544523933395e-6;
 
 /// A static polygon as the pass sees it.
 #[derive(Debug, Clone, Copy)]
@@ -254,7 +257,7 @@ fn advance(
     st: &StaticShape,
     version: Dyn4jVersion,
 ) -> Option<(f64, Separation)> {
-    let tolerance = f64::EPSILON.cbrt();
+    let tolerance = TOLERANCE;
     let at = |l: f64| {
         let rot = super::turned(rot0, Rot::new(da * l));
         Placed::of(shape, pos0 + dp * l, rot)
@@ -316,4 +319,12 @@ fn advance(
 
 fn farthest_vertex(p: &Polygon, from: Vec2) -> f64 {
     p.verts().iter().map(|v| (*v - from).length()).fold(0.0, f64::max) + p.radius
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_tolerance_literal_is_the_cube_root_of_epsilon() {
+        assert_eq!(super::TOLERANCE.to_bits(), f64::EPSILON.cbrt().to_bits());
+    }
 }

@@ -168,6 +168,28 @@ pub(crate) fn distance(
     centre2: Vec2,
     version: Dyn4jVersion,
 ) -> Option<Separation> {
+    iterate::<true>(shape1, centre1, shape2, centre2, version)
+}
+
+/// Whether an iteration left the segment and the direction exactly (bit for bit) as they were:
+/// the loop is then at a fixed point, and running it to `MAX_ITERATIONS` changes nothing.
+fn unchanged(before: (Support, Support, Vec2), after: (Support, Support, Vec2)) -> bool {
+    let bits = |v: Vec2| (v.x.to_bits(), v.y.to_bits());
+    let same = |p: Support, q: Support| {
+        bits(p.point) == bits(q.point) && bits(p.on1) == bits(q.on1) && bits(p.on2) == bits(q.on2)
+    };
+    same(before.0, after.0) && same(before.1, after.1) && bits(before.2) == bits(after.2)
+}
+
+/// The distance iteration; `STOP_AT_FIXED_POINT` leaves the loop as soon as an iteration
+/// changes nothing (same result, fewer iterations: the tests compare both).
+fn iterate<const STOP_AT_FIXED_POINT: bool>(
+    shape1: &[Vec2],
+    centre1: Vec2,
+    shape2: &[Vec2],
+    centre2: Vec2,
+    version: Dyn4jVersion,
+) -> Option<Separation> {
     let tolerance = EPSILON.sqrt();
     let mut d = centre2 - centre1;
     if is_zero(d) {
@@ -179,6 +201,7 @@ pub(crate) fn distance(
     d = closest_to_origin(b.point, a.point);
     let mut c = a;
     for _ in 0..MAX_ITERATIONS {
+        let before = (a, b, d);
         d = -d;
         if d.length_squared() <= EPSILON {
             return None;
@@ -204,6 +227,10 @@ pub(crate) fn distance(
         } else {
             a = c;
             d = p2;
+        }
+        if STOP_AT_FIXED_POINT && unchanged(before, (a, b, d)) {
+            // every further iteration would repeat this one to the limit (3.3.0's quirk)
+            break;
         }
     }
     // out of iterations: `d` now points from the origin towards the difference (see the module)
@@ -280,5 +307,44 @@ mod tests {
         let old = distance(&sq, centre, &wall, wall_centre, Dyn4jVersion::V3_3_0).unwrap();
         assert!((old.distance + true_distance).abs() < 1e-9, "{old:?}");
         assert!(old.normal.x > 0.99, "{old:?}");
+    }
+
+    /// Leaving the loop at its fixed point gives the result, bit for bit, of running it to the
+    /// limit: squares at random poses near the flat terrain's border corner (where 3.3.0 runs to
+    /// the limit) and near each other, both versions.
+    #[test]
+    fn stopping_at_the_fixed_point_changes_no_bit() {
+        let wall = [
+            Vec2::new(0.0, 100.0),
+            Vec2::new(0.0, -45.0),
+            Vec2::new(10.0, -45.0),
+            Vec2::new(10.0, 5.0),
+        ];
+        let wall_centre = Vec2::new(4.188034188034188, 7.6068376068376065);
+        let bits = |s: Option<Separation>| {
+            s.map(|s| {
+                [
+                    s.distance, s.normal.x, s.normal.y, s.point1.x, s.point1.y, s.point2.x, s.point2.y,
+                ]
+                .map(f64::to_bits)
+            })
+        };
+        let mut fixed_points = 0;
+        for i in 0..2000u32 {
+            let f = |k: u32| ((i.wrapping_mul(2654435761).wrapping_add(k * 40503)) % 10007) as f64 / 10007.0;
+            let centre = Vec2::new(10.0 + 12.0 * f(1), 4.0 + 4.0 * f(2));
+            let r = crate::math::Rot::new(f(3) - 0.5);
+            let sq = square(0.0, 0.0, 0.3 + 0.4 * f(4)).map(|v| centre + r.apply(v));
+            for version in [Dyn4jVersion::V3_3_0, Dyn4jVersion::V4_2_1] {
+                let fast = iterate::<true>(&sq, centre, &wall, wall_centre, version);
+                let full = iterate::<false>(&sq, centre, &wall, wall_centre, version);
+                assert_eq!(bits(fast), bits(full), "pose {i}, {version:?}");
+                if version == Dyn4jVersion::V3_3_0 && fast.is_some_and(|s| s.distance < 0.0) {
+                    fixed_points += 1;
+                }
+            }
+        }
+        // the quirk's poses (negative distances) are the ones that reach the fixed point
+        assert!(fixed_points > 10, "only {fixed_points} poses ran to the limit");
     }
 }

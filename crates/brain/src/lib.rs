@@ -77,7 +77,7 @@ pub use controllers::heads::{HeadsController, HeadsSpec};
 pub use controllers::hebbian::{HebbianController, HebbianModel, HebbianSpec, Normalisation, WeightInit};
 pub use controllers::phase::{PhaseController, PhaseSpec};
 pub use controllers::phase_grid::{PhaseGridController, PhaseGridSpec, PhaseLayout};
-pub use controllers::policy::{PolicyController, PolicySpec};
+pub use controllers::policy::{PolicyController, PolicySpec, TargetAction};
 pub use controllers::random::{RandomController, RandomSpec};
 pub use controllers::smoothed::{SmoothedController, SmoothedSpec};
 pub use controllers::step::{StepController, StepSpec};

@@ -2,9 +2,13 @@
 //! as a brain so that a learned robot can be saved, replayed and drawn like any other: the
 //! readings are normalised by the running statistics PPO ended with
 //! (((x − mean) / √(var + 10⁻⁸)) clipped to ±10), pass through tanh hidden layers and a linear
-//! output layer (the Gaussian policy's mean, without noise), and each output a becomes the
-//! actuation clamp(scale · a + offset, −1, 1), which maps the policy's action space onto the
-//! robot's actuation range.
+//! output layer (the Gaussian policy's mean, without noise), and each output a becomes an
+//! actuation, in one of two ways that map the policy's action space onto the robot's:
+//!
+//! - `scale`, `offset`: clamp(scale · a + offset, −1, 1);
+//! - `target` ([`TargetAction`]): the environment's target t = clamp(a + shift, low, high), as
+//!   actuation (t − centre) / half_range, so that a robot whose actuation o drives the target
+//!   centre + half_range · o gets t to the last bit (the learned fitness replays exactly).
 //!
 //! # Parameter layout
 //!
@@ -30,13 +34,106 @@ pub struct PolicySpec {
     pub mean: Vec<f64>,
     /// Running variance of each reading.
     pub var: Vec<f64>,
-    /// Each output a is applied as clamp(scale · a + offset, −1, 1).
-    pub scale: f64,
-    /// See `scale`.
-    pub offset: f64,
+    /// Each output a is applied as clamp(scale · a + offset, −1, 1) (default 1; not with `target`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scale: Option<f64>,
+    /// See `scale` (default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub offset: Option<f64>,
+    /// The environment's target convention, instead of `scale` and `offset`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub target: Option<TargetAction>,
     /// Weights and biases (module docs).
     #[serde(default)]
     pub weights: Vec<f64>,
+}
+
+/// An action that is an offset from a target, as EvoGym's: the target t = clamp(a + shift, low,
+/// high) becomes the actuation (t − centre) / half_range. Not clamped to ±1: for EvoGym's range
+/// [0.6, 1.6] around 1.1, t = 0.6 gives −1.0000000000000002, which maps back to 0.6 exactly where
+/// −1 would give 0.6000000000000001. `half_range` should be a power of two for an exact round trip.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TargetAction {
+    /// Added to the action (EvoGym: 1, the rest length ratio).
+    pub shift: f64,
+    /// Lowest target (EvoGym: 0.6).
+    pub low: f64,
+    /// Highest target (EvoGym: 1.6).
+    pub high: f64,
+    /// The target of actuation 0 (EvoGym's robots in vsrlab: 1.1).
+    pub centre: f64,
+    /// Target change per unit of actuation (EvoGym's robots in vsrlab: 0.5).
+    pub half_range: f64,
+}
+
+impl TargetAction {
+    fn check(&self) -> Result<(), BrainError> {
+        for (field, v) in [
+            ("target.shift", self.shift),
+            ("target.low", self.low),
+            ("target.high", self.high),
+            ("target.centre", self.centre),
+            ("target.half_range", self.half_range),
+        ] {
+            finite(field, v)?;
+        }
+        if self.low > self.high {
+            return Err(BrainError::Invalid {
+                field: "target.high",
+                msg: format!("must be at least target.low ({}), got {}", self.low, self.high),
+            });
+        }
+        if self.half_range <= 0.0 {
+            return Err(BrainError::Invalid {
+                field: "target.half_range",
+                msg: format!("must be > 0, got {}", self.half_range),
+            });
+        }
+        Ok(())
+    }
+
+    /// The actuation of action `a`.
+    #[inline]
+    fn actuation(&self, a: f64) -> f64 {
+        ((a + self.shift).clamp(self.low, self.high) - self.centre) / self.half_range
+    }
+}
+
+/// How a policy's action becomes an actuation, resolved from the spec's fields.
+#[derive(Debug, Clone, Copy)]
+enum ActionMap {
+    Affine { scale: f64, offset: f64 },
+    Target(TargetAction),
+}
+
+impl ActionMap {
+    fn of(spec: &PolicySpec) -> Result<ActionMap, BrainError> {
+        let Some(target) = spec.target else {
+            let (scale, offset) = (spec.scale.unwrap_or(1.0), spec.offset.unwrap_or(0.0));
+            finite("scale", scale)?;
+            finite("offset", offset)?;
+            return Ok(ActionMap::Affine { scale, offset });
+        };
+        for (field, given) in [("scale", spec.scale), ("offset", spec.offset)] {
+            if given.is_some() {
+                return Err(BrainError::Invalid {
+                    field,
+                    msg: "give either target or scale and offset, not both".into(),
+                });
+            }
+        }
+        target.check()?;
+        Ok(ActionMap::Target(target))
+    }
+
+    #[inline]
+    fn actuation(&self, a: f64) -> f64 {
+        match self {
+            ActionMap::Affine { scale, offset } => (scale * a + offset).clamp(-1.0, 1.0),
+            ActionMap::Target(t) => t.actuation(a),
+        }
+    }
 }
 
 impl PolicySpec {
@@ -89,11 +186,11 @@ impl BrainKind for PolicySpec {
                 msg: "variances must be ≥ 0".into(),
             });
         }
-        finite("scale", self.scale)?;
-        finite("offset", self.offset)?;
+        let action = ActionMap::of(self)?;
         let widest = sizes.iter().copied().max().unwrap_or(0);
         Ok(Box::new(PolicyController {
             spec: self.clone(),
+            action,
             sizes,
             layers: [vec![0.0; widest], vec![0.0; widest]],
         }))
@@ -104,6 +201,7 @@ impl BrainKind for PolicySpec {
 #[derive(Debug, Clone)]
 pub struct PolicyController {
     spec: PolicySpec,
+    action: ActionMap,
     sizes: Vec<usize>,
     /// The current layer's input and output.
     layers: [Vec<f64>; 2],
@@ -135,7 +233,7 @@ impl Controller for PolicyController {
             std::mem::swap(input, output);
         }
         for (a, z) in actuations.iter_mut().zip(input.iter()) {
-            *a = (self.spec.scale * z + self.spec.offset).clamp(-1.0, 1.0);
+            *a = self.action.actuation(*z);
         }
     }
 }
@@ -157,8 +255,9 @@ mod tests {
             hidden: vec![1],
             mean: vec![1.0, 0.0],
             var: vec![4.0, 1.0],
-            scale: 2.0,
-            offset: -0.2,
+            scale: Some(2.0),
+            offset: Some(-0.2),
+            target: None,
             weights: vec![0.5, -1.0, 0.1, 1.0, -3.0, 0.0, 0.2],
         }
     }
@@ -211,5 +310,71 @@ mod tests {
         )
         .unwrap_err();
         assert!(e.to_string().contains("bias"), "{e}");
+    }
+
+    fn evogym_target() -> TargetAction {
+        TargetAction {
+            shift: 1.0,
+            low: 0.6,
+            high: 1.6,
+            centre: 1.1,
+            half_range: 0.5,
+        }
+    }
+
+    /// A robot that drives centre + half_range · o gets EvoGym's clipped target 1 + a to the last
+    /// bit, at the range's ends too (where clamping o to ±1 would miss by an ulp).
+    #[test]
+    fn a_target_action_round_trips_to_the_clipped_target_bit_for_bit() {
+        let t = evogym_target();
+        for i in 0..=4000 {
+            let a = -1.5 + 3.0 * i as f64 / 4000.0;
+            let o = t.actuation(a);
+            assert_eq!(
+                (1.1 + 0.5 * o).to_bits(),
+                (1.0 + a).clamp(0.6, 1.6).to_bits(),
+                "a = {a}"
+            );
+        }
+        assert_eq!(1.1 + 0.5 * t.actuation(-3.0), 0.6);
+        let clamped = t.actuation(-3.0).clamp(-1.0, 1.0);
+        assert_ne!(1.1 + 0.5 * clamped, 0.6, "clamping the actuation would miss the end");
+    }
+
+    #[test]
+    fn target_and_scale_exclude_each_other_and_are_checked() {
+        let both = PolicySpec {
+            target: Some(evogym_target()),
+            ..spec()
+        };
+        assert!(matches!(
+            both.build(&shape(2, 2)),
+            Err(BrainError::Invalid { field: "scale", .. })
+        ));
+        let mut target = PolicySpec {
+            scale: None,
+            offset: None,
+            target: Some(evogym_target()),
+            ..spec()
+        };
+        let mut c = target.build(&shape(2, 2)).unwrap();
+        let mut a = [0.0; 2];
+        c.control(0.0, &[3.0, 0.5], &mut a);
+        assert!(a.iter().all(|o| (-1.0000000000000002..=1.0).contains(o)), "{a:?}");
+        target.target = Some(TargetAction {
+            half_range: 0.0,
+            ..evogym_target()
+        });
+        assert!(matches!(
+            target.build(&shape(2, 2)),
+            Err(BrainError::Invalid {
+                field: "target.half_range",
+                ..
+            })
+        ));
+        let json = serde_json::to_string(&BrainSpec::Policy(target.clone())).unwrap();
+        assert!(!json.contains("scale"), "{json}");
+        let back: BrainSpec = serde_json::from_str(&json).unwrap();
+        assert_eq!(back, BrainSpec::Policy(target));
     }
 }

@@ -35,7 +35,7 @@ pub use materials::{Material, ACTUATOR_SIDE, RIGID_SIDE, SOFT_SIDE};
 pub use npz_file::{is_npz, robot_from_npz, robot_to_npz, NpyArray};
 pub use observe::{relative_positions, terrain_distances, Look, Orientation};
 pub use rewards::{forward, topple, Reward, RobotAndBeam, GOAL_BONUS, UNSTABLE_PENALTY};
-pub use robot::{action_of, EvoGymRobot};
+pub use robot::{action_of, EvoGymRobot, TARGET_CENTRE, TARGET_HALF_RANGE, TARGET_RANGE};
 pub use task::{EvoGym, STEP_SECONDS};
 pub use tasks::{EvoGymTask, CAVE_SIGHT};
 pub use world_file::{robot_from_json, robot_to_json, world_from_json};

@@ -35,11 +35,20 @@ fn walker() -> String {
     EvoGymTask::Walker.name().to_string()
 }
 
+/// EvoGym's action space: target length ratios in [0.6, 1.6].
+pub const TARGET_RANGE: (f64, f64) = (0.6, 1.6);
+/// The target of brain output 0.
+pub const TARGET_CENTRE: f64 = 1.1;
+/// Target change per unit of brain output (a power of two: learned policies round-trip exactly).
+pub const TARGET_HALF_RANGE: f64 = 0.5;
+
 /// A brain output in [-1, 1] as EvoGym's action: a target length ratio in [0.6, 1.6] (its
 /// action space), 1.1 at output 0. EvoGym's policies give raw actions that its engine clips to
-/// this range; vsrlab's brains end in tanh, so the range is mapped linearly instead.
+/// this range; vsrlab's brains end in tanh, so the range is mapped linearly instead. The target
+/// is clipped, not the output: output −1 gives 0.6000000000000001 (1.1 − 0.5), and a learned
+/// policy that wants 0.6 exactly gives −1.0000000000000002 (vsrlab_brain::TargetAction).
 pub fn action_of(output: f64) -> f64 {
-    1.1 + 0.5 * output.clamp(-1.0, 1.0)
+    (TARGET_CENTRE + TARGET_HALF_RANGE * output).clamp(TARGET_RANGE.0, TARGET_RANGE.1)
 }
 
 impl EvoGymRobot {

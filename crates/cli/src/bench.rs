@@ -44,6 +44,11 @@ pub struct BenchArgs {
     /// Skip the parallel rows.
     #[arg(long)]
     pub single_only: bool,
+    /// Add a population row per voxel robot and PSA: N genotypes of its body (random brain
+    /// weights) evaluated as one batch by the runner's evaluator, as `vsrlab run` does a
+    /// generation (rates per wall-clock second on --threads).
+    #[arg(long, value_name = "N")]
+    pub population: Option<usize>,
     /// Print JSON instead of a table.
     #[arg(long)]
     pub json: bool,
@@ -67,6 +72,7 @@ impl BenchArgs {
             brain: self.brain.clone(),
             sensors: self.sensors.clone(),
             parallel: !self.single_only,
+            population: self.population,
         })
     }
 }
@@ -93,7 +99,7 @@ fn print_table(report: &BenchReport) {
     let robot_width = report.rows.iter().map(|r| r.robot.len()).max().unwrap_or(0).max(10);
     let terrain_width = report.rows.iter().map(|r| r.terrain.len()).max().unwrap_or(0).max(11);
     println!(
-        "{:<robot_width$} {:<terrain_width$} {:>6} {:<8} {:>7} {:>8} {:>10} {:>14} {:>14} {:>8} {:>22}",
+        "{:<robot_width$} {:<terrain_width$} {:>6} {:<10} {:>7} {:>8} {:>10} {:>14} {:>14} {:>8} {:>22}",
         "robot",
         "terrain",
         "voxels",
@@ -114,7 +120,7 @@ fn print_table(report: &BenchReport) {
             _ => "-".into(),
         };
         println!(
-            "{:<robot_width$} {:<terrain_width$} {:>6} {:<8} {:>7} {:>8} {:>10.0} {:>14.0} {:>14.0} {:>7.2}x {:>22}",
+            "{:<robot_width$} {:<terrain_width$} {:>6} {:<10} {:>7} {:>8} {:>10.0} {:>14.0} {:>14.0} {:>7.2}x {:>22}",
             r.robot,
             r.terrain,
             r.voxels,

@@ -13,6 +13,7 @@
 //! on two of those tasks against EvoGym's own PPO.
 
 use crate::bench_learning::LEARNING_CASES;
+use crate::bench_population::{has_population_row, measure_population, MAX_POPULATION};
 use crate::cpu_time::{process_cpu_seconds, thread_cpu_seconds};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -151,6 +152,9 @@ pub struct BenchOptions {
     pub sensors: String,
     /// Whether to measure the parallel rows too.
     pub parallel: bool,
+    /// Genotypes of a population row per voxel robot and PSA (`bench_population`); `None`: no
+    /// such rows.
+    pub population: Option<usize>,
 }
 
 impl Default for BenchOptions {
@@ -166,6 +170,7 @@ impl Default for BenchOptions {
             brain: "phase".into(),
             sensors: DEFAULT_SENSORS.into(),
             parallel: true,
+            population: None,
         }
     }
 }
@@ -178,6 +183,9 @@ pub enum Mode {
     Single,
     /// Episodes spread over the thread pool; rates per wall-clock second.
     Parallel,
+    /// A batch of different genotypes of one body through the runner's evaluator, on the thread
+    /// pool; rates per wall-clock second.
+    Population,
 }
 
 impl Mode {
@@ -186,6 +194,7 @@ impl Mode {
         match self {
             Mode::Single => "single",
             Mode::Parallel => "parallel",
+            Mode::Population => "population",
         }
     }
 }
@@ -331,6 +340,11 @@ fn check_options(options: &BenchOptions) -> Result<(), BenchError> {
     if options.threads.is_some_and(|t| t == 0 || t > 1024) {
         return Err(BenchError::Option("threads: must be in 1..=1024".into()));
     }
+    if options.population.is_some_and(|n| n == 0 || n > MAX_POPULATION) {
+        return Err(BenchError::Option(format!(
+            "population: must be in 1..={MAX_POPULATION}"
+        )));
+    }
     Ok(())
 }
 
@@ -350,11 +364,22 @@ pub fn run_bench(options: &BenchOptions) -> Result<BenchReport, BenchError> {
         let case = Case::new(standard, options)?;
         let single = case.measure_single(options.min_cpu_seconds)?;
         let single_episodes = single.episodes;
-        rows.push(case.row(Mode::Single, 1, single));
+        rows.push(case.row(Mode::Single, 1, single.clone()));
         if options.parallel {
             let episodes = (single_episodes * threads).max(threads);
             let parallel = case.measure_parallel(&pool, episodes)?;
             rows.push(case.row(Mode::Parallel, threads, parallel));
+        }
+        if let Some(n) = options.population.filter(|_| has_population_row(&standard)) {
+            let per_episode = (single.steps / single.episodes as u64, case.robot.description().size());
+            rows.push(measure_population(
+                &standard,
+                options,
+                &case.task,
+                &pool,
+                n,
+                per_episode,
+            )?);
         }
     }
     for learning in LEARNING_CASES.iter().filter(|c| is_selected(options, c.name)) {
@@ -473,6 +498,7 @@ impl<'a> Case<'a> {
 }
 
 /// Episodes (or iterations), steps and time of one measurement.
+#[derive(Debug, Clone)]
 pub(crate) struct Measurement {
     pub episodes: usize,
     pub steps: u64,
@@ -497,7 +523,7 @@ impl Row {
     pub(crate) fn measured(what: Measured<'_>, m: Measurement, original: Option<OriginalSpeed>) -> Row {
         let steps_per_s = match what.mode {
             Mode::Single => m.steps as f64 / m.cpu_seconds,
-            Mode::Parallel => m.steps as f64 / m.wall_seconds,
+            Mode::Parallel | Mode::Population => m.steps as f64 / m.wall_seconds,
         };
         let voxels = what.voxels as f64;
         Row {
@@ -643,6 +669,44 @@ mod tests {
         let expected = 25.0 * walker.steps as f64 * 0.003 / walker.cpu_seconds;
         assert!((walker.voxel_seconds_per_cpu_s - expected).abs() < 1e-9 * expected);
         assert_eq!(biped.step_seconds, report.dt);
+    }
+
+    /// A population row evaluates N different genotypes of each voxel robot and PSA through the
+    /// runner's evaluator (N full episodes); EvoGym rows have none; N is checked.
+    #[test]
+    fn population_rows_evaluate_a_batch_of_genotypes_of_each_body() {
+        let options = BenchOptions {
+            brain: "distributed-mlp".into(),
+            population: Some(3),
+            parallel: false,
+            ..tiny(&["biped-4x3", "psa:small", "evogym-walker"])
+        };
+        let report = run_bench(&options).unwrap();
+        let rows: Vec<(&str, Mode)> = report.rows.iter().map(|r| (r.robot.as_str(), r.mode)).collect();
+        assert_eq!(
+            rows,
+            [
+                ("biped-4x3", Mode::Single),
+                ("biped-4x3", Mode::Population),
+                ("psa:small", Mode::Single),
+                ("psa:small", Mode::Population),
+                ("evogym-walker", Mode::Single),
+            ]
+        );
+        for pair in report.rows[..4].chunks(2) {
+            let (single, population) = (&pair[0], &pair[1]);
+            assert_eq!((population.episodes, population.steps), (3, 180), "{population:?}");
+            assert_eq!((population.voxels, population.threads), (single.voxels, 2));
+            assert!(population.voxel_seconds_per_cpu_s > 0.0 && population.ratio_to_original.is_none());
+        }
+        for population in [Some(0), Some(MAX_POPULATION + 1)] {
+            let error = run_bench(&BenchOptions {
+                population,
+                ..tiny(&["biped-4x3"])
+            })
+            .unwrap_err();
+            assert!(error.to_string().starts_with("population: must be in 1..="), "{error}");
+        }
     }
 
     #[test]

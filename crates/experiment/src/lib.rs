@@ -45,6 +45,7 @@
 pub mod batch;
 pub mod bench;
 pub mod bench_learning;
+pub mod bench_population;
 pub mod checkpoint;
 pub mod codesign;
 pub mod config;

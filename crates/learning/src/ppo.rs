@@ -9,6 +9,7 @@ use crate::adam::Adam;
 use crate::environment::Environment;
 use crate::gaussian::{add_log_prob_gradient, entropy, log_prob};
 use crate::mlp::{standard_normal, Mlp};
+use crate::mlp_batch::BatchPass;
 use crate::normalizer::Normalizer;
 use crate::rollout::Rollout;
 use rand::seq::SliceRandom;
@@ -488,6 +489,10 @@ impl Ppo {
         let mut rng = ChaCha8Rng::seed_from_u64(mix(self.seed, iteration as u64 + 1, u64::MAX));
         let size = samples.len().div_ceil(c.minibatches).max(1);
         let (mut policy_loss, mut value_loss) = (0.0, 0.0);
+        // the minibatch's observations, output gradients and passes (reused: the passes over a
+        // whole minibatch have the bits of one sample at a time, `mlp_batch`)
+        let (mut inputs, mut d_mean, mut d_value, mut active) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let (mut pass, mut value_pass) = (BatchPass::default(), BatchPass::default());
         for _ in 0..c.epochs {
             samples.shuffle(&mut rng);
             (policy_loss, value_loss) = (0.0, 0.0);
@@ -496,33 +501,45 @@ impl Ppo {
                 let (actor_g, rest) = gradient.split_at_mut(actor_len);
                 let (log_std_g, critic_g) = rest.split_at_mut(actions);
                 let inv = 1.0 / batch.len() as f64;
-                for &(k, t, advantage, target) in batch {
+                inputs.clear();
+                for &(k, t, _, _) in batch {
+                    inputs.extend_from_slice(&rollouts[k].observations[t]);
+                }
+                self.actor.forward_batch(&inputs, batch.len(), &mut pass);
+                d_mean.clear();
+                d_mean.resize(batch.len() * actions, 0.0);
+                active.clear();
+                for (s, &(k, t, advantage, _)) in batch.iter().enumerate() {
                     let r = &rollouts[k];
-                    let pass = self.actor.forward(&r.observations[t]);
-                    let new = log_prob(&r.actions[t], pass.output(), &self.log_std);
+                    let new = log_prob(&r.actions[t], pass.output(s), &self.log_std);
                     let ratio = (new - r.log_probs[t]).exp();
                     let unclipped = ratio * advantage;
                     let clipped = ratio.clamp(1.0 - c.clip, 1.0 + c.clip) * advantage;
                     policy_loss -= unclipped.min(clipped) * inv;
+                    active.push(unclipped <= clipped);
                     if unclipped <= clipped {
                         // d(−ratio·A)/d ln p = −ratio·A
-                        let mut d_mean = vec![0.0; actions];
                         add_log_prob_gradient(
                             &r.actions[t],
-                            pass.output(),
+                            pass.output(s),
                             &self.log_std,
                             -unclipped * inv,
-                            &mut d_mean,
+                            &mut d_mean[s * actions..(s + 1) * actions],
                             log_std_g,
                         );
-                        self.actor.backward(&pass, &d_mean, actor_g);
                     }
-                    let value_pass = self.critic.forward(&r.observations[t]);
-                    let error = value_pass.output()[0] - target;
-                    value_loss += 0.5 * error * error * inv;
-                    self.critic
-                        .backward(&value_pass, &[c.value_coefficient * error * inv], critic_g);
                 }
+                self.actor.backward_batch(&mut pass, &d_mean, &active, actor_g);
+                self.critic.forward_batch(&inputs, batch.len(), &mut value_pass);
+                d_value.clear();
+                for (s, &(_, _, _, target)) in batch.iter().enumerate() {
+                    let error = value_pass.output(s)[0] - target;
+                    value_loss += 0.5 * error * error * inv;
+                    d_value.push(c.value_coefficient * error * inv);
+                }
+                active.clear();
+                active.resize(batch.len(), true);
+                self.critic.backward_batch(&mut value_pass, &d_value, &active, critic_g);
                 for g in log_std_g.iter_mut() {
                     *g -= c.entropy_coefficient; // the bonus: −coefficient · ∂ entropy / ∂ log σ
                 }

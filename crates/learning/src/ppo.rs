@@ -63,6 +63,16 @@ pub struct PpoConfig {
     /// every step, each new observation before the policy sees it (the reference's
     /// `VecNormalize`; it did not change Walker's seed-1 training, docs/learning.md).
     pub observation_statistics: ObservationStatistics,
+    /// Whether the value loss is clipped as the reference's (`--use-clipped-value-loss`): the
+    /// larger of (V − R)² and (V_clipped − R)², V_clipped the old value moved at most `clip`
+    /// towards V. Off by default: every figure in docs/learning.md and docs/ch5.2.md ran without.
+    pub clip_value_loss: bool,
+    /// Whether the update learns from rewards divided by the running deviation of each
+    /// environment's discounted return and clipped to ±10, as the reference's `VecNormalize`.
+    /// The statistics take in each iteration's returns after the iteration (environments in
+    /// order; the reference's at every step), so the first iteration's rewards are unscaled.
+    /// Reported rewards and episodes stay the environment's. Off by default, as `clip_value_loss`.
+    pub normalize_rewards: bool,
 }
 
 /// When PPO's observation statistics are updated ([`PpoConfig::observation_statistics`]).
@@ -96,6 +106,8 @@ impl Default for PpoConfig {
             initial_log_std: 0.0,
             bootstrap_time_limits: false,
             observation_statistics: ObservationStatistics::EveryIteration,
+            clip_value_loss: false,
+            normalize_rewards: false,
         }
     }
 }
@@ -188,6 +200,8 @@ struct Slot {
     observation: Vec<f64>,
     episode_return: f64,
     episodes: u64,
+    /// The discounted return so far of the current episode (for `normalize_rewards`).
+    discounted_return: f64,
 }
 
 /// A PPO learner: policy, value network, optimiser state and observation statistics.
@@ -199,7 +213,33 @@ pub struct Ppo {
     critic: Mlp,
     adam: Adam,
     normalizer: Normalizer,
+    /// Running statistics of the discounted returns (`normalize_rewards`).
+    return_statistics: Normalizer,
     seed: u64,
+}
+
+/// Added to the return variance before its root (`normalize_rewards`).
+const REWARD_EPSILON: f64 = 1e-8;
+/// Scaled rewards are clipped to ± this.
+const REWARD_CLIP: f64 = 10.0;
+
+/// The value loss ½·(V − R)² of one sample and its derivative with respect to V; with
+/// `clip = Some(ε)` the reference's clipped loss ½·max((V − R)², (V_c − R)²), V_c = old + clamp(V
+/// − old, ±ε), whose derivative is 0 where the clipped term is the larger and V_c is clamped.
+fn value_loss_of(value: f64, old: f64, target: f64, clip: Option<f64>) -> (f64, f64) {
+    let error = value - target;
+    let Some(clip) = clip else {
+        return (0.5 * error * error, error);
+    };
+    let moved = value - old;
+    let clipped_error = old + moved.clamp(-clip, clip) - target;
+    if error * error >= clipped_error * clipped_error {
+        (0.5 * error * error, error)
+    } else if moved.abs() < clip {
+        (0.5 * clipped_error * clipped_error, clipped_error)
+    } else {
+        (0.5 * clipped_error * clipped_error, 0.0)
+    }
 }
 
 /// A seed from a base seed and two indices (SplitMix64 steps), for per-environment and
@@ -231,6 +271,7 @@ impl Ppo {
             critic,
             adam,
             normalizer: Normalizer::new(observations),
+            return_statistics: Normalizer::new(1),
             config,
             seed,
         })
@@ -277,6 +318,7 @@ impl Ppo {
                 observation: env.reset(mix(self.seed, e as u64, 0)),
                 episode_return: 0.0,
                 episodes: 0,
+                discounted_return: 0.0,
             })
             .collect();
         if self.config.observation_statistics == ObservationStatistics::EveryStep {
@@ -336,7 +378,12 @@ impl Ppo {
         environments: &mut [E],
         slots: &mut [Slot],
     ) -> Result<IterationStats, PpoError> {
-        let rollouts = self.roll_out(iteration, environments, slots)?;
+        let mut rollouts = self.roll_out(iteration, environments, slots)?;
+        let steps: usize = rollouts.iter().map(|r| r.rewards.len()).sum();
+        let mean_reward = rollouts.iter().flat_map(|r| r.rewards.iter()).sum::<f64>() / steps.max(1) as f64;
+        if self.config.normalize_rewards {
+            self.scale_rewards(&mut rollouts, slots);
+        }
         let (policy_loss, value_loss, learning_rate) = self.update(iteration, &rollouts)?;
         if self.config.observation_statistics == ObservationStatistics::EveryIteration {
             let raw: Vec<Vec<f64>> = rollouts
@@ -345,14 +392,13 @@ impl Ppo {
                 .collect();
             self.normalizer.update(&raw);
         }
-        let steps: usize = rollouts.iter().map(|r| r.rewards.len()).sum();
         let returns: Vec<f64> = rollouts
             .iter()
             .flat_map(|r| r.episode_returns.iter().copied())
             .collect();
         Ok(IterationStats {
             iteration,
-            mean_reward: rollouts.iter().flat_map(|r| r.rewards.iter()).sum::<f64>() / steps.max(1) as f64,
+            mean_reward,
             mean_episode_return: (!returns.is_empty()).then(|| returns.iter().sum::<f64>() / returns.len() as f64),
             episodes: returns.len(),
             policy_loss,
@@ -360,6 +406,26 @@ impl Ppo {
             entropy: entropy(&self.log_std),
             learning_rate,
         })
+    }
+
+    /// `normalize_rewards`: each reward divided by √(var + 1e-8) of the discounted returns seen
+    /// before this iteration and clipped to ±10; then this iteration's discounted returns (each
+    /// environment's running one, reset at an episode's end; environments in order) join the
+    /// statistics.
+    fn scale_rewards(&mut self, rollouts: &mut [Rollout], slots: &mut [Slot]) {
+        let scale = 1.0 / (self.return_statistics.var()[0] + REWARD_EPSILON).sqrt();
+        let mut returns = Vec::new();
+        for (r, slot) in rollouts.iter_mut().zip(slots.iter_mut()) {
+            for (reward, &done) in r.rewards.iter_mut().zip(&r.dones) {
+                slot.discounted_return = slot.discounted_return * self.config.gamma + *reward;
+                returns.push(vec![slot.discounted_return]);
+                if done {
+                    slot.discounted_return = 0.0;
+                }
+                *reward = (*reward * scale).clamp(-REWARD_CLIP, REWARD_CLIP);
+            }
+        }
+        self.return_statistics.update(&returns);
     }
 
     /// Adds the slots' current observations (environments in order) to the statistics.
@@ -532,10 +598,12 @@ impl Ppo {
                 self.actor.backward_batch(&mut pass, &d_mean, &active, actor_g);
                 self.critic.forward_batch(&inputs, batch.len(), &mut value_pass);
                 d_value.clear();
-                for (s, &(_, _, _, target)) in batch.iter().enumerate() {
-                    let error = value_pass.output(s)[0] - target;
-                    value_loss += 0.5 * error * error * inv;
-                    d_value.push(c.value_coefficient * error * inv);
+                let clip = c.clip_value_loss.then_some(c.clip);
+                for (s, &(k, t, _, target)) in batch.iter().enumerate() {
+                    let old = rollouts[k].values[t];
+                    let (loss, d) = value_loss_of(value_pass.output(s)[0], old, target, clip);
+                    value_loss += loss * inv;
+                    d_value.push(c.value_coefficient * d * inv);
                 }
                 active.clear();
                 active.resize(batch.len(), true);
@@ -590,6 +658,59 @@ mod tests {
             hidden: vec![16, 16],
             ..PpoConfig::default()
         }
+    }
+
+    /// The clipped value loss is the unclipped one while V stays within ε of the old value, the
+    /// larger of the two beyond, with no gradient where the clipped term wins and is clamped.
+    #[test]
+    fn the_clipped_value_loss_is_the_references() {
+        assert_eq!(value_loss_of(1.5, 1.0, 0.5, None), (0.5, 1.0));
+        // within the clip: the same loss and gradient
+        let (loss, d) = value_loss_of(1.05, 1.0, 0.5, Some(0.1));
+        assert!((loss - 0.5 * 0.55 * 0.55).abs() < 1e-12 && (d - 0.55).abs() < 1e-12);
+        // V moved far towards the target: the clipped term (old + 0.1 − R)² is larger, no gradient
+        let (loss, d) = value_loss_of(0.5, 1.0, 0.5, Some(0.1));
+        assert!((loss - 0.5 * 0.4 * 0.4).abs() < 1e-12 && d == 0.0, "{loss} {d}");
+        // V moved far away from the target: the unclipped term is larger and keeps its gradient
+        let (loss, d) = value_loss_of(2.0, 1.0, 0.5, Some(0.1));
+        assert!((loss - 0.5 * 1.5 * 1.5).abs() < 1e-12 && d == 1.5);
+    }
+
+    /// Scaled rewards: the first iteration's are the environment's (variance 1 at the start), the
+    /// statistics then hold the discounted returns; the reported reward stays the environment's;
+    /// with both reference options the reaching task is still learned.
+    #[test]
+    fn normalised_rewards_and_the_clipped_value_loss_still_learn() {
+        let config = PpoConfig {
+            normalize_rewards: true,
+            clip_value_loss: true,
+            ..small(60)
+        };
+        let mut plain = Ppo::new(1, 1, small(1), 7).unwrap();
+        let mut scaled = Ppo::new(
+            1,
+            1,
+            PpoConfig {
+                iterations: 1,
+                ..config.clone()
+            },
+            7,
+        )
+        .unwrap();
+        let (a, b) = (
+            plain.train(&mut reach(4)).unwrap(),
+            scaled.train(&mut reach(4)).unwrap(),
+        );
+        assert_eq!(
+            a[0].mean_reward, b[0].mean_reward,
+            "the same rollout, reported unscaled"
+        );
+        assert!(scaled.return_statistics.var()[0] != 1.0 && scaled.return_statistics.mean()[0] < 0.0);
+        let mut ppo = Ppo::new(1, 1, config, 7).unwrap();
+        let stats = ppo.train(&mut reach(4)).unwrap();
+        let first = stats[0].mean_reward;
+        let last = stats[stats.len() - 5..].iter().map(|s| s.mean_reward).sum::<f64>() / 5.0;
+        assert!(last > first + 0.1, "mean reward per step {first:.3} → {last:.3}");
     }
 
     #[test]

@@ -4,11 +4,12 @@
 //! actions) every `EVERY` iterations and the seconds per iteration (collection + update), the
 //! figures `bench/evogym/ppo.py` prints for EvoGym's own PPO (docs/learning.md).
 //!
-//! `cargo run --release -p vsrlab-experiment --example ppo_evogym -- [TASK] [ITERATIONS] [SEED] [EVERY] [BODY] [reference]`
+//! `cargo run --release -p vsrlab-experiment --example ppo_evogym -- [TASK] [ITERATIONS] [SEED] [EVERY] [BODY] [plain|clip-value-loss|normalize-rewards]`
 //!
 //! Defaults: Walker-v0, 100 iterations, seed 1, every 25, the 5×5 body of horizontal actuators.
-//! `reference` turns on the reference's clipped value loss and reward normalisation
-//! (`clip_value_loss`, `normalize_rewards`).
+//! The reference's clipped value loss and reward normalisation (`clip_value_loss`,
+//! `normalize_rewards`) are on; `plain` turns both off, `clip-value-loss` or `normalize-rewards`
+//! keeps only that one.
 //! `RAYON_NUM_THREADS=1` steps the four environments one after the other, as EvoGym's example.
 
 use vsrlab_experiment::learning_env::EvoGymLearning;
@@ -28,11 +29,11 @@ fn main() -> Result<(), PpoError> {
         .unwrap_or_else(|| "33333/33333/33333/33333/33333".to_string());
     let body = MaterialGrid::from_rows(&rows).expect("a body of EvoGym materials, rows joined by '/'");
     let make = || EvoGymLearning::new(task, &body).expect("a valid robot");
-    let reference = args.next().as_deref() == Some("reference");
+    let options = args.next().unwrap_or_default();
     let config = PpoConfig {
         iterations,
-        clip_value_loss: reference,
-        normalize_rewards: reference,
+        clip_value_loss: matches!(options.as_str(), "" | "clip-value-loss"),
+        normalize_rewards: matches!(options.as_str(), "" | "normalize-rewards"),
         ..PpoConfig::default()
     };
     let mut envs: Vec<EvoGymLearning> = (0..config.environments).map(|_| make()).collect();

@@ -63,15 +63,17 @@ pub struct PpoConfig {
     /// every step, each new observation before the policy sees it (the reference's
     /// `VecNormalize`; it did not change Walker's seed-1 training, docs/learning.md).
     pub observation_statistics: ObservationStatistics,
-    /// Whether the value loss is clipped as the reference's (`--use-clipped-value-loss`): the
-    /// larger of (V − R)² and (V_clipped − R)², V_clipped the old value moved at most `clip`
-    /// towards V. Off by default: every figure in docs/learning.md and docs/ch5.2.md ran without.
+    /// Whether the value loss is clipped as the reference's (`--use-clipped-value-loss`, yes):
+    /// the larger of (V − R)² and (V_clipped − R)², V_clipped the old value moved at most `clip`
+    /// towards V. Figures in the docs dated before 2026-11-28 ran without.
     pub clip_value_loss: bool,
     /// Whether the update learns from rewards divided by the running deviation of each
-    /// environment's discounted return and clipped to ±10, as the reference's `VecNormalize`.
-    /// The statistics take in each iteration's returns after the iteration (environments in
-    /// order; the reference's at every step), so the first iteration's rewards are unscaled.
-    /// Reported rewards and episodes stay the environment's. Off by default, as `clip_value_loss`.
+    /// environment's discounted return and clipped to ±10, as the reference's `VecNormalize`
+    /// (yes). The statistics take in each iteration's returns after the iteration (environments
+    /// in order; the reference's at every step), so the first iteration's rewards are unscaled.
+    /// Reported rewards and episodes stay the environment's. Figures in the docs dated before
+    /// 2026-11-28 ran without; on Walker it is what lets PPO leave its flat start
+    /// (docs/learning.md).
     pub normalize_rewards: bool,
 }
 
@@ -106,8 +108,8 @@ impl Default for PpoConfig {
             initial_log_std: 0.0,
             bootstrap_time_limits: false,
             observation_statistics: ObservationStatistics::EveryIteration,
-            clip_value_loss: false,
-            normalize_rewards: false,
+            clip_value_loss: true,
+            normalize_rewards: true,
         }
     }
 }
@@ -686,7 +688,12 @@ mod tests {
             clip_value_loss: true,
             ..small(60)
         };
-        let mut plain = Ppo::new(1, 1, small(1), 7).unwrap();
+        let without = PpoConfig {
+            normalize_rewards: false,
+            clip_value_loss: false,
+            ..small(1)
+        };
+        let mut plain = Ppo::new(1, 1, without, 7).unwrap();
         let mut scaled = Ppo::new(
             1,
             1,

@@ -232,6 +232,16 @@ fn the_chapter_files_hold_the_thesis_settings() {
             "three tasks"
         );
         checked += 1;
+        // the 100-iteration BeamToppler files of docs/ch5.2.md
+        let path = std::path::PathBuf::from(format!("{dir}/beam-toppler-100-{encoding}.toml"));
+        let experiments = load_all(&path).unwrap_or_else(|e| panic!("{e}"));
+        let toml = experiments[0].to_toml();
+        assert!(
+            toml.contains("iterations = 100\n") && toml.contains("BeamToppler-v0"),
+            "{toml}"
+        );
+        assert_eq!((experiments[0].runs, experiments[0].stop.evaluations), (3, Some(20)));
+        checked += 1;
     }
-    assert_eq!(checked, 8);
+    assert_eq!(checked, 10);
 }

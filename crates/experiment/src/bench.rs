@@ -364,14 +364,15 @@ pub fn run_bench(options: &BenchOptions) -> Result<BenchReport, BenchError> {
         let case = Case::new(standard, options)?;
         let single = case.measure_single(options.min_cpu_seconds)?;
         let single_episodes = single.episodes;
-        rows.push(case.row(Mode::Single, 1, single.clone()));
+        let steps_per_episode = single.steps / single.episodes as u64;
+        rows.push(case.row(Mode::Single, 1, single));
         if options.parallel {
             let episodes = (single_episodes * threads).max(threads);
             let parallel = case.measure_parallel(&pool, episodes)?;
             rows.push(case.row(Mode::Parallel, threads, parallel));
         }
         if let Some(n) = options.population.filter(|_| has_population_row(&standard)) {
-            let per_episode = (single.steps / single.episodes as u64, case.robot.description().size());
+            let per_episode = (steps_per_episode, case.robot.description().size());
             rows.push(measure_population(
                 &standard,
                 options,
@@ -498,7 +499,6 @@ impl<'a> Case<'a> {
 }
 
 /// Episodes (or iterations), steps and time of one measurement.
-#[derive(Debug, Clone)]
 pub(crate) struct Measurement {
     pub episodes: usize,
     pub steps: u64,

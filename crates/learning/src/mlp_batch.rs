@@ -119,31 +119,39 @@ fn transpose(w: &[f64], rows: usize, columns: usize, out: &mut Vec<f64>) {
     }
 }
 
-/// One sample through one layer: y[o] = b[o] + Σᵢ w[o][i]·x[i] (tanh'd for a hidden layer), four
-/// outputs at a time from the transposed weights `wt`.
+/// One sample through one layer: y[o] = b[o] + Σᵢ w[o][i]·x[i] (tanh'd for a hidden layer), from
+/// the transposed weights `wt`.
 fn layer_row(wt: &[f64], b: &[f64], x: &[f64], y: &mut [f64], tanh: bool) {
-    let outputs = y.len();
-    let finish = |z: f64| if tanh { z.tanh() } else { z };
-    let mut o = 0;
-    while o + LANES <= outputs {
+    row_times_matrix(x, wt, y);
+    for (out, bias) in y.iter_mut().zip(b) {
+        let z = bias + *out;
+        *out = if tanh { z.tanh() } else { z };
+    }
+}
+
+/// out[c] = Σᵣ v[r]·m[r][c] (`m` row-major with `out.len()` columns), each sum from −0.0 in row
+/// order as `Iterator::sum`, four columns at a time. The one-sample code multiplies in either
+/// order; IEEE multiplication commutes exactly, so the bits agree.
+fn row_times_matrix(v: &[f64], m: &[f64], out: &mut [f64]) {
+    let columns = out.len();
+    let mut c = 0;
+    while c + LANES <= columns {
         let mut acc = [-0.0; LANES];
-        for (i, &xi) in x.iter().enumerate() {
-            let w = &wt[i * outputs + o..i * outputs + o + LANES];
+        for (r, &vr) in v.iter().enumerate() {
+            let row = &m[r * columns + c..r * columns + c + LANES];
             for k in 0..LANES {
-                acc[k] += w[k] * xi;
+                acc[k] += vr * row[k];
             }
         }
-        for k in 0..LANES {
-            y[o + k] = finish(b[o + k] + acc[k]);
-        }
-        o += LANES;
+        out[c..c + LANES].copy_from_slice(&acc);
+        c += LANES;
     }
-    for (o, out) in y.iter_mut().enumerate().skip(o) {
+    for (c, slot) in out.iter_mut().enumerate().skip(c) {
         let mut acc = -0.0;
-        for (i, &xi) in x.iter().enumerate() {
-            acc += wt[i * outputs + o] * xi;
+        for (r, &vr) in v.iter().enumerate() {
+            acc += vr * m[r * columns + c];
         }
-        *out = finish(b[o] + acc);
+        *slot = acc;
     }
 }
 
@@ -173,29 +181,11 @@ fn weight_gradients(g: &mut [f64], delta: &[f64], x: &[f64], active: &[usize], i
 }
 
 /// One sample's delta through a layer's weights `w` (outputs × inputs) and the tanh below:
-/// below[i] = (Σₒ delta[o]·w[o][i]) · (1 − x[i]²), four inputs at a time.
+/// below[i] = (Σₒ delta[o]·w[o][i]) · (1 − x[i]²).
 fn back_row(w: &[f64], delta: &[f64], x: &[f64], below: &mut [f64]) {
-    let inputs = below.len();
-    let mut i = 0;
-    while i + LANES <= inputs {
-        let mut acc = [-0.0; LANES];
-        for (o, &d) in delta.iter().enumerate() {
-            let wo = &w[o * inputs + i..o * inputs + i + LANES];
-            for k in 0..LANES {
-                acc[k] += d * wo[k];
-            }
-        }
-        for k in 0..LANES {
-            below[i + k] = acc[k] * (1.0 - x[i + k] * x[i + k]);
-        }
-        i += LANES;
-    }
-    for (i, out) in below.iter_mut().enumerate().skip(i) {
-        let mut acc = -0.0;
-        for (o, &d) in delta.iter().enumerate() {
-            acc += d * w[o * inputs + i];
-        }
-        *out = acc * (1.0 - x[i] * x[i]);
+    row_times_matrix(delta, w, below);
+    for (out, xi) in below.iter_mut().zip(x) {
+        *out *= 1.0 - xi * xi;
     }
 }
 

@@ -369,7 +369,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     let mut votes_note = None;
     if let (Some(path), Some(trace)) = (&a.votes, &outcome.trace) {
         let title = format!("Votes over time (seed {})", a.seed);
-        let files = vsrlab_pipelines::votes::save_votes(trace, &title, path)?;
+        let files = vsrlab_pipelines::votes::save_votes(trace, &title, path).map_err(|e| e.to_string())?;
         votes_note = Some(
             files
                 .iter()

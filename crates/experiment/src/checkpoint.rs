@@ -126,29 +126,54 @@ pub(crate) struct Loaded<O> {
     pub verified: bool,
 }
 
-/// Reads a checkpoint file's bytes, verifying its content hash. The error says what is wrong;
-/// the caller names the file.
-pub(crate) fn decode<O: DeserializeOwned>(bytes: &[u8]) -> Result<Loaded<O>, String> {
-    let envelope: Envelope<'_> = serde_json::from_slice(bytes).map_err(|e| format!("not a checkpoint: {e}"))?;
+/// What is wrong with a checkpoint file's bytes; the caller names the file.
+#[derive(Debug, thiserror::Error)]
+pub(crate) enum CheckpointProblem {
+    /// Not JSON of a checkpoint's envelope.
+    #[error("not a checkpoint: {0}")]
+    NotACheckpoint(serde_json::Error),
+    /// A current-format file without its hash or content.
+    #[error("content_hash or content missing")]
+    Incomplete,
+    /// The content's hash is not the recorded one.
+    #[error("content hash mismatch (recorded {recorded}, content has {actual}): the file was edited or damaged")]
+    HashMismatch {
+        /// The hash in the file.
+        recorded: String,
+        /// The hash of the content.
+        actual: String,
+    },
+    /// The content does not read as this run's checkpoint.
+    #[error("content: {0}")]
+    Content(serde_json::Error),
+    /// A version-1 file that does not read as this run's checkpoint.
+    #[error("{0}")]
+    Version1(serde_json::Error),
+    /// A format this vsrlab does not know.
+    #[error("unknown format {0:?} (this vsrlab reads {CHECKPOINT_FORMAT} and {CHECKPOINT_FORMAT_V1})")]
+    UnknownFormat(String),
+}
+
+/// Reads a checkpoint file's bytes, verifying its content hash.
+pub(crate) fn decode<O: DeserializeOwned>(bytes: &[u8]) -> Result<Loaded<O>, CheckpointProblem> {
+    let envelope: Envelope<'_> = serde_json::from_slice(bytes).map_err(CheckpointProblem::NotACheckpoint)?;
     match envelope.format.as_str() {
         CHECKPOINT_FORMAT => {
             let (Some(hash), Some(content)) = (envelope.content_hash, envelope.content) else {
-                return Err("content_hash or content missing".to_string());
+                return Err(CheckpointProblem::Incomplete);
             };
             let actual = content_hash(content.get().as_bytes());
             if actual != hash {
-                return Err(format!(
-                    "content hash mismatch (recorded {hash}, content has {actual}): the file was edited or damaged"
-                ));
+                return Err(CheckpointProblem::HashMismatch { recorded: hash, actual });
             }
-            let checkpoint = serde_json::from_str(content.get()).map_err(|e| format!("content: {e}"))?;
+            let checkpoint = serde_json::from_str(content.get()).map_err(CheckpointProblem::Content)?;
             Ok(Loaded {
                 checkpoint,
                 verified: true,
             })
         }
         CHECKPOINT_FORMAT_V1 => {
-            let old: CheckpointV1<O> = serde_json::from_slice(bytes).map_err(|e| e.to_string())?;
+            let old: CheckpointV1<O> = serde_json::from_slice(bytes).map_err(CheckpointProblem::Version1)?;
             Ok(Loaded {
                 checkpoint: Checkpoint {
                     run: old.run,
@@ -159,9 +184,7 @@ pub(crate) fn decode<O: DeserializeOwned>(bytes: &[u8]) -> Result<Loaded<O>, Str
                 verified: false,
             })
         }
-        other => Err(format!(
-            "unknown format {other:?} (this vsrlab reads {CHECKPOINT_FORMAT} and {CHECKPOINT_FORMAT_V1})"
-        )),
+        other => Err(CheckpointProblem::UnknownFormat(other.to_string())),
     }
 }
 
@@ -205,7 +228,8 @@ mod tests {
         let bytes = encode(0, 1, &state(), &vec![1.5, -2.0]).unwrap();
         let text = String::from_utf8(bytes).unwrap().replace("-2.0", "1e300");
         let error = decode::<Vec<f64>>(text.as_bytes()).err().unwrap();
-        assert!(error.contains("content hash mismatch"), "{error}");
+        assert!(matches!(error, CheckpointProblem::HashMismatch { .. }), "{error}");
+        assert!(error.to_string().contains("content hash mismatch"), "{error}");
         let cut = &text.as_bytes()[..text.len() / 2];
         assert!(decode::<Vec<f64>>(cut).is_err());
     }
@@ -220,10 +244,9 @@ mod tests {
         assert!(!loaded.verified);
         assert_eq!(loaded.checkpoint.optimizer, vec![0.25]);
         let other = serde_json::json!({"format": "vsrlab-checkpoint/9"});
-        assert!(decode::<Vec<f64>>(other.to_string().as_bytes())
-            .err()
-            .unwrap()
-            .contains("unknown format"));
+        let error = decode::<Vec<f64>>(other.to_string().as_bytes()).err().unwrap();
+        assert!(matches!(&error, CheckpointProblem::UnknownFormat(f) if f == "vsrlab-checkpoint/9"));
+        assert!(error.to_string().contains("unknown format"), "{error}");
     }
 
     #[test]

@@ -4,7 +4,7 @@
 //! the policy's output, commit 7db4202 `evogym/envs/base.py`), an action is an offset from the
 //! rest length: output a becomes target ratio 1 + a, which the task clips into [0.6, 1.6].
 
-use vsrlab_learning::{Environment, Transition};
+use vsrlab_learning::{Environment, StepError, Transition};
 use vsrlab_tasks::kinds::evogym::{EvoGymEnv, EvoGymError, EvoGymTask, MaterialGrid};
 
 /// An EvoGym task with one body, as a PPO environment.
@@ -52,11 +52,11 @@ impl Environment for EvoGymLearning {
         self.env.reset(seed).to_vec()
     }
 
-    fn step(&mut self, action: &[f64]) -> Result<Transition, String> {
+    fn step(&mut self, action: &[f64]) -> Result<Transition, StepError> {
         for (target, a) in self.targets.iter_mut().zip(action) {
             *target = 1.0 + a;
         }
-        let step = self.env.step(&self.targets).map_err(|e| e.to_string())?;
+        let step = self.env.step(&self.targets)?;
         self.steps += 1;
         let capped = self.cap.is_some_and(|cap| self.steps >= cap);
         Ok(Transition {

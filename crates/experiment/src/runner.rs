@@ -29,7 +29,7 @@
 
 use crate::checkpoint::{self, content_hash, Checkpoint, RunState, SnapshotEntry};
 use crate::config::{Experiment, OutputConfig, StopConfig};
-use crate::evaluator::{Evaluated, Evaluator, Record};
+use crate::evaluator::{Evaluated, Evaluator, EvaluatorError, Record};
 use crate::genotype::Genotype;
 use crate::optimizers::SearchOptimizer;
 use crate::output_lock::{OutputLock, LOCK_FILE};
@@ -881,14 +881,14 @@ fn load_checkpoint<G: Genotype, O: SearchOptimizer<G>>(
     observer: &mut dyn Observer,
 ) -> Result<Resumed<O>, RunError> {
     let path = files.checkpoint_json();
-    let refuse = |problem: String| {
+    let refuse = |problem: &dyn std::fmt::Display| {
         RunError::Mismatch(format!(
             "{}: {problem}; restore the file, or delete it to restart this run from its beginning \
              (a restarted run gives the same results)",
             path.display()
         ))
     };
-    let loaded = checkpoint::decode::<O>(bytes).map_err(&refuse)?;
+    let loaded = checkpoint::decode::<O>(bytes).map_err(|e| refuse(&e))?;
     if !loaded.verified {
         observer.notice(&format!(
             "{}: written by an older vsrlab without a content hash; resuming without verifying it",
@@ -902,11 +902,11 @@ fn load_checkpoint<G: Genotype, O: SearchOptimizer<G>>(
         optimizer,
     } = loaded.checkpoint;
     if saved_run != run || saved_seed != seed {
-        return Err(refuse(format!(
+        return Err(refuse(&format!(
             "belongs to run {saved_run} with seed {saved_seed}, not run {run} with seed {seed}"
         )));
     }
-    check_individuals(&optimizer, evaluator).map_err(&refuse)?;
+    check_individuals(&optimizer, evaluator).map_err(|e| refuse(&e))?;
     let csv = read_truncated(&files.generations_csv(), state.csv_bytes)?;
     if !state.csv_hash.is_empty() && content_hash(csv.as_bytes()) != state.csv_hash {
         return Err(damaged_run(
@@ -930,10 +930,24 @@ fn load_checkpoint<G: Genotype, O: SearchOptimizer<G>>(
     Ok((optimizer, state, csv, timings))
 }
 
+/// What is wrong with an individual a checkpoint holds (`who`: which one).
+#[derive(Debug, thiserror::Error)]
+enum IndividualProblem {
+    #[error("{who}: genotype does not fit the representation: {source}")]
+    Genotype { who: String, source: EvaluatorError },
+    #[error("{who}: {got} fitness values, the task has {objectives} objective(s)")]
+    Objectives { who: String, got: usize, objectives: usize },
+    #[error("{who}: fitness {value} is not finite")]
+    Infinite { who: String, value: f64 },
+}
+
 /// Checks every individual an optimizer holds (population and best) against the evaluator: the
 /// genotype fits the representation, and there is one fitness value per objective, each finite
 /// or NaN (a failed evaluation).
-fn check_individuals<G, O: SearchOptimizer<G>>(optimizer: &O, evaluator: &dyn Evaluator<G>) -> Result<(), String> {
+fn check_individuals<G, O: SearchOptimizer<G>>(
+    optimizer: &O,
+    evaluator: &dyn Evaluator<G>,
+) -> Result<(), IndividualProblem> {
     let objectives = evaluator.objectives();
     let members = optimizer
         .population()
@@ -941,17 +955,15 @@ fn check_individuals<G, O: SearchOptimizer<G>>(optimizer: &O, evaluator: &dyn Ev
         .enumerate()
         .map(|(i, m)| (format!("population member {i}"), m));
     for (who, individual) in members.chain(optimizer.best().map(|b| ("best individual".to_string(), b))) {
-        evaluator
-            .check(&individual.genotype)
-            .map_err(|e| format!("{who}: genotype does not fit the representation: {e}"))?;
-        if individual.objectives.len() != objectives {
-            return Err(format!(
-                "{who}: {} fitness values, the task has {objectives} objective(s)",
-                individual.objectives.len()
-            ));
+        if let Err(source) = evaluator.check(&individual.genotype) {
+            return Err(IndividualProblem::Genotype { who, source });
         }
-        if let Some(bad) = individual.objectives.iter().find(|f| f.is_infinite()) {
-            return Err(format!("{who}: fitness {bad} is not finite"));
+        if individual.objectives.len() != objectives {
+            let got = individual.objectives.len();
+            return Err(IndividualProblem::Objectives { who, got, objectives });
+        }
+        if let Some(&value) = individual.objectives.iter().find(|f| f.is_infinite()) {
+            return Err(IndividualProblem::Infinite { who, value });
         }
     }
     Ok(())

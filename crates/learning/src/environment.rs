@@ -14,6 +14,10 @@ pub struct Transition {
     pub truncated: bool,
 }
 
+/// Why an environment could not step: its own typed error, kept whole (boxed, since every
+/// environment has its own) so that the caller can print it or look inside.
+pub type StepError = Box<dyn std::error::Error + Send + Sync>;
+
 /// An episodic environment with continuous actions. Implementations must be deterministic in
 /// the reset seed and the actions.
 pub trait Environment: Send {
@@ -24,6 +28,6 @@ pub trait Environment: Send {
     /// Starts an episode; `seed` makes it reproducible.
     fn reset(&mut self, seed: u64) -> Vec<f64>;
     /// One step with `action`; an error (the simulation failed in a way the environment cannot
-    /// turn into the end of an episode) stops the training, with this message.
-    fn step(&mut self, action: &[f64]) -> Result<Transition, String>;
+    /// turn into the end of an episode) stops the training.
+    fn step(&mut self, action: &[f64]) -> Result<Transition, StepError>;
 }

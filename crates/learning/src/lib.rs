@@ -20,7 +20,7 @@ pub mod reach;
 pub mod rollout;
 
 pub use adam::Adam;
-pub use environment::{Environment, Transition};
+pub use environment::{Environment, StepError, Transition};
 pub use mlp::Mlp;
 pub use mlp_batch::BatchPass;
 pub use normalizer::Normalizer;

@@ -5,7 +5,7 @@
 //! θ ~ U[−π, π], θ̇ ~ U[−1, 1]. An episode's return lies in about [−1,600, 0]; a swung-up,
 //! balanced pole earns about −150.
 
-use crate::environment::{Environment, Transition};
+use crate::environment::{Environment, StepError, Transition};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::f64::consts::PI;
@@ -49,7 +49,7 @@ impl Environment for Pendulum {
         self.observation()
     }
 
-    fn step(&mut self, action: &[f64]) -> Result<Transition, String> {
+    fn step(&mut self, action: &[f64]) -> Result<Transition, StepError> {
         let (g, m, l, dt) = (10.0, 1.0, 1.0, 0.05);
         let u = action[0].clamp(-2.0, 2.0);
         let cost = normalize(self.theta).powi(2) + 0.1 * self.speed.powi(2) + 0.001 * u * u;

@@ -6,7 +6,7 @@
 //! learning rate decayed linearly to 0 over the iterations.
 
 use crate::adam::Adam;
-use crate::environment::Environment;
+use crate::environment::{Environment, StepError};
 use crate::gaussian::{add_log_prob_gradient, entropy, log_prob};
 use crate::mlp::{standard_normal, Mlp};
 use crate::mlp_batch::BatchPass;
@@ -115,7 +115,7 @@ impl Default for PpoConfig {
 }
 
 /// Why PPO cannot start or go on.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, thiserror::Error)]
 pub enum PpoError {
     /// A setting out of its range; names the field.
     #[error("{field}: {message}")]
@@ -128,6 +128,16 @@ pub enum PpoError {
     /// The environments disagree with the policy (sizes, count).
     #[error("environments: {0}")]
     Environment(String),
+    /// An environment's step failed (`environment`: which of the training's environments;
+    /// `None` for the off-line episode of [`Ppo::episode`]).
+    #[error("environments: {}{source}", environment.map(|e| format!("environment {e}: ")).unwrap_or_default())]
+    Step {
+        /// Which environment.
+        environment: Option<usize>,
+        /// The environment's own error.
+        #[source]
+        source: StepError,
+    },
     /// An environment gave a non-finite observation or reward, or an update made a parameter
     /// non-finite.
     #[error("non-finite {0}")]
@@ -342,7 +352,10 @@ impl Ppo {
         let mut observation = env.reset(seed);
         let (mut total, mut steps) = (0.0, 0);
         while steps < max_steps {
-            let step = env.step(&self.act(&observation)).map_err(PpoError::Environment)?;
+            let step = env.step(&self.act(&observation)).map_err(|source| PpoError::Step {
+                environment: None,
+                source,
+            })?;
             if !step.reward.is_finite() || step.observation.iter().any(|v| !v.is_finite()) {
                 return Err(PpoError::NonFinite("reward or observation of an episode".into()));
             }
@@ -498,9 +511,10 @@ impl Ppo {
             .collect();
         r.log_probs.push(log_prob(&action, &mean, &self.log_std));
         r.values.push(self.critic.forward(&observation).output()[0]);
-        let step = env
-            .step(&action)
-            .map_err(|message| PpoError::Environment(format!("environment {e}: {message}")))?;
+        let step = env.step(&action).map_err(|source| PpoError::Step {
+            environment: Some(e),
+            source,
+        })?;
         if !step.reward.is_finite() || step.observation.iter().any(|v| !v.is_finite()) {
             return Err(PpoError::NonFinite(format!(
                 "reward or observation from environment {e}"
@@ -765,7 +779,7 @@ mod tests {
                 None => Ok(()),
             })
             .unwrap_err();
-        assert_eq!(err, PpoError::NonFinite("stop".into()));
+        assert!(matches!(&err, PpoError::NonFinite(what) if what == "stop"), "{err}");
     }
 
     #[test]
@@ -852,7 +866,7 @@ mod tests {
             fn reset(&mut self, _: u64) -> Vec<f64> {
                 vec![0.0]
             }
-            fn step(&mut self, _: &[f64]) -> Result<Transition, String> {
+            fn step(&mut self, _: &[f64]) -> Result<Transition, StepError> {
                 Ok(Transition {
                     observation: vec![f64::NAN],
                     reward: 0.0,
@@ -863,5 +877,35 @@ mod tests {
         }
         let mut ppo = Ppo::new(1, 1, small(1), 0).unwrap();
         assert!(matches!(ppo.train(&mut [Broken]), Err(PpoError::NonFinite(_))));
+        // an environment's own error comes back typed, with the environment that gave it
+        #[derive(Debug, thiserror::Error)]
+        #[error("the robot fell apart")]
+        struct Apart;
+        struct Failing;
+        impl Environment for Failing {
+            fn observation_size(&self) -> usize {
+                1
+            }
+            fn action_size(&self) -> usize {
+                1
+            }
+            fn reset(&mut self, _: u64) -> Vec<f64> {
+                vec![0.0]
+            }
+            fn step(&mut self, _: &[f64]) -> Result<Transition, StepError> {
+                Err(Box::new(Apart))
+            }
+        }
+        let err = ppo.train(&mut [Failing, Failing]).unwrap_err();
+        assert_eq!(err.to_string(), "environments: environment 0: the robot fell apart");
+        match err {
+            PpoError::Step { environment, source } => {
+                assert_eq!(environment, Some(0));
+                assert!(source.downcast_ref::<Apart>().is_some());
+            }
+            other => panic!("expected a step error, got {other}"),
+        }
+        let err = ppo.episode(&mut Failing, 0, 5).unwrap_err();
+        assert_eq!(err.to_string(), "environments: the robot fell apart");
     }
 }

@@ -2,7 +2,7 @@
 //! on a line pushed by the action (clipped to ±1, 0.2 per step) towards 0, reward −|x| per step,
 //! 20-step episodes starting anywhere in [−1, 1].
 
-use crate::environment::{Environment, Transition};
+use crate::environment::{Environment, StepError, Transition};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -31,7 +31,7 @@ impl Environment for Reach {
         vec![self.x]
     }
 
-    fn step(&mut self, action: &[f64]) -> Result<Transition, String> {
+    fn step(&mut self, action: &[f64]) -> Result<Transition, StepError> {
         self.x += 0.2 * action[0].clamp(-1.0, 1.0);
         self.t += 1;
         Ok(Transition {

@@ -6,6 +6,9 @@ pub enum Physics3dError {
     /// A description that cannot be simulated; the message names the value.
     #[error("{0}")]
     Invalid(String),
+    /// A material value out of its range; the error names the field.
+    #[error("{0}")]
+    Material(vsrlab_field::FieldError),
     /// A link stretched beyond 100 times its length (before any voxel moved), or a voxel's
     /// state became NaN or infinite.
     #[error("the simulation diverged at step {step} (voxel {voxel})")]

@@ -1,6 +1,8 @@
 //! Materials: a voxel's elastic, inertial, frictional, thermal and damping properties, and what
 //! a link between two voxels takes from them (`docs/voxelyze-model.md` §1.2, §2, §3.2, §4).
 
+use vsrlab_field::FieldError;
+
 /// A voxel material (SI units). Poisson's ratio is 0: the linear model without volume effects,
 /// as voxcraft-sim ran the affordance study.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -56,11 +58,11 @@ impl Material {
     }
 
     /// Checks that every value is finite and in range, naming the first that is not.
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> Result<(), FieldError> {
         let positive = [("youngs_modulus", self.youngs_modulus), ("density", self.density)];
         for (name, v) in positive {
             if !(v.is_finite() && v > 0.0) {
-                return Err(format!("{name}: must be a finite number > 0, got {v}"));
+                return Err(FieldError::new(name, format!("must be a finite number > 0, got {v}")));
             }
         }
         let non_negative = [
@@ -72,11 +74,11 @@ impl Material {
         ];
         for (name, v) in non_negative {
             if !(v.is_finite() && v >= 0.0) {
-                return Err(format!("{name}: must be a finite number ≥ 0, got {v}"));
+                return Err(FieldError::new(name, format!("must be a finite number ≥ 0, got {v}")));
             }
         }
         if !self.cte.is_finite() {
-            return Err(format!("cte: must be finite, got {}", self.cte));
+            return Err(FieldError::new("cte", format!("must be finite, got {}", self.cte)));
         }
         Ok(())
     }
@@ -165,10 +167,9 @@ mod tests {
         assert!((l.b2 - 0.5).abs() < 1e-12 && (l.b3 - 1e-3 / 6.0).abs() < 1e-15 && (l.a2 - 1e-3 / 12.0).abs() < 1e-15);
         let mixed = LinkConstants::new(1e6, 1e9, 1e-3);
         assert!((mixed.a1 - 2.0 / (1.0 / 1000.0 + 1.0 / 1e6)).abs() < 1e-9);
-        assert!(Material::voxelyze(-1.0, 1.0)
-            .validate()
-            .unwrap_err()
-            .starts_with("youngs_modulus"));
+        let err = Material::voxelyze(-1.0, 1.0).validate().unwrap_err();
+        assert_eq!(err.path, "youngs_modulus");
+        assert_eq!(err.to_string(), "youngs_modulus: must be a finite number > 0, got -1");
         assert!(Material::affordance().validate().is_ok());
     }
 }

@@ -134,7 +134,7 @@ impl World {
 
     /// Adds a material; returns its index.
     pub fn add_material(&mut self, material: Material) -> Result<usize, Physics3dError> {
-        material.validate().map_err(Physics3dError::Invalid)?;
+        material.validate().map_err(Physics3dError::Material)?;
         self.materials.push(material);
         self.constants
             .push(VoxelConstants::new(&material, self.settings.voxel_size));

@@ -3,7 +3,7 @@
 //! the collective decision it gives (passable at one half or more: ties count as passable).
 
 use std::path::{Path, PathBuf};
-use vsrlab_analysis::plot::{self, BandChart, BandFigure, BandSeries};
+use vsrlab_analysis::plot::{self, BandChart, BandFigure, BandSeries, PlotError};
 use vsrlab_tasks::{channels, Trace};
 
 /// The frames' times and the share of voxels voting "passable" at each, or `None` for a trace
@@ -56,11 +56,21 @@ pub fn votes_figure(trace: &Trace, title: &str) -> Option<BandFigure> {
     })
 }
 
-/// Writes [`votes_figure`] as `path` (its stem `.png` and `.svg`); an error says why not.
-pub fn save_votes(trace: &Trace, title: &str, path: &Path) -> Result<Vec<PathBuf>, String> {
-    let figure = votes_figure(trace, title)
-        .ok_or("--votes: the episode has no votes (use a brain that votes, e.g. elman, on the affordance task)")?;
-    plot::save(&figure, &path.with_extension("")).map_err(|e| format!("--votes: {e}"))
+/// Why the votes figure of `vsrlab simulate --votes` was not written.
+#[derive(Debug, thiserror::Error)]
+pub enum VotesError {
+    /// The episode's trace has no votes channel.
+    #[error("--votes: the episode has no votes (use a brain that votes, e.g. elman, on the affordance task)")]
+    NoVotes,
+    /// The figure could not be written.
+    #[error("--votes: {0}")]
+    Plot(#[from] PlotError),
+}
+
+/// Writes [`votes_figure`] as `path` (its stem `.png` and `.svg`).
+pub fn save_votes(trace: &Trace, title: &str, path: &Path) -> Result<Vec<PathBuf>, VotesError> {
+    let figure = votes_figure(trace, title).ok_or(VotesError::NoVotes)?;
+    Ok(plot::save(&figure, &path.with_extension(""))?)
 }
 
 #[cfg(test)]
@@ -89,7 +99,11 @@ mod tests {
         let files = save_votes(&trace, "t", &dir.join("votes.png")).unwrap();
         assert!(files.iter().all(|f| f.metadata().unwrap().len() > 1000), "{files:?}");
         let e = save_votes(&Trace::default(), "t", &dir.join("none.png")).unwrap_err();
-        assert!(e.starts_with("--votes") && e.contains("elman"), "{e}");
+        assert!(matches!(e, VotesError::NoVotes), "{e}");
+        assert!(
+            e.to_string().starts_with("--votes") && e.to_string().contains("elman"),
+            "{e}"
+        );
         std::fs::remove_dir_all(dir).unwrap();
     }
 }

@@ -25,6 +25,7 @@ pub mod episode;
 pub mod escape;
 pub mod files;
 pub mod fitness;
+pub mod fixed_body;
 pub mod java_random;
 pub mod jump;
 pub mod kinds;

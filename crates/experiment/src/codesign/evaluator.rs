@@ -105,7 +105,7 @@ impl<G: Sync> Evaluator<G> for CodesignEvaluator<G> {
             genotype_error("its evaluation record (the seed its brain was learned with) was not kept".into())
         })?;
         let body = (self.body)(genotype).map_err(|e| genotype_error(e.to_string()))?;
-        let learned = learn(&body, self.episode, &self.ppo, false, seed).map_err(genotype_error)?;
+        let learned = learn(&body, self.episode, &self.ppo, false, seed).map_err(|e| genotype_error(e.to_string()))?;
         let robot = learned_robot(&body, self.episode, &learned.ppo);
         vsrlab_tasks::files::write_atomic(path, robot.to_json(Some(note)).as_bytes()).map_err(|source| {
             EvaluatorError::File {

@@ -6,7 +6,7 @@ use crate::learning_env::EvoGymLearning;
 use vsrlab_brain::{BrainSpec, PolicySpec, TargetAction};
 use vsrlab_learning::{Environment, Ppo, PpoConfig, PpoError};
 use vsrlab_tasks::kinds::evogym::{
-    EvoGymRobot, EvoGymTask, MaterialGrid, TARGET_CENTRE, TARGET_HALF_RANGE, TARGET_RANGE,
+    EvoGymError, EvoGymRobot, EvoGymTask, MaterialGrid, TARGET_CENTRE, TARGET_HALF_RANGE, TARGET_RANGE,
 };
 
 /// The name of the learning curve among an evaluation's series: the off-line reward per step
@@ -40,6 +40,20 @@ pub struct Episode {
     pub steps: usize,
 }
 
+/// Why a body could not be trained.
+#[derive(Debug, thiserror::Error)]
+pub enum LearnError {
+    /// The body does not make an environment of the task.
+    #[error(transparent)]
+    Environment(#[from] EvoGymError),
+    /// PPO refused its settings or stopped (an environment's step, a non-finite value).
+    #[error(transparent)]
+    Ppo(#[from] PpoError),
+    /// The settings asked for no iteration, so there is no policy to score.
+    #[error("PPO ran no iteration")]
+    NoIteration,
+}
+
 /// Trains PPO (`config`, `config.environments` copies of the task stepped in parallel) for
 /// `body` on `episode`'s task from `seed`. With `curve`, an off-line episode after every iteration (and
 /// before the first) gives the learning curve; otherwise only the last one is run. An episode's
@@ -51,27 +65,22 @@ pub fn learn(
     config: &PpoConfig,
     curve: bool,
     seed: u64,
-) -> Result<Learned, String> {
+) -> Result<Learned, LearnError> {
     let Episode { task, steps } = episode;
-    let env = EvoGymLearning::new(task, body)
-        .map_err(|e| e.to_string())?
-        .with_episode_steps(steps);
-    let mut ppo =
-        Ppo::new(env.observation_size(), env.action_size(), config.clone(), seed).map_err(|e| e.to_string())?;
+    let env = EvoGymLearning::new(task, body)?.with_episode_steps(steps);
+    let mut ppo = Ppo::new(env.observation_size(), env.action_size(), config.clone(), seed)?;
     let mut environments = vec![env.clone(); config.environments];
     let mut offline = env;
     let mut points = Vec::new();
-    let stats = ppo
-        .train_observed(&mut environments, |p, stats| {
-            let last = stats.is_some_and(|s| s.iteration + 1 == config.iterations);
-            if curve || last {
-                let (total, _) = p.episode(&mut offline, seed, steps)?;
-                points.push(total / steps as f64);
-            }
-            Ok::<(), PpoError>(())
-        })
-        .map_err(|e| e.to_string())?;
-    let fitness = *points.last().ok_or("PPO ran no iteration")?;
+    let stats = ppo.train_observed(&mut environments, |p, stats| {
+        let last = stats.is_some_and(|s| s.iteration + 1 == config.iterations);
+        if curve || last {
+            let (total, _) = p.episode(&mut offline, seed, steps)?;
+            points.push(total / steps as f64);
+        }
+        Ok::<(), PpoError>(())
+    })?;
+    let fitness = *points.last().ok_or(LearnError::NoIteration)?;
     Ok(Learned {
         fitness,
         curve: if curve { points } else { Vec::new() },

@@ -70,18 +70,28 @@ fn axes(sweep: toml::Table, text: &str) -> Result<Vec<Axis>, FieldError> {
     Ok(axes)
 }
 
+/// Why a swept key cannot be set.
+#[derive(Debug, thiserror::Error)]
+enum KeyProblem {
+    #[error("empty key")]
+    Empty,
+    #[error("'{part}' in '{key}' is not a table")]
+    NotATable { part: String, key: String },
+}
+
 /// Sets the dotted `key` of `table` to `value`, creating tables on the way.
-fn set(table: &mut toml::Table, key: &str, value: toml::Value) -> Result<(), String> {
+fn set(table: &mut toml::Table, key: &str, value: toml::Value) -> Result<(), KeyProblem> {
     let mut parts: Vec<&str> = key.split('.').collect();
-    let last = parts.pop().filter(|p| !p.is_empty()).ok_or("empty key")?;
+    let last = parts.pop().filter(|p| !p.is_empty()).ok_or(KeyProblem::Empty)?;
     let mut here = table;
     for part in parts {
         let next = here
             .entry(part.to_string())
             .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-        here = next
-            .as_table_mut()
-            .ok_or_else(|| format!("'{part}' in '{key}' is not a table"))?;
+        here = next.as_table_mut().ok_or_else(|| KeyProblem::NotATable {
+            part: part.to_string(),
+            key: key.to_string(),
+        })?;
     }
     here.insert(last.to_string(), value);
     Ok(())
@@ -134,7 +144,7 @@ pub fn expand(text: &str, origin: &str, stem: &str) -> Result<Vec<Experiment>, C
         for (axis, pick) in picks.into_iter().rev() {
             let (label, value) = &axis.values[pick];
             set(&mut setting, &axis.key, value.clone())
-                .map_err(|m| whole_file(&format!("sweep.\"{}\"", axis.key), m))?;
+                .map_err(|m| whole_file(&format!("sweep.\"{}\"", axis.key), m.to_string()))?;
             labels.push(label.clone());
             assignments.push(format!("{} = {label}", axis.key));
         }

@@ -5,8 +5,8 @@
 //! fitness, learning curve and training rewards, and its saved robot replays to finite numbers.
 
 use proptest::prelude::*;
-use vsrlab_experiment::codesign::{kept_body, learn, learned_robot, Episode};
-use vsrlab_learning::PpoConfig;
+use vsrlab_experiment::codesign::{kept_body, learn, learned_robot, Episode, LearnError};
+use vsrlab_learning::{PpoConfig, PpoError};
 use vsrlab_tasks::kinds::evogym::{EvoGymTask, Material};
 
 const TASKS: [EvoGymTask; 4] = [
@@ -46,7 +46,16 @@ proptest! {
             ..PpoConfig::default()
         };
         match learn(&body, episode, &ppo, true, seed) {
-            Err(reason) => prop_assert!(!reason.is_empty()),
+            // a failure is the simulation's report (a step refused, a value not finite), never
+            // settings or sizes that the training should have accepted
+            Err(reason) => prop_assert!(
+                matches!(
+                    reason,
+                    LearnError::Environment(_) | LearnError::Ppo(PpoError::Step { .. } | PpoError::NonFinite(_))
+                ),
+                "{}",
+                reason
+            ),
             Ok(learned) => {
                 prop_assert!(learned.fitness.is_finite());
                 prop_assert_eq!(learned.curve.len(), 3);

@@ -69,7 +69,7 @@ pub struct ForeignFormat {
     pub read: fn(&[u8], &str) -> Result<AnyRobot, FileError>,
     /// The robot in this format, or why it cannot be written so (another kind's robot, a brain
     /// the format has no place for is left out and said in `note`).
-    pub write: fn(&AnyRobot) -> Result<Vec<u8>, String>,
+    pub write: fn(&AnyRobot) -> Result<Vec<u8>, vsrlab_field::FieldError>,
 }
 
 /// The command line's description of a robot: a body, and optionally a brain, sensors and a

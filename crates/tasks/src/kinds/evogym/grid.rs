@@ -132,11 +132,11 @@ impl MaterialGrid {
         y > 0 && self.connected_down(x, y - 1)
     }
 
-    /// Connects two present 4-adjacent cells; refuses anything else with a message.
-    pub fn connect(&mut self, a: (usize, usize), b: (usize, usize)) -> Result<(), String> {
+    /// Connects two present 4-adjacent cells; refuses anything else.
+    pub fn connect(&mut self, a: (usize, usize), b: (usize, usize)) -> Result<(), ConnectionError> {
         let (a, b) = if (a.1, a.0) <= (b.1, b.0) { (a, b) } else { (b, a) };
         if !self.at(a.0, a.1).is_present() || !self.at(b.0, b.1).is_present() {
-            return Err(format!("connection {a:?}–{b:?} involves an empty cell"));
+            return Err(ConnectionError::EmptyCell(a, b));
         }
         let i = a.1 * self.width + a.0;
         if a.1 == b.1 && a.0 + 1 == b.0 {
@@ -144,7 +144,7 @@ impl MaterialGrid {
         } else if a.0 == b.0 && a.1 + 1 == b.1 {
             self.down[i] = true;
         } else {
-            return Err(format!("cells {a:?} and {b:?} are not 4-neighbours"));
+            return Err(ConnectionError::NotNeighbours(a, b));
         }
         Ok(())
     }
@@ -252,6 +252,17 @@ fn check_size(width: usize, height: usize, max: usize) -> Result<(), FieldError>
     Ok(())
 }
 
+/// Why two cells of a [`MaterialGrid`] cannot be connected (cells as `(x, y)`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+pub enum ConnectionError {
+    /// One of the two cells is empty.
+    #[error("connection {0:?}–{1:?} involves an empty cell")]
+    EmptyCell((usize, usize), (usize, usize)),
+    /// The cells do not share a side.
+    #[error("cells {0:?} and {1:?} are not 4-neighbours")]
+    NotNeighbours((usize, usize), (usize, usize)),
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -312,8 +323,16 @@ mod tests {
             2,
             vec![Material::Rigid, Material::Empty, Material::Soft, Material::Soft],
         );
-        assert!(g.connect((0, 0), (1, 1)).unwrap_err().contains("4-neighbours"));
-        assert!(g.connect((0, 0), (1, 0)).unwrap_err().contains("empty"));
+        assert_eq!(
+            g.connect((0, 0), (1, 1)),
+            Err(ConnectionError::NotNeighbours((0, 0), (1, 1)))
+        );
+        assert!(g
+            .connect((0, 0), (1, 1))
+            .unwrap_err()
+            .to_string()
+            .contains("4-neighbours"));
+        assert!(g.connect((0, 0), (1, 0)).unwrap_err().to_string().contains("empty"));
         assert!(g.connect((0, 1), (1, 1)).is_ok() && g.connect((0, 0), (0, 1)).is_ok());
         assert!(g.is_connected() && g.connected_up(0, 1));
     }

@@ -5,11 +5,11 @@
 //! the brain's parameters).
 
 use super::robot::EvoGymRobot;
-use crate::body_part::{BodyPart, BodySource};
+use crate::body_part::BodyPart;
 use crate::files::{self, FileError, ROBOT_FORMAT};
+use crate::fixed_body::{brain_parameters_on, FixedBody};
 use crate::kinds::voxel::short_forms::{RobotArgsError, RobotPart, RANDOM_BRAIN_SEED};
 use crate::kinds::{AnyRobot, ForeignFormat, RobotArgs, RobotDescription, RobotKind};
-use crate::representation::{EvaluationError, Representation};
 use serde::{Deserialize, Serialize};
 use vsrlab_brain::BrainSpec;
 use vsrlab_field::FieldError;
@@ -45,14 +45,14 @@ pub const KIND: RobotKind = RobotKind {
 };
 
 /// The body of an EvoGym robot, for EvoGym's own file formats (which hold no brain).
-fn grid_of(robot: &AnyRobot) -> Result<super::MaterialGrid, String> {
+fn grid_of(robot: &AnyRobot) -> Result<super::MaterialGrid, FieldError> {
     let evogym = robot.downcast_ref::<EvoGymRobot>().ok_or_else(|| {
-        format!(
+        FieldError::message(format!(
             "EvoGym's robot files hold EvoGym robots, not {} robots",
             robot.kind().name
-        )
+        ))
     })?;
-    evogym.grid().map_err(|e| e.to_string())
+    evogym.grid()
 }
 
 /// An EvoGym `.npz` robot: a body only, given the default brain as EvoGym's JSON robots are.
@@ -248,42 +248,24 @@ impl EvoGymTable {
     }
 }
 
-impl BodySource for EvoGymTable {
-    fn kind(&self) -> &'static RobotKind {
+impl FixedBody for EvoGymTable {
+    fn robot_kind(&self) -> &'static RobotKind {
         &KIND
     }
 
-    fn genes(&self) -> usize {
-        0
+    fn sensors_refused(&self) -> &'static str {
+        "an EvoGym robot observes what its task gives; remove this field"
     }
 
-    fn brain_genes(&self, representation: &Representation) -> Result<usize, EvaluationError> {
-        if representation.sensors.is_some() {
-            return Err(EvaluationError::Representation(FieldError::new(
-                "sensors",
-                "an EvoGym robot observes what its task gives; remove this field",
-            )));
-        }
-        let robot = self.robot_with(representation.brain.clone());
-        let shape = robot
-            .brain_shape()
-            .map_err(|e| EvaluationError::Representation(e.at("body")))?;
-        robot
-            .brain
-            .parameter_count(&shape)
-            .map_err(|e| EvaluationError::Representation(FieldError::from(e).at("brain")))
+    fn brain_parameters(&self, brain: &BrainSpec) -> Result<usize, FieldError> {
+        brain_parameters_on(self.robot_with(brain.clone()).brain_shape(), brain)
     }
 
-    fn robot(
-        &self,
-        _representation: &Representation,
-        _genes: &[f64],
-        brain: BrainSpec,
-    ) -> Result<AnyRobot, EvaluationError> {
-        Ok(AnyRobot::new(self.robot_with(brain)))
+    fn robot_of(&self, brain: BrainSpec) -> AnyRobot {
+        AnyRobot::new(self.robot_with(brain))
     }
 
-    fn size(&self) -> usize {
+    fn body_units(&self) -> usize {
         super::MaterialGrid::from_rows(&self.body).map_or(0, |g| g.cell_count())
     }
 }

@@ -29,7 +29,7 @@ pub use action_stream::ActionStream;
 pub use assemble::{plan_object, ObjectPlan, PlacedObject, PlannedPoint, PlannedQuad, PlannedSpring, CELL, RIGID_BAND};
 pub use env::{EvoGymEnv, StepResult};
 pub use error::EvoGymError;
-pub use grid::{MaterialGrid, MAX_ROBOT_SIDE, MAX_SIDE};
+pub use grid::{ConnectionError, MaterialGrid, MAX_ROBOT_SIDE, MAX_SIDE};
 pub use kind::{EvoGymTable, KIND};
 pub use materials::{Material, ACTUATOR_SIDE, RIGID_SIDE, SOFT_SIDE};
 pub use npz_file::{is_npz, robot_from_npz, robot_to_npz, NpyArray};

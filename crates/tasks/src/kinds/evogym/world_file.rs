@@ -181,7 +181,7 @@ fn connect(
                 ));
             }
             grid.connect(local(i), local(n))
-                .map_err(|m| FieldError::new(format!("{field}[{k}]"), m))?;
+                .map_err(|m| FieldError::new(format!("{field}[{k}]"), m.to_string()))?;
         }
     }
     Ok(())

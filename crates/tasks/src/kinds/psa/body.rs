@@ -2,9 +2,9 @@
 //! genotype is the brain's parameters).
 
 use super::robot::PsaRobot;
-use crate::body_part::{BodyPart, BodySource};
+use crate::body_part::BodyPart;
+use crate::fixed_body::FixedBody;
 use crate::kinds::{AnyRobot, RobotKind};
-use crate::representation::{EvaluationError, Representation};
 use serde::Serialize;
 use vsrlab_body::psa::PsaBody;
 use vsrlab_brain::BrainSpec;
@@ -38,50 +38,38 @@ pub(crate) fn decode(value: serde_json::Value) -> Result<BodyPart, FieldError> {
 }
 
 impl PsaTable {
-    /// The PSA robot (brain as given) of a representation; an error if it lists sensors.
-    fn robot_with(&self, representation: &Representation, brain: BrainSpec) -> Result<PsaRobot, EvaluationError> {
-        if representation.sensors.is_some() {
-            return Err(EvaluationError::Representation(FieldError::new(
-                "sensors",
-                "a PSA has its own sensors (3 per mass and 3 for the whole); remove this field",
-            )));
-        }
-        Ok(PsaRobot {
+    fn robot_with(&self, brain: BrainSpec) -> PsaRobot {
+        PsaRobot {
             body: self.body.clone(),
             brain,
-        })
+        }
     }
 }
 
-impl BodySource for PsaTable {
-    fn kind(&self) -> &'static RobotKind {
+impl FixedBody for PsaTable {
+    fn robot_kind(&self) -> &'static RobotKind {
         &super::KIND
     }
 
-    fn genes(&self) -> usize {
-        0
+    fn sensors_refused(&self) -> &'static str {
+        "a PSA has its own sensors (3 per mass and 3 for the whole); remove this field"
     }
 
-    fn brain_genes(&self, representation: &Representation) -> Result<usize, EvaluationError> {
-        let robot = self.robot_with(representation, representation.brain.clone())?;
-        robot.validate_body().map_err(EvaluationError::Representation)?;
-        robot.brain_parameters().map_err(EvaluationError::Representation)
+    fn brain_parameters(&self, brain: &BrainSpec) -> Result<usize, FieldError> {
+        let robot = self.robot_with(brain.clone());
+        robot.validate_body()?;
+        robot.brain_parameters()
     }
 
-    fn robot(
-        &self,
-        representation: &Representation,
-        _genes: &[f64],
-        brain: BrainSpec,
-    ) -> Result<AnyRobot, EvaluationError> {
-        self.robot_with(representation, brain).map(AnyRobot::new)
+    fn robot_of(&self, brain: BrainSpec) -> AnyRobot {
+        AnyRobot::new(self.robot_with(brain))
     }
 
-    fn size(&self) -> usize {
+    fn body_units(&self) -> usize {
         self.body.params.masses + 1
     }
 
-    fn episode_bytes(&self, dt: f64) -> u128 {
+    fn extra_episode_bytes(&self, dt: f64) -> u128 {
         let params = &self.body.params;
         // the sensors' ring buffer: a window of steps, every reading, 8 bytes each
         let steps = (params.sensor_window / dt).round().max(1.0);

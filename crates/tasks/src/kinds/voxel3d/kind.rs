@@ -5,11 +5,11 @@
 
 use super::robot::Voxel3dRobot;
 use super::sensors::DEFAULT_SENSORS;
-use crate::body_part::{BodyPart, BodySource};
+use crate::body_part::BodyPart;
 use crate::files::{self, FileError, ROBOT_FORMAT};
+use crate::fixed_body::{brain_parameters_on, FixedBody};
 use crate::kinds::voxel::short_forms::{RobotArgsError, RobotPart, RANDOM_BRAIN_SEED};
 use crate::kinds::{AnyRobot, RobotArgs, RobotDescription, RobotKind};
-use crate::representation::{EvaluationError, Representation};
 use serde::{Deserialize, Serialize};
 use vsrlab_brain::BrainSpec;
 use vsrlab_field::FieldError;
@@ -174,42 +174,24 @@ impl Voxel3dTable {
     }
 }
 
-impl BodySource for Voxel3dTable {
-    fn kind(&self) -> &'static RobotKind {
+impl FixedBody for Voxel3dTable {
+    fn robot_kind(&self) -> &'static RobotKind {
         &KIND
     }
 
-    fn genes(&self) -> usize {
-        0
+    fn sensors_refused(&self) -> &'static str {
+        "a 3D body's sensors go in its body table (`sensors = \"cpg,touch\"`); remove this field"
     }
 
-    fn brain_genes(&self, representation: &Representation) -> Result<usize, EvaluationError> {
-        if representation.sensors.is_some() {
-            return Err(EvaluationError::Representation(FieldError::new(
-                "sensors",
-                "a 3D body's sensors go in its body table (`sensors = \"cpg,touch\"`); remove this field",
-            )));
-        }
-        let robot = self.robot_with(representation.brain.clone());
-        let shape = robot
-            .brain_shape()
-            .map_err(|e| EvaluationError::Representation(e.at("body")))?;
-        robot
-            .brain
-            .parameter_count(&shape)
-            .map_err(|e| EvaluationError::Representation(FieldError::from(e).at("brain")))
+    fn brain_parameters(&self, brain: &BrainSpec) -> Result<usize, FieldError> {
+        brain_parameters_on(self.robot_with(brain.clone()).brain_shape(), brain)
     }
 
-    fn robot(
-        &self,
-        _representation: &Representation,
-        _genes: &[f64],
-        brain: BrainSpec,
-    ) -> Result<AnyRobot, EvaluationError> {
-        Ok(AnyRobot::new(self.robot_with(brain)))
+    fn robot_of(&self, brain: BrainSpec) -> AnyRobot {
+        AnyRobot::new(self.robot_with(brain))
     }
 
-    fn size(&self) -> usize {
+    fn body_units(&self) -> usize {
         super::BodyGrid3::parse(&self.body).map_or(0, |g| g.voxel_count())
     }
 }

@@ -118,12 +118,7 @@ impl Physics3d {
             self.amplitude >= 0.0,
             "a finite number ≥ 0",
         )?;
-        self.material()
-            .validate()
-            .map_err(|message| match message.split_once(": ") {
-                Some((field, why)) => FieldError::new(field, why.to_string()),
-                None => FieldError::message(message),
-            })?;
+        self.material().validate()?;
         let swing = self.amplitude * self.cte.abs();
         check(
             "amplitude",

@@ -197,6 +197,14 @@ pub trait Optimizer {
     /// CMA-ES) or the archive's elites (MAP-Elites).
     fn population(&self) -> Vec<&Individual<Self::Genotype>>;
 
+    /// The last generation whole, best first: for the μ + λ GA the pool its truncation chose
+    /// from (the parents it started from and this generation's children: the population of
+    /// EvoGym's GA and of thesis ch. 5.2, where the best fifth survives); for every other
+    /// optimizer its [`Optimizer::population`].
+    fn generation_pool(&self) -> Vec<&Individual<Self::Genotype>> {
+        self.population()
+    }
+
     /// Why the optimizer has stopped by itself (a termination criterion of its own, e.g.
     /// `"cma-es:tolfun"`), or `None` while it can go on. Drivers end the run when it is `Some`;
     /// calling `ask`/`tell` afterwards is allowed but unlikely to help.

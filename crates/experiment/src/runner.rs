@@ -233,6 +233,9 @@ pub struct Plan {
     pub stop: StopConfig,
     /// What is written.
     pub output: OutputConfig,
+    /// Snapshots hold each generation whole, not only its survivors
+    /// (`GenotypeKind::snapshots_whole_generation`).
+    pub snapshot_generation_pool: bool,
 }
 
 impl Plan {
@@ -244,6 +247,7 @@ impl Plan {
             run_seeds: experiment.run_seeds(),
             stop: experiment.stop.clone(),
             output: experiment.output.clone(),
+            snapshot_generation_pool: experiment.genotype_kind().snapshots_whole_generation(),
         }
     }
 }
@@ -515,7 +519,7 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
         log_generation(session.evaluator, &optimizer, &state, &batch, &mut logs.csv);
         write_file(&slot.files.generations_csv(), logs.csv.as_bytes())?;
         if every > 0 && optimizer.evaluations() >= state.next_snapshot {
-            write_snapshot(slot.files, &optimizer, &mut state)?;
+            write_snapshot(slot.files, snapshot_members(plan, &optimizer), &optimizer, &mut state)?;
             while state.next_snapshot <= optimizer.evaluations() {
                 state.next_snapshot += every;
             }
@@ -663,7 +667,10 @@ fn evaluate_generation<G: Genotype, O: SearchOptimizer<G>>(
             state.best = state.records.get(&hash).map(|r| (hash, r.clone()));
         }
     }
-    let keep: BTreeSet<u64> = optimizer.population().iter().map(|i| i.genotype.key()).collect();
+    let keep: BTreeSet<u64> = snapshot_members(session.plan, optimizer)
+        .iter()
+        .map(|i| i.genotype.key())
+        .collect();
     state.records.retain(|k, _| keep.contains(k));
     state.failures += summary.failures;
     Ok(summary)
@@ -763,7 +770,7 @@ fn finish_run<G: Genotype, O: SearchOptimizer<G>>(
 ) -> Result<RunSummary, RunError> {
     let RunSlot { run, seed, files } = *slot;
     if state.last_snapshot != Some(optimizer.evaluations()) {
-        write_snapshot(files, optimizer, state)?;
+        write_snapshot(files, snapshot_members(session.plan, optimizer), optimizer, state)?;
     }
     // a run whose every evaluation failed has no best robot: its summary says so (no best
     // fitness, as many failures as evaluations) instead of the run failing on its replay
@@ -1022,13 +1029,24 @@ fn safe_relative(name: &str) -> Option<&Path> {
         .then_some(path)
 }
 
+/// The individuals a snapshot holds (their records are kept until the next generation): the
+/// population, or the whole last generation when the plan says so.
+fn snapshot_members<'o, G: Genotype, O: SearchOptimizer<G>>(plan: &Plan, optimizer: &'o O) -> Vec<&'o Individual<G>> {
+    if plan.snapshot_generation_pool {
+        optimizer.generation_pool()
+    } else {
+        optimizer.population()
+    }
+}
+
 fn write_snapshot<G: Genotype, O: SearchOptimizer<G>>(
     files: &RunFiles,
+    members: Vec<&Individual<G>>,
     optimizer: &O,
     state: &mut RunState,
 ) -> Result<(), RunError> {
     let mut text = String::new();
-    for (index, individual) in optimizer.population().into_iter().enumerate() {
+    for (index, individual) in members.into_iter().enumerate() {
         let line = SnapshotRow {
             generation: optimizer.generation(),
             evaluations: optimizer.evaluations(),

@@ -98,6 +98,10 @@ pub struct GeneticAlgorithm<R: Representation> {
     senses: Vec<Sense>,
     /// Survivors, best first.
     population: Vec<Individual<R::Genotype>>,
+    /// The last generation's members that the truncation removed, best first: with
+    /// `population`, the pool it chose from ([`Optimizer::generation_pool`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    removed: Vec<Individual<R::Genotype>>,
 }
 
 impl<R: Representation> GeneticAlgorithm<R> {
@@ -125,6 +129,7 @@ impl<R: Representation> GeneticAlgorithm<R> {
             representation,
             state: SearchState::new(seed),
             population: Vec::new(),
+            removed: Vec::new(),
         })
     }
 
@@ -187,6 +192,10 @@ impl<R: Representation> Optimizer for GeneticAlgorithm<R> {
     fn population(&self) -> Vec<&Individual<R::Genotype>> {
         self.population.iter().collect()
     }
+
+    fn generation_pool(&self) -> Vec<&Individual<R::Genotype>> {
+        self.population.iter().chain(&self.removed).collect()
+    }
 }
 
 impl<R: Representation, O> Tell<O> for GeneticAlgorithm<R> {
@@ -212,7 +221,7 @@ impl<R: Representation, O> Tell<O> for GeneticAlgorithm<R> {
             }
         }
         sort_lexicographic(&mut merged, &senses);
-        merged.truncate(self.config.settings.population_size);
+        self.removed = merged.split_off(self.config.settings.population_size.min(merged.len()));
         if self.config.settings.reevaluate_survivors {
             // every member was just evaluated: the best is the population's, not the luckiest
             // draw of the noise so far
@@ -388,6 +397,42 @@ mod tests {
         assert_eq!(pop.len(), 10);
         assert!(pop.windows(2).all(|w| w[0].fitness() <= w[1].fitness()));
         assert_eq!(pop[0].fitness(), ga.best().unwrap().fitness());
+    }
+
+    #[test]
+    fn the_generation_pool_is_the_parents_and_children_the_truncation_chose_from() {
+        let config = GaConfig {
+            settings: GaSettings {
+                population_size: 2,
+                offspring_size: 8,
+                initial_population_size: Some(10),
+                tournament_size: 1,
+                mutation_probability: 1.0,
+                ..GaSettings::default()
+            },
+            sense: Sense::Minimize,
+            ties: Vec::new(),
+        };
+        let mut ga = GeneticAlgorithm::new(config, RealVector::thesis(3), 4).unwrap();
+        let sphere = |c: &Candidate<Vec<f64>>| crate::Evaluation::single(sphere(&c.genotype));
+        // the first generation: all 10 random genotypes, of which 2 survive
+        run_to_budget(&mut ga, sphere, &Stop::generations(1)).unwrap();
+        assert_eq!(ga.population().len(), 2);
+        let pool = ga.generation_pool();
+        assert_eq!(pool.len(), 10);
+        assert!(pool.iter().all(|i| i.birth_generation == 0));
+        assert!(pool.windows(2).all(|w| w[0].fitness() <= w[1].fitness()), "best first");
+        // later: the 2 parents the generation started from and its 8 children
+        let parents: Vec<Vec<f64>> = ga.population().iter().map(|i| i.genotype.clone()).collect();
+        run_to_budget(&mut ga, sphere, &Stop::generations(2)).unwrap();
+        let pool = ga.generation_pool();
+        assert_eq!(pool.len(), 10);
+        assert_eq!(pool.iter().filter(|i| i.birth_generation == 1).count(), 8);
+        assert!(parents.iter().all(|p| pool.iter().any(|i| &i.genotype == p)));
+        assert_eq!(&pool[..2], &ga.population()[..], "the survivors lead the pool");
+        // a checkpoint keeps the pool
+        let back: GeneticAlgorithm<RealVector> = serde_json::from_value(serde_json::to_value(&ga).unwrap()).unwrap();
+        assert_eq!(back.generation_pool(), ga.generation_pool());
     }
 
     #[test]

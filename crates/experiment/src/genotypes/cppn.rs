@@ -104,6 +104,13 @@ impl GenotypeKind for CppnGenotype {
         "cppn"
     }
 
+    /// Learning curves and radius are medians over the population as EvoGym and the thesis count
+    /// it: every body trained in a generation (for the GA, the parents and children before the
+    /// best are kept).
+    fn snapshots_whole_generation(&self) -> bool {
+        true
+    }
+
     fn implied_representation(&self, task: &TaskConfig) -> Option<Representation> {
         codesign::implied_representation(task, self.width, self.height)
     }

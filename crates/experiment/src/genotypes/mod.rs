@@ -80,6 +80,13 @@ pub trait GenotypeKind: Debug + Send + Sync + GenotypeCopy {
     /// Its genotypes as snapshots and checkpoints store them → robots: how analyses replay the
     /// individuals of a run.
     fn stored(&self, experiment: &Experiment) -> Result<Arc<dyn StoredGenotypes>, FieldError>;
+    /// Whether snapshots hold each generation whole (the GA's parents and children before
+    /// truncation, [`vsrlab_evolution::Optimizer::generation_pool`]) instead of the survivors:
+    /// the population as EvoGym's GA and thesis ch. 5.2 count it, whose learning curves and
+    /// radius are medians over it.
+    fn snapshots_whole_generation(&self) -> bool {
+        false
+    }
     /// Whether its genotypes are rows of numbers, which batch evaluation (`vsrlab evaluate`,
     /// Python, Ray workers) sends.
     fn rows(&self) -> bool {

@@ -28,6 +28,9 @@ pub trait SearchOptimizer<G>: Serialize + DeserializeOwned + Send {
     fn best(&self) -> Option<&Individual<G>>;
     /// The current population (survivors, last batch, or archive).
     fn population(&self) -> Vec<&Individual<G>>;
+    /// The last generation whole (the μ + λ GA's pool before truncation; otherwise the
+    /// population): see `vsrlab_evolution::Optimizer::generation_pool`.
+    fn generation_pool(&self) -> Vec<&Individual<G>>;
     /// Number of species (speciated evolvers only).
     fn species(&self) -> Option<usize> {
         None
@@ -94,6 +97,9 @@ where
     }
     fn population(&self) -> Vec<&Individual<G>> {
         self.optimizer().population()
+    }
+    fn generation_pool(&self) -> Vec<&Individual<G>> {
+        self.optimizer().generation_pool()
     }
     fn stop_reason(&self) -> Option<&'static str> {
         self.optimizer().stop_reason()

@@ -315,6 +315,22 @@ pub enum BenchError {
     /// A learning row's training failed; the message names the row.
     #[error("{0}")]
     Learning(String),
+    /// A population row's batch could not be evaluated.
+    #[error("{robot}: population: {source}")]
+    Population {
+        /// The row's robot.
+        robot: &'static str,
+        /// The evaluator's error.
+        source: crate::evaluator::EvaluatorError,
+    },
+    /// An episode of a population row failed (its record's reason).
+    #[error("{robot}: population: an evaluation failed: {reason}")]
+    FailedEvaluation {
+        /// The row's robot.
+        robot: &'static str,
+        /// Why, as the evaluation's record gives it.
+        reason: String,
+    },
 }
 
 /// Checks the options that no episode would reject: known robots, a finite positive time budget

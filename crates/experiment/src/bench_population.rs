@@ -8,6 +8,7 @@
 use crate::bench::{BenchError, BenchOptions, Measured, Measurement, Mode, Row, StandardCase};
 use crate::config::{self, Experiment};
 use crate::cpu_time::process_cpu_seconds;
+use crate::evaluator::EvaluatorError;
 use crate::evaluator::{Evaluator, RobotEvaluator};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -92,17 +93,21 @@ pub(crate) fn measure_population(
 ) -> Result<Row, BenchError> {
     let (steps_per_episode, voxels) = per_episode;
     let experiment = experiment(standard, options, task)?;
-    let evaluator = RobotEvaluator::new(&experiment).map_err(|e| BenchError::Option(format!("population: {e}")))?;
+    let robot = standard.name;
+    let evaluator = RobotEvaluator::new(&experiment).map_err(|e| BenchError::Population {
+        robot,
+        source: EvaluatorError::Robot(e),
+    })?;
     let genotypes = population(&evaluator, n);
     let refs: Vec<&Vec<f64>> = genotypes.iter().collect();
     let seeds: Vec<u64> = (0..n as u64).collect();
     let (c0, w0) = (process_cpu_seconds(), Instant::now());
     let evaluated = pool
         .install(|| evaluator.evaluate_batch(&refs, &seeds))
-        .map_err(|e| BenchError::Option(format!("population: {e}")))?;
+        .map_err(|source| BenchError::Population { robot, source })?;
     let (cpu_seconds, wall_seconds) = (process_cpu_seconds() - c0, w0.elapsed().as_secs_f64());
-    if let Some(error) = evaluated.iter().find_map(|e| e.record.error.clone()) {
-        return Err(BenchError::Option(format!("population: an evaluation failed: {error}")));
+    if let Some(reason) = evaluated.iter().find_map(|e| e.record.error.clone()) {
+        return Err(BenchError::FailedEvaluation { robot, reason });
     }
     let what = Measured {
         robot: standard.name,

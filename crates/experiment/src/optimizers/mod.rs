@@ -301,10 +301,16 @@ pub(crate) fn decode_flat<T: DeserializeOwned + Serialize>(value: toml::Value) -
     }
 }
 
-/// A wrong value inside a flattened part reaches serde without its field's name (the error
-/// names the table as a whole); the field is the one key whose removal lets the table decode.
+/// A wrong value inside a flattened part reaches serde without its field's name: the error
+/// names the table as a whole, or (an unknown field of a nested table) only the unknown key.
+/// The field is the one key whose removal lets the table decode; a path that is not one of the
+/// table's own keys is put under it (`mutation.bogus`, not `bogus`).
 fn name_flattened_field<T: DeserializeOwned>(value: &toml::Value, error: FieldError) -> FieldError {
-    let Some(table) = value.as_table().filter(|_| error.path.is_empty()) else {
+    let first = error.path.split(['.', '[']).next().unwrap_or_default();
+    let Some(table) = value
+        .as_table()
+        .filter(|t| error.path.is_empty() || !t.contains_key(first))
+    else {
         return error;
     };
     let culprit = table.keys().find(|key| {
@@ -313,7 +319,8 @@ fn name_flattened_field<T: DeserializeOwned>(value: &toml::Value, error: FieldEr
         decode::<T>(toml::Value::Table(rest)).is_ok()
     });
     match culprit {
-        Some(key) => FieldError::new(key.clone(), error.message),
+        Some(key) if error.path.is_empty() => FieldError::new(key.clone(), error.message),
+        Some(key) => FieldError::new(format!("{key}.{}", error.path), error.message),
         None => error,
     }
 }

@@ -360,6 +360,11 @@ fn optimizer_fields_written_at_their_default_are_known_and_misspelt_ones_refused
         ("kind = \"map-elites\"\nbatch = 3", Some("optimizer.batch")),
         ("kind = \"se\"\nalfa = 0.5", Some("optimizer.alfa")),
         ("kind = \"ga\"\npopulation = 3", Some("optimizer.population")),
+        // inside a nested table of a flattened part, the path keeps the table's name
+        (
+            "kind = \"neat\"\nmutation = { bogus = 1 }",
+            Some("optimizer.mutation.bogus"),
+        ),
     ];
     for (table, refused) in cases {
         let parsed = config::parse(&optimizer(table), "q.toml");

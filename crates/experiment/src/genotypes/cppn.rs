@@ -104,9 +104,7 @@ impl GenotypeKind for CppnGenotype {
         "cppn"
     }
 
-    /// Learning curves and radius are medians over the population as EvoGym and the thesis count
-    /// it: every body trained in a generation (for the GA, the parents and children before the
-    /// best are kept).
+    /// As the direct encoding's (NEAT's population already is its whole generation).
     fn snapshots_whole_generation(&self) -> bool {
         true
     }

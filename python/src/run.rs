@@ -32,7 +32,12 @@ impl Evaluator<Vec<f64>> for Remote {
         Evaluator::<Vec<f64>>::failure(&self.local, seed, error)
     }
 
-    fn evaluate_batch(&self, genotypes: &[&Vec<f64>], seeds: &[u64]) -> Result<Vec<Evaluated>, EvaluatorError> {
+    fn evaluate_batch_reporting(
+        &self,
+        genotypes: &[&Vec<f64>],
+        seeds: &[u64],
+        done: &(dyn Fn(usize, &Evaluated) + Sync),
+    ) -> Result<Vec<Evaluated>, EvaluatorError> {
         let width = genotypes.first().map_or(0, |g| g.len());
         let genes: Vec<f64> = genotypes.iter().flat_map(|g| g.iter().copied()).collect();
         let text: String = Python::attach(|py| -> PyResult<String> {
@@ -49,6 +54,10 @@ impl Evaluator<Vec<f64>> for Remote {
                 evaluated.len(),
                 genotypes.len()
             )));
+        }
+        // the callable returns the batch whole: every evaluation ends at once
+        for (index, e) in evaluated.iter().enumerate() {
+            done(index, e);
         }
         Ok(evaluated)
     }

@@ -9,6 +9,7 @@
 //! OUT/run-00/best.robot.json     the best robot (a robot file)
 //! OUT/run-00/summary.json        the run's result, timings and overhead (written at its end)
 //! OUT/run-00/checkpoint.json     optimizer + run state (while the run is unfinished)
+//! OUT/run-00/unfinished-generation.jsonl   evaluations done in a long generation (while it runs)
 //! ```
 //!
 //! Run folders are numbered from 0 with as many digits as the last run's number needs, at least
@@ -34,6 +35,9 @@ pub const BEST_ROBOT_FILE: &str = "best.robot.json";
 pub const BEST_REPLAY_FILE: &str = "best.replay.json";
 /// Optimizer and run state of an unfinished run.
 pub const CHECKPOINT_FILE: &str = "checkpoint.json";
+/// The evaluations of a long generation still under way, saved while it runs so that a kill
+/// loses at most one checkpoint interval of work inside a generation too.
+pub const UNFINISHED_GENERATION_FILE: &str = "unfinished-generation.jsonl";
 /// Name prefix of run folders (`run-00`).
 pub const RUN_PREFIX: &str = "run-";
 /// Name prefix of snapshot files (`evaluations-0001000.jsonl`).
@@ -159,6 +163,11 @@ impl RunFiles {
     /// `run-NN/checkpoint.json`.
     pub fn checkpoint_json(&self) -> PathBuf {
         self.dir.join(CHECKPOINT_FILE)
+    }
+
+    /// `run-NN/unfinished-generation.jsonl`.
+    pub fn unfinished_generation(&self) -> PathBuf {
+        self.dir.join(UNFINISHED_GENERATION_FILE)
     }
 
     /// The snapshots present on disk, by evaluation count (empty without a snapshot folder).

@@ -109,18 +109,38 @@ pub trait Evaluator<G>: Sync {
             seconds: 0.0,
         }
     }
-    /// Evaluates a batch, one candidate seed per genotype, in the batch's order. Default: every
-    /// genotype on the current rayon pool, each guarded against panics
-    /// ([`evaluate_guarded`]). Evaluators that send the work elsewhere (Ray workers) override
-    /// it; an error (the workers are gone) stops the run at its last checkpoint.
+    /// Evaluates a batch, one candidate seed per genotype, in the batch's order (through
+    /// [`Evaluator::evaluate_batch_reporting`], without reports).
     fn evaluate_batch(&self, genotypes: &[&G], seeds: &[u64]) -> Result<Vec<Evaluated>, EvaluatorError>
+    where
+        G: Sync,
+    {
+        self.evaluate_batch_reporting(genotypes, seeds, &|_, _| {})
+    }
+    /// Evaluates a batch, one candidate seed per genotype, in the batch's order, and calls
+    /// `done(index, evaluation)` as each evaluation ends (from worker threads, in any order): the
+    /// runner saves a long generation's finished evaluations while the others run. Default:
+    /// every genotype on the current rayon pool, each guarded against panics
+    /// ([`evaluate_guarded`]). Evaluators that send the work elsewhere (Ray workers) override
+    /// this method; an error (the workers are gone) stops the run at its last checkpoint.
+    fn evaluate_batch_reporting(
+        &self,
+        genotypes: &[&G],
+        seeds: &[u64],
+        done: &(dyn Fn(usize, &Evaluated) + Sync),
+    ) -> Result<Vec<Evaluated>, EvaluatorError>
     where
         G: Sync,
     {
         Ok(genotypes
             .par_iter()
             .zip(seeds.par_iter())
-            .map(|(g, &seed)| evaluate_guarded(self, g, seed))
+            .enumerate()
+            .map(|(index, (g, &seed))| {
+                let evaluated = evaluate_guarded(self, g, seed);
+                done(index, &evaluated);
+                evaluated
+            })
             .collect())
     }
     /// Saves the robot of a genotype to a file (the best of a run); `record`: its evaluation's

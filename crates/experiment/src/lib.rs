@@ -59,6 +59,7 @@ pub mod memory;
 pub mod optimizers;
 pub mod output_lock;
 pub mod runner;
+pub mod unfinished_generation;
 pub mod validate;
 
 pub use batch::{BatchError, BatchEvaluator};

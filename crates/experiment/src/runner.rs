@@ -13,6 +13,7 @@
 //! OUT/run-00/best.replay.json    its episode for the browser viewer (`vsrlab view`)
 //! OUT/run-00/summary.json        the run's result, timings and overhead (written at its end)
 //! OUT/run-00/checkpoint.json     optimizer + run state (while the run is unfinished)
+//! OUT/run-00/unfinished-generation.jsonl   evaluations that ended in a long generation (while it runs)
 //! OUT/.vsrlab.lock               held by the process writing the folder
 //! ```
 //!
@@ -33,6 +34,7 @@ use crate::evaluator::{Evaluated, Evaluator, EvaluatorError, Record};
 use crate::genotype::Genotype;
 use crate::optimizers::SearchOptimizer;
 use crate::output_lock::{OutputLock, LOCK_FILE};
+use crate::unfinished_generation::{Carried, Recorder};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
@@ -494,6 +496,11 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
         }
     }
     let (mut optimizer, mut state, mut logs) = start_or_resume(session, slot, observer)?;
+    let mut carried = if session.options.resume {
+        carried_evaluations::<G>(slot, session.plan.run_seeds.len(), observer)
+    } else {
+        Carried::default()
+    };
     let plan = session.plan;
     let every = plan.output.snapshot_every;
     let session_start = Instant::now();
@@ -515,7 +522,7 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
             break reason;
         }
         let generation_start = Instant::now();
-        let batch = evaluate_generation(session, &mut optimizer, &mut state)?;
+        let batch = evaluate_generation(session, slot.files, &mut optimizer, &mut state, &mut carried)?;
         log_generation(session.evaluator, &optimizer, &state, &batch, &mut logs.csv);
         write_file(&slot.files.generations_csv(), logs.csv.as_bytes())?;
         if every > 0 && optimizer.evaluations() >= state.next_snapshot {
@@ -539,6 +546,7 @@ fn run_one<G: Genotype, O: SearchOptimizer<G>>(
             state.csv_hash = content_hash(logs.csv.as_bytes());
             state.timings_bytes = logs.timings.len() as u64;
             write_checkpoint(&slot.files.checkpoint_json(), slot.run, slot.seed, &state, &optimizer)?;
+            forget_unfinished_generation(slot.files);
             last_checkpoint = Instant::now();
         }
         if observer.generation(&progress(&optimizer, wall(&session_start))) == Flow::Interrupt {
@@ -569,6 +577,32 @@ fn finished_summary(files: &RunFiles, observer: &mut dyn Observer) -> Result<Opt
     verify_finished(files, &summary, observer)?;
     summary.seal = None; // as a run that finishes in this session reports it
     Ok(Some(summary))
+}
+
+/// The evaluations saved from the generation a previous session left unfinished (none when
+/// there are none, or when the file does not read: that generation is then evaluated again).
+fn carried_evaluations<G: Genotype>(slot: &RunSlot<'_>, runs: usize, observer: &mut dyn Observer) -> Carried {
+    match Carried::load::<G>(&slot.files.unfinished_generation()) {
+        Ok(carried) => {
+            if !carried.is_empty() {
+                observer.notice(&format!(
+                    "run {}/{runs}: {} evaluations of the generation under way when it stopped are reused",
+                    slot.run + 1,
+                    carried.len()
+                ));
+            }
+            carried
+        }
+        Err(e) => {
+            observer.notice(&format!("{e}: the generation it holds is evaluated again"));
+            Carried::default()
+        }
+    }
+}
+
+/// Deletes the unfinished generation's evaluations once a checkpoint covers them.
+fn forget_unfinished_generation(files: &RunFiles) {
+    let _ = std::fs::remove_file(files.unfinished_generation());
 }
 
 /// The optimizer, state and logs a run goes on from: its checkpoint when resuming one, or a new
@@ -619,29 +653,48 @@ fn start_or_resume<G: Genotype, O: SearchOptimizer<G>>(
 }
 
 /// Ask → evaluate the batch on the pool → tell; keeps the records of the population and the
-/// best.
+/// best. Candidates whose evaluation a killed session saved (`carried`) are not evaluated again;
+/// a long generation's evaluations are saved as they end ([`Recorder`]).
 fn evaluate_generation<G: Genotype, O: SearchOptimizer<G>>(
     session: &Session<'_, G, O>,
+    files: &RunFiles,
     optimizer: &mut O,
     state: &mut RunState,
+    carried: &mut Carried,
 ) -> Result<BatchResult, RunError> {
     // The optimizer's own parallel steps (CMA-ES's sampling, covariance update and
     // decomposition) run on the run's pool too, so `--threads` bounds them as well.
     let batch = session.pool.install(|| optimizer.ask());
     let evaluation_start = Instant::now();
-    let genotypes: Vec<&G> = batch.iter().map(|c| &c.genotype).collect();
-    let seeds: Vec<u64> = batch.iter().map(|c| c.seed).collect();
-    let results: Vec<Evaluated> = session
+    let recorder = Recorder::new(files.unfinished_generation(), session.plan.output.checkpoint_interval);
+    let mut slots: Vec<Option<Evaluated>> = batch.iter().map(|c| carried.take(c.seed, &c.genotype)).collect();
+    for (candidate, saved) in batch.iter().zip(&slots) {
+        if let Some(saved) = saved {
+            recorder.done(candidate.seed, &candidate.genotype, saved);
+        }
+    }
+    let todo: Vec<usize> = (0..batch.len()).filter(|&i| slots[i].is_none()).collect();
+    let genotypes: Vec<&G> = todo.iter().map(|&i| &batch[i].genotype).collect();
+    let seeds: Vec<u64> = todo.iter().map(|&i| batch[i].seed).collect();
+    let done = |j: usize, e: &Evaluated| recorder.done(seeds[j], genotypes[j], e);
+    let fresh: Vec<Evaluated> = session
         .pool
-        .install(|| session.evaluator.evaluate_batch(&genotypes, &seeds))
+        .install(|| session.evaluator.evaluate_batch_reporting(&genotypes, &seeds, &done))
         .map_err(|e| RunError::Other(format!("evaluations: {e}")))?;
-    if results.len() != batch.len() {
+    if fresh.len() != todo.len() {
         return Err(RunError::Other(format!(
             "evaluations: {} results for a batch of {}",
-            results.len(),
-            batch.len()
+            fresh.len(),
+            todo.len()
         )));
     }
+    if let Some(e) = recorder.into_error() {
+        return Err(io_error(&files.unfinished_generation())(e));
+    }
+    for (i, evaluated) in todo.into_iter().zip(fresh) {
+        slots[i] = Some(evaluated);
+    }
+    let results: Vec<Evaluated> = slots.into_iter().flatten().collect();
     let summary = BatchResult {
         fitness: results.iter().map(|e| e.fitness()).collect(),
         failures: results.iter().filter(|e| e.failed()).count() as u64,
@@ -816,6 +869,7 @@ fn finish_run<G: Genotype, O: SearchOptimizer<G>>(
     };
     write_file(&files.summary_json(), summary.sealed_text().as_bytes())?;
     let _ = std::fs::remove_file(files.checkpoint_json());
+    forget_unfinished_generation(files);
     Ok(summary)
 }
 

@@ -113,6 +113,105 @@ fn killed_run_resumes_to_the_same_files() {
     }
 }
 
+/// Generations of about two seconds on one thread (evaluations of a quarter of a second), so
+/// that a kill falls inside a generation.
+const LONG_GENERATIONS: &str = r#"
+runs = 1
+seed = 3
+
+[representation]
+body = "biped-4x3"
+sensors = "uniform-vxy+a+t-0"
+brain = { kind = "distributed-mlp", layout = "homogeneous", signals = 1, hidden = [] }
+
+[task]
+duration = 300.0
+
+[optimizer]
+kind = "ga"
+population_size = 6
+offspring_size = 6
+
+[stop]
+generations = 2
+"#;
+
+#[test]
+fn a_run_killed_inside_a_generation_keeps_that_generations_finished_evaluations() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("exp.toml");
+    std::fs::write(&file, LONG_GENERATIONS).unwrap();
+    let file = file.to_str().unwrap();
+    let straight = dir.path().join("straight");
+    let killed = dir.path().join("killed");
+
+    let out = vsrlab(&["run", file, "--out", straight.to_str().unwrap(), "--threads", "2"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        !straight.join("run-00/unfinished-generation.jsonl").exists(),
+        "gone at the end"
+    );
+
+    let mut child = Command::new(VSRLAB)
+        .args(["run", file, "--out", killed.to_str().unwrap(), "--threads", "1"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let saved = killed.join("run-00/unfinished-generation.jsonl");
+    let start = Instant::now();
+    while !saved.exists() {
+        assert!(start.elapsed() < Duration::from_secs(60), "no evaluation was saved");
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    child.kill().unwrap(); // SIGKILL
+    child.wait().unwrap();
+    let lines = std::fs::read_to_string(&saved).unwrap().lines().count();
+    assert!(
+        (1..6).contains(&lines),
+        "{lines} evaluations saved in the first generation of 6"
+    );
+    assert!(
+        !killed.join("run-00/generations.csv").exists(),
+        "killed inside the first generation"
+    );
+    // A copy whose first saved evaluation is edited shows that saved evaluations are used, not
+    // recomputed: the edited fitness becomes the run's best.
+    let edited = dir.path().join("edited");
+    std::fs::create_dir_all(edited.join("run-00")).unwrap();
+    std::fs::copy(killed.join("experiment.toml"), edited.join("experiment.toml")).unwrap();
+    let text = std::fs::read_to_string(&saved).unwrap();
+    let mut first: serde_json::Value = serde_json::from_str(text.lines().next().unwrap()).unwrap();
+    first["evaluated"]["objectives"] = serde_json::json!([123456.0]);
+    let rest: String = text.lines().skip(1).map(|l| format!("{l}\n")).collect();
+    std::fs::write(
+        edited.join("run-00/unfinished-generation.jsonl"),
+        format!("{first}\n{rest}"),
+    )
+    .unwrap();
+    let out = vsrlab(&["run", file, "--out", edited.to_str().unwrap(), "--resume"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let csv = std::fs::read_to_string(edited.join("run-00/generations.csv")).unwrap();
+    assert!(csv.contains("123456"), "{csv}");
+
+    let resumed = vsrlab(&["run", file, "--out", killed.to_str().unwrap(), "--resume"]);
+    let err = String::from_utf8_lossy(&resumed.stderr);
+    assert!(resumed.status.success(), "{err}");
+    assert!(
+        err.contains(&format!(
+            "run 1/1: {lines} evaluations of the generation under way when it stopped are reused"
+        )),
+        "{err}"
+    );
+    assert!(!saved.exists(), "a checkpoint or the run's end covers them");
+    let (a, b) = (deterministic_files(&straight), deterministic_files(&killed));
+    assert_eq!(a.len(), b.len());
+    for ((na, ca), (nb, cb)) in a.iter().zip(&b) {
+        assert_eq!(na, nb);
+        assert!(ca == cb, "{na} differs after a kill inside a generation and --resume");
+    }
+}
+
 #[test]
 fn bad_experiment_files_name_the_field_and_the_line() {
     let dir = tempfile::tempdir().unwrap();

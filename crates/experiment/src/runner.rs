@@ -702,8 +702,9 @@ fn evaluate_generation<G: Genotype, O: SearchOptimizer<G>>(
         episode_cpu: results.iter().map(|e| e.seconds).sum(),
     };
     let mut told = Vec::with_capacity(batch.len());
+    let mut records = Vec::with_capacity(batch.len());
     for (candidate, evaluated) in batch.iter().zip(results) {
-        state.records.insert(candidate.genotype.key(), evaluated.record);
+        records.push((candidate.genotype.key(), evaluated.objectives.clone(), evaluated.record));
         told.push(Told {
             id: candidate.id,
             evaluation: Evaluation {
@@ -714,11 +715,9 @@ fn evaluate_generation<G: Genotype, O: SearchOptimizer<G>>(
         });
     }
     session.pool.install(|| optimizer.tell(told))?;
-    if let Some(best) = optimizer.best() {
-        let hash = best.genotype.key();
-        if state.best.as_ref().map(|b| b.0) != Some(hash) {
-            state.best = state.records.get(&hash).map(|r| (hash, r.clone()));
-        }
+    keep_best_record(optimizer.best(), &records, state);
+    for (key, _, record) in records {
+        state.records.insert(key, record);
     }
     let keep: BTreeSet<u64> = snapshot_members(session.plan, optimizer)
         .iter()
@@ -727,6 +726,33 @@ fn evaluate_generation<G: Genotype, O: SearchOptimizer<G>>(
     state.records.retain(|k, _| keep.contains(k));
     state.failures += summary.failures;
     Ok(summary)
+}
+
+/// Keeps the record of the optimizer's best: the batch's own when the best is one of its
+/// evaluations. A genotype can be evaluated more than once (NEAT's elites are, each time with a
+/// new seed): the best robot must be the evaluation that earned the best fitness, so an
+/// evaluation is matched by genotype and by its objectives' bits, not by genotype alone.
+fn keep_best_record<G: Genotype>(
+    best: Option<&Individual<G>>,
+    batch: &[(u64, Vec<f64>, Record)],
+    state: &mut RunState,
+) {
+    let Some(best) = best else {
+        return;
+    };
+    let key = best.genotype.key();
+    let same_bits = |objectives: &[f64]| {
+        objectives.len() == best.objectives.len()
+            && objectives
+                .iter()
+                .zip(&best.objectives)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+    };
+    if let Some((_, _, record)) = batch.iter().find(|(k, o, _)| *k == key && same_bits(o)) {
+        state.best = Some((key, record.clone()));
+    } else if state.best.as_ref().map(|b| b.0) != Some(key) {
+        state.best = state.records.get(&key).map(|r| (key, r.clone()));
+    }
 }
 
 /// Appends the generation's row (deterministic columns) to `generations.csv`'s text.
@@ -1120,4 +1146,61 @@ fn write_snapshot<G: Genotype, O: SearchOptimizer<G>>(
         hash: content_hash(text.as_bytes()),
     });
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn record(seed: u64, fitness: f64) -> Record {
+        Record {
+            seed,
+            fitness: Some(fitness),
+            distance: None,
+            velocity: None,
+            voxels: None,
+            body: None,
+            error: None,
+            objectives: None,
+            series: Default::default(),
+        }
+    }
+
+    fn individual(genotype: Vec<f64>, fitness: f64) -> Individual<Vec<f64>> {
+        Individual {
+            genotype,
+            objectives: vec![fitness],
+            descriptor: vec![],
+            birth_generation: 0,
+        }
+    }
+
+    /// NEAT evaluates its elites again, each time with a new seed: the best robot must come
+    /// from the evaluation that earned the best fitness, not from the genotype's first one.
+    #[test]
+    fn the_best_record_is_the_evaluation_that_earned_the_best_fitness() {
+        let elite = vec![1.0, 2.0];
+        let key = elite.key();
+        let mut state = RunState {
+            best: Some((key, record(1, 0.5))),
+            ..RunState::default()
+        };
+        // the same genotype twice in a batch, with seeds 2 and 3; the optimizer's best is seed 3's
+        let batch = vec![
+            (key, vec![0.4], record(2, 0.4)),
+            (key, vec![0.75], record(3, 0.75)),
+            (vec![0.0].key(), vec![0.1], record(4, 0.1)),
+        ];
+        keep_best_record(Some(&individual(elite.clone(), 0.75)), &batch, &mut state);
+        assert_eq!(state.best.as_ref().map(|(k, r)| (*k, r.seed)), Some((key, 3)));
+        // a later evaluation of the elite that does worse leaves the best where it was
+        let worse = vec![(key, vec![0.2], record(5, 0.2))];
+        keep_best_record(Some(&individual(elite, 0.75)), &worse, &mut state);
+        assert_eq!(state.best.as_ref().map(|(_, r)| r.seed), Some(3));
+        // a new best genotype from an earlier batch is found among the kept records
+        let other = vec![9.0];
+        state.records.insert(other.key(), record(6, 0.9));
+        keep_best_record(Some(&individual(other.clone(), 0.9)), &[], &mut state);
+        assert_eq!(state.best.as_ref().map(|(k, r)| (*k, r.seed)), Some((other.key(), 6)));
+    }
 }

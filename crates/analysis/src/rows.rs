@@ -33,6 +33,24 @@ pub struct Record {
     pub series: std::collections::BTreeMap<String, Vec<f64>>,
 }
 
+impl Record {
+    /// The record of an evaluation with episode seed `seed` that measured nothing yet: every
+    /// other field empty, for evaluators to fill.
+    pub fn new(seed: u64) -> Record {
+        Record {
+            seed,
+            fitness: None,
+            distance: None,
+            velocity: None,
+            voxels: None,
+            body: None,
+            error: None,
+            objectives: None,
+            series: Default::default(),
+        }
+    }
+}
+
 /// One population member of a snapshot (a JSON line): where it stands in the run, its
 /// evaluation record (absent when none was kept), its MAP-Elites descriptor and its genotype in
 /// its kind's own form. The runner writes `SnapshotRow<&G, &Record>`; analyses read

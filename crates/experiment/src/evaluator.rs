@@ -96,15 +96,8 @@ pub trait Evaluator<G>: Sync {
             descriptor: Vec::new(),
             features: Vec::new(),
             record: Record {
-                seed,
-                fitness: None,
-                distance: None,
-                velocity: None,
-                voxels: None,
-                body: None,
                 error: Some(error),
-                objectives: None,
-                series: Default::default(),
+                ..Record::new(seed)
             },
             seconds: 0.0,
         }

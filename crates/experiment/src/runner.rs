@@ -1154,15 +1154,8 @@ mod tests {
 
     fn record(seed: u64, fitness: f64) -> Record {
         Record {
-            seed,
             fitness: Some(fitness),
-            distance: None,
-            velocity: None,
-            voxels: None,
-            body: None,
-            error: None,
-            objectives: None,
-            series: Default::default(),
+            ..Record::new(seed)
         }
     }
 

@@ -157,15 +157,8 @@ mod tests {
             descriptor: vec![],
             features: vec![],
             record: Record {
-                seed: 7,
                 fitness: Some(fitness),
-                distance: None,
-                velocity: None,
-                voxels: None,
-                body: None,
-                error: None,
-                objectives: None,
-                series: Default::default(),
+                ..Record::new(7)
             },
             seconds: 1.5,
         }

@@ -113,34 +113,21 @@ fn killed_run_resumes_to_the_same_files() {
     }
 }
 
-/// Generations of about two seconds on one thread (evaluations of a quarter of a second), so
-/// that a kill falls inside a generation.
-const LONG_GENERATIONS: &str = r#"
-runs = 1
-seed = 3
-
-[representation]
-body = "biped-4x3"
-sensors = "uniform-vxy+a+t-0"
-brain = { kind = "distributed-mlp", layout = "homogeneous", signals = 1, hidden = [] }
-
-[task]
-duration = 300.0
-
-[optimizer]
-kind = "ga"
-population_size = 6
-offspring_size = 6
-
-[stop]
-generations = 2
-"#;
+/// [`EXPERIMENT`] with generations of about two seconds on one thread (six evaluations of a
+/// quarter of a second each), so that a kill falls inside a generation.
+fn long_generations() -> String {
+    EXPERIMENT
+        .replace("duration = 3.0", "duration = 300.0")
+        .replace("population_size = 10", "population_size = 6")
+        .replace("offspring_size = 10", "offspring_size = 6")
+        .replace("generations = 60", "generations = 2")
+}
 
 #[test]
 fn a_run_killed_inside_a_generation_keeps_that_generations_finished_evaluations() {
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("exp.toml");
-    std::fs::write(&file, LONG_GENERATIONS).unwrap();
+    std::fs::write(&file, long_generations()).unwrap();
     let file = file.to_str().unwrap();
     let straight = dir.path().join("straight");
     let killed = dir.path().join("killed");

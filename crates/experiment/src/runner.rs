@@ -666,17 +666,22 @@ fn evaluate_generation<G: Genotype, O: SearchOptimizer<G>>(
     // decomposition) run on the run's pool too, so `--threads` bounds them as well.
     let batch = session.pool.install(|| optimizer.ask());
     let evaluation_start = Instant::now();
-    let recorder = Recorder::new(files.unfinished_generation(), session.plan.output.checkpoint_interval);
     let mut slots: Vec<Option<Evaluated>> = batch.iter().map(|c| carried.take(c.seed, &c.genotype)).collect();
-    for (candidate, saved) in batch.iter().zip(&slots) {
+    let recorder = Recorder::new(
+        files.unfinished_generation(),
+        session.plan.output.checkpoint_interval,
+        batch.iter().map(|c| &c.genotype).collect(),
+        batch.iter().map(|c| c.seed).collect(),
+    );
+    for (index, saved) in slots.iter().enumerate() {
         if let Some(saved) = saved {
-            recorder.done(candidate.seed, &candidate.genotype, saved);
+            recorder.done(index, saved);
         }
     }
     let todo: Vec<usize> = (0..batch.len()).filter(|&i| slots[i].is_none()).collect();
     let genotypes: Vec<&G> = todo.iter().map(|&i| &batch[i].genotype).collect();
     let seeds: Vec<u64> = todo.iter().map(|&i| batch[i].seed).collect();
-    let done = |j: usize, e: &Evaluated| recorder.done(seeds[j], genotypes[j], e);
+    let done = |j: usize, e: &Evaluated| recorder.done(todo[j], e);
     let fresh: Vec<Evaluated> = session
         .pool
         .install(|| session.evaluator.evaluate_batch_reporting(&genotypes, &seeds, &done))

@@ -20,12 +20,12 @@ use vsrlab_tasks::files::write_atomic;
 /// Least seconds between two saves of the file, whatever the checkpoint interval.
 pub const MIN_SECONDS: f64 = 1.0;
 
-/// One saved evaluation.
+/// One saved evaluation (written with references, read back owned).
 #[derive(Serialize, Deserialize)]
-struct Line<G> {
+struct Line<G, E = Evaluated> {
     seed: u64,
     genotype: G,
-    evaluated: Evaluated,
+    evaluated: E,
 }
 
 /// A line of the file that does not read. The file is only a cache: the run evaluates that
@@ -87,26 +87,37 @@ impl Carried {
 }
 
 /// Collects a generation's evaluations as they end and saves them at most every `every` seconds
-/// (never before the generation has run that long).
-pub struct Recorder {
+/// (never before the generation has run that long). Until the first save an evaluation is only
+/// kept (cloned), not serialised: short generations, the usual case, pay next to nothing.
+pub struct Recorder<'a, G> {
     path: PathBuf,
     every: f64,
+    genotypes: Vec<&'a G>,
+    seeds: Vec<u64>,
     inner: Mutex<Pending>,
 }
 
 struct Pending {
+    /// Finished evaluations by batch index; the first `written` are in `text`.
+    finished: Vec<(usize, Evaluated)>,
+    written: usize,
     text: String,
     last_save: Instant,
     error: Option<std::io::Error>,
 }
 
-impl Recorder {
-    /// A recorder for the generation starting now; `checkpoint_interval` as the run's.
-    pub fn new(path: PathBuf, checkpoint_interval: f64) -> Recorder {
+impl<'a, G: Genotype> Recorder<'a, G> {
+    /// A recorder for the batch of `genotypes` with their candidate `seeds`, starting now;
+    /// `checkpoint_interval` as the run's.
+    pub fn new(path: PathBuf, checkpoint_interval: f64, genotypes: Vec<&'a G>, seeds: Vec<u64>) -> Self {
         Recorder {
             path,
             every: checkpoint_interval.max(MIN_SECONDS),
+            genotypes,
+            seeds,
             inner: Mutex::new(Pending {
+                finished: Vec::new(),
+                written: 0,
                 text: String::new(),
                 last_save: Instant::now(),
                 error: None,
@@ -114,26 +125,37 @@ impl Recorder {
         }
     }
 
-    /// Adds a finished evaluation; saves the file when the last save (or the generation's start)
-    /// is at least the interval ago.
-    pub fn done<G: Genotype>(&self, seed: u64, genotype: &G, evaluated: &Evaluated) {
-        let line = Line {
-            seed,
-            genotype,
-            evaluated: evaluated.clone(),
-        };
-        let Ok(json) = serde_json::to_string(&line) else {
-            return; // an evaluation that does not serialise is simply evaluated again
-        };
+    /// Adds the finished evaluation of the batch's candidate `index`; saves the file when the
+    /// last save (or the generation's start) is at least the interval ago.
+    pub fn done(&self, index: usize, evaluated: &Evaluated) {
         let mut pending = self.inner.lock().unwrap_or_else(|e| e.into_inner());
-        pending.text.push_str(&json);
-        pending.text.push('\n');
-        if pending.error.is_none() && pending.last_save.elapsed().as_secs_f64() >= self.every {
-            if let Err(e) = write_atomic(&self.path, pending.text.as_bytes()) {
-                pending.error = Some(e);
-            }
-            pending.last_save = Instant::now();
+        pending.finished.push((index, evaluated.clone()));
+        if pending.error.is_some() || pending.last_save.elapsed().as_secs_f64() < self.every {
+            return;
         }
+        let Pending {
+            finished,
+            written,
+            text,
+            ..
+        } = &mut *pending;
+        for (index, evaluated) in &finished[*written..] {
+            let line = Line {
+                seed: self.seeds[*index],
+                genotype: self.genotypes[*index],
+                evaluated,
+            };
+            // an evaluation that does not serialise is simply evaluated again
+            if let Ok(json) = serde_json::to_string(&line) {
+                text.push_str(&json);
+                text.push('\n');
+            }
+        }
+        *written = finished.len();
+        if let Err(e) = write_atomic(&self.path, pending.text.as_bytes()) {
+            pending.error = Some(e);
+        }
+        pending.last_save = Instant::now();
     }
 
     /// The first write error, if a save failed.
@@ -168,12 +190,12 @@ mod tests {
     fn saved_evaluations_come_back_bit_for_bit_for_the_same_seed_and_genotype_only() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("unfinished-generation.jsonl");
-        let recorder = Recorder::new(path.clone(), 0.0);
         let a = vec![0.1f64, -2.5];
+        let recorder = Recorder::new(path.clone(), 0.0, vec![&a, &a], vec![11, 12]);
         let third = 1.0 / 3.0;
         std::thread::sleep(std::time::Duration::from_secs_f64(MIN_SECONDS));
-        recorder.done(11, &a, &evaluated(third));
-        recorder.done(12, &a, &evaluated(f64::NAN));
+        recorder.done(0, &evaluated(third));
+        recorder.done(1, &evaluated(f64::NAN));
         assert!(recorder.into_error().is_none());
         let mut carried = Carried::load::<Vec<f64>>(&path).unwrap();
         // the second line came within a second of the first save: it was kept but not yet written
@@ -190,8 +212,9 @@ mod tests {
     fn nothing_is_written_before_the_generation_has_run_the_interval() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("unfinished-generation.jsonl");
-        let recorder = Recorder::new(path.clone(), 30.0);
-        recorder.done(1, &vec![1.0f64], &evaluated(1.0));
+        let g = vec![1.0f64];
+        let recorder = Recorder::new(path.clone(), 30.0, vec![&g], vec![1]);
+        recorder.done(0, &evaluated(1.0));
         assert!(!path.exists());
         assert!(Carried::load::<Vec<f64>>(&path).unwrap().is_empty());
     }

@@ -2,7 +2,7 @@
 //! uninterrupted one; a bad experiment file is reported with its field and line.
 
 use std::path::Path;
-use std::process::{Command, Stdio};
+use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 const VSRLAB: &str = env!("CARGO_BIN_EXE_vsrlab");
@@ -40,6 +40,25 @@ fn vsrlab(args: &[&str]) -> std::process::Output {
     Command::new(VSRLAB).args(args).output().unwrap()
 }
 
+/// Starts `vsrlab run FILE --out OUT --threads THREADS` in the background, to be killed.
+fn spawn_run(file: &str, out: &Path, threads: &str) -> Child {
+    Command::new(VSRLAB)
+        .args(["run", file, "--out", out.to_str().unwrap(), "--threads", threads])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap()
+}
+
+/// Polls `ready` until it holds; fails the test after a minute, naming `what` it waited for.
+fn wait_for(what: &str, mut ready: impl FnMut() -> bool) {
+    let start = Instant::now();
+    while !ready() {
+        assert!(start.elapsed() < Duration::from_secs(60), "waited a minute for {what}");
+        std::thread::sleep(Duration::from_millis(2));
+    }
+}
+
 #[test]
 fn killed_run_resumes_to_the_same_files() {
     let dir = tempfile::tempdir().unwrap();
@@ -52,22 +71,12 @@ fn killed_run_resumes_to_the_same_files() {
     let out = vsrlab(&["run", file, "--out", straight.to_str().unwrap()]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
 
-    let mut child = Command::new(VSRLAB)
-        .args(["run", file, "--out", killed.to_str().unwrap(), "--threads", "2"])
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
+    let mut child = spawn_run(file, &killed, "2");
     let csv = killed.join("run-00/generations.csv");
-    let start = Instant::now();
-    loop {
+    wait_for("a checkpoint after 5 generations", || {
         let rows = std::fs::read_to_string(&csv).map_or(0, |t| t.lines().count());
-        if rows >= 6 && killed.join("run-00/checkpoint.json").exists() {
-            break;
-        }
-        assert!(start.elapsed() < Duration::from_secs(60), "no checkpoint appeared");
-        std::thread::sleep(Duration::from_millis(2));
-    }
+        rows >= 6 && killed.join("run-00/checkpoint.json").exists()
+    });
     // A second process on the same folder is refused while the first one runs.
     let second = vsrlab(&["run", file, "--out", killed.to_str().unwrap(), "--resume"]);
     assert!(!second.status.success());
@@ -139,18 +148,9 @@ fn a_run_killed_inside_a_generation_keeps_that_generations_finished_evaluations(
         "gone at the end"
     );
 
-    let mut child = Command::new(VSRLAB)
-        .args(["run", file, "--out", killed.to_str().unwrap(), "--threads", "1"])
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
+    let mut child = spawn_run(file, &killed, "1");
     let saved = killed.join("run-00/unfinished-generation.jsonl");
-    let start = Instant::now();
-    while !saved.exists() {
-        assert!(start.elapsed() < Duration::from_secs(60), "no evaluation was saved");
-        std::thread::sleep(Duration::from_millis(2));
-    }
+    wait_for("a saved evaluation", || saved.exists());
     child.kill().unwrap(); // SIGKILL
     child.wait().unwrap();
     let lines = std::fs::read_to_string(&saved).unwrap().lines().count();

@@ -59,23 +59,25 @@ impl MemoryEstimate {
         if self.bytes <= u128::from(limit) {
             return Ok(());
         }
-        Err(MemoryLimit(format!(
-            "this experiment needs about {} per run ({} genotypes of {} genes held at once), above the \
-             memory limit of {}: lower the optimizer's population/offspring sizes or the brain's size, or raise \
-             the limit with --max-memory-gib",
-            gib(self.bytes),
-            self.genotypes,
-            self.genes,
-            gib(u128::from(limit))
-        )))
+        Err(MemoryLimit { estimate: *self, limit })
     }
 }
 
 /// An experiment whose memory estimate is above the limit: the message says by how much and
 /// what to change.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("{0}")]
-pub struct MemoryLimit(pub String);
+#[error(
+    "this experiment needs about {} per run ({} genotypes of {} genes held at once), above the \
+     memory limit of {}: lower the optimizer's population/offspring sizes or the brain's size, or raise \
+     the limit with --max-memory-gib",
+    gib(estimate.bytes), estimate.genotypes, estimate.genes, gib(u128::from(*limit))
+)]
+pub struct MemoryLimit {
+    /// What one run was estimated to need.
+    pub estimate: MemoryEstimate,
+    /// The limit it is above, in bytes.
+    pub limit: u64,
+}
 
 /// Bytes as GiB, for messages.
 pub fn gib(bytes: u128) -> String {

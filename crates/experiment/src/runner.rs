@@ -32,8 +32,9 @@ use crate::checkpoint::{self, content_hash, Checkpoint, RunState, SnapshotEntry}
 use crate::config::{Experiment, OutputConfig, StopConfig};
 use crate::evaluator::{Evaluated, Evaluator, EvaluatorError, Record};
 use crate::genotype::Genotype;
+use crate::memory::MemoryLimit;
 use crate::optimizers::SearchOptimizer;
-use crate::output_lock::{OutputLock, LOCK_FILE};
+use crate::output_lock::{LockError, OutputLock, LOCK_FILE};
 use crate::unfinished_generation::{Carried, Recorder};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet};
@@ -46,6 +47,7 @@ use vsrlab_analysis::run_folder::{
     TIMINGS_FILE,
 };
 use vsrlab_evolution::{Evaluation, Individual, Sense, Told};
+use vsrlab_field::FieldError;
 use vsrlab_tasks::files::write_atomic;
 
 pub use crate::checkpoint::CHECKPOINT_FORMAT;
@@ -65,13 +67,44 @@ pub enum RunError {
         /// The OS error.
         source: std::io::Error,
     },
-    /// The output folder or a checkpoint does not fit this experiment.
+    /// The experiment cannot run as configured; the error names the field (or the option,
+    /// `threads`).
     #[error("{0}")]
-    Mismatch(String),
+    Field(#[from] FieldError),
+    /// The output folder is used by another process, or cannot be locked.
+    #[error(transparent)]
+    Lock(#[from] LockError),
+    /// A run would need more memory than allowed.
+    #[error(transparent)]
+    Memory(#[from] MemoryLimit),
+    /// A file or folder of the output does not fit this experiment, or is damaged.
+    #[error("{}: {problem}", file.display())]
+    Folder {
+        /// The file or folder.
+        file: PathBuf,
+        /// What is wrong with it and what to do.
+        problem: String,
+    },
     /// The optimizer refused its configuration or a batch.
     #[error("optimizer: {0}")]
     Optimizer(#[from] vsrlab_evolution::EvolutionError),
-    /// Anything else (e.g. the best robot could not be built).
+    /// The worker threads could not be started.
+    #[error("thread pool: {0}")]
+    ThreadPool(#[from] rayon::ThreadPoolBuildError),
+    /// A batch of evaluations failed.
+    #[error("evaluations: {0}")]
+    Evaluations(#[source] EvaluatorError),
+    /// The best robot of a run, or its replay, could not be written.
+    #[error("best {what} of run {run}: {source}")]
+    Best {
+        /// `robot` or `replay`.
+        what: &'static str,
+        /// The run (from 0).
+        run: usize,
+        /// Why.
+        source: EvaluatorError,
+    },
+    /// Anything else: an internal failure, such as a value that did not serialise.
     #[error("{0}")]
     Other(String),
 }
@@ -316,7 +349,7 @@ pub fn run_search<G: Genotype, O: SearchOptimizer<G>>(
 ) -> Result<Vec<RunSummary>, RunError> {
     check_threads(options)?;
     std::fs::create_dir_all(out).map_err(io_error(out))?;
-    let lock = OutputLock::acquire(out).map_err(|e| RunError::Mismatch(e.to_string()))?;
+    let lock = OutputLock::acquire(out)?;
     if lock.unsupported() {
         observer.notice(&format!(
             "{}: this file system cannot lock files, so nothing stops a second process from writing here",
@@ -329,18 +362,21 @@ pub fn run_search<G: Genotype, O: SearchOptimizer<G>>(
     match std::fs::read_to_string(&config_path) {
         Ok(existing) if !options.resume => {
             let _ = existing;
-            return Err(RunError::Mismatch(format!(
-                "{} already holds an experiment: pass --resume to continue it, or choose another output folder",
-                out.display()
-            )));
+            return Err(RunError::Folder {
+                file: out.to_path_buf(),
+                problem: "holds an experiment already: pass --resume to continue it, or choose another output folder"
+                    .into(),
+            });
         }
         Ok(existing) if &existing != resolved => {
-            return Err(RunError::Mismatch(format!(
-                "{} was written by a different experiment configuration: resuming needs the same file \
-                 (compare with {})",
-                out.display(),
-                config_path.display()
-            )));
+            return Err(RunError::Folder {
+                file: out.to_path_buf(),
+                problem: format!(
+                    "written by a different experiment configuration: resuming needs the same file \
+                     (compare with {})",
+                    config_path.display()
+                ),
+            });
         }
         Ok(_) => {}
         Err(_) => {
@@ -353,10 +389,7 @@ pub fn run_search<G: Genotype, O: SearchOptimizer<G>>(
             write_file(&config_path, resolved.as_bytes())?;
         }
     }
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(options.threads)
-        .build()
-        .map_err(|e| RunError::Other(format!("thread pool: {e}")))?;
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(options.threads).build()?;
     let mut summaries = Vec::new();
     for (run, &seed) in plan.run_seeds.iter().enumerate() {
         let files = folder.run(run, plan.run_seeds.len());
@@ -394,9 +427,9 @@ pub fn worker_threads(requested: usize) -> usize {
 /// Refuses more than [`MAX_THREADS`] worker threads.
 pub(crate) fn check_threads(options: &RunOptions) -> Result<(), RunError> {
     if options.threads > MAX_THREADS {
-        return Err(RunError::Mismatch(format!(
-            "threads: at most {MAX_THREADS} worker threads, got {}",
-            options.threads
+        return Err(RunError::Field(FieldError::new(
+            "threads",
+            format!("at most {MAX_THREADS} worker threads, got {}", options.threads),
         )));
     }
     Ok(())
@@ -444,11 +477,13 @@ fn read_truncated(path: &Path, bytes: u64) -> Result<String, RunError> {
     let text = std::fs::read_to_string(path).map_err(io_error(path))?;
     let cut = usize::try_from(bytes).unwrap_or(usize::MAX);
     if text.len() < cut || !text.is_char_boundary(cut) {
-        return Err(RunError::Mismatch(format!(
-            "{} is shorter than its checkpoint says ({} < {cut} bytes): the run folder is damaged",
-            path.display(),
-            text.len()
-        )));
+        return Err(RunError::Folder {
+            file: path.to_path_buf(),
+            problem: format!(
+                "shorter than its checkpoint says ({} < {cut} bytes): the run folder is damaged",
+                text.len()
+            ),
+        });
     }
     Ok(text[..cut].to_string())
 }
@@ -572,8 +607,10 @@ fn finished_summary(files: &RunFiles, observer: &mut dyn Observer) -> Result<Opt
     let Ok(text) = std::fs::read_to_string(&summary_path) else {
         return Ok(None);
     };
-    let mut summary: RunSummary =
-        serde_json::from_str(&text).map_err(|e| RunError::Mismatch(format!("{}: {e}", summary_path.display())))?;
+    let mut summary: RunSummary = serde_json::from_str(&text).map_err(|e| RunError::Folder {
+        file: summary_path.clone(),
+        problem: e.to_string(),
+    })?;
     verify_finished(files, &summary, observer)?;
     summary.seal = None; // as a run that finishes in this session reports it
     Ok(Some(summary))
@@ -685,7 +722,7 @@ fn evaluate_generation<G: Genotype, O: SearchOptimizer<G>>(
     let fresh: Vec<Evaluated> = session
         .pool
         .install(|| session.evaluator.evaluate_batch_reporting(&genotypes, &seeds, &done))
-        .map_err(|e| RunError::Other(format!("evaluations: {e}")))?;
+        .map_err(RunError::Evaluations)?;
     if fresh.len() != todo.len() {
         return Err(RunError::Other(format!(
             "evaluations: {} results for a batch of {}",
@@ -923,13 +960,21 @@ fn save_best<G: Genotype, O: SearchOptimizer<G>>(
     session
         .evaluator
         .save_robot(&best.genotype, record, &files.best_robot(), &note)
-        .map_err(|e| RunError::Other(format!("best robot of run {run}: {e}")))?;
+        .map_err(|source| RunError::Best {
+            what: "robot",
+            run,
+            source,
+        })?;
     let hash = std::fs::read(files.best_robot()).ok().map(|bytes| content_hash(&bytes));
     let title = format!("{name} run {run}: best, fitness {}", best.fitness());
     session
         .evaluator
         .save_replay(&best.genotype, &files.best_replay(), &title)
-        .map_err(|e| RunError::Other(format!("best replay of run {run}: {e}")))?;
+        .map_err(|source| RunError::Best {
+            what: "replay",
+            run,
+            source,
+        })?;
     Ok(hash)
 }
 
@@ -973,12 +1018,12 @@ fn load_checkpoint<G: Genotype, O: SearchOptimizer<G>>(
     observer: &mut dyn Observer,
 ) -> Result<Resumed<O>, RunError> {
     let path = files.checkpoint_json();
-    let refuse = |problem: &dyn std::fmt::Display| {
-        RunError::Mismatch(format!(
-            "{}: {problem}; restore the file, or delete it to restart this run from its beginning \
-             (a restarted run gives the same results)",
-            path.display()
-        ))
+    let refuse = |problem: &dyn std::fmt::Display| RunError::Folder {
+        file: path.clone(),
+        problem: format!(
+            "{problem}; restore the file, or delete it to restart this run from its beginning \
+                 (a restarted run gives the same results)"
+        ),
     };
     let loaded = checkpoint::decode::<O>(bytes).map_err(|e| refuse(&e))?;
     if !loaded.verified {
@@ -1064,12 +1109,14 @@ fn check_individuals<G, O: SearchOptimizer<G>>(
 /// The error for files of a run that are missing or damaged and cannot be rebuilt from the
 /// checkpoint.
 fn damaged_run(files: &RunFiles, damaged: &[String]) -> RunError {
-    RunError::Mismatch(format!(
-        "run folder {} is damaged: {}. Restore these files, or delete the folder and resume again to \
-         recompute the run from its seed (it gives the same files)",
-        files.dir().display(),
-        damaged.join(", ")
-    ))
+    RunError::Folder {
+        file: files.dir().to_path_buf(),
+        problem: format!(
+            "the run folder is damaged: {}. Restore these files, or delete the folder and resume again \
+             to recompute the run from its seed (it gives the same files)",
+            damaged.join(", ")
+        ),
+    }
 }
 
 /// Verifies the files of a finished run against the hashes in its `summary.json`.

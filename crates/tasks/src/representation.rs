@@ -48,9 +48,10 @@ pub enum EvaluationError {
     /// representation (`body.masses`; see [`EvaluationError::field_error`]).
     #[error("representation.{0}")]
     Representation(FieldError),
-    /// The genotype does not fit the representation.
+    /// The genotype does not fit the representation; the error's path is the part of the
+    /// genotype at fault (`body`, `brain`), empty for the genotype as a whole.
     #[error("genotype: {0}")]
-    Genotype(String),
+    Genotype(FieldError),
     /// The episode could not be run or blew up.
     #[error(transparent)]
     Episode(#[from] EpisodeError),
@@ -106,18 +107,18 @@ impl Representation {
     pub fn any_robot(&self, genotype: &[f64]) -> Result<crate::AnyRobot, EvaluationError> {
         let expected = self.genotype_length()?;
         if genotype.len() != expected {
-            return Err(EvaluationError::Genotype(format!(
+            return Err(EvaluationError::Genotype(FieldError::message(format!(
                 "expected {expected} genes ({} body + {} brain), got {}",
                 self.body_genes(),
                 expected - self.body_genes(),
                 genotype.len()
-            )));
+            ))));
         }
         let (body_genes, brain_genes) = genotype.split_at(self.body_genes());
         let brain = self
             .brain
             .with_parameters(brain_genes)
-            .map_err(|e| EvaluationError::Genotype(e.to_string()))?;
+            .map_err(|e| EvaluationError::Genotype(FieldError::new("brain", e.to_string())))?;
         self.body.robot(self, body_genes, brain)
     }
 
@@ -182,8 +183,9 @@ impl<G, M> Stored<G, M> {
 
 impl<G: serde::de::DeserializeOwned, M: Mapper<G>> StoredGenotypes for Stored<G, M> {
     fn robot(&self, genotype: &serde_json::Value) -> Result<Box<dyn Robot>, EvaluationError> {
-        let genotype = G::deserialize(genotype)
-            .map_err(|e| EvaluationError::Genotype(format!("not a genotype of this experiment: {e}")))?;
+        let genotype = G::deserialize(genotype).map_err(|e| {
+            EvaluationError::Genotype(FieldError::message(format!("not a genotype of this experiment: {e}")))
+        })?;
         self.mapper.robot(&genotype)
     }
 }

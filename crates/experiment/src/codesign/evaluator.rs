@@ -100,7 +100,7 @@ impl<G: Sync> Evaluator<G> for CodesignEvaluator<G> {
     /// the policy its fitness came from) and writes the body with that policy as an EvoGym
     /// robot file.
     fn save_robot(&self, genotype: &G, record: Option<&Record>, path: &Path, note: &str) -> Result<(), EvaluatorError> {
-        let genotype_error = |m: String| EvaluatorError::Robot(EvaluationError::Genotype(m));
+        let genotype_error = |m: String| EvaluatorError::Robot(EvaluationError::Genotype(FieldError::message(m)));
         let seed = record.map(|r| r.seed).ok_or_else(|| {
             genotype_error("its evaluation record (the seed its brain was learned with) was not kept".into())
         })?;

@@ -137,9 +137,8 @@ impl GenotypeKind for CppnGenotype {
         options: &RunOptions,
         observer: &mut dyn Observer,
     ) -> Result<Vec<RunSummary>, RunError> {
-        let mismatch = |e: FieldError| RunError::Mismatch(e.to_string());
-        let params = neat(experiment).map_err(mismatch)?.clone();
-        let evaluator = self.evaluator(experiment, self.ppo.clone()).map_err(mismatch)?;
+        let params = neat(experiment)?.clone();
+        let evaluator = self.evaluator(experiment, self.ppo.clone())?;
         let new_optimizer = |seed: u64| {
             let neat = params.build_networks(CPPN_INPUTS, OUTPUT_MATERIALS.len(), &[Sense::Maximize], seed)?;
             Ok(Searcher(neat))

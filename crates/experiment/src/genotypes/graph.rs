@@ -307,7 +307,7 @@ impl GenotypeKind for GraphGenotypeConfig {
         options: &RunOptions,
         observer: &mut dyn Observer,
     ) -> Result<Vec<RunSummary>, RunError> {
-        let (variation, mapper) = build(experiment, self).map_err(|e| RunError::Other(e.to_string()))?;
+        let (variation, mapper) = build(experiment, self)?;
         let genes = 2 * variation.start.edges.len();
         run_with_operators(experiment, variation, mapper, genes, out, options, observer)
     }

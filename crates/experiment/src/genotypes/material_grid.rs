@@ -230,10 +230,8 @@ impl GenotypeKind for MaterialGridGenotype {
         options: &RunOptions,
         observer: &mut dyn Observer,
     ) -> Result<Vec<RunSummary>, RunError> {
-        let plan = check_operators(experiment, false).map_err(|e| RunError::Mismatch(e.to_string()))?;
-        let evaluator = self
-            .evaluator(experiment, self.ppo.clone())
-            .map_err(|e| RunError::Mismatch(e.to_string()))?;
+        let plan = check_operators(experiment, false)?;
+        let evaluator = self.evaluator(experiment, self.ppo.clone())?;
         let variation = self.variation();
         let new_optimizer = |seed: u64| Ok(plan.build(variation.clone(), seed)?);
         codesign::run_codesign(experiment, &evaluator, &new_optimizer, out, options, observer)
@@ -263,10 +261,9 @@ pub struct LearnedBodies;
 
 impl StoredGenotypes for LearnedBodies {
     fn robot(&self, _genotype: &serde_json::Value) -> Result<Box<dyn Robot>, EvaluationError> {
-        Err(EvaluationError::Genotype(
-            "a co-designed body's brain is learned by PPO during its evaluation: replay a run's best.robot.json instead"
-                .into(),
-        ))
+        Err(EvaluationError::Genotype(FieldError::message(
+            "a co-designed body's brain is learned by PPO during its evaluation: replay a run's best.robot.json instead",
+        )))
     }
 }
 

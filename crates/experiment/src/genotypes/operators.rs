@@ -73,14 +73,13 @@ where
     M: Mapper<V::Genotype>,
 {
     MemoryEstimate::of(experiment, genes, worker_threads(options.threads))
-        .check(options.memory_limit.unwrap_or(DEFAULT_MEMORY_LIMIT))
-        .map_err(|e| RunError::Mismatch(e.to_string()))?;
+        .check(options.memory_limit.unwrap_or(DEFAULT_MEMORY_LIMIT))?;
     let senses = experiment.senses();
     let optimizer = experiment.optimizer.kind();
     let plan = optimizer.over_operators(&senses).ok_or_else(|| {
-        RunError::Mismatch(format!(
-            "optimizer.kind: {} needs flat-vector genotypes",
-            optimizer.name()
+        RunError::Field(FieldError::new(
+            "optimizer.kind",
+            format!("{} needs flat-vector genotypes", optimizer.name()),
         ))
     })?;
     let evaluator = RobotEvaluator::with_mapper(mapper, experiment);

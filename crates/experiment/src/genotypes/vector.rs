@@ -78,7 +78,10 @@ impl GenotypeKind for VectorGenotype {
         options: &RunOptions,
         observer: &mut dyn Observer,
     ) -> Result<Vec<RunSummary>, RunError> {
-        let evaluator = RobotEvaluator::new(experiment).map_err(|e| RunError::Other(e.to_string()))?;
+        let evaluator = RobotEvaluator::new(experiment).map_err(|e| match e.field_error() {
+            Some(field) => RunError::Field(field),
+            None => RunError::Other(e.to_string()),
+        })?;
         run_vectors(experiment, &evaluator, out, options, observer)
     }
 
@@ -118,12 +121,11 @@ pub fn run_vectors(
     options: &RunOptions,
     observer: &mut dyn Observer,
 ) -> Result<Vec<RunSummary>, RunError> {
-    let dimension = genes(experiment).map_err(|e| RunError::Other(e.to_string()))?;
+    let dimension = genes(experiment)?;
     let senses = experiment.senses();
     check_threads(options)?;
     MemoryEstimate::of(experiment, dimension, worker_threads(options.threads))
-        .check(options.memory_limit.unwrap_or(DEFAULT_MEMORY_LIMIT))
-        .map_err(|e| RunError::Mismatch(e.to_string()))?;
+        .check(options.memory_limit.unwrap_or(DEFAULT_MEMORY_LIMIT))?;
     let new_optimizer = |seed: u64| -> Result<AnyOptimizer, RunError> {
         Ok(experiment.optimizer.kind().build(dimension, &senses, seed)?)
     };

@@ -376,7 +376,42 @@ fn too_many_threads_are_refused_before_anything_is_written() {
     };
     let err = run_vectors(&experiment, &evaluator, &out, &options, &mut Silent).unwrap_err();
     assert!(err.to_string().contains("at most 1024"), "{err}");
+    assert!(matches!(&err, RunError::Field(f) if f.path == "threads"), "{err:?}");
     assert!(!out.exists());
+}
+
+/// A folder that holds an experiment is refused without `--resume`, and one written by another
+/// configuration even with it; the error carries the folder as a path, not inside its text.
+#[test]
+fn a_folder_of_another_run_is_refused_naming_the_folder() {
+    let experiment = tiny(
+        "kind = \"ga\"\npopulation_size = 4\noffspring_size = 4",
+        "generations = 1",
+    );
+    let dir = tempfile::tempdir().unwrap();
+    run(&experiment, dir.path(), 1);
+    let evaluator = RobotEvaluator::new(&experiment).unwrap();
+    let refused = |experiment: &Experiment, resume: bool| {
+        let options = RunOptions {
+            threads: 1,
+            resume,
+            ..RunOptions::default()
+        };
+        match run_vectors(experiment, &evaluator, dir.path(), &options, &mut Silent) {
+            Err(RunError::Folder { file, problem }) => (file, problem),
+            other => panic!("expected a refused folder, got {other:?}"),
+        }
+    };
+    let (file, problem) = refused(&experiment, false);
+    assert_eq!(file, dir.path());
+    assert!(problem.contains("--resume"), "{problem}");
+    let other = tiny(
+        "kind = \"ga\"\npopulation_size = 4\noffspring_size = 4",
+        "generations = 2",
+    );
+    let (file, problem) = refused(&other, true);
+    assert_eq!(file, dir.path());
+    assert!(problem.contains("different experiment configuration"), "{problem}");
 }
 
 /// An observer that keeps the notices.
@@ -603,9 +638,15 @@ fn a_run_estimated_above_the_memory_limit_is_refused_before_anything_is_written(
         memory_limit: Some(1 << 20),
         ..RunOptions::default()
     };
-    let err = run_vectors(&experiment, &evaluator, &out, &options, &mut Silent)
-        .unwrap_err()
-        .to_string();
+    let err = run_vectors(&experiment, &evaluator, &out, &options, &mut Silent).unwrap_err();
+    match &err {
+        RunError::Memory(limit) => {
+            assert_eq!(limit.limit, 1 << 20);
+            assert!(limit.estimate.bytes > 1 << 20, "{limit:?}");
+        }
+        other => panic!("expected a memory refusal, got {other:?}"),
+    }
+    let err = err.to_string();
     assert!(
         err.contains("memory limit of 0.0 GiB") && err.contains("--max-memory-gib"),
         "{err}"

@@ -80,10 +80,10 @@ struct PhaseMapper {
 impl Mapper<Phases> for PhaseMapper {
     fn robot(&self, g: &Phases) -> Result<Box<dyn Robot>, EvaluationError> {
         if g.0.len() != CELLS || g.0.iter().any(|v| v.abs() > self.levels) {
-            return Err(EvaluationError::Genotype(format!(
+            return Err(EvaluationError::Genotype(vsrlab_field::FieldError::message(format!(
                 "{CELLS} levels within ±{} expected",
                 self.levels
-            )));
+            ))));
         }
         let phases: Vec<f64> = g.0.iter().map(|&v| f64::from(v) / f64::from(self.levels)).collect();
         common::phase_biped(&phases)

@@ -36,7 +36,7 @@ pub fn two_threads(resume: bool) -> RunOptions {
 pub fn phase_biped(phases: &[f64]) -> Result<Box<dyn vsrlab_tasks::Robot>, vsrlab_tasks::EvaluationError> {
     let brain = vsrlab_brain::BrainSpec::parse("phase-grid")
         .and_then(|b| b.with_parameters(phases))
-        .map_err(|e| vsrlab_tasks::EvaluationError::Genotype(e.to_string()))?;
+        .map_err(|e| vsrlab_tasks::EvaluationError::Genotype(vsrlab_field::FieldError::new("brain", e.to_string())))?;
     Ok(Box::new(vsrlab_tasks::RobotSpec {
         body: vsrlab_body::Morphology::parse("biped-4x3").unwrap(),
         preset: vsrlab_body::Preset::Y2021,

@@ -95,7 +95,7 @@ impl BodySource for VoxelBody {
             VoxelBody::Fixed(body) => body.clone(),
             VoxelBody::Encoded(encoding) => encoding
                 .decode(genes)
-                .map_err(|e| EvaluationError::Genotype(format!("body: {e}")))?,
+                .map_err(|e| EvaluationError::Genotype(FieldError::new("body", e.to_string())))?,
         };
         Ok(AnyRobot::new(RobotSpec {
             body,

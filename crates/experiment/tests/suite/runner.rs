@@ -138,6 +138,8 @@ fn resumed_runs_end_like_uninterrupted_ones() {
     }
 }
 
+/// A folder that holds an experiment is refused without `--resume`, and one written by another
+/// configuration even with it; the error carries the folder as a path, not inside its text.
 #[test]
 fn resuming_with_another_configuration_is_refused() {
     let experiment = tiny(
@@ -146,18 +148,28 @@ fn resuming_with_another_configuration_is_refused() {
     );
     let dir = tempfile::tempdir().unwrap();
     run(&experiment, dir.path(), 1);
+    let refused = |experiment: &Experiment, resume: bool| {
+        let evaluator = RobotEvaluator::new(experiment).unwrap();
+        let options = RunOptions {
+            threads: 1,
+            resume,
+            ..RunOptions::default()
+        };
+        match run_vectors(experiment, &evaluator, dir.path(), &options, &mut Silent) {
+            Err(RunError::Folder { file, problem }) => (file, problem),
+            other => panic!("expected a refused folder, got {other:?}"),
+        }
+    };
+    let (file, problem) = refused(&experiment, false);
+    assert_eq!(file, dir.path());
+    assert!(problem.contains("--resume"), "{problem}");
     let other = tiny(
         "kind = \"ga\"\npopulation_size = 5\noffspring_size = 4",
         "generations = 1",
     );
-    let evaluator = RobotEvaluator::new(&other).unwrap();
-    let options = RunOptions {
-        threads: 1,
-        resume: true,
-        ..RunOptions::default()
-    };
-    let err = run_vectors(&other, &evaluator, dir.path(), &options, &mut Silent).unwrap_err();
-    assert!(err.to_string().contains("different experiment"), "{err}");
+    let (file, problem) = refused(&other, true);
+    assert_eq!(file, dir.path());
+    assert!(problem.contains("different experiment configuration"), "{problem}");
 }
 
 /// Fails every genotype whose first gene is negative, panics when the second is ≥ 0.9;
@@ -378,40 +390,6 @@ fn too_many_threads_are_refused_before_anything_is_written() {
     assert!(err.to_string().contains("at most 1024"), "{err}");
     assert!(matches!(&err, RunError::Field(f) if f.path == "threads"), "{err:?}");
     assert!(!out.exists());
-}
-
-/// A folder that holds an experiment is refused without `--resume`, and one written by another
-/// configuration even with it; the error carries the folder as a path, not inside its text.
-#[test]
-fn a_folder_of_another_run_is_refused_naming_the_folder() {
-    let experiment = tiny(
-        "kind = \"ga\"\npopulation_size = 4\noffspring_size = 4",
-        "generations = 1",
-    );
-    let dir = tempfile::tempdir().unwrap();
-    run(&experiment, dir.path(), 1);
-    let evaluator = RobotEvaluator::new(&experiment).unwrap();
-    let refused = |experiment: &Experiment, resume: bool| {
-        let options = RunOptions {
-            threads: 1,
-            resume,
-            ..RunOptions::default()
-        };
-        match run_vectors(experiment, &evaluator, dir.path(), &options, &mut Silent) {
-            Err(RunError::Folder { file, problem }) => (file, problem),
-            other => panic!("expected a refused folder, got {other:?}"),
-        }
-    };
-    let (file, problem) = refused(&experiment, false);
-    assert_eq!(file, dir.path());
-    assert!(problem.contains("--resume"), "{problem}");
-    let other = tiny(
-        "kind = \"ga\"\npopulation_size = 4\noffspring_size = 4",
-        "generations = 2",
-    );
-    let (file, problem) = refused(&other, true);
-    assert_eq!(file, dir.path());
-    assert!(problem.contains("different experiment configuration"), "{problem}");
 }
 
 /// An observer that keeps the notices.

@@ -190,6 +190,48 @@ fn stages(populations: &[&PopulationLearning]) -> Vec<(&'static str, usize)> {
     ]
 }
 
+/// Groups of stages that are the same population in every run (with few snapshots, "start",
+/// "1/3" and "2/3" can all be the first): their curves lie on top of each other, so the panel
+/// says so.
+fn coinciding_stages(runs: &[Vec<(&'static str, usize)>]) -> Vec<Vec<&'static str>> {
+    let Some(first) = runs.first().filter(|r| !r.is_empty()) else {
+        return Vec::new();
+    };
+    let same = |k: usize| runs.iter().all(|r| r[k].1 == r[k + 1].1);
+    let mut groups: Vec<Vec<&'static str>> = Vec::new();
+    let mut current = vec![first[0].0];
+    for k in 0..first.len() - 1 {
+        if !same(k) {
+            groups.push(std::mem::take(&mut current));
+        }
+        current.push(first[k + 1].0);
+    }
+    groups.push(current);
+    groups.retain(|g| g.len() > 1);
+    groups
+}
+
+/// A panel's coinciding stages, as "start = 1/3 = 2/3" (groups joined by "; "), or empty.
+fn coinciding_label(runs: &[Vec<(&'static str, usize)>]) -> String {
+    let groups: Vec<String> = coinciding_stages(runs).iter().map(|g| g.join(" = ")).collect();
+    groups.join("; ")
+}
+
+/// The figure's note on coinciding stages, from each panel's (setting, label): one line for
+/// all panels when they agree, else one line per panel that has any.
+fn coinciding_note(panels: &[(String, String)]) -> Vec<String> {
+    let with: Vec<&(String, String)> = panels.iter().filter(|(_, c)| !c.is_empty()).collect();
+    let Some(first) = with.first() else {
+        return Vec::new();
+    };
+    if with.len() == panels.len() && with.iter().all(|(_, c)| *c == first.1) {
+        return vec![format!("{}:", first.1), "the same population".into()];
+    }
+    let mut lines = vec!["the same population:".to_string()];
+    lines.extend(with.iter().map(|(name, c)| format!("{name}: {c}")));
+    lines
+}
+
 /// Median and sd across runs of equal-length prefixes of `curves`.
 fn across_runs(curves: &[&[f64]]) -> (Vec<f64>, Vec<f64>) {
     let length = curves.iter().map(|c| c.len()).min().unwrap_or(0);
@@ -225,13 +267,15 @@ fn runs_of<'a>(populations: &'a [PopulationLearning], setting: &str) -> Vec<Vec<
 /// Figure 5.17: one panel per setting, one curve per stage.
 fn curves_figure(names: &[String], populations: &[PopulationLearning], window: usize) -> (BandFigure, String) {
     let mut csv = String::from("setting,stage,run,evaluations,iteration,median_reward\n");
-    let panels = names
+    let (panels, coinciding): (Vec<BandChart>, Vec<(String, String)>) = names
         .iter()
         .map(|name| {
             let runs = runs_of(populations, name);
+            let indices: Vec<Vec<(&'static str, usize)>> = runs.iter().map(|r| stages(r)).collect();
             let staged: Vec<Vec<(&str, &PopulationLearning)>> = runs
                 .iter()
-                .map(|r| stages(r).into_iter().map(|(label, i)| (label, r[i])).collect())
+                .zip(&indices)
+                .map(|(r, s)| s.iter().map(|&(label, i)| (label, r[i])).collect())
                 .collect();
             for (run, stages) in runs.iter().zip(&staged) {
                 for (label, p) in stages {
@@ -258,19 +302,22 @@ fn curves_figure(names: &[String], populations: &[PopulationLearning], window: u
                     }
                 })
                 .collect();
-            BandChart {
+            let chart = BandChart {
                 title: name.clone(),
                 x_label: "PPO iteration".into(),
                 y_label: format!("reward per step, moving average of {window}"),
                 series,
-            }
+            };
+            (chart, (name.clone(), coinciding_label(&indices)))
         })
-        .collect();
+        .unzip();
+    let mut note = population_note();
+    note.extend(coinciding_note(&coinciding));
     let figure = BandFigure {
         title: "Learning curves at four stages of evolution".into(),
         panels,
         legend_title: "population".into(),
-        note: population_note(),
+        note,
     };
     (figure, csv)
 }
@@ -625,6 +672,30 @@ mod tests {
         let refs: Vec<&PopulationLearning> = all.iter().collect();
         let picked: Vec<u64> = stages(&refs).iter().map(|s| refs[s.1].evaluations).collect();
         assert_eq!(picked, [25, 175, 350, 500]);
+        assert_eq!(coinciding_label(&[stages(&refs)]), "");
+        // two snapshots (10 and 26 evaluations): start, 1/3 and 2/3 are all the first
+        let two = [p(10), p(26)];
+        let two: Vec<&PopulationLearning> = two.iter().collect();
+        assert_eq!(coinciding_stages(&[stages(&two)]), [vec!["start", "1/3", "2/3"]]);
+        assert_eq!(coinciding_label(&[stages(&two), stages(&two)]), "start = 1/3 = 2/3");
+        // a stage coincides in the figure only if it does in every run
+        let three = [p(10), p(20), p(30)];
+        let three: Vec<&PopulationLearning> = three.iter().collect();
+        assert_eq!(
+            coinciding_stages(&[stages(&two), stages(&three)]),
+            [vec!["start", "1/3"]]
+        );
+        assert!(coinciding_stages(&[]).is_empty() && coinciding_stages(&[vec![]]).is_empty());
+        // the note: one line pair when every panel agrees, else a line per panel with any
+        let panel = |n: &str, c: &str| (n.to_string(), c.to_string());
+        let agree = [panel("a", "start = 1/3"), panel("b", "start = 1/3")];
+        assert_eq!(coinciding_note(&agree), ["start = 1/3:", "the same population"]);
+        let differ = [panel("a", "start = 1/3"), panel("b", ""), panel("c", "2/3 = end")];
+        assert_eq!(
+            coinciding_note(&differ),
+            ["the same population:", "a: start = 1/3", "c: 2/3 = end"]
+        );
+        assert!(coinciding_note(&[panel("a", "")]).is_empty());
         let names = vec![
             "r-cppn-beam".to_string(),
             "r-direct-beam".into(),

@@ -197,6 +197,9 @@ fn coinciding_stages(runs: &[Vec<(&'static str, usize)>]) -> Vec<Vec<&'static st
     let Some(first) = runs.first().filter(|r| !r.is_empty()) else {
         return Vec::new();
     };
+    if runs.iter().any(|r| r.len() != first.len()) {
+        return Vec::new();
+    }
     let same = |k: usize| runs.iter().all(|r| r[k].1 == r[k + 1].1);
     let mut groups: Vec<Vec<&'static str>> = Vec::new();
     let mut current = vec![first[0].0];
@@ -686,6 +689,10 @@ mod tests {
             [vec!["start", "1/3"]]
         );
         assert!(coinciding_stages(&[]).is_empty() && coinciding_stages(&[vec![]]).is_empty());
+        assert!(
+            coinciding_stages(&[stages(&two), vec![]]).is_empty(),
+            "a run without stages"
+        );
         // the note: one line pair when every panel agrees, else a line per panel with any
         let panel = |n: &str, c: &str| (n.to_string(), c.to_string());
         let agree = [panel("a", "start = 1/3"), panel("b", "start = 1/3")];

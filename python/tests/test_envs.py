@@ -34,11 +34,11 @@ def test_locomotion_takes_body_and_terrain_and_rewards_forward_motion():
         total += reward
         t += 1
         done = terminated or truncated
-    # the CLI's episode length in steps (300 for 5 s: duration / dt, to a whole number of steps)
+    # the CLI's episode length in steps (301 for 5 s: time is a float sum of 1/60 s steps, as in the original)
     assert truncated and not terminated and t == vsrlab.simulate(duration=5.0)["steps"]
     # the rewards add up to the task's distance
     assert total > 0 and abs(total - env.unwrapped.metrics()["distance"]) < 1e-9, total
-    assert t == 300 and abs(info["time"] - 5.0) < 1e-9, info["time"]
+    assert t == 301 and 5.0 <= info["time"] < 5.0 + 1.5 / 60, info["time"]
 
 
 def test_the_vector_environment_equals_single_episodes():

@@ -79,7 +79,8 @@ pub struct Episode {
     damage: Option<(f64, Vec<bool>)>,
     dt: f64,
     duration: f64,
-    /// Steps of the whole episode ([`crate::task::episode_steps`]) and steps taken.
+    /// Steps of the whole episode, counted as the original does
+    /// ([`crate::task::original_episode_steps`]), and steps taken.
     steps: u64,
     taken: u64,
     t: f64,
@@ -111,7 +112,7 @@ impl Episode {
             damage,
             dt: task.physics().dt,
             duration: task.duration(),
-            steps: crate::task::episode_steps(task.duration(), task.physics().dt),
+            steps: crate::task::original_episode_steps(task.duration(), task.physics().dt),
             taken: 0,
             t: 0.0,
             center,
@@ -276,7 +277,7 @@ struct Recorder {
 
 impl Recorder {
     fn new(level: TraceLevel, task: &dyn RigidTask, scene: &Scene, agent: &mut dyn Agent) -> Recorder {
-        let steps = crate::task::episode_steps(task.duration(), task.physics().dt) as usize + 1;
+        let steps = crate::task::original_episode_steps(task.duration(), task.physics().dt) as usize + 1;
         let mut trace = Trace {
             dt: task.physics().dt,
             ..Default::default()

@@ -183,6 +183,22 @@ pub fn episode_steps(duration: f64, dt: f64) -> u64 {
     ((duration / dt) - 1e-6).ceil().max(1.0) as u64
 }
 
+/// Steps of an episode as the original 2D simulator counts them: it steps while its time, a
+/// float sum of `dt`, is below `duration` (at least one step). The rounding of that sum decides
+/// the last step: at 1/60 s, 5 s → 301, 10 s → 600, 30 s → 1801, 60 s → 3601 (docs/model.md).
+/// The 2D voxel robots and PSAs, which reproduce the original, count this way; the sum costs one
+/// addition per step of the episode, which [`check_episode`] bounds (at most 100,000 s).
+pub fn original_episode_steps(duration: f64, dt: f64) -> u64 {
+    let (mut t, mut steps) = (0.0, 0u64);
+    // the whole-number count plus a margin bounds the loop whatever the inputs
+    let bound = episode_steps(duration, dt).saturating_mul(2).saturating_add(2);
+    while t < duration && steps < bound {
+        t += dt;
+        steps += 1;
+    }
+    steps.max(1)
+}
+
 /// The fitness values of `objectives` read from `metrics` (NaN for a missing metric, which
 /// [`Task::validate`] rules out).
 pub fn fitness_values(objectives: &[Objective], metrics: &Metrics) -> Vec<f64> {
@@ -245,5 +261,30 @@ mod tests {
         // a duration between steps rounds up, and an episode has at least one step
         assert_eq!(episode_steps(1.01, dt), 61);
         assert_eq!(episode_steps(1e-9, dt), 1);
+    }
+
+    #[test]
+    fn the_original_count_follows_the_float_sum_of_its_time() {
+        use super::original_episode_steps;
+        let dt = 1.0 / 60.0;
+        // the counts of 2D-VSR-Sim's loop `while (t < T) { t += dt; ... }`, written out
+        for (duration, steps) in [
+            (1.0, 60),
+            (4.0, 241),
+            (5.0, 301),
+            (10.0, 600),
+            (20.0, 1200),
+            (30.0, 1801),
+            (60.0, 3601),
+        ] {
+            assert_eq!(original_episode_steps(duration, dt), steps, "{duration} s");
+        }
+        // each count is the loop's: one step fewer leaves the sum below the duration
+        for duration in [0.1, 2.0, 3.0, 7.5, 30.0, 100.0] {
+            let n = original_episode_steps(duration, dt);
+            let sum = |k: u64| (0..k).fold(0.0, |t, _| t + dt);
+            assert!(sum(n) >= duration && sum(n - 1) < duration, "{duration} s: {n}");
+        }
+        assert_eq!(original_episode_steps(1e-9, dt), 1);
     }
 }

@@ -11,6 +11,7 @@ mod evaluate;
 mod fuzz;
 mod graph;
 mod hebbian;
+mod identity;
 mod psa;
 mod readme;
 mod robot_files;

@@ -52,7 +52,10 @@ fn runs_write_best_replays_and_view_serves_a_results_folder_until_ctrl_c() {
     assert!(success, "{text}");
     let written = json(&std::fs::read_to_string(out.join("run-01/best.replay.json")).unwrap());
     assert_eq!(written["format"], "vsrlab-replay");
-    assert_eq!(written["frames"], 120, "4 s (240 steps) at 30 frames per second");
+    assert_eq!(
+        written["frames"], 121,
+        "4 s (241 steps, as the original counts) at 30 frames per second"
+    );
     assert!(written["title"].as_str().unwrap().contains("run 1"));
     // Without its replay, the best robot is simulated when the page asks for it.
     std::fs::remove_file(out.join("run-01/best.replay.json")).unwrap();

@@ -93,8 +93,8 @@ fn calibration_matches(solver: Solver) {
         let (a, _, _, y, first_min_y, steps) =
             calibrate_with(body, preset, BrainSpec::Constant(ConstantSpec { value: 0.0 }), solver);
         assert_eq!(
-            steps, 300,
-            "5 s at 1/60 s is 300 steps (the original, adding up t, takes a 301st)"
+            steps, 301,
+            "5 s at 1/60 s is 301 steps, as in the original (its time is a float sum of steps)"
         );
         within(a, a0, 0.01, &what("f = 0 area"));
         // rest height and first-step fall within 2 %
@@ -145,7 +145,7 @@ fn phase_gaits_walk_and_are_reported_beside_the_original() {
             "{body} preset {preset}: velocity {:.4} (original {original})",
             o.metric("velocity")
         );
-        assert_eq!(o.steps, 1800);
+        assert_eq!(o.steps, 1801);
         assert!(
             o.metric("velocity").is_finite() && o.metric("velocity").abs() < 3.0,
             "{body}: {}",

@@ -119,9 +119,9 @@ fn a_second_body_kind_runs_on_every_task_with_general_outlines() {
             .unwrap();
         let outcome = episode::run(&hopper, spec.task(), 1, TraceLevel::Full).unwrap();
         assert_eq!(outcome.units, 1, "{task}");
-        // 5 s of 1/60 s steps, whatever the float rounding (task::episode_steps)
+        // 5 s of 1/60 s steps counted as the original does (task::original_episode_steps)
         let steps = outcome.steps as usize;
-        assert_eq!(steps, 300, "{task}");
+        assert_eq!(steps, 301, "{task}");
         assert!(outcome.fitness.iter().all(|f| f.is_finite()), "{task}: {outcome:?}");
         let trace = outcome.trace.as_ref().unwrap();
         assert_eq!(trace.outline_corners, [3, 4]);

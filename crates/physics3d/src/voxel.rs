@@ -15,6 +15,8 @@ pub(crate) struct Voxel {
     pub momentum: DVec3,
     pub angular_momentum: DVec3,
     pub temperature: f64,
+    /// Rest edge at this temperature, `s (1 + cte T)`, kept with the temperature.
+    pub size: f64,
     /// The dt of its last step (internal damping divides by it).
     pub dt_prev: f64,
     /// Static friction holds it (voxels start static).
@@ -36,6 +38,7 @@ impl Voxel {
             momentum: DVec3::ZERO,
             angular_momentum: DVec3::ZERO,
             temperature: 0.0,
+            size: lattice,
             dt_prev: 0.0,
             is_static: true,
             fixed: [false; 6],

@@ -94,6 +94,8 @@ pub struct World {
     collisions: Collisions,
     /// Whether the voxels or their fixed DOFs changed since the collision surface was taken.
     surface_stale: bool,
+    /// Whether a temperature changed since the links' rest lengths were last computed.
+    rests_stale: bool,
     colliders: Vec<Collider>,
     contact_forces: Vec<DVec3>,
 }
@@ -127,6 +129,7 @@ impl World {
             ends: Vec::new(),
             collisions: Collisions::default(),
             surface_stale: true,
+            rests_stale: false,
             colliders: Vec::new(),
             contact_forces: Vec::new(),
         })
@@ -163,6 +166,7 @@ impl World {
         }
         let id = self.voxels.len();
         self.voxels.push(Voxel::new(material, index, self.settings.voxel_size));
+        self.voxels[id].size = self.size_at(material, 0.0);
         self.pieces.push(piece);
         self.lattice.insert(index, id);
         for (axis, k) in [(Axis::X, 0), (Axis::Y, 1), (Axis::Z, 2)] {
@@ -202,8 +206,12 @@ impl World {
 
     /// A voxel's rest edge: `s (1 + cte T)`.
     fn rest_size(&self, v: usize) -> f64 {
-        let voxel = &self.voxels[v];
-        self.settings.voxel_size * (1.0 + self.materials[voxel.material].cte * voxel.temperature)
+        self.voxels[v].size
+    }
+
+    /// The rest edge of a voxel of `material` at `temperature`.
+    fn size_at(&self, material: usize, temperature: f64) -> f64 {
+        self.settings.voxel_size * (1.0 + self.materials[material].cte * temperature)
     }
 
     /// Fixes or frees degrees of freedom of a voxel (fixed: held at its lattice position and
@@ -226,14 +234,26 @@ impl World {
         self.voxels[v.0].external_moment = moment;
     }
 
-    /// Sets a voxel's temperature, and with it the rest length of its links (thermal actuation).
+    /// Sets a voxel's temperature, and with it its rest edge and the rest length of its links
+    /// (thermal actuation). The links' rest lengths are computed once at the next step, from
+    /// every temperature set before it: the values of computing them at each call.
     pub fn set_temperature(&mut self, v: VoxelId, temperature: f64) {
-        self.voxels[v.0].temperature = temperature;
-        for i in 0..self.voxels[v.0].links.len() {
-            let l = self.voxels[v.0].links[i].0;
-            let (neg, pos) = (self.links[l].neg, self.links[l].pos);
-            self.links[l].rest = 0.5 * (self.rest_size(neg) + self.rest_size(pos));
+        let size = self.size_at(self.voxels[v.0].material, temperature);
+        let voxel = &mut self.voxels[v.0];
+        voxel.temperature = temperature;
+        voxel.size = size;
+        self.rests_stale |= !voxel.links.is_empty();
+    }
+
+    /// Every link's rest length from its voxels' rest edges, if a temperature changed.
+    fn update_rest_lengths(&mut self) {
+        if !self.rests_stale {
+            return;
         }
+        for l in &mut self.links {
+            l.rest = 0.5 * (self.voxels[l.neg].size + self.voxels[l.pos].size);
+        }
+        self.rests_stale = false;
     }
 
     /// Voxelyze's recommended time step: one radian of the fastest axial link oscillation,
@@ -287,6 +307,7 @@ impl World {
         if dt == 0.0 {
             return Ok(());
         }
+        self.update_rest_lengths();
         for (end, v) in self.ends.iter_mut().zip(&self.voxels) {
             let c = &self.constants[v.material];
             let zeta = self.materials[v.material].internal_damping;

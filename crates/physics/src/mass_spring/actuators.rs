@@ -95,6 +95,7 @@ mod tests {
             band: vec![0.25; n],
             active: Runs::where_(n, |_| true),
             stages: std::array::from_fn(|_| Runs::where_(n, |_| true)),
+            tracked_length: vec![0.0; n],
         }
     }
 

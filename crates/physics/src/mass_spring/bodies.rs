@@ -27,6 +27,9 @@ pub(crate) struct Bodies {
     /// Box of each slot, and of each body (union of its slots).
     pub boxes: Vec<Aabb>,
     pub body_boxes: Vec<Aabb>,
+    /// Counts the updates that may have changed the boxes of all-fixed bodies (which only
+    /// [`Bodies::update_boxes`] with `all` does): the broad phase sorts their slots again then.
+    pub fixed_boxes_version: u64,
 }
 
 impl Bodies {
@@ -48,6 +51,7 @@ impl Bodies {
 
     /// Recomputes the boxes of every body that can move (`all = true`: of every body).
     pub fn update_boxes(&mut self, x: &[f64], y: &[f64], all: bool) {
+        self.fixed_boxes_version += u64::from(all);
         for b in 0..self.len() {
             if self.all_fixed[b] && !all {
                 continue;

@@ -1,17 +1,28 @@
 //! Broad phase: which pairs of boundary quads may touch, by sweep and prune along x.
 //!
-//! The boundary quads (slots) are kept sorted by the left side of their boxes; each substep the
-//! order is repaired by insertion sort (nearly sorted after a small step) and swept once. The
-//! sorted order is unique for given boxes (ties broken by slot index), so the pairs, and the order
-//! in which contact forces are summed, depend only on the state: stepping stays deterministic.
+//! The boundary quads (slots) are ordered by the left side of their boxes, ties broken by slot
+//! index, and swept once per substep: each slot is paired with the slots after it whose left
+//! side is not beyond its right side. The order is unique for given boxes, so the pairs, and the
+//! order in which contact forces are summed, depend only on the state: stepping stays
+//! deterministic.
+//!
+//! The slots of all-fixed bodies (terrain) keep their boxes, so they are sorted once and kept
+//! apart from the moving slots, which are repaired by insertion sort each substep (nearly sorted
+//! after a small step). The sweep walks the two lists merged, which is the order of all slots,
+//! and skips what cannot give a pair (two fixed slots): the same pairs in the same order as a
+//! sweep over every slot, at the cost of the moving slots.
 
 use super::bodies::Bodies;
 
 /// The sorted slots and the candidate pairs of the current substep, kept between substeps.
 #[derive(Debug, Clone)]
 pub(crate) struct BroadPhase {
-    /// Every slot, ordered by (left side of its box, slot index).
-    order: Vec<u32>,
+    /// Slots of all-fixed bodies, ordered by (left side of the box, slot index).
+    fixed_order: Vec<u32>,
+    /// The boxes version (`Bodies::fixed_boxes_version`) `fixed_order` was sorted for.
+    sorted_for: Option<u64>,
+    /// Slots of the other bodies, ordered by (left side of the box, slot index).
+    moving_order: Vec<u32>,
     /// The body of each slot.
     slot_body: Vec<u32>,
     /// Candidate pairs `(lower slot, higher slot)` in sweep order.
@@ -25,9 +36,12 @@ impl BroadPhase {
         for b in 0..bodies.len() {
             slot_body.extend(bodies.slots(b).map(|_| b as u32));
         }
-        let order = (0..slot_body.len() as u32).collect();
+        let fixed = |s: &u32| bodies.all_fixed[slot_body[*s as usize] as usize];
+        let (fixed_order, moving_order) = (0..slot_body.len() as u32).partition(fixed);
         Self {
-            order,
+            fixed_order,
+            sorted_for: None,
+            moving_order,
             slot_body,
             pairs: Vec::new(),
         }
@@ -40,18 +54,41 @@ impl BroadPhase {
         self.sort(bodies);
         self.pairs.clear();
         let boxes = &bodies.boxes;
-        for (k, &a) in self.order.iter().enumerate() {
+        let key = |s: u32| (boxes[s as usize].min_x, s);
+        let (fixed, moving) = (&self.fixed_order, &self.moving_order);
+        let (mut i, mut j) = (0, 0);
+        while i < fixed.len() || j < moving.len() {
+            let fixed_first = j == moving.len() || (i < fixed.len() && less(key(fixed[i]), key(moving[j])));
+            let (a, after_fixed, after_moving) = match fixed_first {
+                // a fixed slot pairs only with the moving slots after it
+                true => (fixed[i], &fixed[fixed.len()..], &moving[j..]),
+                false => (moving[j], &fixed[i..], &moving[j + 1..]),
+            };
+            (i, j) = if fixed_first { (i + 1, j) } else { (i, j + 1) };
             let ba = &boxes[a as usize];
-            let fixed_a = bodies.all_fixed[self.slot_body[a as usize] as usize];
-            for &b in &self.order[k + 1..] {
+            // the slots after `a`, merged in order, up to the first whose left side is beyond it
+            let (mut p, mut q) = (0, 0);
+            loop {
+                let b = match (after_fixed.get(p), after_moving.get(q)) {
+                    (Some(&f), Some(&m)) if less(key(f), key(m)) => {
+                        p += 1;
+                        f
+                    }
+                    (_, Some(&m)) => {
+                        q += 1;
+                        m
+                    }
+                    (Some(&f), None) => {
+                        p += 1;
+                        f
+                    }
+                    (None, None) => break,
+                };
                 let bb = &boxes[b as usize];
                 if bb.min_x > ba.max_x {
                     break;
                 }
-                if bb.min_y > ba.max_y
-                    || ba.min_y > bb.max_y
-                    || (fixed_a && bodies.all_fixed[self.slot_body[b as usize] as usize])
-                {
+                if bb.min_y > ba.max_y || ba.min_y > bb.max_y {
                     continue;
                 }
                 self.pairs.push((a.min(b), a.max(b)));
@@ -69,19 +106,28 @@ impl BroadPhase {
         self.slot_body[a as usize] == self.slot_body[b as usize]
     }
 
-    /// Insertion sort of the slots by (left side, index): linear when little moved.
+    /// The fixed slots sorted when their boxes may have changed, the moving ones every time.
     fn sort(&mut self, bodies: &Bodies) {
-        let key = |s: u32| (bodies.boxes[s as usize].min_x, s);
-        for i in 1..self.order.len() {
-            let s = self.order[i];
-            let k = key(s);
-            let mut j = i;
-            while j > 0 && less(k, key(self.order[j - 1])) {
-                self.order[j] = self.order[j - 1];
-                j -= 1;
-            }
-            self.order[j] = s;
+        if self.sorted_for != Some(bodies.fixed_boxes_version) {
+            insertion_sort(&mut self.fixed_order, bodies);
+            self.sorted_for = Some(bodies.fixed_boxes_version);
         }
+        insertion_sort(&mut self.moving_order, bodies);
+    }
+}
+
+/// Insertion sort of slots by (left side, index): linear when little moved.
+fn insertion_sort(order: &mut [u32], bodies: &Bodies) {
+    let key = |s: u32| (bodies.boxes[s as usize].min_x, s);
+    for i in 1..order.len() {
+        let s = order[i];
+        let k = key(s);
+        let mut j = i;
+        while j > 0 && less(k, key(order[j - 1])) {
+            order[j] = order[j - 1];
+            j -= 1;
+        }
+        order[j] = s;
     }
 }
 
@@ -113,6 +159,7 @@ mod tests {
             neighbours: vec![],
             boxes: boxes.iter().map(|b| b.1).collect(),
             body_boxes: vec![Aabb::EMPTY; fixed.len()],
+            fixed_boxes_version: 0,
         }
     }
 
@@ -167,6 +214,64 @@ mod tests {
             assert_eq!(found, expected, "round {round}");
             for slot in b.slots(0) {
                 b.boxes[slot] = unit(next() * 12.0, next() * 4.0);
+            }
+        }
+    }
+
+    /// The pairs, in order, of one sweep over every slot sorted by (left side, index): the order
+    /// in which contact forces are summed, which the split into fixed and moving slots keeps.
+    fn swept_over_all(b: &Bodies) -> Vec<(u32, u32)> {
+        let body = |s: u32| (0..b.len()).find(|&k| b.slots(k).contains(&(s as usize))).unwrap();
+        let key = |s: u32| (b.boxes[s as usize].min_x, s);
+        let mut order: Vec<u32> = (0..b.boxes.len() as u32).collect();
+        order.sort_by(|&x, &y| key(x).partial_cmp(&key(y)).unwrap());
+        let mut pairs = Vec::new();
+        for (k, &a) in order.iter().enumerate() {
+            let ba = &b.boxes[a as usize];
+            for &s in &order[k + 1..] {
+                let bb = &b.boxes[s as usize];
+                if bb.min_x > ba.max_x {
+                    break;
+                }
+                let both_fixed = b.all_fixed[body(a)] && b.all_fixed[body(s)];
+                if bb.min_y > ba.max_y || ba.min_y > bb.max_y || both_fixed {
+                    continue;
+                }
+                pairs.push((a.min(s), a.max(s)));
+            }
+        }
+        pairs
+    }
+
+    #[test]
+    fn the_pairs_come_in_the_order_of_one_sweep_over_every_slot() {
+        let mut state = 11u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        // bodies 0 and 2 move, 1 and 3 are fixed; coordinates on a coarse grid give ties
+        let mut slots: Vec<(usize, Aabb)> = (0..80)
+            .map(|i| (i / 20, unit((next() * 16.0).floor() * 0.5, (next() * 4.0).floor())))
+            .collect();
+        slots.sort_by_key(|s| s.0);
+        let mut b = bodies(&slots, &[false, true, false, true]);
+        let mut broad = BroadPhase::new(&b);
+        for round in 0..40 {
+            broad.update(&b);
+            assert_eq!(broad.pairs(), swept_over_all(&b).as_slice(), "round {round}");
+            for slot in b.slots(0).chain(b.slots(2)) {
+                let moved = unit((next() * 16.0).floor() * 0.5, (next() * 4.0).floor());
+                b.boxes[slot] = if next() < 0.3 { moved } else { b.boxes[slot] };
+            }
+            // now and then the terrain moves too (a fixed point placed by hand), and says so
+            if round % 10 == 9 {
+                for slot in b.slots(1) {
+                    b.boxes[slot] = unit((next() * 16.0).floor() * 0.5, (next() * 4.0).floor());
+                }
+                b.fixed_boxes_version += 1;
             }
         }
     }

@@ -296,6 +296,7 @@ impl MassSpringBuilder {
             stages.push(Runs::where_(a.len(), |s| near(a[s]) || near(b[s])));
         }
         let active = stages[0].clone();
+        let count = a.len();
         Springs {
             a,
             b,
@@ -306,6 +307,7 @@ impl MassSpringBuilder {
             band: self.springs.iter().map(|s| s.band).collect(),
             active,
             stages: stages.try_into().expect("four stages"),
+            tracked_length: vec![0.0; count],
         }
     }
 
@@ -346,6 +348,7 @@ impl MassSpringBuilder {
             neighbour_offsets: Vec::new(),
             neighbours: Vec::new(),
             body_boxes: vec![Aabb::EMPTY; n_bodies],
+            fixed_boxes_version: 0,
         };
         bodies.update_boxes(&points.x, &points.y, true);
         bodies.find_neighbours(NEIGHBOUR_TOLERANCE);

@@ -15,7 +15,8 @@ pub(crate) struct Stage<'a> {
 }
 
 /// Writes the total force on each point RK4 stage `stage` moves, in state `s`, into `fx`, `fy`
-/// (other entries are meaningless).
+/// (other entries are meaningless). The first stage's positions must be those at which the rest
+/// lengths last tracked their goals (`Springs::track_goals`), as in every substep.
 pub(crate) fn total_forces(
     s: &Stage,
     stage: usize,
@@ -27,7 +28,11 @@ pub(crate) fn total_forces(
 ) {
     fx.fill(0.0);
     fy.fill(0.0);
-    springs.add_forces(&springs.stages[stage], s.x, s.y, fx, fy);
+    // the first stage's positions are those at which the rest lengths just tracked their goals
+    match stage {
+        0 => springs.add_forces_at_tracked(&springs.stages[0], s.x, s.y, fx, fy),
+        _ => springs.add_forces(&springs.stages[stage], s.x, s.y, fx, fy),
+    }
     for i in points.stage[stage].indices() {
         fx[i] += -set.drag * s.vx[i] + points.contact_fx[i];
         fy[i] += -set.drag * s.vy[i] - set.gravity * points.mass[i] + points.contact_fy[i];

@@ -56,11 +56,11 @@ impl Rk4 {
         for (k, (next, weight)) in STAGES.into_iter().enumerate() {
             self.stage(k, points, springs, set, next, weight);
         }
-        for i in points.free.indices() {
-            points.x[i] += self.ax[i];
-            points.y[i] += self.ay[i];
-            points.vx[i] += self.avx[i];
-            points.vy[i] += self.avy[i];
+        for r in points.free.ranges() {
+            add(&mut points.x[r.clone()], &self.ax[r.clone()]);
+            add(&mut points.y[r.clone()], &self.ay[r.clone()]);
+            add(&mut points.vx[r.clone()], &self.avx[r.clone()]);
+            add(&mut points.vy[r.clone()], &self.avy[r]);
         }
     }
 
@@ -83,18 +83,51 @@ impl Rk4 {
         };
         total_forces(&s, k, points, springs, set, &mut self.fx, &mut self.fy);
         let dt = set.dt;
-        for i in points.stage[k].indices() {
-            let (kx, ky) = (self.svx[i] * dt, self.svy[i] * dt);
-            let (kvx, kvy) = (self.fx[i] / points.mass[i] * dt, self.fy[i] / points.mass[i] * dt);
-            self.ax[i] += weight * kx;
-            self.ay[i] += weight * ky;
-            self.avx[i] += weight * kvx;
-            self.avy[i] += weight * kvy;
-            self.sx[i] = points.x[i] + next * kx;
-            self.sy[i] = points.y[i] + next * ky;
-            self.svx[i] = points.vx[i] + next * kvx;
-            self.svy[i] = points.vy[i] + next * kvy;
+        for r in points.stage[k].ranges() {
+            // the increments of velocity: force / mass × dt, with a multiplication by the
+            // reciprocal where that is the same float (masses that are powers of two)
+            let (fx, fy) = (&mut self.fx[r.clone()], &mut self.fy[r.clone()]);
+            match points.masses_are_powers_of_two {
+                true => {
+                    let inverse = &points.inverse_mass[r.clone()];
+                    for ((fx, fy), &inverse) in fx.iter_mut().zip(fy.iter_mut()).zip(inverse) {
+                        (*fx, *fy) = (*fx * inverse * dt, *fy * inverse * dt);
+                    }
+                }
+                false => {
+                    let mass = &points.mass[r.clone()];
+                    for ((fx, fy), &mass) in fx.iter_mut().zip(fy.iter_mut()).zip(mass) {
+                        (*fx, *fy) = (*fx / mass * dt, *fy / mass * dt);
+                    }
+                }
+            }
+            let n = r.len();
+            let (kvx, kvy) = (&self.fx[r.clone()], &self.fy[r.clone()]);
+            let (x, y) = (&points.x[r.clone()], &points.y[r.clone()]);
+            let (vx, vy) = (&points.vx[r.clone()], &points.vy[r.clone()]);
+            let (ax, ay) = (&mut self.ax[r.clone()], &mut self.ay[r.clone()]);
+            let (avx, avy) = (&mut self.avx[r.clone()], &mut self.avy[r.clone()]);
+            let (sx, sy) = (&mut self.sx[r.clone()], &mut self.sy[r.clone()]);
+            let (svx, svy) = (&mut self.svx[r.clone()], &mut self.svy[r]);
+            for j in 0..n {
+                let (kx, ky) = (svx[j] * dt, svy[j] * dt);
+                ax[j] += weight * kx;
+                ay[j] += weight * ky;
+                avx[j] += weight * kvx[j];
+                avy[j] += weight * kvy[j];
+                sx[j] = x[j] + next * kx;
+                sy[j] = y[j] + next * ky;
+                svx[j] = vx[j] + next * kvx[j];
+                svy[j] = vy[j] + next * kvy[j];
+            }
         }
+    }
+}
+
+/// `to[i] += by[i]` for every i.
+fn add(to: &mut [f64], by: &[f64]) {
+    for (t, &b) in to.iter_mut().zip(by) {
+        *t += b;
     }
 }
 
@@ -122,6 +155,7 @@ mod tests {
             band: vec![],
             active: Runs::default(),
             stages: Default::default(),
+            tracked_length: vec![],
         };
         let set = MassSpringSettings {
             drag: 0.0,

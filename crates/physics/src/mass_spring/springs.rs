@@ -21,6 +21,9 @@ pub(crate) struct Springs {
     pub active: Runs,
     /// The springs each RK4 stage needs: those with an end among the stage's points.
     pub stages: [Runs; 4],
+    /// Length of each active spring when its rest length last tracked its goal: the first RK4
+    /// stage reads the same positions, so it takes these instead of a second square root each.
+    pub tracked_length: Vec<f64>,
 }
 
 impl Springs {
@@ -31,12 +34,17 @@ impl Springs {
     }
 
     /// Sets every active spring's rest length to its current length plus `rate` × (goal − current
-    /// length), EvoGym's rule before each substep.
+    /// length), EvoGym's rule before each substep, and keeps those lengths in `tracked_length`.
     pub fn track_goals(&mut self, x: &[f64], y: &[f64], rate: f64) {
         for r in self.active.ranges() {
             let ends = self.a[r.clone()].iter().zip(&self.b[r.clone()]);
-            for ((&a, &b), (rest, &goal)) in ends.zip(self.rest[r.clone()].iter_mut().zip(&self.goal[r])) {
+            let lengths = self.tracked_length[r.clone()].iter_mut();
+            for (((&a, &b), (rest, &goal)), tracked) in ends
+                .zip(self.rest[r.clone()].iter_mut().zip(&self.goal[r]))
+                .zip(lengths)
+            {
                 let len = length(x, y, a as usize, b as usize);
+                *tracked = len;
                 *rest = len + (goal - len) * rate;
             }
         }
@@ -45,12 +53,24 @@ impl Springs {
     /// Adds the force of every spring in `which` to `fx`, `fy` for the positions `x`, `y`. A
     /// spring of zero length has no direction and pushes nothing.
     pub fn add_forces(&self, which: &Runs, x: &[f64], y: &[f64], fx: &mut [f64], fy: &mut [f64]) {
+        self.accumulate::<false>(which, x, y, fx, fy);
+    }
+
+    /// [`Springs::add_forces`] for positions at which [`Springs::track_goals`] just ran (the first
+    /// RK4 stage): the lengths come from `tracked_length`, the same bits without the square roots.
+    /// Every spring of `which` must be active.
+    pub fn add_forces_at_tracked(&self, which: &Runs, x: &[f64], y: &[f64], fx: &mut [f64], fy: &mut [f64]) {
+        self.accumulate::<true>(which, x, y, fx, fy);
+    }
+
+    fn accumulate<const TRACKED: bool>(&self, which: &Runs, x: &[f64], y: &[f64], fx: &mut [f64], fy: &mut [f64]) {
         for r in which.ranges() {
             let ends = self.a[r.clone()].iter().zip(&self.b[r.clone()]);
-            for ((&a, &b), (&rest, &stiffness)) in ends.zip(self.rest[r.clone()].iter().zip(&self.stiffness[r])) {
+            let constants = self.rest[r.clone()].iter().zip(&self.stiffness[r.clone()]);
+            for (((&a, &b), (&rest, &stiffness)), &tracked) in ends.zip(constants).zip(&self.tracked_length[r]) {
                 let (a, b) = (a as usize, b as usize);
                 let (dx, dy) = (x[a] - x[b], y[a] - y[b]);
-                let len = norm(dx, dy);
+                let len = if TRACKED { tracked } else { norm(dx, dy) };
                 if len == 0.0 {
                     continue;
                 }
@@ -84,6 +104,7 @@ mod tests {
             band: vec![0.25],
             active: Runs::where_(1, |_| true),
             stages: std::array::from_fn(|_| Runs::where_(1, |_| true)),
+            tracked_length: vec![0.0],
         }
     }
 
@@ -106,6 +127,28 @@ mod tests {
         // Current length 2 (not the old rest length 1): 2 + 0.1 * (1.5 - 2) = 1.95.
         s.track_goals(&[0.0, 2.0], &[0.0, 0.0], 0.1);
         assert!((s.rest[0] - 1.95).abs() < 1e-12);
+    }
+
+    #[test]
+    fn forces_at_the_tracked_positions_take_the_tracked_lengths_bit_for_bit() {
+        let mut s = one(1.0, 1.3);
+        let (x, y) = ([0.1, 1.37], [-0.2, 0.93]);
+        s.track_goals(&x, &y, 0.1);
+        assert_eq!(s.tracked_length[0].to_bits(), length(&x, &y, 0, 1).to_bits());
+        let (mut fx, mut fy) = ([0.0; 2], [0.0; 2]);
+        let (mut tx, mut ty) = ([0.0; 2], [0.0; 2]);
+        s.add_forces(&s.active, &x, &y, &mut fx, &mut fy);
+        s.add_forces_at_tracked(&s.active, &x, &y, &mut tx, &mut ty);
+        assert!(fx[0] != 0.0 && fy[1] != 0.0);
+        assert_eq!(
+            (fx.map(f64::to_bits), fy.map(f64::to_bits)),
+            (tx.map(f64::to_bits), ty.map(f64::to_bits))
+        );
+        // the stored length is what is used (the caller guarantees it is the positions' own)
+        s.tracked_length[0] = 2.0;
+        let (mut sx, mut sy) = ([0.0; 2], [0.0; 2]);
+        s.add_forces_at_tracked(&s.active, &x, &y, &mut sx, &mut sy);
+        assert_ne!(sx[0], fx[0]);
     }
 
     #[test]

@@ -14,7 +14,10 @@ mod axis;
 mod collision;
 mod error;
 mod floor;
+mod lanes;
 mod link;
+#[doc(hidden)]
+pub mod link_lanes;
 mod material;
 mod quat;
 mod voxel;

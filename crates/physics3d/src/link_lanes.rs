@@ -1,0 +1,549 @@
+//! A link of N episodes at once (issue 52, population lanes): the same beam between the same two
+//! voxels of one body shape in every lane, each lane with its own positions, orientations, rest
+//! length and mode. It does exactly what [`crate::link::Link::update`] does, lane by lane: where
+//! the lanes' branches differ (small- or large-angle mode, the rotation-vector and alignment
+//! series, damping before the first update), both ways are computed and each lane keeps its own.
+//! A test holds every lane to the scalar link's bits.
+
+use crate::axis::Axis;
+use crate::lanes::{and, any, not, or, F64s, Mask, Q, V3};
+use crate::material::LinkConstants;
+
+/// Small-angle mode ends beyond this turn (rad) or relative extension (as `link.rs`).
+const SMALL_TURN: f64 = 0.05;
+const SMALL_EXTENSION: f64 = 0.5;
+const HYSTERESIS: f64 = 1.2;
+
+/// One end of the link in every lane.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct EndLanes<const N: usize> {
+    pub pos: V3<N>,
+    pub orient: Q<N>,
+    pub damping: F64s<N>,
+}
+
+/// A link's constants (shared by the lanes) and each lane's state.
+#[derive(Debug, Clone)]
+pub(crate) struct LinkLanes<const N: usize> {
+    pub axis: Axis,
+    pub k: LinkConstants,
+    pub area: f64,
+    pub rest: F64s<N>,
+    small_angle: Mask<N>,
+    velocity_valid: Mask<N>,
+    d_old: V3<N>,
+    theta1_old: V3<N>,
+    theta2_old: V3<N>,
+    /// Results of the last update, in each voxel's own frame.
+    pub force_neg: V3<N>,
+    pub force_pos: V3<N>,
+    pub moment_neg: V3<N>,
+    pub moment_pos: V3<N>,
+    pub strain: F64s<N>,
+}
+
+impl<const N: usize> LinkLanes<N> {
+    /// A new link in every lane (small-angle mode, no damping history).
+    pub fn new(axis: Axis, k: LinkConstants, area: f64, rest: F64s<N>) -> Self {
+        let zero = V3::splat(glam::DVec3::ZERO);
+        LinkLanes {
+            axis,
+            k,
+            area,
+            rest,
+            small_angle: [true; N],
+            velocity_valid: [false; N],
+            d_old: zero,
+            theta1_old: zero,
+            theta2_old: zero,
+            force_neg: zero,
+            force_pos: zero,
+            moment_neg: zero,
+            moment_pos: zero,
+            strain: F64s::splat(0.0),
+        }
+    }
+
+    /// The relative configuration, as `Link::orient`, lane by lane.
+    #[inline(always)]
+    fn orient(&mut self, a: &EndLanes<N>, b: &EndLanes<N>) -> (V3<N>, Q<N>, Q<N>) {
+        let d = to_x(self.axis, b.pos.sub(a.pos));
+        let q1 = quat_to_x(self.axis, a.orient);
+        let q2 = quat_to_x(self.axis, b.orient);
+        let rot = q1.conjugate();
+        let d = rotate(rot, d);
+        let q2 = rot.mul(q2);
+        let turn = (d.z.abs() + d.y.abs()) / d.x;
+        let extension = (1.0 - d.x / self.rest).abs();
+        let small = self.small_angle;
+        let enter = and(
+            not(small),
+            and(
+                turn.lt(F64s::splat(SMALL_TURN)),
+                extension.lt(F64s::splat(SMALL_EXTENSION)),
+            ),
+        );
+        let leave = and(
+            small,
+            or(
+                turn.gt(F64s::splat(SMALL_TURN * HYSTERESIS)),
+                extension.gt(F64s::splat(SMALL_EXTENSION * HYSTERESIS)),
+            ),
+        );
+        let changed = or(enter, leave);
+        self.small_angle = std::array::from_fn(|l| {
+            if enter[l] {
+                true
+            } else if leave[l] {
+                false
+            } else {
+                small[l]
+            }
+        });
+        self.velocity_valid = std::array::from_fn(|l| self.velocity_valid[l] && !changed[l]);
+        let small = self.small_angle;
+        // small-angle lanes
+        let small_d = V3 {
+            x: d.x - self.rest,
+            ..d
+        };
+        let identity = Q::splat(glam::DQuat::IDENTITY);
+        if !any(not(small)) {
+            return (small_d, identity, q2);
+        }
+        // large-angle lanes
+        let align = align_to_x(d);
+        let large_q2 = align.mul(q2);
+        let large_d = V3 {
+            x: d.length() - self.rest,
+            y: F64s::splat(0.0),
+            z: F64s::splat(0.0),
+        };
+        (
+            V3::select(small, small_d, large_d),
+            Q::select(small, identity, align),
+            Q::select(small, q2, large_q2),
+        )
+    }
+
+    /// Computes the forces and moments on both ends in every lane, as `Link::update`.
+    #[inline(always)]
+    pub fn update(&mut self, a: &EndLanes<N>, b: &EndLanes<N>) {
+        let (d, q1, q2) = self.orient(a, b);
+        let small = self.small_angle;
+        let zero = V3::splat(glam::DVec3::ZERO);
+        let large = any(not(small));
+        let theta1 = match large {
+            true => V3::select(small, zero, to_rotation_vector(q1)),
+            false => zero,
+        };
+        let theta2 = to_rotation_vector(q2);
+        let k = self.k;
+        self.strain = d.x / self.rest;
+        let axial = k.e * self.strain * self.area;
+        let fn_ = V3 {
+            x: axial,
+            y: k.b1 * d.y - k.b2 * (theta1.z + theta2.z),
+            z: k.b1 * d.z + k.b2 * (theta1.y + theta2.y),
+        };
+        let fp = V3 {
+            x: -fn_.x,
+            y: -fn_.y,
+            z: -fn_.z,
+        };
+        let mn = V3 {
+            x: k.a2 * (theta2.x - theta1.x),
+            y: -k.b2 * d.z - k.b3 * (2.0 * theta1.y + theta2.y),
+            z: k.b2 * d.y - k.b3 * (2.0 * theta1.z + theta2.z),
+        };
+        let mp = V3 {
+            x: k.a2 * (theta1.x - theta2.x),
+            y: -k.b2 * d.z - k.b3 * (theta1.y + 2.0 * theta2.y),
+            z: k.b2 * d.y - k.b3 * (theta1.z + 2.0 * theta2.z),
+        };
+        // damping, in the lanes whose last update was in the same mode
+        let dd = d.sub(self.d_old).scale(F64s::splat(0.5));
+        let t1 = theta1.sub(self.theta1_old).scale(F64s::splat(0.5));
+        let t2 = theta2.sub(self.theta2_old).scale(F64s::splat(0.5));
+        let c = V3 {
+            x: k.sqrt_a1 * dd.x,
+            y: k.sqrt_b1 * dd.y - k.sqrt_b2 * (t1.z + t2.z),
+            z: k.sqrt_b1 * dd.z + k.sqrt_b2 * (t1.y + t2.y),
+        };
+        let twist = k.sqrt_a2 * (t2.x - t1.x);
+        let damped_mn = mn.sub(
+            V3 {
+                x: -twist,
+                y: k.sqrt_b2 * dd.z + k.sqrt_b3 * (2.0 * t1.y + t2.y),
+                z: -k.sqrt_b2 * dd.y + k.sqrt_b3 * (2.0 * t1.z + t2.z),
+            }
+            .scale(0.5 * a.damping),
+        );
+        let damped_mp = mp.sub(
+            V3 {
+                x: twist,
+                y: k.sqrt_b2 * dd.z + k.sqrt_b3 * (t1.y + 2.0 * t2.y),
+                z: -k.sqrt_b2 * dd.y + k.sqrt_b3 * (t1.z + 2.0 * t2.z),
+            }
+            .scale(0.5 * b.damping),
+        );
+        let valid = self.velocity_valid;
+        let fn_ = V3::select(valid, fn_.add(c.scale(a.damping)), fn_);
+        let fp = V3::select(valid, fp.sub(c.scale(b.damping)), fp);
+        let mn = V3::select(valid, damped_mn, mn);
+        let mp = V3::select(valid, damped_mp, mp);
+        self.velocity_valid = [true; N];
+        (self.d_old, self.theta1_old, self.theta2_old) = (d, theta1, theta2);
+        let (fn_, mn) = match large {
+            true => (
+                V3::select(small, fn_, rotate_inverse(q1, fn_)),
+                V3::select(small, mn, rotate_inverse(q1, mn)),
+            ),
+            false => (fn_, mn),
+        };
+        let fp = rotate_inverse(q2, fp);
+        let mp = rotate_inverse(q2, mp);
+        self.force_neg = back_from_x(self.axis, fn_);
+        self.force_pos = back_from_x(self.axis, fp);
+        self.moment_neg = back_from_x(self.axis, mn);
+        self.moment_pos = back_from_x(self.axis, mp);
+    }
+}
+
+/// `Axis::to_x` in every lane.
+#[inline(always)]
+fn to_x<const N: usize>(axis: Axis, v: V3<N>) -> V3<N> {
+    match axis {
+        Axis::X => v,
+        Axis::Y => V3 {
+            x: v.y,
+            y: -v.x,
+            z: v.z,
+        },
+        Axis::Z => V3 {
+            x: v.z,
+            y: v.y,
+            z: -v.x,
+        },
+    }
+}
+
+/// `Axis::back_from_x` in every lane.
+#[inline(always)]
+fn back_from_x<const N: usize>(axis: Axis, v: V3<N>) -> V3<N> {
+    match axis {
+        Axis::X => v,
+        Axis::Y => V3 {
+            x: -v.y,
+            y: v.x,
+            z: v.z,
+        },
+        Axis::Z => V3 {
+            x: -v.z,
+            y: v.y,
+            z: v.x,
+        },
+    }
+}
+
+/// `Axis::quat_to_x` in every lane.
+#[inline(always)]
+fn quat_to_x<const N: usize>(axis: Axis, q: Q<N>) -> Q<N> {
+    let v = to_x(axis, V3 { x: q.x, y: q.y, z: q.z });
+    Q {
+        x: v.x,
+        y: v.y,
+        z: v.z,
+        w: q.w,
+    }
+}
+
+/// `quat::rotate` in every lane.
+#[inline(always)]
+fn rotate<const N: usize>(q: Q<N>, v: V3<N>) -> V3<N> {
+    sandwich(q, v, q.conjugate())
+}
+
+/// `quat::rotate_inverse` in every lane.
+#[inline(always)]
+fn rotate_inverse<const N: usize>(q: Q<N>, v: V3<N>) -> V3<N> {
+    sandwich(q.conjugate(), v, q)
+}
+
+/// `quat::sandwich` in every lane: the same terms in the same order.
+#[inline(always)]
+fn sandwich<const N: usize>(a: Q<N>, v: V3<N>, b: Q<N>) -> V3<N> {
+    let tx = a.w * v.x + a.y * v.z - a.z * v.y;
+    let ty = a.w * v.y - a.x * v.z + a.z * v.x;
+    let tz = a.w * v.z + a.x * v.y - a.y * v.x;
+    let tw = -(a.x * v.x) - a.y * v.y - a.z * v.z;
+    V3 {
+        x: tw * b.x + tx * b.w + ty * b.z - tz * b.y,
+        y: tw * b.y - tx * b.z + ty * b.w + tz * b.x,
+        z: tw * b.z + tx * b.y - ty * b.x + tz * b.w,
+    }
+}
+
+/// `quat::to_rotation_vector` in every lane: both series computed, each lane takes its own.
+#[inline(always)]
+fn to_rotation_vector<const N: usize>(q: Q<N>) -> V3<N> {
+    let identity = or(q.w.ge(F64s::splat(1.0)), q.w.le(F64s::splat(-1.0)));
+    let s = 1.0 - q.w * q.w;
+    let series = s.lt(F64s::splat(2.4e-3));
+    let near = 2.0 * ((2.0 - 2.0 * q.w) / s).sqrt();
+    let scale = match any(and(not(series), not(identity))) {
+        true => F64s::select(series, near, 2.0 * q.w.map(f64::acos) / s.sqrt()),
+        false => near,
+    };
+    let v = V3 {
+        x: q.x * scale,
+        y: q.y * scale,
+        z: q.z * scale,
+    };
+    V3::select(identity, V3::splat(glam::DVec3::ZERO), v)
+}
+
+/// `quat::align_to_x(d, IDENTITY)` in every lane: the zero vector, the first-order branch, the
+/// half-turn and the general rotation, each lane taking its own.
+#[inline(always)]
+fn align_to_x<const N: usize>(d: V3<N>) -> Q<N> {
+    let zero = F64s::splat(0.0);
+    let is_zero = and(d.x.eq(zero), and(d.y.eq(zero), d.z.eq(zero)));
+    let (ry, rz) = (d.y / d.x, d.z / d.x);
+    let limit = F64s::splat(1.732e-2);
+    let nearly = and(
+        and(ry.abs().lt(limit), rz.abs().lt(limit)),
+        std::array::from_fn(|l| d.x.0[l] != 0.0),
+    );
+    let (y, z) = (0.5 * rz, -0.5 * ry);
+    let first_order = Q {
+        x: zero,
+        y,
+        z,
+        w: 1.0 - 0.5 * (y * y + z * z),
+    };
+    if !any(and(not(nearly), not(is_zero))) {
+        return Q::select(is_zero, Q::splat(glam::DQuat::IDENTITY), first_order);
+    }
+    let length = d.length();
+    let n = V3 {
+        x: d.x / length,
+        y: d.y / length,
+        z: d.z / length,
+    };
+    let theta = n.x.clamp(-1.0, 1.0).map(f64::acos);
+    let half_turn = theta.gt(F64s::splat(std::f64::consts::PI - 1e-7));
+    let half = theta / 2.0;
+    let s = half.map(f64::sin) / (n.y * n.y + n.z * n.z).sqrt();
+    let general = Q {
+        x: zero,
+        y: n.z * s,
+        z: -n.y * s,
+        w: half.map(f64::cos),
+    };
+    let flipped = Q::splat(glam::DQuat::from_xyzw(0.0, 0.0, 1.0, 0.0));
+    let turned = Q::select(half_turn, flipped, general);
+    let aligned = Q::select(nearly, first_order, turned);
+    Q::select(is_zero, Q::splat(glam::DQuat::IDENTITY), aligned)
+}
+
+/// Times link updates of one scalar link per episode against laned links of 4 and 8 episodes
+/// (`--example link_lanes`): nanoseconds per link update and episode for each, on `updates`
+/// updates of random bends (both modes met), with every lane checked against the scalar bits.
+/// Returns `(scalar, four lanes, eight lanes)`.
+pub fn benchmark(updates: usize) -> (f64, f64, f64) {
+    let scalar = time_scalar(updates);
+    let four = time_lanes::<4>(updates);
+    let eight = time_lanes::<8>(updates);
+    (scalar, four, eight)
+}
+
+/// The ends of update `i` in lane `l`: a deterministic spread of bends and stretches.
+fn bench_end(i: usize, l: usize, positive: bool) -> crate::link::End {
+    let phase = (i * 7 + l * 13) as f64;
+    let bend = [0.002, 0.02, 0.3][(i / 64) % 3] * (1.0 + 0.1 * l as f64);
+    let wobble = glam::DVec3::new((phase * 0.37).sin(), (phase * 0.71).cos(), (phase * 0.13).sin()) * bend;
+    let at = if positive {
+        glam::DVec3::new(0.01, 0.0, 0.0)
+    } else {
+        glam::DVec3::ZERO
+    };
+    crate::link::End {
+        pos: at + wobble * 0.01,
+        orient: crate::quat::from_rotation_vector(wobble),
+        damping: 1.0,
+    }
+}
+
+fn time_scalar(updates: usize) -> f64 {
+    let k = LinkConstants::new(1e6, 1e6, 0.01);
+    let ends: Vec<_> = (0..updates)
+        .map(|i| (bench_end(i, 0, false), bench_end(i, 0, true)))
+        .collect();
+    let mut link = crate::link::Link::new(0, 1, Axis::X, k, 1e-4, 0.01);
+    let start = std::time::Instant::now();
+    for (a, b) in &ends {
+        link.update(a, b);
+        std::hint::black_box(&link.force_pos);
+    }
+    start.elapsed().as_secs_f64() * 1e9 / updates as f64
+}
+
+fn time_lanes<const N: usize>(updates: usize) -> f64 {
+    let k = LinkConstants::new(1e6, 1e6, 0.01);
+    let lanes_of = |i: usize, positive: bool| {
+        let mut e = EndLanes {
+            pos: V3::splat(glam::DVec3::ZERO),
+            orient: Q::splat(glam::DQuat::IDENTITY),
+            damping: F64s::splat(0.0),
+        };
+        for l in 0..N {
+            let end = bench_end(i, l, positive);
+            e.pos.set_lane(l, end.pos);
+            e.orient.set_lane(l, end.orient);
+            e.damping.0[l] = end.damping;
+        }
+        e
+    };
+    let ends: Vec<_> = (0..updates).map(|i| (lanes_of(i, false), lanes_of(i, true))).collect();
+    let mut link = LinkLanes::<N>::new(Axis::X, k, 1e-4, F64s::splat(0.01));
+    let start = std::time::Instant::now();
+    update_all(&mut link, &ends);
+    start.elapsed().as_secs_f64() * 1e9 / (updates * N) as f64
+}
+
+/// The laned updates, compiled for the best vector unit this CPU has (the same bits on each).
+fn update_all<const N: usize>(link: &mut LinkLanes<N>, ends: &[(EndLanes<N>, EndLanes<N>)]) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if is_x86_feature_detected!("avx512f") {
+            // SAFETY: the CPU supports AVX-512F.
+            return unsafe { update_all_avx512(link, ends) };
+        }
+        if is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU supports AVX2.
+            return unsafe { update_all_avx2(link, ends) };
+        }
+    }
+    update_all_portable(link, ends);
+}
+
+#[inline(always)]
+fn update_all_portable<const N: usize>(link: &mut LinkLanes<N>, ends: &[(EndLanes<N>, EndLanes<N>)]) {
+    for (a, b) in ends {
+        link.update(a, b);
+        std::hint::black_box(&link.force_pos);
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn update_all_avx2<const N: usize>(link: &mut LinkLanes<N>, ends: &[(EndLanes<N>, EndLanes<N>)]) {
+    update_all_portable(link, ends);
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn update_all_avx512<const N: usize>(link: &mut LinkLanes<N>, ends: &[(EndLanes<N>, EndLanes<N>)]) {
+    update_all_portable(link, ends);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::link::{End, Link};
+    use crate::quat::from_rotation_vector;
+    use glam::{DQuat, DVec3};
+
+    const LANES: usize = 8;
+
+    /// Random ends for every lane: small and large bends, stretches and twists, so that lanes
+    /// enter and leave the small-angle mode at different updates.
+    fn ends(next: &mut impl FnMut() -> f64, round: usize) -> ([End; LANES], [End; LANES]) {
+        let s = 0.01;
+        let bend = [0.002, 0.02, 0.3, 1.5][round % 4];
+        let end = |next: &mut dyn FnMut() -> f64, at: DVec3| End {
+            pos: at + DVec3::new(next() - 0.5, next() - 0.5, next() - 0.5) * s * bend,
+            orient: from_rotation_vector(DVec3::new(next() - 0.5, next() - 0.5, next() - 0.5) * bend),
+            damping: if round == 0 { 0.0 } else { next() * 3.0 },
+        };
+        let a = std::array::from_fn(|_| end(next, DVec3::ZERO));
+        let b = std::array::from_fn(|_| end(next, DVec3::new(s, 0.0, 0.0)));
+        (a, b)
+    }
+
+    fn lanes_of(ends: &[End; LANES], axis: Axis) -> EndLanes<LANES> {
+        // the same configuration turned onto the link's axis
+        let turn = |v: DVec3| match axis {
+            Axis::X => v,
+            Axis::Y => DVec3::new(-v.y, v.x, v.z),
+            Axis::Z => DVec3::new(-v.z, v.y, v.x),
+        };
+        let mut out = EndLanes {
+            pos: V3::splat(DVec3::ZERO),
+            orient: Q::splat(DQuat::IDENTITY),
+            damping: F64s::splat(0.0),
+        };
+        for (l, e) in ends.iter().enumerate() {
+            out.pos.set_lane(l, turn(e.pos));
+            out.orient.set_lane(l, e.orient);
+            out.damping.0[l] = e.damping;
+        }
+        out
+    }
+
+    fn same_bits(laned: &V3<LANES>, l: usize, scalar: DVec3, what: &str) {
+        let lane = laned.lane(l);
+        for k in 0..3 {
+            assert_eq!(
+                lane[k].to_bits(),
+                scalar[k].to_bits(),
+                "{what}, lane {l}: {lane} vs {scalar}"
+            );
+        }
+    }
+
+    #[test]
+    fn every_lane_of_a_laned_link_gives_the_scalar_links_bits() {
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let k = LinkConstants::new(1e6, 3e6, 0.01);
+        for axis in [Axis::X, Axis::Y, Axis::Z] {
+            let rests: [f64; LANES] = std::array::from_fn(|l| 0.01 * (1.0 + 0.02 * l as f64));
+            let mut scalar: Vec<Link> = rests.iter().map(|&r| Link::new(0, 1, axis, k, 1e-4, r)).collect();
+            let mut laned = LinkLanes::<LANES>::new(axis, k, 1e-4, F64s(rests));
+            let mut large = 0;
+            for round in 0..40 {
+                let (a, b) = ends(&mut next, round);
+                let (la, lb) = (lanes_of(&a, axis), lanes_of(&b, axis));
+                laned.update(&la, &lb);
+                for l in 0..LANES {
+                    let (sa, sb) = (
+                        End {
+                            pos: la.pos.lane(l),
+                            ..a[l]
+                        },
+                        End {
+                            pos: lb.pos.lane(l),
+                            ..b[l]
+                        },
+                    );
+                    scalar[l].update(&sa, &sb);
+                    large += usize::from(!laned.small_angle[l]);
+                    same_bits(&laned.force_neg, l, scalar[l].force_neg, "force on the negative end");
+                    same_bits(&laned.force_pos, l, scalar[l].force_pos, "force on the positive end");
+                    same_bits(&laned.moment_neg, l, scalar[l].moment_neg, "moment on the negative end");
+                    same_bits(&laned.moment_pos, l, scalar[l].moment_pos, "moment on the positive end");
+                    assert_eq!(laned.strain.0[l].to_bits(), scalar[l].strain.to_bits());
+                }
+            }
+            // both modes were met, in different lanes at different updates
+            assert!(large > 20 && large < 40 * LANES - 20, "{large}");
+        }
+    }
+}

@@ -172,17 +172,22 @@ mod tests {
         }
     }
 
-    /// The sweep finds exactly the overlapping pairs a brute-force double loop finds, on random
-    /// boxes, and again after the boxes move.
-    #[test]
-    fn the_sweep_finds_the_brute_force_pairs() {
-        let mut state = 7u64;
-        let mut next = || {
+    /// Uniform numbers in [0, 1) from a seed (a linear congruential generator).
+    fn uniform(seed: u64) -> impl FnMut() -> f64 {
+        let mut state = seed;
+        move || {
             state = state
                 .wrapping_mul(6364136223846793005)
                 .wrapping_add(1442695040888963407);
             (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        }
+    }
+
+    /// The sweep finds exactly the overlapping pairs a brute-force double loop finds, on random
+    /// boxes, and again after the boxes move.
+    #[test]
+    fn the_sweep_finds_the_brute_force_pairs() {
+        let mut next = uniform(7);
         let mut slots: Vec<(usize, Aabb)> = (0..60)
             .map(|i| (i / 20, unit((next() * 12.0).floor(), (next() * 4.0).floor())))
             .collect();
@@ -245,13 +250,7 @@ mod tests {
 
     #[test]
     fn the_pairs_come_in_the_order_of_one_sweep_over_every_slot() {
-        let mut state = 11u64;
-        let mut next = || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = uniform(11);
         // bodies 0 and 2 move, 1 and 3 are fixed; coordinates on a coarse grid give ties
         let mut slots: Vec<(usize, Aabb)> = (0..80)
             .map(|i| (i / 20, unit((next() * 16.0).floor() * 0.5, (next() * 4.0).floor())))

@@ -1,6 +1,6 @@
 //! A link of N episodes at once (issue 52, population lanes): the same beam between the same two
 //! voxels of one body shape in every lane, each lane with its own positions, orientations, rest
-//! length and mode. It does exactly what [`crate::link::Link::update`] does, lane by lane: where
+//! length and mode. It does exactly what `Link::update` (link.rs) does, lane by lane: where
 //! the lanes' branches differ (small- or large-angle mode, the rotation-vector and alignment
 //! series, damping before the first update), both ways are computed and each lane keeps its own.
 //! A test holds every lane to the scalar link's bits.

@@ -21,6 +21,8 @@ pub mod link_lanes;
 mod material;
 mod quat;
 mod voxel;
+#[doc(hidden)]
+pub mod voxel_lanes;
 mod world;
 
 #[cfg(test)]

@@ -272,7 +272,7 @@ fn rotate_inverse<const N: usize>(q: Q<N>, v: V3<N>) -> V3<N> {
 
 /// `quat::sandwich` in every lane: the same terms in the same order.
 #[inline(always)]
-fn sandwich<const N: usize>(a: Q<N>, v: V3<N>, b: Q<N>) -> V3<N> {
+pub(crate) fn sandwich<const N: usize>(a: Q<N>, v: V3<N>, b: Q<N>) -> V3<N> {
     let tx = a.w * v.x + a.y * v.z - a.z * v.y;
     let ty = a.w * v.y - a.x * v.z + a.z * v.x;
     let tz = a.w * v.z + a.x * v.y - a.y * v.x;
@@ -286,7 +286,7 @@ fn sandwich<const N: usize>(a: Q<N>, v: V3<N>, b: Q<N>) -> V3<N> {
 
 /// `quat::to_rotation_vector` in every lane: both series computed, each lane takes its own.
 #[inline(always)]
-fn to_rotation_vector<const N: usize>(q: Q<N>) -> V3<N> {
+pub(crate) fn to_rotation_vector<const N: usize>(q: Q<N>) -> V3<N> {
     let identity = or(q.w.ge(F64s::splat(1.0)), q.w.le(F64s::splat(-1.0)));
     let s = 1.0 - q.w * q.w;
     let series = s.lt(F64s::splat(2.4e-3));
@@ -348,7 +348,7 @@ fn align_to_x<const N: usize>(d: V3<N>) -> Q<N> {
 }
 
 /// Times link updates of one scalar link per episode against laned links of 4 and 8 episodes
-/// (`--example link_lanes`): nanoseconds per link update and episode for each, on `updates`
+/// (`--example lanes3d`): nanoseconds per link update and episode for each, on `updates`
 /// updates of random bends (both modes met), with every lane checked against the scalar bits.
 /// Returns `(scalar, four lanes, eight lanes)`.
 pub fn benchmark(updates: usize) -> (f64, f64, f64) {

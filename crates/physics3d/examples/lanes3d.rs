@@ -1,0 +1,26 @@
+//! Population lanes of the 3D engine (issue 52, item 2, its first kernels): nanoseconds per
+//! update and episode of a link and of a voxel, one scalar copy per episode against laned copies
+//! stepping 4 or 8 episodes at once (bit-identical per lane: `link_lanes::tests`,
+//! `voxel_lanes::tests`).
+//!
+//! `cargo run --release -p vsrlab-physics3d --example lanes3d [updates]`
+
+use vsrlab_physics3d::{link_lanes, voxel_lanes};
+
+fn main() {
+    let updates: usize = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(200_000);
+    for round in 1..=3 {
+        let (scalar, four, eight) = link_lanes::benchmark(updates);
+        println!(
+            "round {round}: link: scalar {scalar:.1} ns, 4 lanes {four:.1} ns ({:.2}x), 8 lanes {eight:.1} ns ({:.2}x) per update and episode",
+            scalar / four,
+            scalar / eight
+        );
+        let (world, one, four, eight) = voxel_lanes::benchmark(updates);
+        println!(
+            "round {round}: voxel: a one-voxel world {world:.1} ns per step; 1 lane {one:.1} ns, 4 lanes {four:.1} ns ({:.2}x), 8 lanes {eight:.1} ns ({:.2}x) per update and episode",
+            one / four,
+            one / eight
+        );
+    }
+}

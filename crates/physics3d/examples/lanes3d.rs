@@ -1,11 +1,11 @@
-//! Population lanes of the 3D engine (issue 52, item 2, its first kernels): nanoseconds per
-//! update and episode of a link and of a voxel, one scalar copy per episode against laned copies
-//! stepping 4 or 8 episodes at once (bit-identical per lane: `link_lanes::tests`,
-//! `voxel_lanes::tests`).
+//! Population lanes of the 3D engine (issue 52, item 2): nanoseconds per update and episode of a
+//! link, of a voxel and of a whole world without collisions, one scalar copy per episode against
+//! laned copies stepping 4 or 8 episodes at once (bit-identical per lane: `link_lanes::tests`,
+//! `voxel_lanes::tests`, `world_lanes::tests`).
 //!
 //! `cargo run --release -p vsrlab-physics3d --example lanes3d [updates]`
 
-use vsrlab_physics3d::{link_lanes, voxel_lanes};
+use vsrlab_physics3d::{link_lanes, voxel_lanes, world_lanes};
 
 fn main() {
     let updates: usize = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(200_000);
@@ -21,6 +21,12 @@ fn main() {
             "round {round}: voxel: a one-voxel world {world:.1} ns per step; 1 lane {one:.1} ns, 4 lanes {four:.1} ns ({:.2}x), 8 lanes {eight:.1} ns ({:.2}x) per update and episode",
             one / four,
             one / eight
+        );
+        let (scalar, four, eight) = world_lanes::benchmark(updates / 20);
+        println!(
+            "round {round}: world (11-voxel block, collisions off): scalar {scalar:.1} ns, 4 lanes {four:.1} ns ({:.2}x), 8 lanes {eight:.1} ns ({:.2}x) per voxel·step and episode",
+            scalar / four,
+            scalar / eight
         );
     }
 }

@@ -24,6 +24,8 @@ mod voxel;
 #[doc(hidden)]
 pub mod voxel_lanes;
 mod world;
+#[doc(hidden)]
+pub mod world_lanes;
 
 #[cfg(test)]
 mod validation;

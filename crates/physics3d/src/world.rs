@@ -533,6 +533,38 @@ impl World {
         self.links.len()
     }
 
+    /// What a laned copy of this world needs (`world_lanes`): for each voxel its shared part, its
+    /// rest edge and its links (link index, whether it is the negative end) in the order its
+    /// forces are summed; for each link its ends, axis, constants and area; the settings.
+    #[allow(clippy::type_complexity)]
+    pub(crate) fn parts(
+        &self,
+    ) -> (
+        Vec<(crate::voxel_lanes::VoxelShared, f64, Vec<(usize, bool)>, DVec3, DVec3)>,
+        Vec<(usize, usize, Axis, LinkConstants, f64)>,
+        WorldSettings,
+    ) {
+        let s = self.settings.voxel_size;
+        let voxels = self
+            .voxels
+            .iter()
+            .map(|v| {
+                let shared = crate::voxel_lanes::VoxelShared {
+                    material: self.materials[v.material],
+                    constants: self.constants[v.material],
+                    fixed: v.fixed,
+                    home: nominal(v.index, s),
+                    lattice: s,
+                    floor: self.settings.floor,
+                    gravity: self.settings.gravity,
+                };
+                (shared, v.size, v.links.clone(), v.external_force, v.external_moment)
+            })
+            .collect();
+        let links = self.links.iter().map(|l| (l.neg, l.pos, l.axis, l.k, l.area)).collect();
+        (voxels, links, self.settings)
+    }
+
     /// A voxel's centre (m).
     pub fn position(&self, v: VoxelId) -> DVec3 {
         self.voxels[v.0].pos

@@ -11,9 +11,9 @@ use glam::{DQuat, DVec3};
 
 /// Small-angle mode ends beyond this turn (rad) or relative extension, and comes back below
 /// them divided by the hysteresis factor.
-const SMALL_TURN: f64 = 0.05;
-const SMALL_EXTENSION: f64 = 0.5;
-const HYSTERESIS: f64 = 1.2;
+pub(crate) const SMALL_TURN: f64 = 0.05;
+pub(crate) const SMALL_EXTENSION: f64 = 0.5;
+pub(crate) const HYSTERESIS: f64 = 1.2;
 
 /// One end of a link as the link reads it.
 #[derive(Debug, Clone, Copy)]

@@ -7,12 +7,8 @@
 
 use crate::axis::Axis;
 use crate::lanes::{and, any, not, or, F64s, Mask, Q, V3};
+use crate::link::{HYSTERESIS, SMALL_EXTENSION, SMALL_TURN};
 use crate::material::LinkConstants;
-
-/// Small-angle mode ends beyond this turn (rad) or relative extension (as `link.rs`).
-const SMALL_TURN: f64 = 0.05;
-const SMALL_EXTENSION: f64 = 0.5;
-const HYSTERESIS: f64 = 1.2;
 
 /// One end of the link in every lane.
 #[derive(Debug, Clone, Copy)]

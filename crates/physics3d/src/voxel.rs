@@ -54,6 +54,11 @@ impl Voxel {
     }
 }
 
+/// A voxel's rest edge on a lattice of size `lattice` at `temperature`: `s (1 + cte T)`.
+pub(crate) fn rest_edge(lattice: f64, cte: f64, temperature: f64) -> f64 {
+    lattice * (1.0 + cte * temperature)
+}
+
 /// The lattice position of index `i`: the voxel's centre at rest.
 pub(crate) fn nominal(i: [i32; 3], lattice: f64) -> DVec3 {
     DVec3::new(f64::from(i[0]), f64::from(i[1]), f64::from(i[2])) * lattice

@@ -17,7 +17,7 @@ use std::collections::HashMap;
 pub const STANDARD_GRAVITY: f64 = 9.80665;
 
 /// A link stretched beyond this strain has diverged (Voxelyze's guard).
-const DIVERGED_STRAIN: f64 = 100.0;
+pub(crate) const DIVERGED_STRAIN: f64 = 100.0;
 
 /// World-wide settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -211,7 +211,7 @@ impl World {
 
     /// The rest edge of a voxel of `material` at `temperature`.
     fn size_at(&self, material: usize, temperature: f64) -> f64 {
-        self.settings.voxel_size * (1.0 + self.materials[material].cte * temperature)
+        crate::voxel::rest_edge(self.settings.voxel_size, self.materials[material].cte, temperature)
     }
 
     /// Fixes or frees degrees of freedom of a voxel (fixed: held at its lattice position and

@@ -6,13 +6,11 @@
 
 use crate::lanes::{F64s, Q, V3};
 use crate::link_lanes::{EndLanes, LinkLanes};
+use crate::voxel::rest_edge;
 use crate::voxel_lanes::{VoxelLanes, VoxelShared};
-use crate::world::World;
+use crate::world::{World, DIVERGED_STRAIN};
 use crate::Physics3dError;
 use glam::DVec3;
-
-/// A link strained beyond this has diverged (as `World::step`).
-const DIVERGED_STRAIN: f64 = 100.0;
 
 /// One voxel's parts: what the lanes share, and each lane's state.
 #[derive(Debug, Clone)]
@@ -95,7 +93,7 @@ impl<const N: usize> WorldLanes<N> {
     /// at the next step), as `World::set_temperature`.
     pub fn set_temperature(&mut self, v: usize, lane: usize, temperature: f64) {
         let voxel = &mut self.voxels[v];
-        voxel.lanes.size.0[lane] = self.lattice * (1.0 + voxel.shared.material.cte * temperature);
+        voxel.lanes.size.0[lane] = rest_edge(self.lattice, voxel.shared.material.cte, temperature);
         self.rests_stale |= !voxel.links.is_empty();
     }
 

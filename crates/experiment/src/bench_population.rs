@@ -20,9 +20,10 @@ use vsrlab_tasks::TaskSpec;
 pub const MAX_POPULATION: usize = 100_000;
 
 /// Whether a standard robot has a population row: the rigid-body robots, voxel robots (which take
-/// the options' brain) and PSAs (their `heads` brain).
+/// the options' brain), PSAs (their `heads` brain) and 3D voxel robots (their row's brain, whose
+/// batches step in population lanes).
 pub(crate) fn has_population_row(standard: &StandardCase) -> bool {
-    standard.takes_options || is_psa(standard)
+    standard.takes_options || is_psa(standard) || standard.body.starts_with("3d:")
 }
 
 fn is_psa(standard: &StandardCase) -> bool {
@@ -34,15 +35,22 @@ fn is_psa(standard: &StandardCase) -> bool {
 fn experiment(standard: &StandardCase, options: &BenchOptions, task: &TaskSpec) -> Result<Experiment, BenchError> {
     let option = |e: String| BenchError::Option(format!("population: {e}"));
     let mut representation = toml::Table::new();
-    let brain = match standard.body.strip_prefix("psa:") {
-        Some(size) => {
+    let brain = match (standard.body.strip_prefix("psa:"), standard.body.strip_prefix("3d:")) {
+        (_, Some(shape)) => {
+            let mut body = toml::Table::new();
+            body.insert("kind".into(), "voxel3d".into());
+            body.insert("body".into(), shape.into());
+            representation.insert("body".into(), body.into());
+            standard.brain.unwrap_or(vsrlab_tasks::kinds::voxel3d::DEFAULT_BRAIN)
+        }
+        (Some(size), _) => {
             let mut psa = toml::Table::new();
             psa.insert("kind".into(), "psa".into());
             psa.insert("size".into(), size.into());
             representation.insert("body".into(), psa.into());
             "heads"
         }
-        None => {
+        (None, None) => {
             representation.insert("body".into(), standard.body.into());
             representation.insert("sensors".into(), options.sensors.as_str().into());
             representation.insert("preset".into(), options.preset.as_str().into());

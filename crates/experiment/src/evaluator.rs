@@ -125,16 +125,7 @@ pub trait Evaluator<G>: Sync {
     where
         G: Sync,
     {
-        Ok(genotypes
-            .par_iter()
-            .zip(seeds.par_iter())
-            .enumerate()
-            .map(|(index, (g, &seed))| {
-                let evaluated = evaluate_guarded(self, g, seed);
-                done(index, &evaluated);
-                evaluated
-            })
-            .collect())
+        Ok(evaluate_each(self, genotypes, seeds, done))
     }
     /// Saves the robot of a genotype to a file (the best of a run); `record`: its evaluation's
     /// record when the run kept it (evaluators whose robots depend on the evaluation's seed, as a
@@ -167,6 +158,26 @@ pub trait Evaluator<G>: Sync {
     fn check(&self, _genotype: &G) -> Result<(), EvaluatorError> {
         Ok(())
     }
+}
+
+/// Every genotype on the current rayon pool, one at a time, each guarded against panics
+/// ([`evaluate_guarded`]): [`Evaluator::evaluate_batch_reporting`]'s default.
+pub fn evaluate_each<G: Sync, E: Evaluator<G> + ?Sized>(
+    evaluator: &E,
+    genotypes: &[&G],
+    seeds: &[u64],
+    done: &(dyn Fn(usize, &Evaluated) + Sync),
+) -> Vec<Evaluated> {
+    genotypes
+        .par_iter()
+        .zip(seeds.par_iter())
+        .enumerate()
+        .map(|(index, (g, &seed))| {
+            let evaluated = evaluate_guarded(evaluator, g, seed);
+            done(index, &evaluated);
+            evaluated
+        })
+        .collect()
 }
 
 /// Evaluates a genotype, turning a panic inside the evaluation into a failed evaluation so that
@@ -274,53 +285,44 @@ impl<G, M: Mapper<G>> Evaluator<G> for RobotEvaluator<M> {
 
     fn evaluate(&self, genotype: &G, candidate_seed: u64) -> Evaluated {
         let start = Instant::now();
-        let seed = if self.random_terrain {
-            candidate_seed
-        } else {
-            self.episode_seed
-        };
-        let level = match self.extract {
-            Extract::Nothing => TraceLevel::None,
-            Extract::Pose => TraceLevel::Full,
-            Extract::Spectrum => TraceLevel::Center,
-        };
-        let (outcome, robot) = match evaluate_traced(&self.mapper, genotype, self.task.task(), seed, level) {
-            Ok(done) => done,
-            Err(e) => {
-                // the body of a robot whose episode failed still goes into the record
-                let body = self.mapper.robot(genotype).ok().and_then(|r| r.summary());
-                return self.failed_with(seed, body.as_ref(), e.to_string(), start);
-            }
-        };
-        let body = robot.summary();
-        if let Some(bad) = outcome.fitness.iter().find(|f| !f.is_finite()) {
-            return self.failed_with(seed, body.as_ref(), format!("non-finite fitness {bad}"), start);
+        let seed = self.seed(candidate_seed);
+        let result = evaluate_traced(&self.mapper, genotype, self.task.task(), seed, self.level());
+        self.evaluated(genotype, seed, result, start)
+    }
+
+    /// Same-shape robots of a batch step together when the task can (population lanes,
+    /// [`vsrlab_tasks::Task::run_episodes`]); every evaluation has the bits of
+    /// [`Evaluator::evaluate`] on its own.
+    fn evaluate_batch_reporting(
+        &self,
+        genotypes: &[&G],
+        seeds: &[u64],
+        done: &(dyn Fn(usize, &Evaluated) + Sync),
+    ) -> Result<Vec<Evaluated>, EvaluatorError>
+    where
+        G: Sync,
+    {
+        let task = self.task.task();
+        if task.episode_batch() < 2 || self.level() != TraceLevel::None {
+            return Ok(evaluate_each(self, genotypes, seeds, done));
         }
-        let features = match (&self.extract, &outcome.trace) {
-            (Extract::Pose, Some(trace)) => features::dynamic_pose(trace),
-            (Extract::Spectrum, Some(trace)) => features::center_spectrum(trace),
-            _ => Vec::new(),
-        };
-        let metric = |name: &str| outcome.metrics.get(name).copied();
-        Evaluated {
-            descriptor: body
-                .as_ref()
-                .map_or_else(|| vec![0.0; self.descriptors.len()], |b| self.descriptor(b)),
-            features,
-            record: Record {
-                seed,
-                fitness: outcome.fitness.first().copied(),
-                distance: metric("distance"),
-                velocity: metric("velocity"),
-                voxels: Some(outcome.units),
-                body: body.map(|b| b.text),
-                error: None,
-                objectives: (outcome.fitness.len() > 1).then(|| outcome.fitness.clone()),
-                series: Default::default(),
-            },
-            objectives: outcome.fitness,
-            seconds: start.elapsed().as_secs_f64(),
-        }
+        let groups = crate::batches::group(genotypes.len(), task.episode_batch(), |i| {
+            self.mapper
+                .robot(genotypes[i])
+                .ok()
+                .and_then(|r| task.episode_group(r.as_ref()))
+        });
+        let finished: Vec<Vec<(usize, Evaluated)>> = groups
+            .par_iter()
+            .map(|batch| {
+                let evaluations = self.evaluate_together(genotypes, seeds, batch);
+                for (index, evaluated) in &evaluations {
+                    done(*index, evaluated);
+                }
+                evaluations
+            })
+            .collect();
+        Ok(crate::batches::in_order(genotypes.len(), finished))
     }
 
     fn failure(&self, seed: u64, error: String) -> Evaluated {
@@ -374,5 +376,164 @@ impl<G, M: Mapper<G>> Evaluator<G> for RobotEvaluator<M> {
             ..Default::default()
         };
         Ok(vsrlab_render::replay::save_replay(&trace, &options, path).map(drop)?)
+    }
+}
+
+impl<M> RobotEvaluator<M> {
+    /// The episode seed of a candidate: its own when the terrain is redrawn per evaluation.
+    fn seed(&self, candidate_seed: u64) -> u64 {
+        if self.random_terrain {
+            candidate_seed
+        } else {
+            self.episode_seed
+        }
+    }
+
+    /// The trace an evaluation needs for its features.
+    fn level(&self) -> TraceLevel {
+        match self.extract {
+            Extract::Nothing => TraceLevel::None,
+            Extract::Pose => TraceLevel::Full,
+            Extract::Spectrum => TraceLevel::Center,
+        }
+    }
+
+    /// Genotypes `batch` (indices into `genotypes`) of one episode group, their episodes run
+    /// together; alone, or after a panic, each on its own ([`evaluate_guarded`]).
+    fn evaluate_together<G>(&self, genotypes: &[&G], seeds: &[u64], batch: &[usize]) -> Vec<(usize, Evaluated)>
+    where
+        M: Mapper<G>,
+    {
+        let one_by_one = || {
+            batch
+                .iter()
+                .map(|&i| (i, evaluate_guarded(self, genotypes[i], seeds[i])))
+                .collect()
+        };
+        if batch.len() < 2 {
+            return one_by_one();
+        }
+        let start = Instant::now();
+        let together = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            let robots: Vec<Box<dyn vsrlab_tasks::Robot>> = batch
+                .iter()
+                .map(|&i| self.mapper.robot(genotypes[i]))
+                .collect::<Result<_, _>>()
+                .ok()?;
+            let refs: Vec<&dyn vsrlab_tasks::Robot> = robots.iter().map(|r| r.as_ref()).collect();
+            let episode_seeds: Vec<u64> = batch.iter().map(|&i| self.seed(seeds[i])).collect();
+            let outcomes = self.task.task().run_episodes(&refs, &episode_seeds);
+            (outcomes.len() == batch.len()).then_some((robots, episode_seeds, outcomes))
+        }));
+        let Ok(Some((robots, episode_seeds, outcomes))) = together else {
+            return one_by_one();
+        };
+        let mut evaluations: Vec<(usize, Evaluated)> = batch
+            .iter()
+            .zip(robots.into_iter().zip(episode_seeds).zip(outcomes))
+            .map(|(&i, ((robot, seed), outcome))| {
+                let result = outcome.map(|o| (o, robot)).map_err(EvaluationError::from);
+                (i, self.evaluated(genotypes[i], seed, result, start))
+            })
+            .collect();
+        let seconds = start.elapsed().as_secs_f64() / batch.len() as f64;
+        evaluations.iter_mut().for_each(|(_, e)| e.seconds = seconds);
+        evaluations
+    }
+
+    /// What the optimizer and the logs get of an episode's result.
+    fn evaluated<G>(
+        &self,
+        genotype: &G,
+        seed: u64,
+        result: Result<(vsrlab_tasks::Outcome, Box<dyn vsrlab_tasks::Robot>), EvaluationError>,
+        start: Instant,
+    ) -> Evaluated
+    where
+        M: Mapper<G>,
+    {
+        let (outcome, robot) = match result {
+            Ok(done) => done,
+            Err(e) => {
+                // the body of a robot whose episode failed still goes into the record
+                let body = self.mapper.robot(genotype).ok().and_then(|r| r.summary());
+                return self.failed_with(seed, body.as_ref(), e.to_string(), start);
+            }
+        };
+        let body = robot.summary();
+        if let Some(bad) = outcome.fitness.iter().find(|f| !f.is_finite()) {
+            return self.failed_with(seed, body.as_ref(), format!("non-finite fitness {bad}"), start);
+        }
+        let features = match (&self.extract, &outcome.trace) {
+            (Extract::Pose, Some(trace)) => features::dynamic_pose(trace),
+            (Extract::Spectrum, Some(trace)) => features::center_spectrum(trace),
+            _ => Vec::new(),
+        };
+        let metric = |name: &str| outcome.metrics.get(name).copied();
+        Evaluated {
+            descriptor: body
+                .as_ref()
+                .map_or_else(|| vec![0.0; self.descriptors.len()], |b| self.descriptor(b)),
+            features,
+            record: Record {
+                seed,
+                fitness: outcome.fitness.first().copied(),
+                distance: metric("distance"),
+                velocity: metric("velocity"),
+                voxels: Some(outcome.units),
+                body: body.map(|b| b.text),
+                error: None,
+                objectives: (outcome.fitness.len() > 1).then(|| outcome.fitness.clone()),
+                series: Default::default(),
+            },
+            objectives: outcome.fitness,
+            seconds: start.elapsed().as_secs_f64(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// experiments/voxels3d/quadruped-distributed.toml, 0.05 s episodes.
+    fn quadruped_experiment() -> Experiment {
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../experiments/voxels3d/quadruped-distributed.toml"
+        ))
+        .unwrap()
+        .replace("duration = 2.0", "duration = 0.05");
+        crate::config::parse(&text, "quadruped-distributed.toml").unwrap()
+    }
+
+    #[test]
+    fn a_batch_of_same_shape_robots_in_lanes_gives_every_genotype_its_own_evaluation() {
+        let evaluator = RobotEvaluator::new(&quadruped_experiment()).unwrap();
+        assert_eq!(evaluator.task.task().episode_batch(), 4);
+        let n = evaluator.genotype_length();
+        let genotypes: Vec<Vec<f64>> = (0..7)
+            .map(|g| (0..n).map(|i| ((g * 31 + i * 7) as f64 * 0.37).sin()).collect())
+            .collect();
+        let refs: Vec<&Vec<f64>> = genotypes.iter().collect();
+        let seeds: Vec<u64> = (0..7).map(|i| 100 + i).collect();
+        let reported = std::sync::Mutex::new(Vec::new());
+        let batch = evaluator
+            .evaluate_batch_reporting(&refs, &seeds, &|i, _| reported.lock().unwrap().push(i))
+            .unwrap();
+        let mut reported = reported.into_inner().unwrap();
+        reported.sort_unstable();
+        assert_eq!(reported, (0..7).collect::<Vec<_>>());
+        let mut distances = Vec::new();
+        for ((g, &seed), together) in refs.iter().zip(&seeds).zip(&batch) {
+            let alone = Evaluator::evaluate(&evaluator, *g, seed);
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&together.objectives), bits(&alone.objectives));
+            assert_eq!(together.record, alone.record);
+            distances.push(alone.record.distance.unwrap());
+        }
+        distances.sort_by(f64::total_cmp);
+        distances.dedup();
+        assert_eq!(distances.len(), 7, "each genotype its own gait: {distances:?}");
     }
 }

@@ -43,6 +43,7 @@
 #![warn(missing_docs)]
 
 pub mod batch;
+mod batches;
 pub mod bench;
 pub mod bench_learning;
 pub mod bench_population;

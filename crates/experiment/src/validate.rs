@@ -168,8 +168,9 @@ mod tests {
         let start = Instant::now();
         let v = validate(&experiment, 2).unwrap();
         let took = start.elapsed().as_secs_f64();
-        // a whole evaluation takes a minute or more: the timing stays near its budget
-        assert!(took < 4.0 * TIMING_BUDGET, "{took} s");
+        // a whole evaluation takes a minute or more: the timing stays near its budget (a margin
+        // for the other tests that share the cores)
+        assert!(took < 6.0 * TIMING_BUDGET, "{took} s");
         assert!(
             v.seconds_per_evaluation > took / TIMED_EVALUATIONS as f64,
             "{} vs {took}",

@@ -1,5 +1,5 @@
 //! Population lanes of the 3D engine (issue 52, item 2): nanoseconds per update and episode of a
-//! link, of a voxel and of a whole world without collisions, one scalar copy per episode against
+//! link, of a voxel and of a whole world with and without voxel–voxel collisions, one scalar copy per episode against
 //! laned copies stepping 4 or 8 episodes at once (bit-identical per lane: `link_lanes::tests`,
 //! `voxel_lanes::tests`, `world_lanes::tests`).
 //!
@@ -22,11 +22,14 @@ fn main() {
             one / four,
             one / eight
         );
-        let (scalar, four, eight) = world_lanes::benchmark(updates / 20);
-        println!(
-            "round {round}: world (11-voxel block, collisions off): scalar {scalar:.1} ns, 4 lanes {four:.1} ns ({:.2}x), 8 lanes {eight:.1} ns ({:.2}x) per voxel·step and episode",
-            scalar / four,
-            scalar / eight
-        );
+        for collisions in [false, true] {
+            let (scalar, four, eight) = world_lanes::benchmark(updates / 20, collisions);
+            let on = if collisions { "on" } else { "off" };
+            println!(
+                "round {round}: world (11-voxel block, collisions {on}): scalar {scalar:.1} ns, 4 lanes {four:.1} ns ({:.2}x), 8 lanes {eight:.1} ns ({:.2}x) per voxel·step and episode",
+                scalar / four,
+                scalar / eight
+            );
+        }
     }
 }

@@ -1,10 +1,14 @@
 //! A 3D soft walker on the affordance study's material: a 4 × 3 × 2 slab on four 1-voxel legs,
 //! every voxel's temperature a sine (amplitude 14.4714, 2 Hz) whose phase advances along x. Prints
 //! how far the centre of mass moved and the speed in voxel·steps per CPU-second (one thread).
+//! With `lanes`, a population of 8 episodes (each its own frequency, 2 + 0.05·i Hz) runs as two
+//! laned worlds of 4 (`WorldLanes`, each lane the bits of a scalar world), and the speed counts
+//! the voxel·steps of all 8.
 //!
-//! `cargo run --release -p vsrlab-physics3d --example walker3d [seconds]`
+//! `cargo run --release -p vsrlab-physics3d --example walker3d [seconds] [quadruped|box6] [off|on] [lanes]`
 
 use std::time::Instant;
+use vsrlab_physics3d::world_lanes::WorldLanes;
 use vsrlab_physics3d::{Material, VoxelId, World, WorldSettings};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -43,6 +47,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .iter()
         .map(|&c| Ok((w.add_voxel(m, c)?, c[0])))
         .collect::<Result<_, vsrlab_physics3d::Physics3dError>>()?;
+    if arg(4).as_deref() == Some("lanes") {
+        return population(&w, &ids, seconds, collisions);
+    }
     let centre = |w: &World| ids.iter().map(|&(v, _)| w.position(v)).sum::<glam::DVec3>() / ids.len() as f64;
     let start = centre(&w);
     let dt = 0.95 * w.recommended_time_step();
@@ -70,6 +77,46 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         moved.x.abs() / 0.04,
         (w.voxel_count() * steps) as f64 / elapsed,
         w.voxel_count() as f64 * seconds / elapsed,
+    );
+    Ok(())
+}
+
+/// 8 episodes of the walker in two laned worlds of 4, episode `i` at 2 + 0.05·i Hz.
+fn population(
+    w: &World,
+    ids: &[(VoxelId, i32)],
+    seconds: f64,
+    collisions: bool,
+) -> Result<(), Box<dyn std::error::Error>> {
+    const LANES: usize = 4;
+    let dt = 0.95 * w.recommended_time_step();
+    let steps = (seconds / dt) as usize;
+    let mut worlds = [WorldLanes::<LANES>::of(w)?, WorldLanes::<LANES>::of(w)?];
+    let clock = Instant::now();
+    for k in 0..steps {
+        let t = k as f64 * dt;
+        for (i, laned) in worlds.iter_mut().enumerate() {
+            for &(v, x) in ids {
+                let phase = std::f64::consts::PI * f64::from(x) / 2.0;
+                let temperatures = std::array::from_fn(|l| {
+                    let hz = 2.0 + 0.05 * (i * LANES + l) as f64;
+                    14.4714 * (2.0 * std::f64::consts::PI * hz * t - phase).sin()
+                });
+                laned.set_temperatures(v, temperatures);
+            }
+            laned.step(dt)?;
+        }
+    }
+    let elapsed = clock.elapsed().as_secs_f64();
+    let diverged = (0..LANES)
+        .filter(|&l| worlds.iter().any(|w| w.diverged(l).is_some()))
+        .count();
+    let voxel_steps = (2 * LANES * ids.len() * steps) as f64;
+    println!(
+        "vsrlab lanes (collisions {}): 8 episodes of {} voxels in 2 x {LANES} lanes, {steps} steps in {elapsed:.2} s ({diverged} lanes diverged): {:.0} voxel·steps/s",
+        if collisions { "on" } else { "off" },
+        ids.len(),
+        voxel_steps / elapsed,
     );
     Ok(())
 }

@@ -17,7 +17,7 @@ pub(crate) const ENVELOPE_RADIUS: f64 = 0.625;
 
 /// Growth of the largest rest edge (per lattice size) that the list allows for before it is
 /// rebuilt: thermal actuation changes rest sizes every step.
-const SIZE_HEADROOM: f64 = 0.2;
+pub(crate) const SIZE_HEADROOM: f64 = 0.2;
 
 /// A voxel as the collision pass sees it: start-of-step state and constants.
 #[derive(Debug, Clone, Copy, PartialEq)]

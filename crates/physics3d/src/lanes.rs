@@ -1,151 +1,7 @@
-//! N f64 lanes: one value per episode of a population that steps together (issue 52's population
-//! lanes, stored `[element][field][lane]`). Every operation is the scalar IEEE operation lane by
-//! lane (no fused multiply–add, no approximations), so lane `l` of a computation gives the bits of
-//! the same computation in scalar f64. The arrays are plain; a kernel compiled with AVX2 or
-//! AVX-512 enabled (`#[target_feature]`, chosen at run time) has them vectorised by the compiler.
-//! Branches that differ between lanes are computed both ways and chosen per lane ([`F64s::select`]).
+//! Vectors and quaternions in f64 lanes (`vsrlab_lanes::F64s`): one per episode of a population
+//! stepped together, each operation term for term as glam's, so that a lane gives glam's bits.
 
-use std::ops::{Add, Div, Mul, Neg, Sub};
-
-/// One f64 per lane.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct F64s<const N: usize>(pub [f64; N]);
-
-/// One bool per lane.
-pub(crate) type Mask<const N: usize> = [bool; N];
-
-impl<const N: usize> F64s<N> {
-    /// The same value in every lane.
-    #[inline(always)]
-    pub fn splat(x: f64) -> Self {
-        F64s([x; N])
-    }
-
-    /// `f` lane by lane: for functions of the standard library (`acos`, `sin`), whose bits are
-    /// then those of the scalar call.
-    #[inline(always)]
-    pub fn map(self, f: impl Fn(f64) -> f64) -> Self {
-        F64s(self.0.map(f))
-    }
-
-    /// Square root, lane by lane.
-    #[inline(always)]
-    pub fn sqrt(self) -> Self {
-        self.map(f64::sqrt)
-    }
-
-    /// Absolute value, lane by lane.
-    #[inline(always)]
-    pub fn abs(self) -> Self {
-        self.map(f64::abs)
-    }
-
-    /// `self < other`, lane by lane (false where either is NaN).
-    #[inline(always)]
-    pub fn lt(self, other: Self) -> Mask<N> {
-        std::array::from_fn(|l| self.0[l] < other.0[l])
-    }
-
-    /// `self > other`, lane by lane.
-    #[inline(always)]
-    pub fn gt(self, other: Self) -> Mask<N> {
-        std::array::from_fn(|l| self.0[l] > other.0[l])
-    }
-
-    /// `self >= other`, lane by lane.
-    #[inline(always)]
-    pub fn ge(self, other: Self) -> Mask<N> {
-        std::array::from_fn(|l| self.0[l] >= other.0[l])
-    }
-
-    /// `self <= other`, lane by lane.
-    #[inline(always)]
-    pub fn le(self, other: Self) -> Mask<N> {
-        std::array::from_fn(|l| self.0[l] <= other.0[l])
-    }
-
-    /// `self == other`, lane by lane.
-    #[inline(always)]
-    pub fn eq(self, other: Self) -> Mask<N> {
-        std::array::from_fn(|l| self.0[l] == other.0[l])
-    }
-
-    /// `x.clamp(lo, hi)` lane by lane, as `f64::clamp` (NaN stays NaN).
-    #[inline(always)]
-    pub fn clamp(self, lo: f64, hi: f64) -> Self {
-        self.map(|x| x.clamp(lo, hi))
-    }
-
-    /// Per lane: `then` where `mask` holds, else `otherwise`.
-    #[inline(always)]
-    pub fn select(mask: Mask<N>, then: Self, otherwise: Self) -> Self {
-        F64s(std::array::from_fn(
-            |l| if mask[l] { then.0[l] } else { otherwise.0[l] },
-        ))
-    }
-}
-
-macro_rules! lane_op {
-    ($tr:ident, $f:ident, $op:tt) => {
-        impl<const N: usize> $tr for F64s<N> {
-            type Output = F64s<N>;
-            #[inline(always)]
-            fn $f(self, o: F64s<N>) -> F64s<N> {
-                F64s(std::array::from_fn(|l| self.0[l] $op o.0[l]))
-            }
-        }
-        impl<const N: usize> $tr<f64> for F64s<N> {
-            type Output = F64s<N>;
-            #[inline(always)]
-            fn $f(self, o: f64) -> F64s<N> {
-                F64s(std::array::from_fn(|l| self.0[l] $op o))
-            }
-        }
-        impl<const N: usize> $tr<F64s<N>> for f64 {
-            type Output = F64s<N>;
-            #[inline(always)]
-            fn $f(self, o: F64s<N>) -> F64s<N> {
-                F64s(std::array::from_fn(|l| self $op o.0[l]))
-            }
-        }
-    };
-}
-lane_op!(Add, add, +);
-lane_op!(Sub, sub, -);
-lane_op!(Mul, mul, *);
-lane_op!(Div, div, /);
-
-impl<const N: usize> Neg for F64s<N> {
-    type Output = F64s<N>;
-    #[inline(always)]
-    fn neg(self) -> F64s<N> {
-        self.map(|x| -x)
-    }
-}
-
-/// Per lane: `a && b`.
-#[inline(always)]
-pub(crate) fn and<const N: usize>(a: Mask<N>, b: Mask<N>) -> Mask<N> {
-    std::array::from_fn(|l| a[l] && b[l])
-}
-
-/// Per lane: `a || b`.
-#[inline(always)]
-pub(crate) fn or<const N: usize>(a: Mask<N>, b: Mask<N>) -> Mask<N> {
-    std::array::from_fn(|l| a[l] || b[l])
-}
-
-/// Whether any lane holds: a branch no lane takes is not computed (its lanes would be dropped).
-#[inline(always)]
-pub(crate) fn any<const N: usize>(a: Mask<N>) -> bool {
-    a.iter().any(|&x| x)
-}
-
-/// Per lane: `!a`.
-#[inline(always)]
-pub(crate) fn not<const N: usize>(a: Mask<N>) -> Mask<N> {
-    a.map(|x| !x)
-}
+use vsrlab_lanes::{F64s, Mask};
 
 /// A vector per lane: `x`, `y`, `z` each hold every lane.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -166,7 +22,6 @@ impl<const N: usize> V3<N> {
     }
 
     /// Lane `l` as a glam vector.
-    #[cfg(test)]
     pub fn lane(&self, l: usize) -> glam::DVec3 {
         glam::DVec3::new(self.x.0[l], self.y.0[l], self.z.0[l])
     }
@@ -295,19 +150,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_lane_gives_the_scalar_operations_bits() {
-        let a = F64s([0.1, -3.0, 1e-300, f64::NAN]);
-        let b = F64s([0.3, 7.0, 1e300, 1.0]);
-        let expected = [0.1f64 + 0.3, -3.0 + 7.0, 1e-300 + 1e300, f64::NAN];
-        for (l, expected) in expected.iter().enumerate() {
-            assert_eq!((a + b).0[l].to_bits(), expected.to_bits());
-            assert_eq!((a / b).0[l].to_bits(), (a.0[l] / b.0[l]).to_bits());
-            assert_eq!((2.0 * a - b).0[l].to_bits(), (2.0 * a.0[l] - b.0[l]).to_bits());
-        }
-        assert_eq!(a.lt(b), [true, true, true, false]);
-        assert_eq!(F64s::select([true, false, true, false], a, b).0[1], 7.0);
+    fn a_laned_quaternion_product_gives_glams_bits() {
         let q = Q::<2>::splat(glam::DQuat::from_xyzw(0.1, -0.2, 0.3, 0.9));
         let p = Q::<2>::splat(glam::DQuat::from_xyzw(-0.5, 0.4, 0.2, 0.7));
         assert_eq!(q.mul(p).lane(1), q.lane(1) * p.lane(1));
+        assert_ne!(q.mul(p).lane(1), p.lane(1) * q.lane(1));
+        let v = V3::<2>::splat(glam::DVec3::new(0.3, -0.1, 2.0));
+        assert_eq!(v.length().0[0], glam::DVec3::new(0.3, -0.1, 2.0).length());
     }
 }

@@ -12,6 +12,7 @@
 
 mod axis;
 mod collision;
+mod collision_lanes;
 mod error;
 mod floor;
 mod lanes;
@@ -24,7 +25,6 @@ mod voxel;
 #[doc(hidden)]
 pub mod voxel_lanes;
 mod world;
-#[doc(hidden)]
 pub mod world_lanes;
 
 #[cfg(test)]

@@ -6,9 +6,10 @@
 //! A test holds every lane to the scalar link's bits.
 
 use crate::axis::Axis;
-use crate::lanes::{and, any, not, or, F64s, Mask, Q, V3};
+use crate::lanes::{Q, V3};
 use crate::link::{HYSTERESIS, SMALL_EXTENSION, SMALL_TURN};
 use crate::material::LinkConstants;
+use vsrlab_lanes::{and, any, not, or, F64s, Mask};
 
 /// One end of the link in every lane.
 #[derive(Debug, Clone, Copy)]
@@ -288,7 +289,7 @@ pub(crate) fn to_rotation_vector<const N: usize>(q: Q<N>) -> V3<N> {
     let series = s.lt(F64s::splat(2.4e-3));
     let near = 2.0 * ((2.0 - 2.0 * q.w) / s).sqrt();
     let scale = match any(and(not(series), not(identity))) {
-        true => F64s::select(series, near, 2.0 * q.w.map(f64::acos) / s.sqrt()),
+        true => F64s::select(series, near, 2.0 * q.w.acos() / s.sqrt()),
         false => near,
     };
     let v = V3 {
@@ -327,15 +328,16 @@ fn align_to_x<const N: usize>(d: V3<N>) -> Q<N> {
         y: d.y / length,
         z: d.z / length,
     };
-    let theta = n.x.clamp(-1.0, 1.0).map(f64::acos);
+    let theta = n.x.clamp(-1.0, 1.0).acos();
     let half_turn = theta.gt(F64s::splat(std::f64::consts::PI - 1e-7));
     let half = theta / 2.0;
-    let s = half.map(f64::sin) / (n.y * n.y + n.z * n.z).sqrt();
+    let (sin, cos) = half.sin_cos();
+    let s = sin / (n.y * n.y + n.z * n.z).sqrt();
     let general = Q {
         x: zero,
         y: n.z * s,
         z: -n.y * s,
-        w: half.map(f64::cos),
+        w: cos,
     };
     let flipped = Q::splat(glam::DQuat::from_xyzw(0.0, 0.0, 1.0, 0.0));
     let turned = Q::select(half_turn, flipped, general);

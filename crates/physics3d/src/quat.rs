@@ -38,7 +38,8 @@ pub fn from_rotation_vector(r: DVec3) -> DQuat {
         (1.0 - h2 / 2.0, 1.0 - h2 / 6.0)
     } else {
         let a = h2.sqrt();
-        (a.cos(), a.sin() / a)
+        let (sin, cos) = vsrlab_lanes::sin_cos(a);
+        (cos, sin / a)
     };
     DQuat::from_xyzw(h.x * scale, h.y * scale, h.z * scale, w)
 }
@@ -54,7 +55,7 @@ pub fn to_rotation_vector(q: DQuat) -> DVec3 {
     if s < 2.4e-3 {
         v * (2.0 * ((2.0 - 2.0 * q.w) / s).sqrt())
     } else {
-        v * (2.0 * q.w.acos() / s.sqrt())
+        v * (2.0 * vsrlab_lanes::acos(q.w) / s.sqrt())
     }
 }
 
@@ -70,12 +71,13 @@ pub fn align_to_x(d: DVec3, current: DQuat) -> DQuat {
         return DQuat::from_xyzw(0.0, y, z, 1.0 - 0.5 * (y * y + z * z));
     }
     let n = d / d.length();
-    let theta = n.x.clamp(-1.0, 1.0).acos();
+    let theta = vsrlab_lanes::acos(n.x.clamp(-1.0, 1.0));
     if theta > std::f64::consts::PI - 1e-7 {
         return DQuat::from_xyzw(0.0, 0.0, 1.0, 0.0);
     }
-    let s = (theta / 2.0).sin() / (n.y * n.y + n.z * n.z).sqrt();
-    DQuat::from_xyzw(0.0, n.z * s, -n.y * s, (theta / 2.0).cos())
+    let (sin, cos) = vsrlab_lanes::sin_cos(theta / 2.0);
+    let s = sin / (n.y * n.y + n.z * n.z).sqrt();
+    DQuat::from_xyzw(0.0, n.z * s, -n.y * s, cos)
 }
 
 #[cfg(test)]

@@ -5,10 +5,11 @@
 //! the rotation series), both ways are computed and each lane keeps its own. A test holds every
 //! lane to the scalar world's bits.
 
-use crate::lanes::{and, any, not, F64s, Mask, Q, V3};
+use crate::lanes::{Q, V3};
 use crate::material::{Material, VoxelConstants};
 use crate::voxel::DofMask;
 use glam::{DQuat, DVec3};
+use vsrlab_lanes::{and, any, not, F64s, Mask};
 
 /// What every lane's copy of a voxel shares: its material, constants, fixed degrees of freedom
 /// and lattice position, and the world's settings that the step reads.
@@ -53,6 +54,7 @@ impl<const N: usize> VoxelLanes<N> {
 
     /// One step of `dt` with the summed link forces and moments (in the voxel's frame), the
     /// contact forces and the external loads of each lane, as `World::step_voxel`.
+    #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     pub fn step(
         &mut self,
@@ -132,6 +134,7 @@ impl<const N: usize> VoxelLanes<N> {
 
     /// The floor's force added to `force`, as `floor::floor_force` lane by lane: whether each
     /// lane touches, and the friction each lane got.
+    #[inline(always)]
     fn floor(&mut self, v: &VoxelShared, force: &mut V3<N>, velocity: V3<N>) -> (Mask<N>, V3<N>) {
         let (m, c) = (&v.material, &v.constants);
         let zero = F64s::splat(0.0);
@@ -171,6 +174,7 @@ impl<const N: usize> VoxelLanes<N> {
 
     /// Fixed translations back at the lattice position and fixed rotations undone, as the end
     /// of `World::step_voxel` (the same degrees of freedom in every lane).
+    #[inline(always)]
     fn hold_fixed(&mut self, v: &VoxelShared) {
         let zero = F64s::splat(0.0);
         let pos = [&mut self.pos.x, &mut self.pos.y, &mut self.pos.z];
@@ -205,11 +209,13 @@ impl<const N: usize> VoxelLanes<N> {
 }
 
 /// `quat::rotate` in every lane.
+#[inline(always)]
 fn rotate<const N: usize>(q: Q<N>, v: V3<N>) -> V3<N> {
     crate::link_lanes::sandwich(q, v, q.conjugate())
 }
 
 /// `quat::from_rotation_vector` in every lane: the series near zero, sine and cosine beyond.
+#[inline(always)]
 fn from_rotation_vector<const N: usize>(r: V3<N>) -> Q<N> {
     let h = V3 {
         x: r.x * 0.5,
@@ -221,8 +227,9 @@ fn from_rotation_vector<const N: usize>(r: V3<N>) -> Q<N> {
     let (mut w, mut scale) = (1.0 - h2 / 2.0, 1.0 - h2 / 6.0);
     if any(not(series)) {
         let a = h2.sqrt();
-        w = F64s::select(series, w, a.map(f64::cos));
-        scale = F64s::select(series, scale, a.map(f64::sin) / a);
+        let (sin, cos) = a.sin_cos();
+        w = F64s::select(series, w, cos);
+        scale = F64s::select(series, scale, sin / a);
     }
     Q {
         x: h.x * scale,
@@ -233,6 +240,7 @@ fn from_rotation_vector<const N: usize>(r: V3<N>) -> Q<N> {
 }
 
 /// `quat::to_rotation_vector` in every lane.
+#[inline(always)]
 fn to_rotation_vector<const N: usize>(q: Q<N>) -> V3<N> {
     crate::link_lanes::to_rotation_vector(q)
 }

@@ -159,6 +159,38 @@ pub trait Task: Send + Sync + std::fmt::Debug {
             ))),
         }
     }
+    /// The group of `robot` for [`Task::run_episodes`]: robots of one group may share a batch
+    /// (a task that steps several episodes at once needs them to have the same body shape);
+    /// `None`, the default: the robot runs alone.
+    fn episode_group(&self, _robot: &dyn Robot) -> Option<String> {
+        None
+    }
+    /// How many robots of one group [`Task::run_episodes`] steps together at best (1, the
+    /// default: one at a time, so evaluators do not batch).
+    fn episode_batch(&self) -> usize {
+        1
+    }
+    /// Runs one episode per robot (`robots[i]` with seed `seeds[i]`, all of one
+    /// [`Task::episode_group`]), summaries only, in order: the batch form evaluators call. A task
+    /// may step them together (population lanes) as long as every outcome and error has the bits
+    /// of [`Task::run_episode`]. Default: one after the other.
+    fn run_episodes(&self, robots: &[&dyn Robot], seeds: &[u64]) -> Vec<Result<Outcome, EpisodeError>> {
+        one_by_one(self, robots, seeds)
+    }
+}
+
+/// One summary episode per robot, one after the other: [`Task::run_episodes`]'s default, and
+/// what a task that steps batches together falls back to.
+pub fn one_by_one<T: Task + ?Sized>(
+    task: &T,
+    robots: &[&dyn Robot],
+    seeds: &[u64],
+) -> Vec<Result<Outcome, EpisodeError>> {
+    robots
+        .iter()
+        .zip(seeds)
+        .map(|(robot, &seed)| task.run_episode(*robot, seed, TraceLevel::None, &mut |_, _| {}))
+        .collect()
 }
 
 /// A task on the 2D rigid-body engine: it builds its world, places the robot, and watches every

@@ -29,14 +29,14 @@ use super::aperture::{aperture_world, random_aperture_world, shape_length, Apert
 use super::physics::{Built, Physics3d, MAX_STEPS};
 use super::recorder::Recorder;
 use super::robot::Voxel3dRobot;
-use super::setup::{prepare, sense, Prepared};
+use super::setup::{prepare, prepare_batch, sense, Prepared, LANES};
+use super::worlds::Worlds as WorldView;
 use super::BodyGrid3;
 use crate::agent::{Agent, Robot};
 use crate::episode::EpisodeError;
 use crate::fitness::Fitness;
 use crate::outcome::{Outcome, Trace, TraceLevel};
 use crate::task::{check_objectives, fitness_values, task_field, Metrics, Objective, Sense, Task};
-use glam::DVec3;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
@@ -44,6 +44,7 @@ use vsrlab_body::Capture;
 use vsrlab_brain::controllers::elman::VOTE;
 use vsrlab_brain::Controller;
 use vsrlab_field::FieldError;
+use vsrlab_physics3d::world_lanes::WorldLanes;
 use vsrlab_physics3d::{Dof, VoxelId, World, WorldSettings};
 
 /// What an affordance evaluation reports: the two objectives, then each environment's.
@@ -179,95 +180,153 @@ impl Affordance {
             .unwrap_or(w.max(h))
     }
 
-    /// One environment's episode.
-    #[allow(clippy::too_many_arguments)]
-    fn episode(
-        &self,
-        env: Environment,
-        layout: &ApertureWorld,
-        grid: &BodyGrid3,
-        sensors: &[super::Sensor3],
-        brain: &mut dyn Controller,
-        noise: &mut ChaCha8Rng,
-        level: TraceLevel,
-    ) -> Result<(Scores, u64, Option<Trace>), EpisodeError> {
-        let mut built = self.build(grid, layout)?;
-        let (dt, n) = (built.dt, built.body.len());
-        let steps = crate::task::episode_steps(self.duration, dt);
-        let (min_x, max_x, top) = bounds(&built);
-        let bottom: Vec<VoxelId> = built
+    /// What the episodes of one environment share: the built world's body, obstacles, pieces,
+    /// bounds and bottom layer, the time step and the step count.
+    fn setting(&self, built: &Built) -> Setting {
+        let (min_x, max_x, top) = bounds(built);
+        let bottom = built
             .body
             .iter()
             .copied()
             .filter(|&v| built.world.position(v).z < 0.5 * self.physics.voxel_size)
             .collect();
-        let mut readings = vec![0.0; n * sensors.len()];
-        let mut actuation = vec![0.0; n];
-        let mut random_votes = vec![0.0; n];
-        let mut capture = Capture::new();
-        let mut recorder = Recorder::new(level, &built, self.frame_rate);
-        recorder.record(&built.world, &built.body, &actuation, 0.0);
-        recorder.record_channel(&VOTE, &vec![0.0; n]);
-        let (mut touched, mut correct, mut penalised) = (false, 0u64, false);
-        let flying_steps = (self.flying_seconds / dt).round() as u64;
-        let mut airborne = 0u64;
-        brain.reset();
-        for k in 1..=steps {
-            built.world.step(dt).map_err(|e| {
-                EpisodeError::Invalid(format!(
-                    "{}: episode failed at t = {:.4} s: {e}",
-                    env.name(),
-                    k as f64 * dt
-                ))
-            })?;
-            let t = k as f64 * dt;
-            sense(&built.world, &built.body, sensors, t, &mut readings);
-            airborne = if flying(&built.world, &bottom) { airborne + 1 } else { 0 };
-            if self.penalties && !penalised {
-                let flown = self.flying && airborne > flying_steps;
-                penalised = flown || out_of_bounds(&built, min_x, max_x, top);
-            }
-            brain.control(t, &readings, &mut actuation);
-            if self.evolved == Evolved::Affordance {
-                actuation.iter_mut().for_each(|a| *a = noise.random_range(-1.0..=1.0));
-            }
-            for (&v, a) in built.body.iter().zip(&mut actuation) {
-                *a = a.clamp(-1.0, 1.0);
-                built.world.set_temperature(v, self.physics.amplitude * *a);
-            }
-            brain.publish(&mut capture);
-            let mut votes = capture.get(VOTE.name).ok_or_else(|| {
-                EpisodeError::Field(FieldError::new(
-                    "robot.brain",
-                    "the affordance task needs a brain that votes (elman)",
-                ))
-            })?;
-            if self.evolved == Evolved::Locomotion {
-                random_votes
-                    .iter_mut()
-                    .for_each(|v| *v = noise.random_range(-1.0..=1.0));
-                votes = &random_votes;
-            }
-            touched = touched || touches_wall(&built.world);
-            if touched && decision(votes) == env.passable() {
-                correct += 1;
-            }
-            recorder.record(&built.world, &built.body, &actuation, t);
-            recorder.record_channel(&VOTE, votes);
+        let mut pieces = vec![BODY; built.body.len() + built.obstacles.len()];
+        for &v in &built.obstacles {
+            pieces[v.index()] = built.world.piece(v);
         }
-        let target = built.world.position(built.obstacles[built.obstacles.len() - 1]);
-        let centre = built.body.iter().map(|&v| built.world.position(v)).sum::<DVec3>() / n as f64;
-        let scores = match penalised {
-            true => Scores {
-                distance: self.d_max,
-                accuracy: 0.0,
-            },
-            false => Scores {
-                distance: centre.distance(target).min(self.d_max),
-                accuracy: correct as f64 / steps as f64,
-            },
+        Setting {
+            body: built.body.clone(),
+            target: built.obstacles[built.obstacles.len() - 1],
+            pieces,
+            bounds: (min_x, max_x, top),
+            bottom,
+            dt: built.dt,
+            steps: crate::task::episode_steps(self.duration, built.dt),
+        }
+    }
+
+    /// One environment's episodes, one per voter, in `world` (one world, or lanes of them):
+    /// each steps, senses, checks the penalties, controls, actuates and votes as the study's
+    /// loop; `record(world, actuation, votes, t)` after every step of the first voter.
+    fn episodes<W: WorldView>(
+        &self,
+        env: Environment,
+        world: &mut W,
+        setting: &Setting,
+        sensors: &[super::Sensor3],
+        voters: &mut [Voter],
+        record: &mut Record<W>,
+    ) {
+        let (dt, body) = (setting.dt, &setting.body);
+        let (min_x, max_x, top) = setting.bounds;
+        let flying_steps = (self.flying_seconds / dt).round() as u64;
+        let failure = |k: u64, e: &vsrlab_physics3d::Physics3dError| {
+            EpisodeError::Invalid(format!(
+                "{}: episode failed at t = {:.4} s: {e}",
+                env.name(),
+                k as f64 * dt
+            ))
         };
-        Ok((scores, steps, recorder.finish()))
+        for k in 1..=setting.steps {
+            if let Err(e) = world.step(dt) {
+                voters
+                    .iter_mut()
+                    .filter(|v| v.result.is_none())
+                    .for_each(|v| v.result = Some(Err(failure(k, &e))));
+                return;
+            }
+            let t = k as f64 * dt;
+            for (l, v) in voters.iter_mut().enumerate() {
+                if v.result.is_some() {
+                    continue;
+                }
+                if let Some(e) = world.diverged(l) {
+                    v.result = Some(Err(failure(k, &e)));
+                    continue;
+                }
+                sense(world, l, body, sensors, t, &mut v.readings);
+                v.airborne = if flying(world, l, &setting.bottom) {
+                    v.airborne + 1
+                } else {
+                    0
+                };
+                if self.penalties && !v.penalised {
+                    let flown = self.flying && v.airborne > flying_steps;
+                    v.penalised = flown || out_of_bounds(world, l, body, min_x, max_x, top);
+                }
+                v.brain.control(t, &v.readings, &mut v.actuation);
+                if self.evolved == Evolved::Affordance {
+                    v.actuation
+                        .iter_mut()
+                        .for_each(|a| *a = v.noise.random_range(-1.0..=1.0));
+                }
+                for (&voxel, a) in body.iter().zip(&mut v.actuation) {
+                    *a = a.clamp(-1.0, 1.0);
+                    world.set_temperature(voxel, l, self.physics.amplitude * *a);
+                }
+                v.brain.publish(&mut v.capture);
+                let Some(mut votes) = v.capture.get(VOTE.name) else {
+                    v.result = Some(Err(EpisodeError::Field(FieldError::new(
+                        "robot.brain",
+                        "the affordance task needs a brain that votes (elman)",
+                    ))));
+                    continue;
+                };
+                if self.evolved == Evolved::Locomotion {
+                    v.random_votes
+                        .iter_mut()
+                        .for_each(|r| *r = v.noise.random_range(-1.0..=1.0));
+                    votes = &v.random_votes;
+                }
+                v.touched = v.touched || touches_wall(world, l, &setting.pieces);
+                if v.touched && decision(votes) == env.passable() {
+                    v.correct += 1;
+                }
+                if l == 0 {
+                    record(world, &v.actuation, votes, t);
+                }
+            }
+            if voters.iter().all(|v| v.result.is_some()) {
+                return;
+            }
+        }
+        for (l, v) in voters.iter_mut().enumerate().filter(|(_, v)| v.result.is_none()) {
+            let target = world.position(setting.target, l);
+            let centre = super::task::centre(world, body, l);
+            v.result = Some(Ok(match v.penalised {
+                true => Scores {
+                    distance: self.d_max,
+                    accuracy: 0.0,
+                },
+                false => Scores {
+                    distance: centre.distance(target).min(self.d_max),
+                    accuracy: v.correct as f64 / setting.steps as f64,
+                },
+            }));
+        }
+    }
+
+    /// The outcome of a robot's environments: each one's scores and steps, and the trace of the
+    /// first.
+    fn outcome(&self, scores: &[(Environment, Scores)], steps: u64, units: usize, trace: Option<Trace>) -> Outcome {
+        let mut metrics = Metrics::new();
+        let (mut locomotion, mut sensing) = (0.0f64, 1.0f64);
+        for (env, scores) in scores {
+            metrics.insert(format!("locomotion-{}", env.name()), scores.distance);
+            metrics.insert(format!("sensing-{}", env.name()), scores.accuracy);
+            locomotion = locomotion.max(scores.distance);
+            sensing = sensing.min(scores.accuracy);
+        }
+        metrics.insert("locomotion".into(), locomotion);
+        metrics.insert("sensing".into(), sensing);
+        metrics.insert("steps".into(), steps as f64);
+        Outcome {
+            fitness: fitness_values(&self.fitness.0, &metrics),
+            metrics,
+            steps,
+            units,
+            trace,
+        }
     }
 
     /// The world: the body at the layout's origin, the wall and the target fixed, each a piece.
@@ -319,10 +378,10 @@ impl Affordance {
     }
 }
 
-/// Whether a body voxel touched a wall voxel this step.
-fn touches_wall(world: &World) -> bool {
-    world.contacts().any(|(a, b)| {
-        let pieces = (world.piece(a), world.piece(b));
+/// Whether a body voxel touched a wall voxel in lane `lane` this step (`pieces`: each voxel's).
+fn touches_wall<W: WorldView>(world: &W, lane: usize, pieces: &[u32]) -> bool {
+    world.any_contact(lane, &|a, b| {
+        let pieces = (pieces[a.index()], pieces[b.index()]);
         pieces == (BODY, WALL) || pieces == (WALL, BODY)
     })
 }
@@ -339,18 +398,74 @@ fn bounds(built: &Built) -> (f64, f64, f64) {
     (min_x, max_x, top)
 }
 
-/// Whether a body voxel's centre left the wall's centres along x or rose above the highest.
-fn out_of_bounds(built: &Built, min_x: f64, max_x: f64, top: f64) -> bool {
-    built.body.iter().any(|&v| {
-        let p = built.world.position(v);
+/// Whether a body voxel's centre left the wall's centres along x or rose above the highest, in
+/// lane `lane`.
+fn out_of_bounds<W: WorldView>(world: &W, lane: usize, body: &[VoxelId], min_x: f64, max_x: f64, top: f64) -> bool {
+    body.iter().any(|&v| {
+        let p = world.position(v, lane);
         p.x < min_x || p.x > max_x || p.z > top
     })
 }
 
-/// Whether at least half of the bottom layer is off the floor.
-fn flying(world: &World, bottom: &[VoxelId]) -> bool {
-    let off = bottom.iter().filter(|&&v| !world.touches_floor(v)).count();
+/// Whether at least half of the bottom layer is off the floor in lane `lane`.
+fn flying<W: WorldView>(world: &W, lane: usize, bottom: &[VoxelId]) -> bool {
+    let off = bottom.iter().filter(|&&v| !world.touches_floor(v, lane)).count();
     !bottom.is_empty() && 2 * off >= bottom.len()
+}
+
+/// What a scalar episode records after every step: the world, the actuation and the votes, at
+/// time t.
+type Record<'a, W> = dyn FnMut(&W, &[f64], &[f64], f64) + 'a;
+
+/// What the episodes of one environment share (`Affordance::setting`).
+struct Setting {
+    body: Vec<VoxelId>,
+    /// The target voxel.
+    target: VoxelId,
+    /// Each voxel's piece.
+    pieces: Vec<u32>,
+    /// The least and greatest x of the wall and its top (m).
+    bounds: (f64, f64, f64),
+    /// The body's bottom layer.
+    bottom: Vec<VoxelId>,
+    dt: f64,
+    steps: u64,
+}
+
+/// One robot's episode in one environment: its brain and noise, buffers, what it did, and how
+/// it ended (`None` while it runs).
+struct Voter<'a> {
+    brain: &'a mut dyn Controller,
+    noise: &'a mut ChaCha8Rng,
+    readings: Vec<f64>,
+    actuation: Vec<f64>,
+    random_votes: Vec<f64>,
+    capture: Capture,
+    touched: bool,
+    correct: u64,
+    penalised: bool,
+    airborne: u64,
+    result: Option<Result<Scores, EpisodeError>>,
+}
+
+impl<'a> Voter<'a> {
+    /// A fresh episode of a robot (its brain reset) with `units` voxels of `sensors` readings.
+    fn new(brain: &'a mut dyn Controller, noise: &'a mut ChaCha8Rng, units: usize, sensors: usize) -> Self {
+        brain.reset();
+        Voter {
+            brain,
+            noise,
+            readings: vec![0.0; units * sensors],
+            actuation: vec![0.0; units],
+            random_votes: vec![0.0; units],
+            capture: Capture::new(),
+            touched: false,
+            correct: 0,
+            penalised: false,
+            airborne: 0,
+            result: None,
+        }
+    }
 }
 
 impl Task for Affordance {
@@ -440,32 +555,115 @@ impl Task for Affordance {
         let [w, h, _] = grid.extent();
         let mut noise = ChaCha8Rng::seed_from_u64(seed ^ NOISE_STREAM);
         let mut draw = ChaCha8Rng::seed_from_u64(seed ^ WORLD_STREAM);
-        let mut metrics = Metrics::new();
-        let (mut locomotion, mut sensing, mut steps, mut trace) = (0.0f64, 1.0f64, 0, None);
+        let (mut scores, mut steps, mut trace) = (Vec::new(), 0, None);
         for (i, &env) in self.environments.iter().enumerate() {
             let level = if i == 0 { level } else { TraceLevel::None };
             let layout = match self.worlds {
                 Worlds::Fixed => aperture_world(env, length, w, h),
                 Worlds::Random => random_aperture_world(env, length, w, h, &mut draw),
             };
-            let (scores, n, t) = self.episode(env, &layout, &grid, &sensors, brain.as_mut(), &mut noise, level)?;
-            metrics.insert(format!("locomotion-{}", env.name()), scores.distance);
-            metrics.insert(format!("sensing-{}", env.name()), scores.accuracy);
-            locomotion = locomotion.max(scores.distance);
-            sensing = sensing.min(scores.accuracy);
-            steps += n;
-            trace = trace.or(t);
+            let built = self.build(&grid, &layout)?;
+            let setting = self.setting(&built);
+            let n = setting.body.len();
+            let mut recorder = Recorder::new(level, &built, self.frame_rate);
+            recorder.record(&built.world, &built.body, &vec![0.0; n], 0.0);
+            recorder.record_channel(&VOTE, &vec![0.0; n]);
+            let mut world = built.world;
+            let mut voters = [Voter::new(brain.as_mut(), &mut noise, n, sensors.len())];
+            self.episodes(
+                env,
+                &mut world,
+                &setting,
+                &sensors,
+                &mut voters,
+                &mut |world, actuation, votes, t| {
+                    recorder.record(world, &setting.body, actuation, t);
+                    recorder.record_channel(&VOTE, votes);
+                },
+            );
+            let [voter] = voters;
+            scores.push((env, voter.result.expect("every episode ends")?));
+            steps += setting.steps;
+            trace = trace.or(recorder.finish());
         }
-        metrics.insert("locomotion".into(), locomotion);
-        metrics.insert("sensing".into(), sensing);
-        metrics.insert("steps".into(), steps as f64);
-        Ok(Outcome {
-            fitness: fitness_values(&self.fitness.0, &metrics),
-            metrics,
-            steps,
-            units: grid.voxel_count(),
-            trace,
-        })
+        Ok(self.outcome(&scores, steps, grid.voxel_count(), trace))
+    }
+
+    fn episode_group(&self, robot: &dyn Robot) -> Option<String> {
+        // a random world depends on the evaluation's seed: such episodes run alone
+        (self.worlds == Worlds::Fixed)
+            .then(|| super::task::same_body_group(robot))
+            .flatten()
+    }
+
+    fn episode_batch(&self) -> usize {
+        LANES
+    }
+
+    fn run_episodes(&self, robots: &[&dyn Robot], seeds: &[u64]) -> Vec<Result<Outcome, EpisodeError>> {
+        let one_by_one = || crate::task::one_by_one(self, robots, seeds);
+        let batch = (robots.len() > 1 && self.worlds == Worlds::Fixed && self.validate().is_ok())
+            .then(|| prepare_batch(robots, "the affordance task"))
+            .flatten();
+        let Some(mut prepared) = batch else {
+            return one_by_one();
+        };
+        let first = &prepared[0];
+        let (grid, sensors) = (first.grid.clone(), first.sensors.clone());
+        let length = self.length(first.robot, &grid);
+        if prepared.iter().any(|p| self.length(p.robot, &p.grid) != length) {
+            return one_by_one();
+        }
+        let [w, h, _] = grid.extent();
+        let mut noises: Vec<ChaCha8Rng> = seeds
+            .iter()
+            .map(|&s| ChaCha8Rng::seed_from_u64(s ^ NOISE_STREAM))
+            .collect();
+        let mut ended: Vec<Option<EpisodeError>> = robots.iter().map(|_| None).collect();
+        let mut scores: Vec<Vec<(Environment, Scores)>> = robots.iter().map(|_| Vec::new()).collect();
+        let mut steps = 0;
+        for &env in &self.environments {
+            let built = match self.build(&grid, &aperture_world(env, length, w, h)) {
+                Ok(built) => built,
+                Err(_) => return one_by_one(),
+            };
+            let setting = self.setting(&built);
+            let n = setting.body.len();
+            let running: Vec<usize> = (0..robots.len()).filter(|&r| ended[r].is_none()).collect();
+            let mut brains: Vec<(usize, &mut Prepared, &mut ChaCha8Rng)> = prepared
+                .iter_mut()
+                .zip(noises.iter_mut())
+                .enumerate()
+                .filter(|(r, _)| running.contains(r))
+                .map(|(r, (p, noise))| (r, p, noise))
+                .collect();
+            for chunk in brains.chunks_mut(LANES) {
+                let Ok(mut world) = WorldLanes::<LANES>::of(&built.world) else {
+                    return one_by_one();
+                };
+                let robots_of_chunk: Vec<usize> = chunk.iter().map(|(r, _, _)| *r).collect();
+                let mut voters: Vec<Voter> = chunk
+                    .iter_mut()
+                    .map(|(_, p, noise)| Voter::new(p.brain.as_mut(), noise, n, sensors.len()))
+                    .collect();
+                self.episodes(env, &mut world, &setting, &sensors, &mut voters, &mut |_, _, _, _| {});
+                for (r, voter) in robots_of_chunk.into_iter().zip(voters) {
+                    match voter.result.expect("every episode ends") {
+                        Ok(s) => scores[r].push((env, s)),
+                        Err(e) => ended[r] = Some(e),
+                    }
+                }
+            }
+            steps += setting.steps;
+        }
+        scores
+            .iter()
+            .zip(ended)
+            .map(|(scores, ended)| match ended {
+                Some(e) => Err(e),
+                None => Ok(self.outcome(scores, steps, grid.voxel_count(), None)),
+            })
+            .collect()
     }
 }
 
@@ -519,6 +717,90 @@ mod tests {
             }),
             ..r.clone()
         })
+    }
+
+    /// Robots of `body` with Elman brains of random parameters (one seed each).
+    fn random_elmans(body: &str, seeds: std::ops::Range<u64>) -> Vec<Voxel3dRobot> {
+        let base = biased(body, 0.0, 0.0);
+        let base = base.downcast_ref::<Voxel3dRobot>().unwrap().clone();
+        let shape = base.brain_shape().unwrap();
+        seeds
+            .map(|seed| Voxel3dRobot {
+                brain: base.brain.with_random_parameters(seed, &shape).unwrap(),
+                ..base.clone()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_batch_in_lanes_gives_every_robot_the_bits_of_its_own_evaluation() {
+        // 6 robots: a chunk of 4 lanes and one of 2; each control, with its noise per seed, and
+        // the flying penalty (lanes penalised at different steps)
+        let robots = random_elmans("3d:starfish", 1..7);
+        let refs: Vec<&dyn Robot> = robots.iter().map(|r| r as &dyn Robot).collect();
+        let seeds = [11, 12, 13, 14, 15, 16];
+        let mut penalised = 0;
+        for (evolved, flying) in [
+            (Evolved::Both, false),
+            (Evolved::Affordance, true),
+            (Evolved::Locomotion, true),
+        ] {
+            let task = Affordance {
+                duration: 0.08,
+                evolved,
+                flying,
+                flying_seconds: 0.02,
+                ..Affordance::default()
+            };
+            assert!(task.episode_group(refs[0]).is_some());
+            let batch = task.run_episodes(&refs, &seeds);
+            let mut values = Vec::new();
+            for ((robot, &seed), laned) in refs.iter().zip(&seeds).zip(&batch) {
+                let alone = task
+                    .run_episode(*robot, seed, TraceLevel::None, &mut |_, _| {})
+                    .unwrap();
+                let laned = laned.as_ref().unwrap();
+                assert_eq!(laned.steps, alone.steps);
+                for (name, value) in &alone.metrics {
+                    assert_eq!(laned.metrics[name].to_bits(), value.to_bits(), "{evolved:?} {name}");
+                }
+                penalised += usize::from(alone.metrics["locomotion"] == task.d_max);
+                values.push(alone.metrics["locomotion-impassable"]);
+            }
+            values.sort_by(f64::total_cmp);
+            values.dedup();
+            if evolved == Evolved::Both {
+                assert!(values.len() >= 4, "the robots moved each its own way: {values:?}");
+            }
+        }
+        // the flying rule penalised some lanes (at their own steps), not all
+        assert!(penalised > 0 && penalised < 18, "{penalised}");
+        // bodies that touch the wall from the start (L = 2, as the test below): the votes count
+        let robots = random_elmans("3d:###/###/###/###", 1..6);
+        let refs: Vec<&dyn Robot> = robots.iter().map(|r| r as &dyn Robot).collect();
+        let task = Affordance {
+            duration: 0.03,
+            body_length: Some(2),
+            ..Affordance::default()
+        };
+        let batch = task.run_episodes(&refs, &seeds[..5]);
+        let mut sensing = Vec::new();
+        for ((robot, &seed), laned) in refs.iter().zip(&seeds).zip(&batch) {
+            let alone = task
+                .run_episode(*robot, seed, TraceLevel::None, &mut |_, _| {})
+                .unwrap();
+            assert_eq!(laned.as_ref().unwrap().metrics, alone.metrics);
+            sensing.push(alone.metrics["sensing-passable-left"]);
+        }
+        sensing.sort_by(f64::total_cmp);
+        sensing.dedup();
+        assert!(sensing.len() >= 2 && sensing.iter().any(|&s| s > 0.0), "{sensing:?}");
+        // random worlds depend on the seed: not batched
+        let random = Affordance {
+            worlds: Worlds::Random,
+            ..Affordance::default()
+        };
+        assert!(random.episode_group(refs[0]).is_none());
     }
 
     #[test]

@@ -15,6 +15,7 @@ mod robot;
 mod sensors;
 mod setup;
 mod task;
+mod worlds;
 
 pub use affordance::{decision, Affordance, Scores};
 pub use aperture::{aperture_world, random_aperture_world, shape_length, ApertureWorld, Environment};

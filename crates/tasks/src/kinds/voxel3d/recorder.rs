@@ -64,7 +64,7 @@ impl Recorder {
             return;
         }
         self.next += self.period * ((t - self.next) / self.period + 1e-9).floor().max(0.0) + self.period;
-        let c = centre(world, body);
+        let c = centre(world, body, 0);
         self.trace.times.push(t);
         self.trace.centers.push(Vec2::new(c.x, c.y));
         if self.level != TraceLevel::Full {

@@ -5,18 +5,22 @@
 //! computes, and each voxel's temperature is set to `amplitude × actuation` for the next step
 //! (voxcraft-sim evaluates its controller every physics step too).
 
-use super::physics::{Physics3d, MAX_STEPS};
+use super::physics::{Built, Physics3d, MAX_STEPS};
 use super::recorder::Recorder;
-use super::setup::{prepare, sense, Prepared};
+use super::robot::Voxel3dRobot;
+use super::setup::{prepare, prepare_batch, sense, Prepared, LANES};
+use super::worlds::Worlds;
 use crate::agent::{Agent, Robot};
 use crate::episode::EpisodeError;
 use crate::fitness::Fitness;
 use crate::outcome::{Outcome, TraceLevel};
-use crate::task::{check_objectives, fitness_values, task_field, Metrics, Objective, Task};
+use crate::task::{check_objectives, episode_steps, fitness_values, task_field, Metrics, Objective, Task};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
+use vsrlab_brain::Controller;
 use vsrlab_field::FieldError;
-use vsrlab_physics3d::{VoxelId, World};
+use vsrlab_physics3d::world_lanes::WorldLanes;
+use vsrlab_physics3d::VoxelId;
 
 /// What a 3D locomotion episode reports: the centre of mass's horizontal displacement (`distance`,
 /// and its `dx`, `dy`), its final height over the start (`dz`), mean horizontal speed, steps.
@@ -121,30 +125,171 @@ impl Task for Locomotion3d {
             mut brain,
             ..
         } = prepare(robot, "locomotion3d")?;
-        brain.reset();
-        let mut built = self.physics.build(&grid, &self.obstacles).map_err(task_field)?;
-        let (dt, n) = (built.dt, built.body.len());
-        let steps = crate::task::episode_steps(self.duration, dt);
-        let mut readings = vec![0.0; n * sensors.len()];
-        let mut actuation = vec![0.0; n];
+        let built = self.physics.build(&grid, &self.obstacles).map_err(task_field)?;
         let mut recorder = Recorder::new(level, &built, self.frame_rate);
-        let start = centre(&built.world, &built.body);
-        recorder.record(&built.world, &built.body, &actuation, 0.0);
-        for k in 1..=steps {
-            built
-                .world
-                .step(dt)
-                .map_err(|e| EpisodeError::Invalid(format!("episode failed at t = {:.4} s: {e}", k as f64 * dt)))?;
-            let t = k as f64 * dt;
-            sense(&built.world, &built.body, &sensors, t, &mut readings);
-            brain.control(t, &readings, &mut actuation);
-            for (&v, a) in built.body.iter().zip(&mut actuation) {
-                *a = a.clamp(-1.0, 1.0);
-                built.world.set_temperature(v, self.physics.amplitude * *a);
-            }
-            recorder.record(&built.world, &built.body, &actuation, t);
+        let Built {
+            mut world, body, dt, ..
+        } = built;
+        recorder.record(&world, &body, &vec![0.0; body.len()], 0.0);
+        let steps = crate::task::episode_steps(self.duration, dt);
+        let mut lanes = [Lane::new(brain.as_mut(), &body, &sensors)];
+        self.episodes(
+            &mut world,
+            &body,
+            &sensors,
+            &mut lanes,
+            dt,
+            &mut |world, actuation, t| recorder.record(world, &body, actuation, t),
+        );
+        let [lane] = lanes;
+        lane.result
+            .map(|moved| self.outcome(moved, steps, dt, body.len(), recorder.finish()))
+    }
+
+    fn episode_group(&self, robot: &dyn Robot) -> Option<String> {
+        same_body_group(robot)
+    }
+
+    fn episode_batch(&self) -> usize {
+        LANES
+    }
+
+    fn run_episodes(&self, robots: &[&dyn Robot], seeds: &[u64]) -> Vec<Result<Outcome, EpisodeError>> {
+        let one_by_one = || crate::task::one_by_one(self, robots, seeds);
+        let batch = (robots.len() > 1 && self.validate().is_ok())
+            .then(|| prepare_batch(robots, "locomotion3d"))
+            .flatten();
+        let Some(mut prepared) = batch else {
+            return one_by_one();
+        };
+        let Ok(built) = self.physics.build(&prepared[0].grid, &self.obstacles) else {
+            return one_by_one();
+        };
+        let (sensors, steps) = (prepared[0].sensors.clone(), episode_steps(self.duration, built.dt));
+        let mut results = Vec::with_capacity(robots.len());
+        for chunk in prepared.chunks_mut(LANES) {
+            let Ok(mut world) = WorldLanes::<LANES>::of(&built.world) else {
+                return one_by_one();
+            };
+            let mut lanes: Vec<Lane> = chunk
+                .iter_mut()
+                .map(|p| Lane::new(p.brain.as_mut(), &built.body, &sensors))
+                .collect();
+            self.episodes(
+                &mut world,
+                &built.body,
+                &sensors,
+                &mut lanes,
+                built.dt,
+                &mut |_, _, _| {},
+            );
+            let n = built.body.len();
+            results.extend(
+                lanes
+                    .into_iter()
+                    .map(|lane| lane.result.map(|moved| self.outcome(moved, steps, built.dt, n, None))),
+            );
         }
-        let moved = centre(&built.world, &built.body) - start;
+        results
+    }
+}
+
+/// The batch group of a 3D robot: robots of the same body grid can share a laned world.
+pub(crate) fn same_body_group(robot: &dyn Robot) -> Option<String> {
+    let robot = robot.description()?.as_any().downcast_ref::<Voxel3dRobot>()?;
+    robot.grid().ok().map(|grid| format!("voxel3d {grid:?}"))
+}
+
+/// One episode of a laned loop: its brain, buffers, and how it ended (the body's displacement,
+/// or the error that stopped it).
+struct Lane<'a> {
+    brain: &'a mut dyn Controller,
+    readings: Vec<f64>,
+    actuation: Vec<f64>,
+    start: DVec3,
+    result: Result<DVec3, EpisodeError>,
+    running: bool,
+}
+
+impl<'a> Lane<'a> {
+    fn new(brain: &'a mut dyn Controller, body: &[VoxelId], sensors: &[super::Sensor3]) -> Self {
+        brain.reset();
+        Lane {
+            brain,
+            readings: vec![0.0; body.len() * sensors.len()],
+            actuation: vec![0.0; body.len()],
+            start: DVec3::ZERO,
+            result: Ok(DVec3::ZERO),
+            running: true,
+        }
+    }
+
+    /// Ends the lane with `error` at step `k`, as the scalar loop words it.
+    fn fail(&mut self, k: u64, dt: f64, error: &vsrlab_physics3d::Physics3dError) {
+        self.result = Err(EpisodeError::Invalid(format!(
+            "episode failed at t = {:.4} s: {error}",
+            k as f64 * dt
+        )));
+        self.running = false;
+    }
+}
+
+impl Locomotion3d {
+    /// The episode loop over one world or lanes of worlds: every lane steps, senses, controls
+    /// and actuates as one episode; `record(world, lane 0's actuation, t)` after every step.
+    /// Lanes beyond `lanes.len()` are idle.
+    fn episodes<W: Worlds>(
+        &self,
+        world: &mut W,
+        body: &[VoxelId],
+        sensors: &[super::Sensor3],
+        lanes: &mut [Lane],
+        dt: f64,
+        record: &mut dyn FnMut(&W, &[f64], f64),
+    ) {
+        for (l, lane) in lanes.iter_mut().enumerate() {
+            lane.start = centre(world, body, l);
+        }
+        let steps = episode_steps(self.duration, dt);
+        for k in 1..=steps {
+            if let Err(e) = world.step(dt) {
+                lanes.iter_mut().filter(|l| l.running).for_each(|l| l.fail(k, dt, &e));
+                return;
+            }
+            let t = k as f64 * dt;
+            for (l, lane) in lanes.iter_mut().enumerate().filter(|(_, lane)| lane.running) {
+                if let Some(e) = world.diverged(l) {
+                    lane.fail(k, dt, &e);
+                    continue;
+                }
+                sense(world, l, body, sensors, t, &mut lane.readings);
+                lane.brain.control(t, &lane.readings, &mut lane.actuation);
+                for (&v, a) in body.iter().zip(&mut lane.actuation) {
+                    *a = a.clamp(-1.0, 1.0);
+                    world.set_temperature(v, l, self.physics.amplitude * *a);
+                }
+            }
+            if let Some(first) = lanes.first() {
+                record(world, &first.actuation, t);
+            }
+            if lanes.iter().all(|l| !l.running) {
+                return;
+            }
+        }
+        for (l, lane) in lanes.iter_mut().enumerate().filter(|(_, lane)| lane.running) {
+            lane.result = Ok(centre(world, body, l) - lane.start);
+        }
+    }
+
+    /// The outcome of an episode whose body moved by `moved`.
+    fn outcome(
+        &self,
+        moved: DVec3,
+        steps: u64,
+        dt: f64,
+        units: usize,
+        trace: Option<crate::outcome::Trace>,
+    ) -> Outcome {
         let seconds = steps as f64 * dt;
         let distance = moved.truncate().length();
         let metrics: Metrics = [
@@ -158,19 +303,20 @@ impl Task for Locomotion3d {
         .into_iter()
         .map(|(k, v)| (k.to_string(), v))
         .collect();
-        Ok(Outcome {
+        Outcome {
             fitness: fitness_values(&self.fitness.0, &metrics),
             metrics,
             steps,
-            units: n,
-            trace: recorder.finish(),
-        })
+            units,
+            trace,
+        }
     }
 }
 
-/// The centre of mass of the body's voxels (all of one material: their mean position).
-pub(crate) fn centre(world: &World, body: &[VoxelId]) -> DVec3 {
-    body.iter().map(|&v| world.position(v)).sum::<DVec3>() / body.len().max(1) as f64
+/// The centre of mass of the body's voxels in lane `lane` (all of one material: their mean
+/// position).
+pub(crate) fn centre<W: Worlds + ?Sized>(world: &W, body: &[VoxelId], lane: usize) -> DVec3 {
+    body.iter().map(|&v| world.position(v, lane)).sum::<DVec3>() / body.len().max(1) as f64
 }
 
 #[cfg(test)]
@@ -187,6 +333,60 @@ mod tests {
             preset: None,
         })
         .unwrap()
+    }
+
+    /// Robots of one body with brains of their own (random parameters from `seed`).
+    fn quadrupeds(brain: &str, seeds: std::ops::Range<u64>) -> Vec<Voxel3dRobot> {
+        let base = robot("3d:quadruped", brain);
+        let base = base
+            .as_robot()
+            .description()
+            .and_then(|d| d.as_any().downcast_ref::<Voxel3dRobot>())
+            .unwrap()
+            .clone();
+        let shape = base.brain_shape().unwrap();
+        seeds
+            .map(|seed| Voxel3dRobot {
+                brain: base.brain.with_random_parameters(seed, &shape).unwrap(),
+                ..base.clone()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_batch_in_lanes_gives_every_robot_the_bits_of_its_own_episode() {
+        let task = TaskSpec::parse("locomotion3d:0.1").unwrap();
+        let task = task.task();
+        // 6 robots: a full chunk of 4 lanes and a chunk of 2 with 2 idle lanes
+        let robots = quadrupeds("mlp", 1..7);
+        let refs: Vec<&dyn Robot> = robots.iter().map(|r| r as &dyn Robot).collect();
+        let groups: Vec<Option<String>> = refs.iter().map(|r| task.episode_group(*r)).collect();
+        assert!(groups[0].is_some() && groups.iter().all(|g| *g == groups[0]));
+        let seeds = [3, 1, 4, 1, 5, 9];
+        let batch = task.run_episodes(&refs, &seeds);
+        let mut distances = Vec::new();
+        for ((robot, &seed), laned) in refs.iter().zip(&seeds).zip(&batch) {
+            let alone = task
+                .run_episode(*robot, seed, TraceLevel::None, &mut |_, _| {})
+                .unwrap();
+            let laned = laned.as_ref().unwrap();
+            assert_eq!(laned.steps, alone.steps);
+            assert_eq!(
+                laned.fitness.iter().map(|f| f.to_bits()).collect::<Vec<_>>(),
+                alone.fitness.iter().map(|f| f.to_bits()).collect::<Vec<_>>()
+            );
+            for (name, value) in &alone.metrics {
+                assert_eq!(laned.metrics[name].to_bits(), value.to_bits(), "{name}");
+            }
+            distances.push(alone.metrics["distance"]);
+        }
+        // the robots moved, each its own way (not one episode compared with itself)
+        distances.sort_by(f64::total_cmp);
+        distances.dedup();
+        assert_eq!(distances.len(), 6, "{distances:?}");
+        // another body is another group
+        let other = robot("3d:worm", "mlp");
+        assert_ne!(task.episode_group(other.as_robot()), groups[0]);
     }
 
     #[test]

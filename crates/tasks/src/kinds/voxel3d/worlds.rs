@@ -1,0 +1,96 @@
+//! What a 3D episode loop needs of its world, whether one episode (`World`) or N episodes of one
+//! body shape stepped together in population lanes (`WorldLanes`, bit for bit the scalar world
+//! in every lane): so that one loop serves both.
+
+use glam::DVec3;
+use vsrlab_physics3d::world_lanes::WorldLanes;
+use vsrlab_physics3d::{Physics3dError, VoxelId, World};
+
+/// One or several episodes of one body in one world.
+pub(crate) trait Worlds {
+    /// One step of every episode; an error fails every episode (a lane that diverges alone is
+    /// reported by [`Worlds::diverged`]).
+    fn step(&mut self, dt: f64) -> Result<(), Physics3dError>;
+    /// Lane `lane`'s divergence, if it diverged while the others stepped on.
+    fn diverged(&self, lane: usize) -> Option<Physics3dError>;
+    /// Voxel `v`'s centre in lane `lane`.
+    fn position(&self, v: VoxelId, lane: usize) -> DVec3;
+    /// Voxel `v`'s velocity in lane `lane`.
+    fn velocity(&self, v: VoxelId, lane: usize) -> DVec3;
+    /// Whether voxel `v` touched another voxel in lane `lane` in the last step.
+    fn touches_voxel(&self, v: VoxelId, lane: usize) -> bool;
+    /// Whether voxel `v` reaches into the floor in lane `lane`.
+    fn touches_floor(&self, v: VoxelId, lane: usize) -> bool;
+    /// Sets voxel `v`'s temperature in lane `lane`.
+    fn set_temperature(&mut self, v: VoxelId, lane: usize, temperature: f64);
+    /// Whether some pair of voxels that touched in lane `lane` in the last step passes `test`.
+    fn any_contact(&self, lane: usize, test: &dyn Fn(VoxelId, VoxelId) -> bool) -> bool;
+}
+
+impl Worlds for World {
+    fn step(&mut self, dt: f64) -> Result<(), Physics3dError> {
+        World::step(self, dt)
+    }
+
+    fn diverged(&self, _lane: usize) -> Option<Physics3dError> {
+        None
+    }
+
+    fn position(&self, v: VoxelId, _lane: usize) -> DVec3 {
+        World::position(self, v)
+    }
+
+    fn velocity(&self, v: VoxelId, _lane: usize) -> DVec3 {
+        World::velocity(self, v)
+    }
+
+    fn touches_voxel(&self, v: VoxelId, _lane: usize) -> bool {
+        World::touches_voxel(self, v)
+    }
+
+    fn touches_floor(&self, v: VoxelId, _lane: usize) -> bool {
+        World::touches_floor(self, v)
+    }
+
+    fn set_temperature(&mut self, v: VoxelId, _lane: usize, temperature: f64) {
+        World::set_temperature(self, v, temperature)
+    }
+
+    fn any_contact(&self, _lane: usize, test: &dyn Fn(VoxelId, VoxelId) -> bool) -> bool {
+        self.contacts().any(|(a, b)| test(a, b))
+    }
+}
+
+impl<const N: usize> Worlds for WorldLanes<N> {
+    fn step(&mut self, dt: f64) -> Result<(), Physics3dError> {
+        WorldLanes::step(self, dt)
+    }
+
+    fn diverged(&self, lane: usize) -> Option<Physics3dError> {
+        WorldLanes::diverged(self, lane)
+    }
+
+    fn position(&self, v: VoxelId, lane: usize) -> DVec3 {
+        WorldLanes::position(self, v, lane)
+    }
+
+    fn velocity(&self, v: VoxelId, lane: usize) -> DVec3 {
+        WorldLanes::velocity(self, v, lane)
+    }
+
+    fn touches_voxel(&self, v: VoxelId, lane: usize) -> bool {
+        WorldLanes::touches_voxel(self, v, lane)
+    }
+
+    fn touches_floor(&self, v: VoxelId, lane: usize) -> bool {
+        WorldLanes::touches_floor(self, v, lane)
+    }
+
+    fn set_temperature(&mut self, v: VoxelId, lane: usize, temperature: f64) {
+        WorldLanes::set_temperature(self, v, lane, temperature)
+    }
+
+    fn any_contact(&self, lane: usize, test: &dyn Fn(VoxelId, VoxelId) -> bool) -> bool {
+        self.contacts(lane).any(|(a, b)| test(a, b))
+    }
+}

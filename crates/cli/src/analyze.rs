@@ -19,9 +19,10 @@ pub struct AnalyzeArgs {
     /// enables the species figures and the Inverse Simpson Index.
     #[arg(long)]
     pub labels: Option<PathBuf>,
-    /// Output folder for figures and tables.
-    #[arg(long, default_value = "analysis")]
-    pub out: PathBuf,
+    /// Output folder for figures and tables (default: `analysis` inside the results folder, or
+    /// inside the folder that holds all of them when several are given).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
     /// With --labels: individuals replayed per snapshot (evenly spread over the population;
     /// 0 = all). Every individual is a full episode, so this bounds the cost.
     #[arg(long, default_value_t = 0)]
@@ -44,10 +45,11 @@ pub struct AnalyzeArgs {
 
 impl From<AnalyzeArgs> for AnalyzeOptions {
     fn from(a: AnalyzeArgs) -> AnalyzeOptions {
+        let out = a.out.unwrap_or_else(|| default_out(&a.results));
         AnalyzeOptions {
+            out,
             results: a.results,
             labels: a.labels,
-            out: a.out,
             sample: a.sample,
             folds: a.folds,
             seed: a.seed,
@@ -55,6 +57,25 @@ impl From<AnalyzeArgs> for AnalyzeOptions {
             group_by: a.group_by,
         }
     }
+}
+
+/// `analysis` inside the one results folder, or inside the deepest folder that holds all of
+/// them (the current folder when they share none).
+fn default_out(results: &[PathBuf]) -> PathBuf {
+    let mut common: Option<PathBuf> = None;
+    for r in results {
+        let r = std::path::absolute(r).unwrap_or_else(|_| r.clone());
+        common = Some(match common {
+            None => r,
+            Some(c) => c
+                .components()
+                .zip(r.components())
+                .take_while(|(a, b)| a == b)
+                .map(|(a, _)| a)
+                .collect(),
+        });
+    }
+    common.unwrap_or_default().join("analysis")
 }
 
 pub fn run(args: AnalyzeArgs) -> Result<(), String> {

@@ -265,7 +265,13 @@ fn run_one(experiment: &Experiment, out: &Path, a: &RunArgs) -> Result<(), Strin
     let result = run_configured(experiment, out, &options, &mut bars);
     bars.overall.finish_and_clear();
     let summaries = result.map_err(|e| e.to_string())?;
-    let best = summaries.iter().filter_map(|s| s.best_fitness).fold(f64::NAN, f64::max);
+    // the best of the runs' bests by the first objective's sense (smaller is better when minimised)
+    let sense = experiment.senses().first().copied().unwrap_or_default();
+    let best = summaries
+        .iter()
+        .filter_map(|s| s.best_fitness)
+        .max_by(|a, b| sense.compare(*a, *b))
+        .unwrap_or(f64::NAN);
     println!(
         "{name}: {} run(s) done in {:.1} s; best fitness {}; results in {}",
         summaries.len(),

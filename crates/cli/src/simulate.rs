@@ -7,9 +7,6 @@ use std::time::Instant;
 use vsrlab_tasks::files::{load_any_robot, save_any_robot_as};
 use vsrlab_tasks::{episode, kinds, AnyRobot, RobotArgs, RobotArgsError, TaskSpec, TraceLevel};
 
-/// Episode length when neither --duration nor --task-of gives one.
-const DEFAULT_DURATION: f64 = 30.0;
-
 /// Arguments of `vsrlab simulate`.
 #[derive(Args, Debug)]
 pub struct SimulateArgs {
@@ -51,7 +48,8 @@ pub struct SimulateArgs {
     /// --task; --duration, --transient, --substeps and --damage still apply when given.
     #[arg(long, conflicts_with = "task")]
     pub task_of: Option<PathBuf>,
-    /// Episode length in simulated seconds (default 30, or the --task-of experiment's).
+    /// Episode length in simulated seconds (default: the task's own, e.g. 30 s for locomotion,
+    /// `locomotion3d:2`'s 2 s, or the --task-of experiment's).
     #[arg(long, value_parser = finite_number)]
     pub duration: Option<f64>,
     /// Initial seconds excluded from distance and velocity (locomotion).
@@ -134,16 +132,17 @@ pub struct PhysicsOptions<'a> {
     pub solver: Option<&'a str>,
 }
 
-/// The task of `--task`, with the episode settings of the other options.
+/// The task of `--task`, with the episode settings of the other options (no `duration`: the
+/// task's own length).
 pub fn task_from_args(
     task: &str,
-    duration: f64,
+    duration: Option<f64>,
     transient: Option<f64>,
     physics: PhysicsOptions,
     damage: Option<&str>,
 ) -> Result<TaskSpec, String> {
     let spec = TaskSpec::parse(task).map_err(|e| format!("--task: {e}"))?;
-    with_episode_settings(spec, Some(duration), transient, physics, damage)
+    with_episode_settings(spec, duration, transient, physics, damage)
 }
 
 /// `spec` starting with the robot's left edge at `x`, when given.
@@ -333,13 +332,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
             physics,
             a.damage.as_deref(),
         )?,
-        None => task_from_args(
-            &a.task,
-            a.duration.unwrap_or(DEFAULT_DURATION),
-            a.transient,
-            physics,
-            a.damage.as_deref(),
-        )?,
+        None => task_from_args(&a.task, a.duration, a.transient, physics, a.damage.as_deref())?,
     };
     let task = with_initial_x(task, a.initial_x)?;
     let duration = task.task().duration();

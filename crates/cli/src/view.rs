@@ -42,7 +42,7 @@ fn task_near(path: &Path) -> Result<TaskSpec, String> {
             return vsrlab_experiment::config::load_task(dir).map_err(|e| e.to_string());
         }
     }
-    crate::simulate::task_from_args("locomotion:flat", 30.0, None, Default::default(), None)
+    crate::simulate::task_from_args("locomotion:flat", Some(30.0), None, Default::default(), None)
 }
 
 /// A replay made by simulating a robot file (checked now, simulated when first shown).

@@ -45,6 +45,16 @@ fn label_then_analyze_two_settings() {
     let results = d.join("out");
     let results = results.to_str().unwrap();
 
+    // without --out, the analysis goes inside the results folder, not the current one
+    let out = Command::new(VSRLAB)
+        .args(["analyze", results])
+        .current_dir(d)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(d.join("out/analysis/summary.md").is_file());
+    assert!(!d.join("analysis").exists());
+
     let plain = d.join("plain");
     vsrlab(&["analyze", results, "--out", plain.to_str().unwrap()]);
     for f in ["fitness", "best-boxplot", "descriptors", "pca-best"] {

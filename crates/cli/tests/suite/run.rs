@@ -467,3 +467,53 @@ fn the_graph_chapter_experiments_validate_and_resume_names_its_missing_robot() {
     // the resume protocol reads a run's best robot, not made yet
     assert_needs_a_best_robot(&resume[0], "genotype.initial");
 }
+
+/// The end line of `vsrlab run` picks the best of the runs' bests by the objective's sense: the
+/// smallest when it is minimised (issue 56, item 3: it printed the largest).
+#[test]
+fn the_summary_of_a_minimised_objective_reports_the_smallest_best() {
+    let dir = tempfile::tempdir().unwrap();
+    let config = dir.path().join("min.toml");
+    let text = EXPERIMENT
+        .replace("runs = 1", "runs = 3")
+        .replace(
+            "duration = 3.0",
+            "duration = 1.0\nfitness = [{ metric = \"distance\", sense = \"minimize\" }]",
+        )
+        .replace("generations = 60", "generations = 2");
+    std::fs::write(&config, text).unwrap();
+    let out = vsrlab(&[
+        "run",
+        config.to_str().unwrap(),
+        "--out",
+        dir.path().join("out").to_str().unwrap(),
+    ]);
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(out.status.success(), "{text}");
+    let number = |s: &str| {
+        s.split_whitespace()
+            .next()
+            .unwrap()
+            .trim_end_matches(';')
+            .parse::<f64>()
+            .unwrap()
+    };
+    let runs: Vec<f64> = text
+        .lines()
+        .filter_map(|l| l.split(": best ").nth(1))
+        .map(number)
+        .collect();
+    let best = text
+        .lines()
+        .find_map(|l| l.split("best fitness ").nth(1))
+        .map(number)
+        .unwrap();
+    assert_eq!(runs.len(), 3, "{text}");
+    let smallest = runs.iter().copied().fold(f64::INFINITY, f64::min);
+    assert!(runs.iter().any(|&r| r > smallest), "the runs differ: {runs:?}");
+    assert_eq!(best, smallest, "{text}");
+}

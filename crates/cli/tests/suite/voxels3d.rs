@@ -152,3 +152,31 @@ fn an_affordance_episode_draws_its_votes_over_time_and_a_brain_without_votes_is_
     );
     assert!(!dir.path().join("none.png").exists());
 }
+
+/// A task's own length (`locomotion3d:0.05`) is the episode's, unless --duration is given
+/// (issue 56, item 2: the CLI's default of 30 s used to win).
+#[test]
+fn a_tasks_own_length_holds_unless_duration_is_given() {
+    let steps = |extra: &[&str]| {
+        let mut args = vec![
+            "simulate",
+            "--body",
+            "3d:quadruped",
+            "--task",
+            "locomotion3d:0.05",
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        let text = ok(&args);
+        let value: serde_json::Value = serde_json::from_str(&text).unwrap();
+        (value["duration"].as_f64().unwrap(), value["steps"].as_f64().unwrap())
+    };
+    let (own, own_steps) = steps(&[]);
+    assert_eq!(own, 0.05);
+    let (given, given_steps) = steps(&["--duration", "0.1"]);
+    assert_eq!(given, 0.1);
+    assert!(
+        (given_steps / own_steps - 2.0).abs() < 0.01,
+        "{own_steps} {given_steps}"
+    );
+}

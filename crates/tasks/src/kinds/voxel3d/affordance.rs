@@ -734,19 +734,16 @@ mod tests {
 
     #[test]
     fn a_batch_in_lanes_gives_every_robot_the_bits_of_its_own_evaluation() {
-        // 6 robots: a chunk of 4 lanes and one of 2; each control, with its noise per seed, and
-        // the flying penalty (lanes penalised at different steps)
-        let robots = random_elmans("3d:starfish", 1..7);
+        // 5 robots: a chunk of 4 lanes and one of 1 (3 idle lanes); each control, with its noise
+        // per seed, and the flying penalty (lanes penalised at different steps)
+        let robots = random_elmans("3d:starfish", 1..6);
         let refs: Vec<&dyn Robot> = robots.iter().map(|r| r as &dyn Robot).collect();
-        let seeds = [11, 12, 13, 14, 15, 16];
+        let seeds = [11, 12, 13, 14, 15];
         let mut penalised = 0;
-        for (evolved, flying) in [
-            (Evolved::Both, false),
-            (Evolved::Affordance, true),
-            (Evolved::Locomotion, true),
-        ] {
+        // (EvolvedBoth runs below, with bodies at the wall)
+        for (evolved, flying) in [(Evolved::Affordance, true), (Evolved::Locomotion, false)] {
             let task = Affordance {
-                duration: 0.08,
+                duration: 0.04,
                 evolved,
                 flying,
                 flying_seconds: 0.02,
@@ -769,21 +766,21 @@ mod tests {
             }
             values.sort_by(f64::total_cmp);
             values.dedup();
-            if evolved == Evolved::Both {
+            if evolved == Evolved::Locomotion {
                 assert!(values.len() >= 4, "the robots moved each its own way: {values:?}");
             }
         }
         // the flying rule penalised some lanes (at their own steps), not all
-        assert!(penalised > 0 && penalised < 18, "{penalised}");
+        assert!(penalised > 0 && penalised < 10, "{penalised}");
         // bodies that touch the wall from the start (L = 2, as the test below): the votes count
-        let robots = random_elmans("3d:###/###/###/###", 1..6);
+        let robots = random_elmans("3d:###/###/###/###", 1..5);
         let refs: Vec<&dyn Robot> = robots.iter().map(|r| r as &dyn Robot).collect();
         let task = Affordance {
-            duration: 0.03,
+            duration: 0.02,
             body_length: Some(2),
             ..Affordance::default()
         };
-        let batch = task.run_episodes(&refs, &seeds[..5]);
+        let batch = task.run_episodes(&refs, &seeds[..4]);
         let mut sensing = Vec::new();
         for ((robot, &seed), laned) in refs.iter().zip(&seeds).zip(&batch) {
             let alone = task

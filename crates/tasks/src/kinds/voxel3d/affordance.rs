@@ -722,14 +722,7 @@ mod tests {
     /// Robots of `body` with Elman brains of random parameters (one seed each).
     fn random_elmans(body: &str, seeds: std::ops::Range<u64>) -> Vec<Voxel3dRobot> {
         let base = biased(body, 0.0, 0.0);
-        let base = base.downcast_ref::<Voxel3dRobot>().unwrap().clone();
-        let shape = base.brain_shape().unwrap();
-        seeds
-            .map(|seed| Voxel3dRobot {
-                brain: base.brain.with_random_parameters(seed, &shape).unwrap(),
-                ..base.clone()
-            })
-            .collect()
+        super::super::robot::with_random_brains(base.downcast_ref::<Voxel3dRobot>().unwrap(), seeds)
     }
 
     #[test]

@@ -90,3 +90,16 @@ impl Robot for Voxel3dRobot {
         Some(self)
     }
 }
+
+/// Copies of `base`, each with its brain's parameters drawn from one of `seeds` (tests of batches
+/// of same-shape robots).
+#[cfg(test)]
+pub(crate) fn with_random_brains(base: &Voxel3dRobot, seeds: std::ops::Range<u64>) -> Vec<Voxel3dRobot> {
+    let shape = base.brain_shape().unwrap();
+    seeds
+        .map(|seed| Voxel3dRobot {
+            brain: base.brain.with_random_parameters(seed, &shape).unwrap(),
+            ..base.clone()
+        })
+        .collect()
+}

@@ -341,16 +341,8 @@ mod tests {
         let base = base
             .as_robot()
             .description()
-            .and_then(|d| d.as_any().downcast_ref::<Voxel3dRobot>())
-            .unwrap()
-            .clone();
-        let shape = base.brain_shape().unwrap();
-        seeds
-            .map(|seed| Voxel3dRobot {
-                brain: base.brain.with_random_parameters(seed, &shape).unwrap(),
-                ..base.clone()
-            })
-            .collect()
+            .and_then(|d| d.as_any().downcast_ref::<Voxel3dRobot>());
+        super::super::robot::with_random_brains(base.unwrap(), seeds)
     }
 
     #[test]

@@ -3,7 +3,7 @@
 //! laned copies stepping 4 or 8 episodes at once (bit-identical per lane: `link_lanes::tests`,
 //! `voxel_lanes::tests`, `world_lanes::tests`).
 //!
-//! `cargo run --release -p vsrlab-physics3d --example lanes3d [updates]`
+//! `cargo run --release -p vsrlab-physics3d --features bench --example lanes3d [updates]`
 
 use vsrlab_physics3d::{link_lanes, voxel_lanes, world_lanes};
 

@@ -27,6 +27,7 @@ impl<const N: usize> V3<N> {
     }
 
     /// Sets lane `l`.
+    #[cfg(any(test, feature = "bench"))]
     pub fn set_lane(&mut self, l: usize, v: glam::DVec3) {
         (self.x.0[l], self.y.0[l], self.z.0[l]) = (v.x, v.y, v.z);
     }
@@ -105,6 +106,7 @@ impl<const N: usize> Q<N> {
     }
 
     /// Sets lane `l`.
+    #[cfg(any(test, feature = "bench"))]
     pub fn set_lane(&mut self, l: usize, q: glam::DQuat) {
         (self.x.0[l], self.y.0[l], self.z.0[l], self.w.0[l]) = (q.x, q.y, q.z, q.w);
     }

@@ -345,105 +345,115 @@ fn align_to_x<const N: usize>(d: V3<N>) -> Q<N> {
     Q::select(is_zero, Q::splat(glam::DQuat::IDENTITY), aligned)
 }
 
-/// Times link updates of one scalar link per episode against laned links of 4 and 8 episodes
-/// (`--example lanes3d`): nanoseconds per link update and episode for each, on `updates`
-/// updates of random bends (both modes met), with every lane checked against the scalar bits.
-/// Returns `(scalar, four lanes, eight lanes)`.
-pub fn benchmark(updates: usize) -> (f64, f64, f64) {
-    let scalar = time_scalar(updates);
-    let four = time_lanes::<4>(updates);
-    let eight = time_lanes::<8>(updates);
-    (scalar, four, eight)
-}
+#[cfg(feature = "bench")]
+pub use bench::benchmark;
 
-/// The ends of update `i` in lane `l`: a deterministic spread of bends and stretches.
-fn bench_end(i: usize, l: usize, positive: bool) -> crate::link::End {
-    let phase = (i * 7 + l * 13) as f64;
-    let bend = [0.002, 0.02, 0.3][(i / 64) % 3] * (1.0 + 0.1 * l as f64);
-    let wobble = glam::DVec3::new((phase * 0.37).sin(), (phase * 0.71).cos(), (phase * 0.13).sin()) * bend;
-    let at = if positive {
-        glam::DVec3::new(0.01, 0.0, 0.0)
-    } else {
-        glam::DVec3::ZERO
-    };
-    crate::link::End {
-        pos: at + wobble * 0.01,
-        orient: crate::quat::from_rotation_vector(wobble),
-        damping: 1.0,
+/// The timings of `--example lanes3d` (feature `bench`: the 8-lane and AVX-512 forms are
+/// compiled only for it).
+#[cfg(feature = "bench")]
+mod bench {
+    use super::*;
+
+    /// Times link updates of one scalar link per episode against laned links of 4 and 8 episodes
+    /// (`--example lanes3d`): nanoseconds per link update and episode for each, on `updates`
+    /// updates of random bends (both modes met), with every lane checked against the scalar bits.
+    /// Returns `(scalar, four lanes, eight lanes)`.
+    pub fn benchmark(updates: usize) -> (f64, f64, f64) {
+        let scalar = time_scalar(updates);
+        let four = time_lanes::<4>(updates);
+        let eight = time_lanes::<8>(updates);
+        (scalar, four, eight)
     }
-}
 
-fn time_scalar(updates: usize) -> f64 {
-    let k = LinkConstants::new(1e6, 1e6, 0.01);
-    let ends: Vec<_> = (0..updates)
-        .map(|i| (bench_end(i, 0, false), bench_end(i, 0, true)))
-        .collect();
-    let mut link = crate::link::Link::new(0, 1, Axis::X, k, 1e-4, 0.01);
-    let start = std::time::Instant::now();
-    for (a, b) in &ends {
-        link.update(a, b);
-        std::hint::black_box(&link.force_pos);
-    }
-    start.elapsed().as_secs_f64() * 1e9 / updates as f64
-}
-
-fn time_lanes<const N: usize>(updates: usize) -> f64 {
-    let k = LinkConstants::new(1e6, 1e6, 0.01);
-    let lanes_of = |i: usize, positive: bool| {
-        let mut e = EndLanes {
-            pos: V3::splat(glam::DVec3::ZERO),
-            orient: Q::splat(glam::DQuat::IDENTITY),
-            damping: F64s::splat(0.0),
+    /// The ends of update `i` in lane `l`: a deterministic spread of bends and stretches.
+    fn bench_end(i: usize, l: usize, positive: bool) -> crate::link::End {
+        let phase = (i * 7 + l * 13) as f64;
+        let bend = [0.002, 0.02, 0.3][(i / 64) % 3] * (1.0 + 0.1 * l as f64);
+        let wobble = glam::DVec3::new((phase * 0.37).sin(), (phase * 0.71).cos(), (phase * 0.13).sin()) * bend;
+        let at = if positive {
+            glam::DVec3::new(0.01, 0.0, 0.0)
+        } else {
+            glam::DVec3::ZERO
         };
-        for l in 0..N {
-            let end = bench_end(i, l, positive);
-            e.pos.set_lane(l, end.pos);
-            e.orient.set_lane(l, end.orient);
-            e.damping.0[l] = end.damping;
+        crate::link::End {
+            pos: at + wobble * 0.01,
+            orient: crate::quat::from_rotation_vector(wobble),
+            damping: 1.0,
         }
-        e
-    };
-    let ends: Vec<_> = (0..updates).map(|i| (lanes_of(i, false), lanes_of(i, true))).collect();
-    let mut link = LinkLanes::<N>::new(Axis::X, k, 1e-4, F64s::splat(0.01));
-    let start = std::time::Instant::now();
-    update_all(&mut link, &ends);
-    start.elapsed().as_secs_f64() * 1e9 / (updates * N) as f64
-}
+    }
 
-/// The laned updates, compiled for the best vector unit this CPU has (the same bits on each).
-fn update_all<const N: usize>(link: &mut LinkLanes<N>, ends: &[(EndLanes<N>, EndLanes<N>)]) {
+    fn time_scalar(updates: usize) -> f64 {
+        let k = LinkConstants::new(1e6, 1e6, 0.01);
+        let ends: Vec<_> = (0..updates)
+            .map(|i| (bench_end(i, 0, false), bench_end(i, 0, true)))
+            .collect();
+        let mut link = crate::link::Link::new(0, 1, Axis::X, k, 1e-4, 0.01);
+        let start = std::time::Instant::now();
+        for (a, b) in &ends {
+            link.update(a, b);
+            std::hint::black_box(&link.force_pos);
+        }
+        start.elapsed().as_secs_f64() * 1e9 / updates as f64
+    }
+
+    fn time_lanes<const N: usize>(updates: usize) -> f64 {
+        let k = LinkConstants::new(1e6, 1e6, 0.01);
+        let lanes_of = |i: usize, positive: bool| {
+            let mut e = EndLanes {
+                pos: V3::splat(glam::DVec3::ZERO),
+                orient: Q::splat(glam::DQuat::IDENTITY),
+                damping: F64s::splat(0.0),
+            };
+            for l in 0..N {
+                let end = bench_end(i, l, positive);
+                e.pos.set_lane(l, end.pos);
+                e.orient.set_lane(l, end.orient);
+                e.damping.0[l] = end.damping;
+            }
+            e
+        };
+        let ends: Vec<_> = (0..updates).map(|i| (lanes_of(i, false), lanes_of(i, true))).collect();
+        let mut link = LinkLanes::<N>::new(Axis::X, k, 1e-4, F64s::splat(0.01));
+        let start = std::time::Instant::now();
+        update_all(&mut link, &ends);
+        start.elapsed().as_secs_f64() * 1e9 / (updates * N) as f64
+    }
+
+    /// The laned updates, compiled for the best vector unit this CPU has (the same bits on each).
+    fn update_all<const N: usize>(link: &mut LinkLanes<N>, ends: &[(EndLanes<N>, EndLanes<N>)]) {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if is_x86_feature_detected!("avx512f") {
+                // SAFETY: the CPU supports AVX-512F.
+                return unsafe { update_all_avx512(link, ends) };
+            }
+            if is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU supports AVX2.
+                return unsafe { update_all_avx2(link, ends) };
+            }
+        }
+        update_all_portable(link, ends);
+    }
+
+    #[inline(always)]
+    fn update_all_portable<const N: usize>(link: &mut LinkLanes<N>, ends: &[(EndLanes<N>, EndLanes<N>)]) {
+        for (a, b) in ends {
+            link.update(a, b);
+            std::hint::black_box(&link.force_pos);
+        }
+    }
+
     #[cfg(target_arch = "x86_64")]
-    {
-        if is_x86_feature_detected!("avx512f") {
-            // SAFETY: the CPU supports AVX-512F.
-            return unsafe { update_all_avx512(link, ends) };
-        }
-        if is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU supports AVX2.
-            return unsafe { update_all_avx2(link, ends) };
-        }
+    #[target_feature(enable = "avx2")]
+    unsafe fn update_all_avx2<const N: usize>(link: &mut LinkLanes<N>, ends: &[(EndLanes<N>, EndLanes<N>)]) {
+        update_all_portable(link, ends);
     }
-    update_all_portable(link, ends);
-}
 
-#[inline(always)]
-fn update_all_portable<const N: usize>(link: &mut LinkLanes<N>, ends: &[(EndLanes<N>, EndLanes<N>)]) {
-    for (a, b) in ends {
-        link.update(a, b);
-        std::hint::black_box(&link.force_pos);
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f")]
+    unsafe fn update_all_avx512<const N: usize>(link: &mut LinkLanes<N>, ends: &[(EndLanes<N>, EndLanes<N>)]) {
+        update_all_portable(link, ends);
     }
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn update_all_avx2<const N: usize>(link: &mut LinkLanes<N>, ends: &[(EndLanes<N>, EndLanes<N>)]) {
-    update_all_portable(link, ends);
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f")]
-unsafe fn update_all_avx512<const N: usize>(link: &mut LinkLanes<N>, ends: &[(EndLanes<N>, EndLanes<N>)]) {
-    update_all_portable(link, ends);
 }
 
 #[cfg(test)]

@@ -547,6 +547,37 @@ fn a_dropped_voxel_comes_to_rest_without_drift() {
     assert!(w.velocity(v).length() < 1e-6);
 }
 
+/// The piece connected to the first filled cell of a random fill (`fill`: each cell's chance,
+/// drawn from `next`) of a side³ box: a random connected body.
+pub(crate) fn random_piece(next: &mut impl FnMut() -> f64, side: i32, fill: f64) -> Vec<[i32; 3]> {
+    let mut cells = Vec::new();
+    for x in 0..side {
+        for y in 0..side {
+            for z in 0..side {
+                if next() < fill {
+                    cells.push([x, y, z]);
+                }
+            }
+        }
+    }
+    if cells.is_empty() {
+        cells.push([0, 0, 0]);
+    }
+    let mut keep = vec![cells[0]];
+    let mut i = 0;
+    while i < keep.len() {
+        let c = keep[i];
+        for d in [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]] {
+            let n = [c[0] + d[0], c[1] + d[1], c[2] + d[2]];
+            if cells.contains(&n) && !keep.contains(&n) {
+                keep.push(n);
+            }
+        }
+        i += 1;
+    }
+    keep
+}
+
 /// Random connected bodies of the affordance material, up to 6 × 6 × 6, collisions on, on the
 /// floor under random thermal actuation (every voxel's temperature redrawn in ±14.4714 every
 /// 0.05 s) for 0.3 s: every step succeeds and every state stays finite. (The 5 s campaign over 24
@@ -561,30 +592,7 @@ fn random_bodies_under_random_actuation_stay_finite() {
         (state >> 11) as f64 / (1u64 << 53) as f64
     };
     for body in 0..5 {
-        let side = 2 + body;
-        let mut cells = Vec::new();
-        for x in 0..side {
-            for y in 0..side {
-                for z in 0..side {
-                    if next() < 0.6 {
-                        cells.push([x, y, z]);
-                    }
-                }
-            }
-        }
-        // keep the piece connected to the first cell
-        let mut keep = vec![cells[0]];
-        let mut i = 0;
-        while i < keep.len() {
-            let c = keep[i];
-            for d in [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]] {
-                let n = [c[0] + d[0], c[1] + d[1], c[2] + d[2]];
-                if cells.contains(&n) && !keep.contains(&n) {
-                    keep.push(n);
-                }
-            }
-            i += 1;
-        }
+        let keep = random_piece(&mut next, 2 + body, 0.6);
         let mut w = World::new(WorldSettings::default()).unwrap();
         let m = w.add_material(Material::affordance()).unwrap();
         let ids: Vec<VoxelId> = keep.iter().map(|&c| w.add_voxel(m, c).unwrap()).collect();

@@ -245,33 +245,9 @@ fn to_rotation_vector<const N: usize>(q: Q<N>) -> V3<N> {
     crate::link_lanes::to_rotation_vector(q)
 }
 
-/// Times voxel updates (`--example lanes3d`): nanoseconds per voxel update and episode for a
-/// one-voxel world of the scalar engine (its whole step) and for laned voxels of 1, 4 and 8
-/// episodes, each under sideways, lifting and twisting loads that make it slide, stick and hop.
-/// Returns `(scalar world, 1 lane, 4 lanes, 8 lanes)`.
-pub fn benchmark(steps: usize) -> (f64, f64, f64, f64) {
-    (
-        time_world(steps),
-        time_lanes::<1>(steps),
-        time_lanes::<4>(steps),
-        time_lanes::<8>(steps),
-    )
-}
-
-/// The loads of step `i` in lane `l`.
-fn bench_loads(i: usize, l: usize) -> (DVec3, DVec3) {
-    let phase = i as f64 * 0.004 + l as f64;
-    let force = DVec3::new(
-        0.02 * phase.sin(),
-        0.01 * (2.0 * phase).cos(),
-        0.015 * (0.5 * phase).sin(),
-    );
-    let moment = DVec3::new(1e-5 * phase.cos(), -2e-5 * phase.sin(), 1e-5);
-    (force, moment)
-}
-
 /// Voxelyze's material with friction, thermal expansion and damping, so that every branch of
 /// the floor is met (sticking, breaking free, sliding, stopping, leaving the floor).
+#[cfg(any(test, feature = "bench"))]
 fn bench_material() -> Material {
     Material {
         cte: 0.01,
@@ -283,109 +259,144 @@ fn bench_material() -> Material {
     }
 }
 
-fn time_world(steps: usize) -> f64 {
-    let settings = crate::world::WorldSettings::default();
-    let mut w = crate::world::World::new(settings).expect("valid settings");
-    let m = w.add_material(bench_material()).expect("valid material");
-    let v = w.add_voxel(m, [0, 0, 0]).expect("free index");
-    let dt = w.recommended_time_step();
-    let loads: Vec<_> = (0..steps).map(|i| bench_loads(i, 0)).collect();
-    let start = std::time::Instant::now();
-    for (f, t) in &loads {
-        w.set_external(v, *f, *t);
-        if w.step(dt).is_err() {
-            break;
-        }
-    }
-    std::hint::black_box(w.position(v));
-    start.elapsed().as_secs_f64() * 1e9 / steps as f64
-}
+#[cfg(feature = "bench")]
+pub use bench::benchmark;
 
-fn time_lanes<const N: usize>(steps: usize) -> f64 {
-    let material = bench_material();
-    let settings = crate::world::WorldSettings::default();
-    let shared = VoxelShared {
-        material,
-        constants: VoxelConstants::new(&material, settings.voxel_size),
-        fixed: [false; 6],
-        home: DVec3::ZERO,
-        lattice: settings.voxel_size,
-        floor: settings.floor,
-        gravity: settings.gravity,
-    };
-    let dt = {
+/// The timings of `--example lanes3d` (feature `bench`: the 8-lane and AVX-512 forms are
+/// compiled only for it).
+#[cfg(feature = "bench")]
+mod bench {
+    use super::*;
+
+    /// Times voxel updates (`--example lanes3d`): nanoseconds per voxel update and episode for a
+    /// one-voxel world of the scalar engine (its whole step) and for laned voxels of 1, 4 and 8
+    /// episodes, each under sideways, lifting and twisting loads that make it slide, stick and hop.
+    /// Returns `(scalar world, 1 lane, 4 lanes, 8 lanes)`.
+    pub fn benchmark(steps: usize) -> (f64, f64, f64, f64) {
+        (
+            time_world(steps),
+            time_lanes::<1>(steps),
+            time_lanes::<4>(steps),
+            time_lanes::<8>(steps),
+        )
+    }
+
+    /// The loads of step `i` in lane `l`.
+    fn bench_loads(i: usize, l: usize) -> (DVec3, DVec3) {
+        let phase = i as f64 * 0.004 + l as f64;
+        let force = DVec3::new(
+            0.02 * phase.sin(),
+            0.01 * (2.0 * phase).cos(),
+            0.015 * (0.5 * phase).sin(),
+        );
+        let moment = DVec3::new(1e-5 * phase.cos(), -2e-5 * phase.sin(), 1e-5);
+        (force, moment)
+    }
+
+    fn time_world(steps: usize) -> f64 {
+        let settings = crate::world::WorldSettings::default();
         let mut w = crate::world::World::new(settings).expect("valid settings");
-        let m = w.add_material(material).expect("valid material");
-        w.add_voxel(m, [0, 0, 0]).expect("free index");
-        w.recommended_time_step()
-    };
-    let loads: Vec<(V3<N>, V3<N>)> = (0..steps)
-        .map(|i| {
-            let lanes: [(DVec3, DVec3); N] = std::array::from_fn(|l| bench_loads(i, l));
-            let pick = |f: fn(&(DVec3, DVec3)) -> DVec3| V3 {
-                x: F64s(lanes.map(|p| f(&p).x)),
-                y: F64s(lanes.map(|p| f(&p).y)),
-                z: F64s(lanes.map(|p| f(&p).z)),
-            };
-            (pick(|p| p.0), pick(|p| p.1))
-        })
-        .collect();
-    let mut voxel = VoxelLanes::<N>::at_rest(DVec3::ZERO, settings.voxel_size);
-    let start = std::time::Instant::now();
-    step_all(&mut voxel, &shared, &loads, dt);
-    std::hint::black_box(&voxel.pos);
-    start.elapsed().as_secs_f64() * 1e9 / (steps * N) as f64
-}
+        let m = w.add_material(bench_material()).expect("valid material");
+        let v = w.add_voxel(m, [0, 0, 0]).expect("free index");
+        let dt = w.recommended_time_step();
+        let loads: Vec<_> = (0..steps).map(|i| bench_loads(i, 0)).collect();
+        let start = std::time::Instant::now();
+        for (f, t) in &loads {
+            w.set_external(v, *f, *t);
+            if w.step(dt).is_err() {
+                break;
+            }
+        }
+        std::hint::black_box(w.position(v));
+        start.elapsed().as_secs_f64() * 1e9 / steps as f64
+    }
 
-/// The laned steps, compiled for the best vector unit this CPU has (the same bits on each).
-fn step_all<const N: usize>(voxel: &mut VoxelLanes<N>, shared: &VoxelShared, loads: &[(V3<N>, V3<N>)], dt: f64) {
+    fn time_lanes<const N: usize>(steps: usize) -> f64 {
+        let material = bench_material();
+        let settings = crate::world::WorldSettings::default();
+        let shared = VoxelShared {
+            material,
+            constants: VoxelConstants::new(&material, settings.voxel_size),
+            fixed: [false; 6],
+            home: DVec3::ZERO,
+            lattice: settings.voxel_size,
+            floor: settings.floor,
+            gravity: settings.gravity,
+        };
+        let dt = {
+            let mut w = crate::world::World::new(settings).expect("valid settings");
+            let m = w.add_material(material).expect("valid material");
+            w.add_voxel(m, [0, 0, 0]).expect("free index");
+            w.recommended_time_step()
+        };
+        let loads: Vec<(V3<N>, V3<N>)> = (0..steps)
+            .map(|i| {
+                let lanes: [(DVec3, DVec3); N] = std::array::from_fn(|l| bench_loads(i, l));
+                let pick = |f: fn(&(DVec3, DVec3)) -> DVec3| V3 {
+                    x: F64s(lanes.map(|p| f(&p).x)),
+                    y: F64s(lanes.map(|p| f(&p).y)),
+                    z: F64s(lanes.map(|p| f(&p).z)),
+                };
+                (pick(|p| p.0), pick(|p| p.1))
+            })
+            .collect();
+        let mut voxel = VoxelLanes::<N>::at_rest(DVec3::ZERO, settings.voxel_size);
+        let start = std::time::Instant::now();
+        step_all(&mut voxel, &shared, &loads, dt);
+        std::hint::black_box(&voxel.pos);
+        start.elapsed().as_secs_f64() * 1e9 / (steps * N) as f64
+    }
+
+    /// The laned steps, compiled for the best vector unit this CPU has (the same bits on each).
+    fn step_all<const N: usize>(voxel: &mut VoxelLanes<N>, shared: &VoxelShared, loads: &[(V3<N>, V3<N>)], dt: f64) {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if is_x86_feature_detected!("avx512f") {
+                // SAFETY: the CPU supports AVX-512F.
+                return unsafe { step_all_avx512(voxel, shared, loads, dt) };
+            }
+            if is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU supports AVX2.
+                return unsafe { step_all_avx2(voxel, shared, loads, dt) };
+            }
+        }
+        step_all_portable(voxel, shared, loads, dt);
+    }
+
+    #[inline(always)]
+    fn step_all_portable<const N: usize>(
+        voxel: &mut VoxelLanes<N>,
+        shared: &VoxelShared,
+        loads: &[(V3<N>, V3<N>)],
+        dt: f64,
+    ) {
+        let zero = V3::splat(DVec3::ZERO);
+        for (force, moment) in loads {
+            voxel.step(shared, zero, zero, zero, *force, *moment, dt);
+        }
+    }
+
     #[cfg(target_arch = "x86_64")]
-    {
-        if is_x86_feature_detected!("avx512f") {
-            // SAFETY: the CPU supports AVX-512F.
-            return unsafe { step_all_avx512(voxel, shared, loads, dt) };
-        }
-        if is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU supports AVX2.
-            return unsafe { step_all_avx2(voxel, shared, loads, dt) };
-        }
+    #[target_feature(enable = "avx2")]
+    unsafe fn step_all_avx2<const N: usize>(
+        voxel: &mut VoxelLanes<N>,
+        shared: &VoxelShared,
+        loads: &[(V3<N>, V3<N>)],
+        dt: f64,
+    ) {
+        step_all_portable(voxel, shared, loads, dt);
     }
-    step_all_portable(voxel, shared, loads, dt);
-}
 
-#[inline(always)]
-fn step_all_portable<const N: usize>(
-    voxel: &mut VoxelLanes<N>,
-    shared: &VoxelShared,
-    loads: &[(V3<N>, V3<N>)],
-    dt: f64,
-) {
-    let zero = V3::splat(DVec3::ZERO);
-    for (force, moment) in loads {
-        voxel.step(shared, zero, zero, zero, *force, *moment, dt);
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f")]
+    unsafe fn step_all_avx512<const N: usize>(
+        voxel: &mut VoxelLanes<N>,
+        shared: &VoxelShared,
+        loads: &[(V3<N>, V3<N>)],
+        dt: f64,
+    ) {
+        step_all_portable(voxel, shared, loads, dt);
     }
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn step_all_avx2<const N: usize>(
-    voxel: &mut VoxelLanes<N>,
-    shared: &VoxelShared,
-    loads: &[(V3<N>, V3<N>)],
-    dt: f64,
-) {
-    step_all_portable(voxel, shared, loads, dt);
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f")]
-unsafe fn step_all_avx512<const N: usize>(
-    voxel: &mut VoxelLanes<N>,
-    shared: &VoxelShared,
-    loads: &[(V3<N>, V3<N>)],
-    dt: f64,
-) {
-    step_all_portable(voxel, shared, loads, dt);
 }
 
 #[cfg(test)]

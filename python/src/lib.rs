@@ -11,6 +11,7 @@ mod episode;
 mod evogym;
 mod robot;
 mod run;
+mod worker;
 
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -33,5 +34,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<batch::PyBatchEvaluator>()?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
     m.add_function(wrap_pyfunction!(run::deterministic_files, m)?)?;
+    m.add_function(wrap_pyfunction!(run::experiment_text, m)?)?;
+    m.add_class::<worker::PyWorker>()?;
     Ok(())
 }

@@ -3,89 +3,52 @@
 //! `vsrlab/cluster.py`). Checkpoints, resume and the output files are the runner's own.
 
 use crate::value_error;
-use numpy::{PyArray1, PyArrayMethods};
+use numpy::PyArray1;
 use pyo3::prelude::*;
-use std::path::{Path, PathBuf};
-use vsrlab_experiment::evaluator::{Evaluated, Evaluator, EvaluatorError, Record, RobotEvaluator};
-use vsrlab_experiment::genotypes::vector::run_vectors;
+use std::path::PathBuf;
+use std::sync::Arc;
+use vsrlab_experiment::evaluator::{Evaluated, EvaluatorError, Record};
+use vsrlab_experiment::remote::{Evaluations, Transport};
 use vsrlab_experiment::runner::{self, Flow, Observer, Progress, RunOptions, RunSummary};
 use vsrlab_experiment::{config, Experiment};
 
-/// Evaluates with the runner's evaluator, but sends every batch to a Python callable
-/// `evaluate(genotypes: ndarray (n, genes), seeds: ndarray (n,)) -> str` that returns the
-/// batch's evaluations as the JSON of `BatchEvaluator.evaluations`.
-struct Remote {
-    local: RobotEvaluator,
+/// Sends every batch to a Python callable `evaluate(genotypes: list[str], seeds: ndarray (n,)) ->
+/// str`: the genotypes as their JSON texts (any genotype kind), the answer as the JSON of the
+/// batch's evaluations (`Worker.evaluations`). When the callable has a `robot_file(genotype: str,
+/// record: str | None, note: str) -> bytes` method, a run's best robot file is made there too.
+struct PyTransport {
     evaluate: Py<PyAny>,
 }
 
-impl Evaluator<Vec<f64>> for Remote {
-    fn evaluate(&self, genotype: &Vec<f64>, candidate_seed: u64) -> Evaluated {
-        self.local.evaluate(genotype, candidate_seed)
-    }
-
-    fn objectives(&self) -> usize {
-        Evaluator::<Vec<f64>>::objectives(&self.local)
-    }
-
-    fn failure(&self, seed: u64, error: String) -> Evaluated {
-        Evaluator::<Vec<f64>>::failure(&self.local, seed, error)
-    }
-
-    fn evaluate_batch_reporting(
-        &self,
-        genotypes: &[&Vec<f64>],
-        seeds: &[u64],
-        done: &(dyn Fn(usize, &Evaluated) + Sync),
-    ) -> Result<Vec<Evaluated>, EvaluatorError> {
-        let width = genotypes.first().map_or(0, |g| g.len());
-        let genes: Vec<f64> = genotypes.iter().flat_map(|g| g.iter().copied()).collect();
+impl Transport for PyTransport {
+    fn evaluate(&self, genotypes: &[String], seeds: &[u64]) -> Result<Vec<Evaluated>, EvaluatorError> {
         let text: String = Python::attach(|py| -> PyResult<String> {
-            let matrix = PyArray1::from_vec(py, genes).reshape([genotypes.len(), width])?;
             let seeds = PyArray1::from_slice(py, seeds);
-            self.evaluate.call1(py, (matrix, seeds))?.extract(py)
+            self.evaluate.call1(py, (genotypes.to_vec(), seeds))?.extract(py)
         })
         .map_err(|e| EvaluatorError::Remote(format!("the batch callable failed: {e}")))?;
-        let evaluated: Vec<Evaluated> = serde_json::from_str(&text)
-            .map_err(|e| EvaluatorError::Remote(format!("the batch callable returned bad evaluations: {e}")))?;
-        if evaluated.len() != genotypes.len() {
-            return Err(EvaluatorError::Remote(format!(
-                "the batch callable returned {} evaluations for {} genotypes",
-                evaluated.len(),
-                genotypes.len()
-            )));
-        }
-        // the callable returns the batch whole: every evaluation ends at once
-        for (index, e) in evaluated.iter().enumerate() {
-            done(index, e);
-        }
-        Ok(evaluated)
+        serde_json::from_str(&text)
+            .map_err(|e| EvaluatorError::Remote(format!("the batch callable returned bad evaluations: {e}")))
     }
 
-    fn save_robot(
+    fn robot_file(
         &self,
-        genotype: &Vec<f64>,
+        genotype: &str,
         record: Option<&Record>,
-        path: &Path,
         note: &str,
-    ) -> Result<(), EvaluatorError> {
-        self.local.save_robot(genotype, record, path, note)
-    }
-
-    fn save_replay(&self, genotype: &Vec<f64>, path: &Path, title: &str) -> Result<(), EvaluatorError> {
-        self.local.save_replay(genotype, path, title)
-    }
-
-    fn genotype_columns(&self) -> &'static [&'static str] {
-        Evaluator::<Vec<f64>>::genotype_columns(&self.local)
-    }
-
-    fn genotype_stats(&self, genotype: &Vec<f64>) -> Vec<f64> {
-        self.local.genotype_stats(genotype)
-    }
-
-    fn check(&self, genotype: &Vec<f64>) -> Result<(), EvaluatorError> {
-        self.local.check(genotype)
+    ) -> Result<Option<Vec<u8>>, EvaluatorError> {
+        let record = record
+            .map(serde_json::to_string)
+            .transpose()
+            .map_err(|e| EvaluatorError::Remote(format!("a record does not serialise: {e}")))?;
+        Python::attach(|py| -> PyResult<Option<Vec<u8>>> {
+            let callable = self.evaluate.bind(py);
+            if !callable.hasattr("robot_file")? {
+                return Ok(None);
+            }
+            callable.call_method1("robot_file", (genotype, record, note))?.extract()
+        })
+        .map_err(|e| EvaluatorError::Remote(format!("the robot file callable failed: {e}")))
     }
 }
 
@@ -132,7 +95,7 @@ impl Observer for Reporter {
 }
 
 /// Runs an experiment file into `out` like `vsrlab run` and returns the runs' summaries as JSON
-/// text. With `evaluate`, every batch goes to that callable (see [`Remote`]); the results are
+/// text. With `evaluate`, every batch goes to that callable (see [`PyTransport`]), whatever the genotype kind; the results are
 /// the same bit for bit, since each evaluation is a pure function of (genotype, seed).
 #[pyfunction]
 #[pyo3(signature = (config, out, resume = false, threads = 0, evaluate = None, verbose = false))]
@@ -153,35 +116,23 @@ pub fn run(
             e.len()
         ))
     })?;
+    let evaluations = match evaluate {
+        None => Evaluations::Local,
+        Some(callable) => Evaluations::Remote(Arc::new(PyTransport { evaluate: callable })),
+    };
     let options = RunOptions {
         threads,
         resume,
         memory_limit: None,
+        evaluations,
     };
     let mut reporter = Reporter {
         name: experiment.name.clone().unwrap_or_else(|| "experiment".into()),
         interrupted: false,
         verbose,
     };
-    let summaries = py.detach(|| -> Result<Vec<RunSummary>, String> {
-        match evaluate {
-            None => vsrlab_experiment::run_configured(&experiment, &out, &options, &mut reporter).map_err(|e| e.to_string()),
-            Some(callable) => {
-                let kind = experiment.genotype_kind();
-                if !kind.rows() {
-                    return Err(format!(
-                        "evaluate: {} genotypes are not rows of numbers and are evaluated locally only; leave evaluate out",
-                        kind.name()
-                    ));
-                }
-                let local = RobotEvaluator::new(&experiment).map_err(|e| e.to_string())?;
-                let remote = Remote {
-                    local,
-                    evaluate: callable,
-                };
-                run_vectors(&experiment, &remote, &out, &options, &mut reporter).map_err(|e| e.to_string())
-            }
-        }
+    let summaries = py.detach(|| {
+        vsrlab_experiment::run_configured(&experiment, &out, &options, &mut reporter).map_err(|e| e.to_string())
     });
     if reporter.interrupted {
         return Err(pyo3::exceptions::PyKeyboardInterrupt::new_err(
@@ -197,4 +148,20 @@ pub fn run(
 #[pyfunction]
 pub fn deterministic_files(out: PathBuf) -> PyResult<Vec<(String, Vec<u8>)>> {
     runner::deterministic_files(&out).map_err(|e| value_error(format!("out: {e}")))
+}
+
+/// An experiment file as it runs: every default written out and every file it names read in
+/// (the text a cluster's workers build their evaluator from, with nothing to find on their disk).
+/// A sweep of several settings is refused: each setting is its own run.
+#[pyfunction]
+pub fn experiment_text(config: PathBuf) -> PyResult<String> {
+    let experiments = config::load_all(&config).map_err(value_error)?;
+    match experiments.as_slice() {
+        [experiment] => Ok(experiment.to_toml()),
+        many => Err(value_error(format!(
+            "config: {} is a sweep of {} settings; run each setting's file",
+            config.display(),
+            many.len()
+        ))),
+    }
 }

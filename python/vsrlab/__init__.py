@@ -201,7 +201,8 @@ def run(
     if ray is not None:
         from .cluster import RayEvaluator
 
-        evaluate = RayEvaluator(path.read_text(), address=ray, origin=str(path), **ray_options)
+        text = _native.experiment_text(os.fspath(path))
+        evaluate = RayEvaluator(text, address=ray, origin=str(path), **ray_options)
     try:
         text = _native.run(os.fspath(path), os.fspath(out), resume, int(threads), evaluate, verbose)
     finally:

@@ -1,10 +1,12 @@
 """Evaluations on a Ray cluster: the route from a laptop to a cluster (docs/cluster.md).
 
 :class:`RayEvaluator` keeps one actor per node, each holding the experiment's evaluator built from
-the experiment file's text and evaluating on every CPU Ray gives it (rayon threads in Rust). The
-runner (``vsrlab.run(config, out, ray=...)``) hands it every batch; it splits the batch into
+the experiment's text and evaluating on every CPU Ray gives it (rayon threads in Rust). The
+runner (``vsrlab.run(config, out, ray=...)``) hands it every batch as the JSON texts of its
+genotypes, whatever their kind (vectors, graphs, co-design bodies, ...); it splits the batch into
 chunks, sends them to the actors and joins the answers in order. Each evaluation is a pure
-function of (genotype, seed), so the results are the same bit for bit as a local run.
+function of (genotype, seed), so the results are the same bit for bit as a local run. A run's best
+robot file is made on an actor too (a co-designed robot's policy is learned there).
 
 A worker that dies mid-batch: Ray restarts its actor (``max_restarts=-1``) and the chunk it was
 evaluating is sent again, to the next actor; nothing is lost. A batch that cannot be finished
@@ -20,20 +22,34 @@ from typing import Any, Callable, Optional
 
 import numpy as np
 
-from ._native import BatchEvaluator
+from ._native import Worker, __version__
 
 
 class _Worker:
     """A Ray actor: the experiment's evaluator on one node."""
 
     def __init__(self, config_text: str, origin: str, threads: int):
-        self.evaluator = BatchEvaluator(config_text, origin, threads)
+        self.worker = Worker(config_text, origin, threads)
 
-    def ready(self) -> int:
-        return os.getpid()
+    def ready(self) -> tuple:
+        return os.getpid(), self.worker.version
 
-    def evaluate(self, genotypes: np.ndarray, seeds: np.ndarray) -> str:
-        return self.evaluator.evaluations(np.ascontiguousarray(genotypes), np.ascontiguousarray(seeds))
+    def evaluate(self, genotypes: list, seeds: np.ndarray) -> str:
+        return self.worker.evaluations(genotypes, np.ascontiguousarray(seeds, dtype=np.uint64))
+
+    def robot_file(self, genotype: str, record: Optional[str], note: str) -> bytes:
+        return bytes(self.worker.robot_file(genotype, record, note))
+
+
+def check_versions(found: list, driver: str = __version__) -> None:
+    """Refuses workers whose vsrlab is not the driver's: ``found`` holds each actor's
+    (pid, version). A run joins the results of one model version only."""
+    for pid, version in found:
+        if version != driver:
+            raise RuntimeError(
+                f"ray: a worker (process {pid}) runs vsrlab {version}, the driver {driver}: "
+                "install the same vsrlab on every node"
+            )
 
 
 class RayEvaluator:
@@ -62,7 +78,7 @@ class RayEvaluator:
         from ray.util.scheduling_strategies import NodeAffinitySchedulingStrategy
 
         # a local check first: a bad file fails here, with its field named, not on a worker
-        self.genes = BatchEvaluator(config_text, origin, 1).genotype_length
+        Worker(config_text, origin, 1)  # built and dropped: only the check matters
         self._ray = ray
         self._connected = False
         if not ray.is_initialized():
@@ -93,13 +109,28 @@ class RayEvaluator:
             cpus = int(cpus_per_actor or 1)
             for _ in range(int(actors)):
                 self.actors.append(remote.options(num_cpus=cpus).remote(config_text, origin, cpus))
+        found = ray.get([a.ready.remote() for a in self.actors], timeout=self.timeout)
+        check_versions(found)
         #: each actor's worker process id, as it started (tests kill one)
-        self.pids = ray.get([a.ready.remote() for a in self.actors], timeout=self.timeout)
+        self.pids = [pid for pid, _ in found]
 
-    def __call__(self, genotypes: np.ndarray, seeds: np.ndarray) -> str:
+    def robot_file(self, genotype: str, record: Optional[str], note: str) -> bytes:
+        """A run's best robot file, made on an actor (the next one if it dies)."""
         ray = self._ray
         exceptions = (ray.exceptions.RayActorError, ray.exceptions.WorkerCrashedError)
-        rows = genotypes.shape[0]
+        for attempt in range(self.attempts):
+            actor = self.actors[attempt % len(self.actors)]
+            try:
+                return ray.get(actor.robot_file.remote(genotype, record, note), timeout=self.timeout)
+            except exceptions as e:
+                if attempt + 1 == self.attempts:
+                    raise RuntimeError(f"ray: the best robot's file failed {self.attempts} times: {e}") from e
+        raise RuntimeError("ray: no attempt")
+
+    def __call__(self, genotypes: list, seeds: np.ndarray) -> str:
+        ray = self._ray
+        exceptions = (ray.exceptions.RayActorError, ray.exceptions.WorkerCrashedError)
+        rows = len(genotypes)
         parts = min(rows, len(self.actors) * self.chunks_per_actor)
         bounds = np.linspace(0, rows, parts + 1).astype(int)
         chunks = [(int(a), int(b)) for a, b in zip(bounds[:-1], bounds[1:]) if b > a]

@@ -249,6 +249,7 @@ fn run_one(experiment: &Experiment, out: &Path, a: &RunArgs) -> Result<(), Strin
         threads: a.threads.unwrap_or(0),
         resume: a.resume,
         memory_limit: Some(memory_limit(a.max_memory_gib)?),
+        ..RunOptions::default()
     };
     let threads = worker_threads(options.threads);
     let size = experiment.genotype_kind().size(experiment).map_err(|e| e.to_string())?;

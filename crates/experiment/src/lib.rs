@@ -20,6 +20,8 @@
 //!   per-run memory estimate checked before a run starts.
 //! - [`validate`](mod@validate): what a file will do before it runs (resolved configuration,
 //!   sizes, a time estimate).
+//! - [`remote`]: a run's batches evaluated elsewhere (Ray workers), and the workers' side,
+//!   for every genotype kind.
 //! - [`batch`]: many flat genotypes evaluated in one call, for optimisers outside vsrlab
 //!   (`vsrlab evaluate`, the Python package, Ray workers).
 //! - [`bench`](mod@bench): the simulation speed benchmark on the standard robots (`vsrlab bench`),
@@ -59,6 +61,7 @@ pub mod learning_env;
 pub mod memory;
 pub mod optimizers;
 pub mod output_lock;
+pub mod remote;
 pub mod runner;
 pub mod unfinished_generation;
 pub mod validate;

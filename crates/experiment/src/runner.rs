@@ -35,6 +35,7 @@ use crate::genotype::Genotype;
 use crate::memory::MemoryLimit;
 use crate::optimizers::SearchOptimizer;
 use crate::output_lock::{LockError, OutputLock, LOCK_FILE};
+use crate::remote::{Evaluations, Sent, Serving};
 use crate::unfinished_generation::{Carried, Recorder};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet};
@@ -134,6 +135,9 @@ pub struct RunOptions {
     /// Most bytes one run may be estimated to need (`None`: [`DEFAULT_MEMORY_LIMIT`](crate::memory::DEFAULT_MEMORY_LIMIT)); see
     /// [`crate::memory`].
     pub memory_limit: Option<u64>,
+    /// Where batches are evaluated: here (the default), sent elsewhere, or served to a worker
+    /// ([`crate::remote`]).
+    pub evaluations: Evaluations,
 }
 
 /// Whether the runner should go on after a generation.
@@ -348,6 +352,32 @@ pub fn run_search<G: Genotype, O: SearchOptimizer<G>>(
     observer: &mut dyn Observer,
 ) -> Result<Vec<RunSummary>, RunError> {
     check_threads(options)?;
+    match &options.evaluations {
+        Evaluations::Local => run_plan(plan, new_optimizer, evaluator, out, options, observer),
+        Evaluations::Remote(transport) => {
+            let sent = Sent {
+                local: evaluator,
+                transport: transport.as_ref(),
+            };
+            run_plan(plan, new_optimizer, &sent, out, options, observer)
+        }
+        Evaluations::Serve(hook) => {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(options.threads).build()?;
+            hook.call(&Serving { evaluator, pool: &pool });
+            Ok(Vec::new())
+        }
+    }
+}
+
+/// [`run_search`] with the batches evaluated by `evaluator`.
+fn run_plan<G: Genotype, O: SearchOptimizer<G>>(
+    plan: &Plan,
+    new_optimizer: &dyn Fn(u64) -> Result<O, RunError>,
+    evaluator: &dyn Evaluator<G>,
+    out: &Path,
+    options: &RunOptions,
+    observer: &mut dyn Observer,
+) -> Result<Vec<RunSummary>, RunError> {
     std::fs::create_dir_all(out).map_err(io_error(out))?;
     let lock = OutputLock::acquire(out)?;
     if lock.unsupported() {

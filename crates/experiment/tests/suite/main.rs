@@ -8,6 +8,7 @@ mod evogym;
 mod graph_brain;
 mod graph_genotype;
 mod psa;
+mod remote;
 mod runner;
 mod third_robot_kind;
 mod toy_genotype_kind;

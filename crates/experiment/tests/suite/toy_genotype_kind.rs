@@ -150,7 +150,7 @@ impl GenotypeKind for QuantisedPhases {
 }
 
 /// An experiment file (flat-vector genotypes as read) given the toy genotype kind.
-fn experiment(optimizer: &str) -> Experiment {
+pub(crate) fn experiment(optimizer: &str) -> Experiment {
     let text = format!(
         r#"
 runs = 2

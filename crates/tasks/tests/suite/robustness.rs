@@ -110,21 +110,22 @@ fn run_case(i: usize, only: Option<usize>, solver: Solver) -> Result<(f64, f64),
     Ok((lo, hi))
 }
 
-/// 400 random connected bodies up to 10×10, random actuation, 30 s, cycling through every
-/// terrain and both presets (ROBUSTNESS_CASES=n runs more; 1,000 and 10,000 were run before
-/// releases). Every case must stay finite; at most 0.5 % of cases may leave the sane area bounds
+/// 240 random connected bodies up to 10×10, random actuation, 30 s, cycling through every
+/// terrain and both presets (ROBUSTNESS_CASES=n runs more: 400 until CI time ran short; 1,000
+/// and 10,000 were run before releases). Every case must stay finite; at most 0.5 % of cases may leave the sane area bounds
 /// (a known, rare tangle of very large bodies tumbling down steep slopes in the rope-less 2022
 /// preset: docs/physics.md, "Known limitations"). Failures are printed.
 #[test]
 fn random_bodies_stay_finite_and_sane_on_every_terrain() {
-    random_bodies_stay_finite_and_sane(cases("ROBUSTNESS_CASES", 400), Solver::SoftSubsteps);
+    random_bodies_stay_finite_and_sane(cases("ROBUSTNESS_CASES", 240), Solver::SoftSubsteps);
 }
 
-/// The same under the sequential-impulse solver (dyn4j's pipeline), on fewer cases: it is slower.
+/// The same under the sequential-impulse solver (dyn4j's pipeline), on fewer cases (48; 80 until
+/// CI time ran short): it is slower.
 /// ROBUSTNESS_SEQUENTIAL_CASES=n runs more.
 #[test]
 fn random_bodies_stay_finite_and_sane_under_sequential_impulses() {
-    random_bodies_stay_finite_and_sane(cases("ROBUSTNESS_SEQUENTIAL_CASES", 80), Solver::SequentialImpulses);
+    random_bodies_stay_finite_and_sane(cases("ROBUSTNESS_SEQUENTIAL_CASES", 48), Solver::SequentialImpulses);
 }
 
 /// The number of cases in environment variable `name`, or `default`.

@@ -1,13 +1,18 @@
-"""Ray scaling on one machine: a loopback cluster of 1 then 2 worker nodes (1 CPU each) evaluates
-the quickstart's genotypes in batches of 40 through vsrlab.cluster.RayEvaluator, next to local
-evaluate_batch on 1 and 2 threads. Needs ray in the environment (python/requirements-test.txt):
+"""Ray scaling on one machine: a loopback cluster of 1 then 2 worker nodes (1 CPU each).
 
-    .venv/bin/python bench/ray/scaling.py [EVALUATIONS]
+    .venv/bin/python bench/ray/scaling.py batches [EVALUATIONS]   # quickstart genotypes in batches of 40
+    .venv/bin/python bench/ray/scaling.py codesign                # a small co-design run (PPO per body)
+    .venv/bin/python bench/ray/scaling.py campaign [FILES]        # a campaign of many small runs
+
+`batches` also times local evaluate_batch on 1 and 2 threads. Needs ray in the environment
+(python/requirements-test.txt). Prints seconds per setting and the ratio to Ray on 1 node.
 """
 
+import json
 import os
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -22,43 +27,146 @@ RAY = str(Path(sys.executable).parent / "ray")
 ENV = dict(os.environ, RAY_AUTH_MODE="disabled", RAY_USAGE_STATS_ENABLED="0")
 PORT = 6391
 
+# A small co-design run: 5x5 Walker bodies, each trained by a short PPO on the worker.
+CODESIGN = """
+name = "scaling-codesign"
+runs = 1
+seed = 1
+[genotype]
+kind = "material-grid"
+width = 5
+height = 5
+mutation_rate = 0.1
+[genotype.ppo]
+iterations = 3
+environments = 2
+steps_per_environment = 64
+[task]
+kind = "evogym"
+env = "Walker-v0"
+[optimizer]
+kind = "ga"
+population_size = 4
+offspring_size = 8
+tournament_size = 1
+mutation_probability = 1.0
+initial_population_size = 8
+[stop]
+evaluations = 32
+"""
+
+# One file of a campaign of many small runs: a biped GA with batches of 8.
+SMALL_RUN = """
+name = "{name}"
+runs = 2
+seed = {seed}
+[representation]
+body = "biped-4x3"
+sensors = "uniform-vxy+a+t-0"
+brain = {{ kind = "distributed-mlp", layout = "homogeneous", signals = 1, hidden = [] }}
+[task]
+terrain = "flat"
+duration = 10.0
+fitness = "velocity"
+[optimizer]
+kind = "ga"
+population_size = 8
+offspring_size = 8
+[stop]
+evaluations = 96
+"""
+
 
 def ray(*args: str) -> None:
     subprocess.run([RAY, *args], env=ENV, check=True, capture_output=True, timeout=180)
 
 
-def timed(evaluate, genotypes: np.ndarray) -> float:
-    start = time.perf_counter()
-    for i in range(0, len(genotypes), 40):
-        evaluate(genotypes[i:i + 40], np.arange(i, i + 40, dtype=np.uint64))
-    return time.perf_counter() - start
+def on_cluster(nodes: int, work) -> float:
+    """Seconds `work(address)` takes on a loopback cluster of `nodes` worker nodes of 1 CPU."""
+    ray("start", "--head", f"--port={PORT}", "--node-ip-address=127.0.0.1", "--num-cpus=1",
+        "--include-dashboard=false", "--disable-usage-stats")
+    try:
+        if nodes == 2:
+            ray("start", f"--address=127.0.0.1:{PORT}", "--node-ip-address=127.0.0.1", "--num-cpus=1")
+        start = time.perf_counter()
+        work(f"127.0.0.1:{PORT}")
+        return time.perf_counter() - start
+    finally:
+        subprocess.run([RAY, "stop", "--force"], env=ENV, capture_output=True, timeout=180)
 
 
-def main() -> None:
-    n = int(sys.argv[1]) if len(sys.argv) > 1 else 2000
-    os.environ.update(RAY_AUTH_MODE="disabled", RAY_USAGE_STATS_ENABLED="0")
+def batches(n: int) -> list:
     genotypes = np.random.default_rng(0).uniform(-1, 1, (n, vsrlab.genotype_length(CONFIG)))
-    text = CONFIG.read_text()
+    texts = [json.dumps(list(map(float, row))) for row in genotypes]
+    text = vsrlab._native.experiment_text(str(CONFIG))
+
+    def timed(evaluate, rows) -> float:
+        start = time.perf_counter()
+        for i in range(0, n, 40):
+            evaluate(rows[i:i + 40], np.arange(i, i + 40, dtype=np.uint64))
+        return time.perf_counter() - start
+
     rows = []
     for threads in (1, 2):
         local = vsrlab.BatchEvaluator(text, str(CONFIG), threads)
         rows.append((f"local evaluate_batch, {threads} thread(s)", timed(local.fitness, genotypes)))
     for nodes in (1, 2):
-        ray("start", "--head", f"--port={PORT}", "--node-ip-address=127.0.0.1", "--num-cpus=1",
-            "--include-dashboard=false", "--disable-usage-stats")
-        try:
-            if nodes == 2:
-                ray("start", f"--address=127.0.0.1:{PORT}", "--node-ip-address=127.0.0.1", "--num-cpus=1")
-            pool = RayEvaluator(text, address=f"127.0.0.1:{PORT}", origin=str(CONFIG))
+        seconds = {}
+
+        def work(address: str) -> None:
+            pool = RayEvaluator(text, address=address, origin=str(CONFIG))
             assert len(pool.actors) == nodes
-            pool(genotypes[:40], np.arange(40, dtype=np.uint64))  # warm-up
-            rows.append((f"Ray, {nodes} worker node(s) x 1 CPU", timed(pool, genotypes)))
+            pool(texts[:40], np.arange(40, dtype=np.uint64))  # warm-up
+            seconds["batches"] = timed(pool, texts)
             pool.close()
-        finally:
-            subprocess.run([RAY, "stop", "--force"], env=ENV, capture_output=True, timeout=180)
-    base = rows[2][1]
+
+        on_cluster(nodes, work)
+        rows.append((f"Ray, {nodes} worker node(s) x 1 CPU", seconds["batches"]))
+    return rows
+
+
+def codesign() -> list:
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        config = Path(tmp) / "codesign.toml"
+        config.write_text(CODESIGN)
+        for nodes in (1, 2):
+            out = Path(tmp) / f"out-{nodes}"
+            rows.append((f"co-design run, Ray {nodes} node(s) x 1 CPU",
+                         on_cluster(nodes, lambda address: vsrlab.run(config, out, ray=address))))
+    return rows
+
+
+def campaign(files: int) -> list:
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        paths = []
+        for i in range(files):
+            path = Path(tmp) / f"small-{i}.toml"
+            path.write_text(SMALL_RUN.format(name=f"small-{i}", seed=i + 1))
+            paths.append(path)
+        for nodes in (1, 2):
+            out = Path(tmp) / f"out-{nodes}"
+            rows.append((f"campaign {files} files x 2 runs, Ray {nodes} node(s)",
+                         on_cluster(nodes, lambda address: vsrlab.campaign(paths, out, ray=address))))
+    return rows
+
+
+def main() -> None:
+    os.environ.update(RAY_AUTH_MODE="disabled", RAY_USAGE_STATS_ENABLED="0")
+    mode = sys.argv[1] if len(sys.argv) > 1 else "batches"
+    if mode == "batches":
+        n = int(sys.argv[2]) if len(sys.argv) > 2 else 2000
+        rows, base = batches(n), 2
+    elif mode == "codesign":
+        rows, base = codesign(), 0
+    elif mode == "campaign":
+        rows, base = campaign(int(sys.argv[2]) if len(sys.argv) > 2 else 8), 0
+    else:
+        sys.exit(f"unknown mode {mode}: batches, codesign or campaign")
+    reference = rows[base][1]
     for name, seconds in rows:
-        print(f"{name:38s} {seconds:7.2f} s  {n / seconds:6.0f} evaluations/s  ({base / seconds:.2f}x Ray on 1 node)")
+        print(f"{name:44s} {seconds:8.2f} s  ({reference / seconds:.2f}x Ray on 1 node)")
 
 
 if __name__ == "__main__":

@@ -7,6 +7,7 @@
 //! panics on user input.
 
 mod batch;
+mod campaign;
 mod episode;
 mod evogym;
 mod robot;
@@ -36,5 +37,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run::deterministic_files, m)?)?;
     m.add_function(wrap_pyfunction!(run::experiment_text, m)?)?;
     m.add_class::<worker::PyWorker>()?;
+    m.add_function(wrap_pyfunction!(campaign::campaign_settings, m)?)?;
+    m.add_function(wrap_pyfunction!(campaign::campaign, m)?)?;
     Ok(())
 }

@@ -16,8 +16,8 @@ use vsrlab_experiment::{config, Experiment};
 /// str`: the genotypes as their JSON texts (any genotype kind), the answer as the JSON of the
 /// batch's evaluations (`Worker.evaluations`). When the callable has a `robot_file(genotype: str,
 /// record: str | None, note: str) -> bytes` method, a run's best robot file is made there too.
-struct PyTransport {
-    evaluate: Py<PyAny>,
+pub(crate) struct PyTransport {
+    pub(crate) evaluate: Py<PyAny>,
 }
 
 impl Transport for PyTransport {
@@ -123,8 +123,8 @@ pub fn run(
     let options = RunOptions {
         threads,
         resume,
-        memory_limit: None,
         evaluations,
+        ..RunOptions::default()
     };
     let mut reporter = Reporter {
         name: experiment.name.clone().unwrap_or_else(|| "experiment".into()),

@@ -7,7 +7,7 @@ use crate::value_error;
 use numpy::{PyReadonlyArray1, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use std::sync::mpsc::{channel, Sender};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 use vsrlab_experiment::config;
 use vsrlab_experiment::evaluator::Record;
 use vsrlab_experiment::remote::{self, Served};
@@ -27,35 +27,60 @@ enum Request {
     },
 }
 
-/// Answers requests until the worker is dropped (its sender closes).
+/// Answers requests until the worker is dropped (its sender closes), each on a thread of its own:
+/// an actor that takes several calls at once (a campaign's) evaluates them side by side on the
+/// worker's pool.
 fn answer(served: &dyn Served, requests: std::sync::mpsc::Receiver<Request>) {
-    for request in requests {
-        match request {
-            Request::Evaluate {
-                genotypes,
-                seeds,
-                answer,
-            } => {
-                let text = served
-                    .evaluate(&genotypes, &seeds)
-                    .map_err(|e| e.to_string())
-                    .and_then(|e| serde_json::to_string(&e).map_err(|e| e.to_string()));
-                let _ = answer.send(text);
-            }
-            Request::RobotFile {
-                genotype,
-                record,
-                note,
-                answer,
-            } => {
-                let _ = answer.send(
-                    served
-                        .robot_file(&genotype, record.as_ref(), &note)
-                        .map_err(|e| e.to_string()),
-                );
-            }
+    std::thread::scope(|scope| {
+        for request in requests {
+            scope.spawn(move || handle(served, request));
+        }
+    });
+}
+
+fn handle(served: &dyn Served, request: Request) {
+    match request {
+        Request::Evaluate {
+            genotypes,
+            seeds,
+            answer,
+        } => {
+            let text = served
+                .evaluate(&genotypes, &seeds)
+                .map_err(|e| e.to_string())
+                .and_then(|e| serde_json::to_string(&e).map_err(|e| e.to_string()));
+            let _ = answer.send(text);
+        }
+        Request::RobotFile {
+            genotype,
+            record,
+            note,
+            answer,
+        } => {
+            let _ = answer.send(
+                served
+                    .robot_file(&genotype, record.as_ref(), &note)
+                    .map_err(|e| e.to_string()),
+            );
         }
     }
+}
+
+/// The process's pool of `threads` threads: a worker process's evaluators share it, so that a
+/// node given N CPUs evaluates on N threads whatever the number of experiments it serves.
+fn shared_pool(threads: usize) -> PyResult<Arc<rayon::ThreadPool>> {
+    static POOLS: Mutex<Vec<(usize, Arc<rayon::ThreadPool>)>> = Mutex::new(Vec::new());
+    let mut pools = POOLS.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    if let Some((_, pool)) = pools.iter().find(|(n, _)| *n == threads) {
+        return Ok(pool.clone());
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| value_error(format!("threads: {e}")))?;
+    let pool = Arc::new(pool);
+    pools.push((threads, pool.clone()));
+    Ok(pool)
 }
 
 /// An experiment's evaluator on a worker: genotypes of any kind (JSON texts) → evaluations (JSON
@@ -89,13 +114,15 @@ impl PyWorker {
     #[pyo3(signature = (config, origin = "config", threads = 0))]
     fn new(py: Python<'_>, config: &str, origin: &str, threads: usize) -> PyResult<Self> {
         let experiment = config::parse(config, origin).map_err(value_error)?;
+        let threads = vsrlab_experiment::runner::worker_threads(threads);
+        let pool = shared_pool(threads)?;
         let (requests, receive) = channel::<Request>();
         let (ready, started) = channel::<Result<(), String>>();
         let starting = ready.clone();
         std::thread::Builder::new()
             .name("vsrlab-worker".into())
             .spawn(move || {
-                let served = remote::serve(&experiment, threads, move |served| {
+                let served = remote::serve(&experiment, pool, move |served| {
                     let _ = starting.send(Ok(()));
                     answer(served, receive);
                 });
@@ -107,7 +134,6 @@ impl PyWorker {
         py.detach(move || started.recv())
             .map_err(|_| value_error("worker: its evaluator stopped while starting"))?
             .map_err(value_error)?;
-        let threads = vsrlab_experiment::runner::worker_threads(threads);
         Ok(PyWorker {
             requests: Mutex::new(requests),
             threads,

@@ -7,6 +7,7 @@ import signal
 import socket
 import subprocess
 import sys
+import time
 import json
 from pathlib import Path
 
@@ -261,3 +262,37 @@ def test_a_worker_evaluates_json_genotypes_like_the_batch_evaluator(tmp_path):
     assert [e["objectives"] for e in served] == [e["objectives"] for e in local]
     with pytest.raises(ValueError, match=r"genotypes\[1\]"):
         worker.evaluations(["[0.5]" * 1, '{"edges": 3}', "[]"], seeds)
+
+
+def test_a_campaign_on_ray_whose_driver_is_killed_resumes_to_the_local_campaigns_files(cluster, tmp_path):
+    files = []
+    for name, seed in (("camp-a", 5), ("camp-b", 6)):
+        path = tmp_path / f"{name}.toml"
+        text = CONFIG.replace('name = "ray-small"', f'name = "{name}"').replace("runs = 1", "runs = 2")
+        path.write_text(text.replace("seed = 5", f"seed = {seed}"))
+        files.append(path)
+    local = vsrlab.campaign(files, tmp_path / "local", threads=2)
+    assert [s["name"] for s in local["settings"]] == ["camp-a", "camp-b"]
+    assert local["table"].splitlines()[0].startswith("setting")
+
+    out = tmp_path / "ray"
+    command = [sys.executable, "-m", "vsrlab", "campaign", *map(str, files), "--out", str(out), "--ray", cluster]
+    log = tmp_path / "driver.log"
+    with open(log, "w") as sink:
+        driver = subprocess.Popen(command, env=ENV, stdout=sink, stderr=subprocess.STDOUT)
+    deadline = time.monotonic() + 180
+    while not list(out.glob("*/run-*/checkpoint.json")):
+        assert driver.poll() is None, log.read_text()
+        assert time.monotonic() < deadline, "no checkpoint in 3 minutes"
+        time.sleep(0.05)
+    driver.kill()
+    driver.wait()
+    assert not all((out / s / "summary.json").is_file() for s in ("camp-a", "camp-b")), "killed before the end"
+    resumed = vsrlab.campaign(files, out, resume=True, ray=cluster)
+    assert [len(s["summaries"]) for s in resumed["settings"]] == [2, 2]
+    for name in ("camp-a", "camp-b"):
+        ours = dict(_native.deterministic_files(str(out / name)))
+        theirs = dict(_native.deterministic_files(str(tmp_path / "local" / name)))
+        assert sorted(ours) == sorted(theirs) and len(ours) >= 6
+        for file in ours:
+            assert ours[file] == theirs[file], f"{name}/{file}"

@@ -38,6 +38,7 @@ __all__ = [
     "load_robot",
     "robot_of",
     "run",
+    "campaign",
     "simulate",
 ]
 
@@ -208,6 +209,46 @@ def run(
     finally:
         if evaluate is not None:
             evaluate.close()
+    return json.loads(text)
+
+
+def campaign(
+    files: Any,
+    out: PathLike,
+    resume: bool = False,
+    threads: int = 0,
+    ray: Optional[str] = None,
+    verbose: bool = False,
+    **ray_options: Any,
+) -> dict:
+    """Runs many experiment files (every setting of a sweep file, every run) side by side, each
+    setting into ``out/<setting name>`` as ``vsrlab run`` writes it, and returns
+    ``{"settings": [{"name", "out", "runs", "summaries"}], "table": text}``.
+
+    Locally the runs share one pool of ``threads``; with ``ray`` (as in :func:`run`) every
+    setting's batches go to one shared pool of Ray actors, so a cluster stays busy even when each
+    run's batch is small. ``resume=True`` continues every unfinished run from its checkpoint.
+    The files are the same bit for bit as running each file alone (docs/cluster.md).
+    """
+    paths = [os.fspath(files)] if isinstance(files, (str, os.PathLike)) else [os.fspath(f) for f in files]
+    for path in paths:
+        if not Path(path).is_file():
+            raise ValueError(f"files: no experiment file at {path}")
+    pool = None
+    evaluators = None
+    if ray is not None:
+        from .cluster import RayEvaluator, RayPool
+
+        settings = json.loads(_native.campaign_settings(paths, os.fspath(out)))
+        pool_keys = ("actors", "cpus_per_actor", "concurrency", "timeout")
+        pool = RayPool(ray, **{k: v for k, v in ray_options.items() if k in pool_keys})
+        rest = {k: v for k, v in ray_options.items() if k not in pool_keys or k == "timeout"}
+        evaluators = [RayEvaluator(s["text"], origin=s["name"], pool=pool, **rest) for s in settings]
+    try:
+        text = _native.campaign(paths, os.fspath(out), resume, int(threads), evaluators, verbose)
+    finally:
+        if pool is not None:
+            pool.close()
     return json.loads(text)
 
 

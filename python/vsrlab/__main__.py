@@ -1,6 +1,7 @@
 """``python -m vsrlab run CONFIG --out DIR [--ray ADDRESS] [--resume]``: an experiment from Python,
-its evaluations optionally on a Ray cluster (docs/cluster.md). Every other command is the
-``vsrlab`` binary's."""
+its evaluations optionally on a Ray cluster (docs/cluster.md); ``python -m vsrlab campaign FILES…
+--out DIR [--ray ADDRESS] [--resume]``: many files' settings and runs side by side. Every other
+command is the ``vsrlab`` binary's."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ import argparse
 import json
 import sys
 
-from . import run
+from . import campaign, run
 
 
 def main(argv=None) -> int:
@@ -21,7 +22,24 @@ def main(argv=None) -> int:
     r.add_argument("--resume", action="store_true", help="continue from the checkpoints")
     r.add_argument("--threads", type=int, default=0, help="local worker threads (0: every core)")
     r.add_argument("--quiet", action="store_true", help="no progress lines")
+    c = commands.add_parser("campaign", help="run many experiment files side by side, optionally on Ray")
+    c.add_argument("files", nargs="+", help="experiment files (TOML); a sweep gives each setting")
+    c.add_argument("--out", required=True, help="output folder: one folder per setting in it")
+    c.add_argument("--ray", metavar="ADDRESS", help="'auto', 'local' or HOST:PORT of a Ray cluster")
+    c.add_argument("--resume", action="store_true", help="continue every unfinished run")
+    c.add_argument("--threads", type=int, default=0, help="local worker threads (0: every core)")
+    c.add_argument("--quiet", action="store_true", help="no progress lines")
     args = parser.parse_args(argv)
+    if args.command == "campaign":
+        try:
+            result = campaign(
+                args.files, args.out, resume=args.resume, threads=args.threads, ray=args.ray, verbose=not args.quiet
+            )
+        except ValueError as e:
+            print(f"error: {e}", file=sys.stderr)
+            return 1
+        print(result["table"], end="")
+        return 0
     try:
         summaries = run(
             args.config, args.out, resume=args.resume, threads=args.threads, ray=args.ray, verbose=not args.quiet

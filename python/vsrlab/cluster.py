@@ -1,8 +1,10 @@
 """Evaluations on a Ray cluster: the route from a laptop to a cluster (docs/cluster.md).
 
-:class:`RayEvaluator` keeps one actor per node, each holding the experiment's evaluator built from
-the experiment's text and evaluating on every CPU Ray gives it (rayon threads in Rust). The
-runner (``vsrlab.run(config, out, ray=...)``) hands it every batch as the JSON texts of its
+:class:`RayPool` keeps one actor per node, each evaluating on every CPU Ray gives it (rayon
+threads in Rust) for any experiment it is sent: it builds an experiment's evaluator from the
+experiment's text the first time and keeps it. :class:`RayEvaluator` binds a pool to one
+experiment: the runner (``vsrlab.run(config, out, ray=...)``, or each setting of
+``vsrlab.campaign(files, out, ray=...)``) hands it every batch as the JSON texts of its
 genotypes, whatever their kind (vectors, graphs, co-design bodies, ...); it splits the batch into
 chunks, sends them to the actors and joins the answers in order. Each evaluation is a pure
 function of (genotype, seed), so the results are the same bit for bit as a local run. A run's best
@@ -16,7 +18,9 @@ checkpoint, and ``resume=True`` continues it.
 
 from __future__ import annotations
 
+import hashlib
 import os
+import threading
 import time
 from typing import Any, Callable, Optional
 
@@ -26,19 +30,28 @@ from ._native import Worker, __version__
 
 
 class _Worker:
-    """A Ray actor: the experiment's evaluator on one node."""
+    """A Ray actor: the evaluators of the experiments it is sent, on one node."""
 
-    def __init__(self, config_text: str, origin: str, threads: int):
-        self.worker = Worker(config_text, origin, threads)
+    def __init__(self, threads: int):
+        self.threads = threads
+        self.workers: dict = {}
+        self.lock = threading.Lock()
 
     def ready(self) -> tuple:
-        return os.getpid(), self.worker.version
+        return os.getpid(), __version__
 
-    def evaluate(self, genotypes: list, seeds: np.ndarray) -> str:
-        return self.worker.evaluations(genotypes, np.ascontiguousarray(seeds, dtype=np.uint64))
+    def _worker(self, key: str, text: str, origin: str) -> Worker:
+        with self.lock:
+            if key not in self.workers:
+                self.workers[key] = Worker(text, origin, self.threads)
+            return self.workers[key]
 
-    def robot_file(self, genotype: str, record: Optional[str], note: str) -> bytes:
-        return bytes(self.worker.robot_file(genotype, record, note))
+    def evaluate(self, key: str, text: str, origin: str, genotypes: list, seeds: np.ndarray) -> str:
+        worker = self._worker(key, text, origin)
+        return worker.evaluations(genotypes, np.ascontiguousarray(seeds, dtype=np.uint64))
+
+    def robot_file(self, key: str, text: str, origin: str, genotype: str, record: Optional[str], note: str) -> bytes:
+        return bytes(self._worker(key, text, origin).robot_file(genotype, record, note))
 
 
 def check_versions(found: list, driver: str = __version__) -> None:
@@ -52,33 +65,26 @@ def check_versions(found: list, driver: str = __version__) -> None:
             )
 
 
-class RayEvaluator:
-    """Sends batches of evaluations to Ray actors, one per node (or ``actors`` of
-    ``cpus_per_actor`` CPUs each).
+class RayPool:
+    """Ray actors, one per node (or ``actors`` of ``cpus_per_actor`` CPUs each), that evaluate
+    batches of any experiment; ``concurrency`` chunks at once per actor (a campaign's runs share
+    them).
 
     ``address``: ``"auto"`` (a cluster started with ``ray start``), ``"local"`` (start one on this
-    machine) or ``"HOST:PORT"``. ``chunks_per_actor`` splits a batch finer for load balance;
-    ``attempts`` is how many times one chunk may be sent before the batch fails; ``on_submit``
-    (tests) is called with this evaluator after each batch is sent.
+    machine) or ``"HOST:PORT"``.
     """
 
     def __init__(
         self,
-        config_text: str,
         address: str = "auto",
-        origin: str = "config",
         actors: Optional[int] = None,
         cpus_per_actor: Optional[int] = None,
-        chunks_per_actor: int = 2,
-        attempts: int = 5,
+        concurrency: int = 4,
         timeout: float = 3600.0,
-        on_submit: Optional[Callable[["RayEvaluator"], Any]] = None,
     ):
         import ray
         from ray.util.scheduling_strategies import NodeAffinitySchedulingStrategy
 
-        # a local check first: a bad file fails here, with its field named, not on a worker
-        Worker(config_text, origin, 1)  # built and dropped: only the check matters
         self._ray = ray
         self._connected = False
         if not ray.is_initialized():
@@ -87,32 +93,84 @@ class RayEvaluator:
             else:
                 ray.init(address=address, logging_level="warning")
             self._connected = True
+        self.timeout = float(timeout)
+        remote = ray.remote(max_restarts=-1, max_task_retries=0)(_Worker)
+        nodes = [n for n in ray.nodes() if n.get("Alive") and n.get("Resources", {}).get("CPU", 0) >= 1]
+        if not nodes:
+            raise RuntimeError("ray: the cluster has no node with a CPU")
+        concurrency = max(1, int(concurrency))
+        self.actors = []
+        if actors is None:
+            for node in nodes:
+                cpus = int(cpus_per_actor or node["Resources"]["CPU"])
+                strategy = NodeAffinitySchedulingStrategy(node_id=node["NodeID"], soft=True)
+                options = dict(num_cpus=cpus, scheduling_strategy=strategy, max_concurrency=concurrency)
+                self.actors.append(remote.options(**options).remote(cpus))
+        else:
+            cpus = int(cpus_per_actor or 1)
+            for _ in range(int(actors)):
+                self.actors.append(remote.options(num_cpus=cpus, max_concurrency=concurrency).remote(cpus))
+        found = ray.get([a.ready.remote() for a in self.actors], timeout=self.timeout)
+        check_versions(found)
+        #: each actor's worker process id, as it started (tests kill one)
+        self.pids = [pid for pid, _ in found]
+
+    def close(self) -> None:
+        """Ends the actors (and the connection, when this pool made it)."""
+        for a in self.actors:
+            try:
+                self._ray.kill(a)
+            except Exception:  # an actor already gone
+                pass
+        self.actors = []
+        if self._connected:
+            self._ray.shutdown()
+            self._connected = False
+
+
+class RayEvaluator:
+    """Sends one experiment's batches of evaluations to the actors of a :class:`RayPool` (its
+    own, made with ``pool_options``, or ``pool``, shared).
+
+    ``chunks_per_actor`` splits a batch finer for load balance; ``attempts`` is how many times one
+    chunk may be sent before the batch fails; ``on_submit`` (tests) is called with this evaluator
+    after each batch is sent.
+    """
+
+    def __init__(
+        self,
+        config_text: str,
+        address: str = "auto",
+        origin: str = "config",
+        chunks_per_actor: int = 2,
+        attempts: int = 5,
+        timeout: float = 3600.0,
+        on_submit: Optional[Callable[["RayEvaluator"], Any]] = None,
+        pool: Optional[RayPool] = None,
+        **pool_options: Any,
+    ):
+        # a local check first: a bad file fails here, with its field named, not on a worker
+        Worker(config_text, origin, 1)  # built and dropped: only the check matters
+        self.text = config_text
+        self.origin = origin
+        self.key = hashlib.sha256(config_text.encode()).hexdigest()[:16]
+        self._own = pool is None
+        self.pool = pool if pool is not None else RayPool(address, timeout=timeout, **pool_options)
+        self._ray = self.pool._ray
         self.chunks_per_actor = max(1, int(chunks_per_actor))
         self.attempts = max(1, int(attempts))
         self.timeout = float(timeout)
         self.on_submit = on_submit
         self.batches = 0
         self.resubmitted = 0
-        remote = ray.remote(max_restarts=-1, max_task_retries=0)(_Worker)
-        nodes = [n for n in ray.nodes() if n.get("Alive") and n.get("Resources", {}).get("CPU", 0) >= 1]
-        if not nodes:
-            raise RuntimeError("ray: the cluster has no node with a CPU")
-        self.actors = []
-        if actors is None:
-            for node in nodes:
-                cpus = int(cpus_per_actor or node["Resources"]["CPU"])
-                strategy = NodeAffinitySchedulingStrategy(node_id=node["NodeID"], soft=True)
-                self.actors.append(
-                    remote.options(num_cpus=cpus, scheduling_strategy=strategy).remote(config_text, origin, cpus)
-                )
-        else:
-            cpus = int(cpus_per_actor or 1)
-            for _ in range(int(actors)):
-                self.actors.append(remote.options(num_cpus=cpus).remote(config_text, origin, cpus))
-        found = ray.get([a.ready.remote() for a in self.actors], timeout=self.timeout)
-        check_versions(found)
-        #: each actor's worker process id, as it started (tests kill one)
-        self.pids = [pid for pid, _ in found]
+
+    @property
+    def actors(self) -> list:
+        return self.pool.actors
+
+    @property
+    def pids(self) -> list:
+        return self.pool.pids
 
     def robot_file(self, genotype: str, record: Optional[str], note: str) -> bytes:
         """A run's best robot file, made on an actor (the next one if it dies)."""
@@ -121,7 +179,8 @@ class RayEvaluator:
         for attempt in range(self.attempts):
             actor = self.actors[attempt % len(self.actors)]
             try:
-                return ray.get(actor.robot_file.remote(genotype, record, note), timeout=self.timeout)
+                ref = actor.robot_file.remote(self.key, self.text, self.origin, genotype, record, note)
+                return ray.get(ref, timeout=self.timeout)
             except exceptions as e:
                 if attempt + 1 == self.attempts:
                     raise RuntimeError(f"ray: the best robot's file failed {self.attempts} times: {e}") from e
@@ -141,7 +200,8 @@ class RayEvaluator:
         def submit(i: int, actor: int) -> None:
             a, b = chunks[i]
             tries[i] += 1
-            ref = self.actors[actor % len(self.actors)].evaluate.remote(genotypes[a:b], seeds[a:b])
+            target = self.actors[actor % len(self.actors)]
+            ref = target.evaluate.remote(self.key, self.text, self.origin, genotypes[a:b], seeds[a:b])
             pending[ref] = (i, actor)
 
         for i in range(len(chunks)):
@@ -169,13 +229,6 @@ class RayEvaluator:
         return "[" + ",".join(p for p in inner if p) + "]"
 
     def close(self) -> None:
-        """Ends the actors (and the connection, when this evaluator made it)."""
-        for a in self.actors:
-            try:
-                self._ray.kill(a)
-            except Exception:  # an actor already gone
-                pass
-        self.actors = []
-        if self._connected:
-            self._ray.shutdown()
-            self._connected = False
+        """Ends its own pool's actors (a shared pool is closed by its owner)."""
+        if self._own:
+            self.pool.close()

@@ -5,6 +5,7 @@
 
 mod analyze;
 mod bench;
+mod campaign;
 mod codesign;
 mod evaluate;
 mod inflate;
@@ -13,6 +14,7 @@ mod modules;
 mod monitor;
 mod overrides;
 mod plasticity;
+mod python;
 mod reassess;
 mod run;
 mod simulate;
@@ -40,6 +42,9 @@ enum Command {
     Bench(bench::BenchArgs),
     /// Run an evolutionary experiment described in a TOML file (docs/experiments.md).
     Run(run::RunArgs),
+    /// Run many experiment files (every setting, every run) side by side, locally or on a Ray
+    /// cluster, each setting in its own folder (docs/cluster.md, "Campaigns").
+    Campaign(campaign::CampaignArgs),
     /// Fitness of given genotypes (rows of genes) on an experiment's robot and task, for
     /// optimisers outside vsrlab; the same evaluations as `vsrlab run`.
     Evaluate(evaluate::EvaluateArgs),
@@ -82,6 +87,7 @@ fn main() -> ExitCode {
         Command::Simulate(a) => simulate::run(*a),
         Command::Bench(a) => bench::run(a),
         Command::Run(a) => run::run(a),
+        Command::Campaign(a) => campaign::run(a),
         Command::Evaluate(a) => evaluate::run(a),
         Command::Validate(a) => validate::run(a),
         Command::Analyze(a) => analyze::run(a),

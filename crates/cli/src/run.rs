@@ -28,6 +28,10 @@ pub struct RunArgs {
     /// Refuse a run whose estimated memory exceeds this many GiB (docs/experiments.md).
     #[arg(long, default_value_t = 8.0, value_name = "GIB")]
     pub max_memory_gib: f64,
+    /// Evaluate on a Ray cluster ('auto', 'local' or HOST:PORT) through vsrlab's Python package
+    /// (the interpreter in $VSRLAB_PYTHON, or python3); a sweep goes as a campaign.
+    #[arg(long, value_name = "ADDRESS")]
+    pub ray: Option<String>,
 }
 
 /// Positions per run on the progress bars.
@@ -222,6 +226,9 @@ pub fn run(a: RunArgs) -> Result<(), String> {
     if let [experiment] = experiments.as_slice() {
         let name = experiment.name.clone().unwrap_or_else(|| "experiment".to_string());
         let out = a.out.clone().unwrap_or_else(|| PathBuf::from("out").join(&name));
+        if let Some(address) = &a.ray {
+            return crate::python::hand_over(&ray_arguments("run", &a, &out, address));
+        }
         return run_one(experiment, &out, &a);
     }
     let stem = a
@@ -229,6 +236,9 @@ pub fn run(a: RunArgs) -> Result<(), String> {
         .file_stem()
         .map_or("sweep".to_string(), |s| s.to_string_lossy().into_owned());
     let base = a.out.clone().unwrap_or_else(|| PathBuf::from("out").join(stem));
+    if let Some(address) = &a.ray {
+        return crate::python::hand_over(&ray_arguments("campaign", &a, &base, address));
+    }
     eprintln!(
         "{}: a sweep of {} settings, each in its own folder under {}",
         a.experiment.display(),
@@ -281,4 +291,22 @@ fn run_one(experiment: &Experiment, out: &Path, a: &RunArgs) -> Result<(), Strin
         out.display()
     );
     Ok(())
+}
+
+/// `python -m vsrlab COMMAND FILE --out OUT --ray ADDRESS …` with this command's settings.
+fn ray_arguments(command: &str, a: &RunArgs, out: &Path, address: &str) -> Vec<String> {
+    let mut args = vec![command.to_string(), a.experiment.display().to_string()];
+    args.extend([
+        "--out".into(),
+        out.display().to_string(),
+        "--ray".into(),
+        address.into(),
+    ]);
+    if a.resume {
+        args.push("--resume".into());
+    }
+    if let Some(threads) = a.threads {
+        args.extend(["--threads".into(), threads.to_string()]);
+    }
+    args
 }

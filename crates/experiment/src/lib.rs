@@ -20,6 +20,7 @@
 //!   per-run memory estimate checked before a run starts.
 //! - [`validate`](mod@validate): what a file will do before it runs (resolved configuration,
 //!   sizes, a time estimate).
+//! - [`campaign`]: many experiment files × their runs side by side, on one pool or cluster.
 //! - [`remote`]: a run's batches evaluated elsewhere (Ray workers), and the workers' side,
 //!   for every genotype kind.
 //! - [`batch`]: many flat genotypes evaluated in one call, for optimisers outside vsrlab
@@ -49,6 +50,7 @@ mod batches;
 pub mod bench;
 pub mod bench_learning;
 pub mod bench_population;
+pub mod campaign;
 pub mod checkpoint;
 pub mod codesign;
 pub mod config;

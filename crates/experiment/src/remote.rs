@@ -96,21 +96,23 @@ impl ServeHook {
 }
 
 /// Builds the evaluator of `experiment`, as its genotype kind builds it for a run, and calls
-/// `hook` with it on `threads` worker threads (0: one per core). An error when the kind does not
-/// run through the runner (it has no evaluator to serve) or its settings are refused.
+/// `hook` with it, evaluating on `pool` (a worker's experiments share its pool). An error when
+/// the kind does not run through the runner (it has no evaluator to serve) or its settings are
+/// refused.
 pub fn serve(
     experiment: &Experiment,
-    threads: usize,
+    pool: Arc<rayon::ThreadPool>,
     hook: impl FnOnce(&dyn Served) + Send + 'static,
 ) -> Result<(), RunError> {
     let called = Arc::new(AtomicBool::new(false));
     let flag = called.clone();
     let options = RunOptions {
-        threads,
+        threads: pool.current_num_threads(),
         evaluations: Evaluations::Serve(ServeHook::new(move |served| {
             flag.store(true, Ordering::SeqCst);
             hook(served);
         })),
+        pool: Some(pool),
         ..RunOptions::default()
     };
     crate::run_configured(experiment, Path::new(""), &options, &mut Silent)?;

@@ -41,6 +41,7 @@ use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
 use std::time::Instant;
 use vsrlab_analysis::rows::{GenerationRow, SnapshotRow};
 use vsrlab_analysis::run_folder::{
@@ -138,6 +139,13 @@ pub struct RunOptions {
     /// Where batches are evaluated: here (the default), sent elsewhere, or served to a worker
     /// ([`crate::remote`]).
     pub evaluations: Evaluations,
+    /// A thread pool the evaluations share with other experiments (a campaign's); `None`: a
+    /// pool of `threads` of the run's own.
+    pub pool: Option<Arc<rayon::ThreadPool>>,
+    /// Run an experiment's runs side by side, each on its own thread, their batches on the same
+    /// pool (a campaign's: small batches of many runs keep the cores or a cluster busy). The
+    /// results are the same: each run is a pure function of its seed.
+    pub concurrent_runs: bool,
 }
 
 /// Whether the runner should go on after a generation.
@@ -168,8 +176,9 @@ pub struct Progress {
     pub elapsed: f64,
 }
 
-/// Receives progress; the CLI draws progress bars with it.
-pub trait Observer {
+/// Receives progress; the CLI draws progress bars with it. `Send`: runs side by side report to
+/// one observer from their threads.
+pub trait Observer: Send {
     /// A run starts (or resumes, with `progress` where it left off).
     fn run_started(&mut self, _progress: &Progress) {}
     /// A generation ended (after its checkpoint was written).
@@ -341,11 +350,15 @@ pub fn run_dir(out: &Path, run: usize, runs: usize) -> PathBuf {
     RunFolder::new(out).run_dir(run, runs)
 }
 
+/// Builds a run's optimizer from its seed (`Sync`: runs side by side build theirs on their own
+/// threads).
+pub type NewOptimizer<'a, O> = dyn Fn(u64) -> Result<O, RunError> + Sync + 'a;
+
 /// Runs every run of a plan into `out` with optimizers of any genotype type: `new_optimizer`
 /// builds the optimizer of a run from its seed.
 pub fn run_search<G: Genotype, O: SearchOptimizer<G>>(
     plan: &Plan,
-    new_optimizer: &dyn Fn(u64) -> Result<O, RunError>,
+    new_optimizer: &NewOptimizer<'_, O>,
     evaluator: &dyn Evaluator<G>,
     out: &Path,
     options: &RunOptions,
@@ -362,8 +375,10 @@ pub fn run_search<G: Genotype, O: SearchOptimizer<G>>(
             run_plan(plan, new_optimizer, &sent, out, options, observer)
         }
         Evaluations::Serve(hook) => {
-            let pool = rayon::ThreadPoolBuilder::new().num_threads(options.threads).build()?;
-            hook.call(&Serving { evaluator, pool: &pool });
+            hook.call(&Serving {
+                evaluator,
+                pool: &*pool_of(options)?,
+            });
             Ok(Vec::new())
         }
     }
@@ -372,7 +387,7 @@ pub fn run_search<G: Genotype, O: SearchOptimizer<G>>(
 /// [`run_search`] with the batches evaluated by `evaluator`.
 fn run_plan<G: Genotype, O: SearchOptimizer<G>>(
     plan: &Plan,
-    new_optimizer: &dyn Fn(u64) -> Result<O, RunError>,
+    new_optimizer: &NewOptimizer<'_, O>,
     evaluator: &dyn Evaluator<G>,
     out: &Path,
     options: &RunOptions,
@@ -419,30 +434,109 @@ fn run_plan<G: Genotype, O: SearchOptimizer<G>>(
             write_file(&config_path, resolved.as_bytes())?;
         }
     }
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(options.threads).build()?;
-    let mut summaries = Vec::new();
-    for (run, &seed) in plan.run_seeds.iter().enumerate() {
-        let files = folder.run(run, plan.run_seeds.len());
+    let pool = pool_of(options)?;
+    let session = Session {
+        plan,
+        evaluator,
+        new_optimizer,
+        options,
+        pool: &pool,
+    };
+    let runs = plan.run_seeds.len();
+    let slots: Vec<(usize, u64, RunFiles)> = (plan.run_seeds.iter().enumerate())
+        .map(|(run, &seed)| (run, seed, folder.run(run, runs)))
+        .collect();
+    let one = |(run, seed, files): &(usize, u64, RunFiles), observer: &mut dyn Observer| {
         let slot = RunSlot {
-            run,
-            seed,
-            files: &files,
+            run: *run,
+            seed: *seed,
+            files,
         };
-        let session = Session {
-            plan,
-            evaluator,
-            new_optimizer,
-            options,
-            pool: &pool,
-        };
-        match run_one(&session, &slot, observer)? {
-            Some(summary) => summaries.push(summary),
-            None => return Ok(summaries),
+        run_one(&session, &slot, observer)
+    };
+    let mut outcomes = Vec::with_capacity(runs);
+    if options.concurrent_runs && runs > 1 {
+        let shared = Mutex::new(observer);
+        std::thread::scope(|scope| {
+            let threads: Vec<_> = (slots.iter())
+                .map(|slot| {
+                    let (one, shared) = (&one, &shared);
+                    std::thread::Builder::new()
+                        .name(format!("vsrlab-run-{}", slot.0))
+                        .stack_size(RUN_THREAD_STACK)
+                        .spawn_scoped(scope, move || one(slot, &mut Relay(shared)))
+                })
+                .collect();
+            for thread in threads {
+                outcomes.push(match thread {
+                    Ok(handle) => handle
+                        .join()
+                        .unwrap_or_else(|_| Err(RunError::Other("a run's thread panicked".into()))),
+                    Err(e) => Err(RunError::Other(format!("a run's thread could not start: {e}"))),
+                });
+            }
+        });
+    } else {
+        for slot in &slots {
+            let outcome = one(slot, observer);
+            let go_on = matches!(outcome, Ok(Some(_)));
+            outcomes.push(outcome);
+            if !go_on {
+                break;
+            }
         }
+    }
+    let mut summaries = Vec::new();
+    let mut interrupted = false;
+    for outcome in outcomes {
+        match outcome? {
+            Some(summary) => summaries.push(summary),
+            None => interrupted = true,
+        }
+    }
+    if interrupted {
+        return Ok(summaries);
     }
     let text = serde_json::to_string_pretty(&summaries).expect("summaries serialise");
     write_file(&folder.summary_json(), text.as_bytes())?;
     Ok(summaries)
+}
+
+/// The pool a run evaluates on: the shared one of its options, or its own of `threads`.
+pub(crate) fn pool_of(options: &RunOptions) -> Result<Arc<rayon::ThreadPool>, RunError> {
+    match &options.pool {
+        Some(shared) => Ok(shared.clone()),
+        None => Ok(Arc::new(
+            rayon::ThreadPoolBuilder::new().num_threads(options.threads).build()?,
+        )),
+    }
+}
+
+/// Stack of a run's own thread when runs go side by side (the optimizer's work runs there).
+const RUN_THREAD_STACK: usize = 16 << 20;
+
+/// One run's view of an observer that runs side by side share.
+struct Relay<'a, 'b>(&'a Mutex<&'b mut dyn Observer>);
+
+impl<'a, 'b> Relay<'a, 'b> {
+    fn lock(&self) -> std::sync::MutexGuard<'a, &'b mut dyn Observer> {
+        self.0.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+}
+
+impl Observer for Relay<'_, '_> {
+    fn run_started(&mut self, progress: &Progress) {
+        self.lock().run_started(progress);
+    }
+    fn generation(&mut self, progress: &Progress) -> Flow {
+        self.lock().generation(progress)
+    }
+    fn run_finished(&mut self, summary: &RunSummary) {
+        self.lock().run_finished(summary);
+    }
+    fn notice(&mut self, message: &str) {
+        self.lock().notice(message);
+    }
 }
 
 /// The worker threads a run asking for `requested` gets: one per core for 0, at most
@@ -522,7 +616,7 @@ fn read_truncated(path: &Path, bytes: u64) -> Result<String, RunError> {
 struct Session<'a, G, O> {
     plan: &'a Plan,
     evaluator: &'a dyn Evaluator<G>,
-    new_optimizer: &'a dyn Fn(u64) -> Result<O, RunError>,
+    new_optimizer: &'a NewOptimizer<'a, O>,
     options: &'a RunOptions,
     pool: &'a rayon::ThreadPool,
 }

@@ -4,6 +4,7 @@
 mod analyze;
 mod attention;
 mod bench;
+mod campaign;
 mod codesign;
 mod common;
 mod ensemble;

@@ -105,7 +105,7 @@ pub fn validate_codesign(
 pub fn run_codesign<G: Genotype, O: SearchOptimizer<G>>(
     experiment: &Experiment,
     evaluator: &CodesignEvaluator<G>,
-    new_optimizer: &dyn Fn(u64) -> Result<O, RunError>,
+    new_optimizer: &crate::runner::NewOptimizer<'_, O>,
     out: &Path,
     options: &RunOptions,
     observer: &mut dyn Observer,

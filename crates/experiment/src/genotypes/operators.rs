@@ -68,7 +68,7 @@ pub fn run_with_operators<V, M>(
     observer: &mut dyn Observer,
 ) -> Result<Vec<RunSummary>, RunError>
 where
-    V: Variation + Clone + Serialize + DeserializeOwned + Send,
+    V: Variation + Clone + Serialize + DeserializeOwned + Send + Sync,
     V::Genotype: Genotype,
     M: Mapper<V::Genotype>,
 {

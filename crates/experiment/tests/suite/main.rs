@@ -1,6 +1,7 @@
 //! Every integration test of this crate in one binary (one link instead of one per file: CI
 //! time); each file is a module.
 
+mod campaign;
 mod codesign;
 mod common;
 mod config;

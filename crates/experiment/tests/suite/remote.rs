@@ -12,6 +12,11 @@ use vsrlab_experiment::remote::{serve, Evaluations, Served, Transport};
 use vsrlab_experiment::run_configured;
 use vsrlab_experiment::runner::{deterministic_files, RunOptions, Silent};
 
+/// A worker's pool of one thread.
+fn one_thread() -> Arc<rayon::ThreadPool> {
+    Arc::new(rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap())
+}
+
 /// A request to the worker's thread, with where its answer goes.
 enum Request {
     Batch(Vec<String>, Vec<u64>, Sender<Result<Vec<Evaluated>, String>>),
@@ -49,7 +54,7 @@ impl Loopback {
         let count = served.clone();
         let experiment = experiment.clone();
         std::thread::spawn(move || {
-            serve(&experiment, 1, move |s| answer(s, receive, &count)).unwrap();
+            serve(&experiment, one_thread(), move |s| answer(s, receive, &count)).unwrap();
         });
         Loopback {
             requests: Mutex::new(requests),
@@ -135,7 +140,7 @@ fn a_batch_that_does_not_come_back_stops_the_run_with_the_transports_reason() {
 fn a_worker_refuses_genotypes_of_another_kind_by_index() {
     let experiment = experiment("kind = \"ga\"\npopulation_size = 6\noffspring_size = 6");
     let (send, receive) = channel();
-    serve(&experiment, 1, move |served| {
+    serve(&experiment, one_thread(), move |served| {
         let _ = send.send(
             served
                 .evaluate(&["[1,2,3]".into(), "{\"neurons\":[]}".into()], &[1, 2])

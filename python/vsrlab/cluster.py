@@ -19,6 +19,8 @@ checkpoint, and ``resume=True`` continues it.
 from __future__ import annotations
 
 import hashlib
+import json
+from collections import deque
 import os
 import threading
 import time
@@ -27,6 +29,10 @@ from typing import Any, Callable, Optional
 import numpy as np
 
 from ._native import Worker, __version__
+
+
+#: seconds of evaluations a chunk aims at once evaluations are known to be slow
+CHUNK_SECONDS = 0.5
 
 
 class _Worker:
@@ -142,7 +148,7 @@ class RayEvaluator:
         config_text: str,
         address: str = "auto",
         origin: str = "config",
-        chunks_per_actor: int = 2,
+        chunks_per_actor: int = 4,
         attempts: int = 5,
         timeout: float = 3600.0,
         on_submit: Optional[Callable[["RayEvaluator"], Any]] = None,
@@ -163,6 +169,8 @@ class RayEvaluator:
         self.on_submit = on_submit
         self.batches = 0
         self.resubmitted = 0
+        #: the last batch's mean seconds per evaluation, which sizes the next batch's chunks
+        self.seconds_per_evaluation: Optional[float] = None
 
     @property
     def actors(self) -> list:
@@ -190,22 +198,43 @@ class RayEvaluator:
         ray = self._ray
         exceptions = (ray.exceptions.RayActorError, ray.exceptions.WorkerCrashedError)
         rows = len(genotypes)
-        parts = min(rows, len(self.actors) * self.chunks_per_actor)
+        actors = len(self.actors)
+        parts = min(rows, actors * self.chunks_per_actor)
+        # cheap chunks: two in flight per actor, so that it never waits for the next one
+        in_flight = 2
+        if self.seconds_per_evaluation is not None:
+            # evaluations that take long (a co-design body's PPO training) go in smaller chunks,
+            # down to one each, so that a batch's last chunk is short: about CHUNK_SECONDS each;
+            # one in flight per actor, the next to whichever actor frees up first
+            per_chunk = max(1, int(CHUNK_SECONDS / max(self.seconds_per_evaluation, 1e-9)))
+            if per_chunk < -(-rows // parts):
+                parts = min(rows, -(-rows // per_chunk))
+                in_flight = 1
         bounds = np.linspace(0, rows, parts + 1).astype(int)
         chunks = [(int(a), int(b)) for a, b in zip(bounds[:-1], bounds[1:]) if b > a]
         results: list = [None] * len(chunks)
         tries = [0] * len(chunks)
+        waiting = deque(range(len(chunks)))
+        busy = [0] * actors
         pending = {}
 
         def submit(i: int, actor: int) -> None:
             a, b = chunks[i]
             tries[i] += 1
-            target = self.actors[actor % len(self.actors)]
-            ref = target.evaluate.remote(self.key, self.text, self.origin, genotypes[a:b], seeds[a:b])
+            busy[actor] += 1
+            ref = self.actors[actor].evaluate.remote(self.key, self.text, self.origin, genotypes[a:b], seeds[a:b])
             pending[ref] = (i, actor)
 
-        for i in range(len(chunks)):
-            submit(i, i)
+        def feed() -> None:
+            # each actor holds at most `in_flight` chunks: the next chunk goes to whichever frees
+            # up first, so that slow chunks do not hold up a batch (dynamic load balance)
+            while waiting:
+                actor = min(range(actors), key=lambda k: busy[k])
+                if busy[actor] >= in_flight:
+                    return
+                submit(waiting.popleft(), actor)
+
+        feed()
         self.batches += 1
         if self.on_submit is not None:
             self.on_submit(self)
@@ -217,16 +246,23 @@ class RayEvaluator:
             done, _ = ray.wait(list(pending), num_returns=1, timeout=left)
             for ref in done:
                 i, actor = pending.pop(ref)
+                busy[actor] -= 1
                 try:
                     results[i] = ray.get(ref)
                 except exceptions as e:
                     if tries[i] >= self.attempts:
                         raise RuntimeError(f"ray: rows {chunks[i]} failed {tries[i]} times: {e}") from e
+                    # sent again, first in line (a dead actor's tasks wait for Ray to restart it)
                     self.resubmitted += 1
-                    submit(i, actor + 1)
+                    waiting.appendleft(i)
+            feed()
         # each part is the JSON list of its chunk's evaluations: join them in order
         inner = [r.strip()[1:-1] for r in results]
-        return "[" + ",".join(p for p in inner if p) + "]"
+        joined = "[" + ",".join(p for p in inner if p) + "]"
+        seconds = [e.get("seconds", 0.0) for e in json.loads(joined)]
+        if seconds:
+            self.seconds_per_evaluation = sum(seconds) / len(seconds)
+        return joined
 
     def close(self) -> None:
         """Ends its own pool's actors (a shared pool is closed by its owner)."""

@@ -9,12 +9,18 @@
 # that it passed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+start=$SECONDS
 if [ ! -x .venv/bin/python ]; then
   python3 -m venv .venv
 fi
 .venv/bin/python -m pip install --quiet --disable-pip-version-check -r python/requirements-test.txt
+echo "python/test.sh: the virtual environment took $((SECONDS - start)) s" >&2
+start=$SECONDS
 cargo build --locked --quiet --workspace --bins
+echo "python/test.sh: the binaries took $((SECONDS - start)) s" >&2
+start=$SECONDS
 .venv/bin/maturin develop --locked --quiet -m python/Cargo.toml
+echo "python/test.sh: the extension took $((SECONDS - start)) s" >&2
 set +e
 VSRLAB_BIN="$PWD/target/debug/vsrlab" .venv/bin/python -m pytest python/tests -q "$@"
 status=$?

@@ -10,6 +10,7 @@
 
 import json
 import os
+import resource
 import subprocess
 import sys
 import tempfile
@@ -90,8 +91,13 @@ def on_cluster(nodes: int, work) -> float:
         if nodes == 2:
             ray("start", f"--address=127.0.0.1:{PORT}", "--node-ip-address=127.0.0.1", "--num-cpus=1")
         start = time.perf_counter()
+        cpu = resource.getrusage(resource.RUSAGE_SELF)
         work(f"127.0.0.1:{PORT}")
-        return time.perf_counter() - start
+        wall = time.perf_counter() - start
+        after = resource.getrusage(resource.RUSAGE_SELF)
+        driver = after.ru_utime + after.ru_stime - cpu.ru_utime - cpu.ru_stime
+        print(f"  ({nodes} node(s): the driver process used {driver:.1f} CPU-s of {wall:.1f} s)", file=sys.stderr)
+        return wall
     finally:
         subprocess.run([RAY, "stop", "--force"], env=ENV, capture_output=True, timeout=180)
 

@@ -80,3 +80,23 @@ def test_the_example_biped_walks_and_a_psa_runs_its_tasks(tmp_path, root):
 def test_bad_simulate_arguments_raise_value_error(kwargs, pattern):
     with pytest.raises(ValueError, match=pattern):
         vsrlab.simulate(**kwargs)
+
+
+def test_short_forms_of_every_kind_take_their_kinds_defaults(vsrlab_bin):
+    # issue 56, item 1: simulate() gave every body the voxel robots' preset 2021
+    evogym = vsrlab.simulate("evogym:33333/33333/33333/33333/33333", task="walker", duration=0.2)
+    assert evogym["steps"] > 0 and len(evogym["fitness"]) == 1
+    cube = vsrlab.simulate("3d:quadruped", task="locomotion3d", duration=0.05)
+    assert cube["steps"] > 0
+    # the same outcome as the command line, which passes no preset either
+    out = cli(vsrlab_bin, "simulate", "--body", "3d:quadruped", "--task", "locomotion3d", "--duration", "0.05", "--json")
+    assert json.loads(out)["distance"] == cube["distance"]
+    # a voxel robot keeps its kind's default, 2021, and a preset given to another kind is refused
+    assert vsrlab.simulate("biped-4x3", duration=1)["fitness"] == vsrlab.simulate("biped-4x3", duration=1, preset="2021")["fitness"]
+    with pytest.raises(ValueError, match="preset"):
+        vsrlab.simulate("3d:quadruped", task="locomotion3d", duration=0.05, preset="2021")
+    # a 3D body in the 2D locomotion environment: told which task it runs in, not about a preset
+    import gymnasium
+
+    with pytest.raises(ValueError, match="locomotion3d"):
+        gymnasium.make("vsrlab/Locomotion-v0", body="3d:quadruped")

@@ -50,7 +50,7 @@ def load_robot(path: PathLike) -> Robot:
     return Robot.load(os.fspath(path))
 
 
-def _robot(robot: Union[Robot, PathLike], brain: Optional[str], sensors: Optional[str], preset: str) -> Robot:
+def _robot(robot: Union[Robot, PathLike], brain: Optional[str], sensors: Optional[str], preset: Optional[str]) -> Robot:
     if isinstance(robot, Robot):
         return robot
     if not isinstance(robot, (str, os.PathLike)):
@@ -69,7 +69,7 @@ def simulate(
     video: Optional[PathLike] = None,
     brain: Optional[str] = None,
     sensors: Optional[str] = None,
-    preset: str = "2021",
+    preset: Optional[str] = None,
 ) -> dict:
     """Runs one episode and returns its outcome: ``fitness`` (a list), the task's metrics
     (``distance``, ``velocity``, …), ``steps`` and ``units``.

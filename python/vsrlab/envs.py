@@ -33,7 +33,7 @@ from ._native import Episode, EvoGymEnv, Robot, VectorEpisode
 _IDLE_BRAIN = "constant:0"
 
 
-def _make_robot(body: str, robot: Optional[str], sensors: Optional[str], preset: str) -> Robot:
+def _make_robot(body: str, robot: Optional[str], sensors: Optional[str], preset: Optional[str]) -> Robot:
     if robot is not None:
         return Robot.load(os.fspath(robot))
     if body.startswith("psa"):
@@ -68,7 +68,7 @@ class SoftRobotEnv(gymnasium.Env):
         task: str = "locomotion:flat",
         duration: float = 30.0,
         sensors: Optional[str] = None,
-        preset: str = "2021",
+        preset: Optional[str] = None,
         robot: Optional[str] = None,
         render_mode: Optional[str] = None,
     ):
@@ -115,7 +115,7 @@ class SoftRobotVectorEnv(gymnasium.vector.VectorEnv):
         task: str = "locomotion:flat",
         duration: float = 30.0,
         sensors: Optional[str] = None,
-        preset: str = "2021",
+        preset: Optional[str] = None,
         robot: Optional[str] = None,
         render_mode: Optional[str] = None,
     ):

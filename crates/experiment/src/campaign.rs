@@ -11,6 +11,7 @@ use crate::config::{self, ConfigError, Experiment};
 use crate::remote::Evaluations;
 use crate::runner::{Flow, Observer, Progress, RunError, RunOptions, RunSummary};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Mutex;
 
 /// One setting of a campaign: an experiment and its output folder.
@@ -47,8 +48,8 @@ pub enum CampaignError {
         /// The second file.
         second: String,
     },
-    /// Settings failed (the others finished or stopped at their checkpoints).
-    #[error("{}", failed_text(.0))]
+    /// Settings failed; the others stopped at their last checkpoints (or had finished).
+    #[error("{}\nthe other settings stopped at their last checkpoints: run the campaign again with --resume (resume=True) to continue", failed_text(.0))]
     Settings(Vec<(String, RunError)>),
 }
 
@@ -117,8 +118,9 @@ pub struct SettingResult {
 }
 
 /// Runs every setting's runs side by side: optimizers here, batches on one pool of `threads`
-/// (`options.threads`) or where each setting's [`Setting::evaluations`] sends them. Settings
-/// that fail do not stop the others; their errors come back together, by name.
+/// (`options.threads`) or where each setting's [`Setting::evaluations`] sends them. When a
+/// setting fails (a batch that cannot finish, a full disk), every other run stops at its next
+/// checkpoint, and the failures come back together, by name.
 pub fn run_campaign(
     settings: &[Setting],
     options: &RunOptions,
@@ -126,6 +128,7 @@ pub fn run_campaign(
 ) -> Result<Vec<SettingResult>, CampaignError> {
     let pool = crate::runner::pool_of(options).map_err(|e| CampaignError::Settings(vec![("campaign".into(), e)]))?;
     let shared = Mutex::new(observer);
+    let stop = AtomicBool::new(false);
     let outcomes: Vec<Result<Vec<RunSummary>, RunError>> = std::thread::scope(|scope| {
         let threads: Vec<_> = (settings.iter().enumerate())
             .map(|(index, setting)| {
@@ -135,12 +138,16 @@ pub fn run_campaign(
                     concurrent_runs: true,
                     ..options.clone()
                 };
-                let shared = &shared;
+                let (shared, stop) = (&shared, &stop);
                 std::thread::Builder::new()
                     .name(format!("vsrlab-setting-{index}"))
                     .spawn_scoped(scope, move || {
-                        let mut relay = SettingRelay { index, shared };
-                        crate::run_configured(&setting.experiment, &setting.out, &options, &mut relay)
+                        let mut relay = SettingRelay { index, shared, stop };
+                        let outcome = crate::run_configured(&setting.experiment, &setting.out, &options, &mut relay);
+                        if outcome.is_err() {
+                            stop.store(true, Ordering::SeqCst);
+                        }
+                        outcome
                     })
             })
             .collect();
@@ -177,6 +184,8 @@ pub fn run_campaign(
 struct SettingRelay<'a, 'b> {
     index: usize,
     shared: &'a Mutex<&'b mut dyn CampaignObserver>,
+    /// Set when a setting failed: every run stops at its next checkpoint.
+    stop: &'a AtomicBool,
 }
 
 impl<'a, 'b> SettingRelay<'a, 'b> {
@@ -190,7 +199,12 @@ impl Observer for SettingRelay<'_, '_> {
         self.lock().run_started(self.index, progress);
     }
     fn generation(&mut self, progress: &Progress) -> Flow {
-        self.lock().generation(self.index, progress)
+        let flow = self.lock().generation(self.index, progress);
+        if self.stop.load(Ordering::SeqCst) {
+            Flow::Interrupt
+        } else {
+            flow
+        }
     }
     fn run_finished(&mut self, summary: &RunSummary) {
         self.lock().run_finished(self.index, summary);

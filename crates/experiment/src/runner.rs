@@ -41,6 +41,7 @@ use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 use vsrlab_analysis::rows::{GenerationRow, SnapshotRow};
@@ -457,14 +458,22 @@ fn run_plan<G: Genotype, O: SearchOptimizer<G>>(
     let mut outcomes = Vec::with_capacity(runs);
     if options.concurrent_runs && runs > 1 {
         let shared = Mutex::new(observer);
+        // a run that fails stops the others at their next checkpoint
+        let failed = AtomicBool::new(false);
         std::thread::scope(|scope| {
             let threads: Vec<_> = (slots.iter())
                 .map(|slot| {
-                    let (one, shared) = (&one, &shared);
+                    let (one, shared, failed) = (&one, &shared, &failed);
                     std::thread::Builder::new()
                         .name(format!("vsrlab-run-{}", slot.0))
                         .stack_size(RUN_THREAD_STACK)
-                        .spawn_scoped(scope, move || one(slot, &mut Relay(shared)))
+                        .spawn_scoped(scope, move || {
+                            let outcome = one(slot, &mut Relay { shared, failed });
+                            if outcome.is_err() {
+                                failed.store(true, Ordering::SeqCst);
+                            }
+                            outcome
+                        })
                 })
                 .collect();
             for thread in threads {
@@ -516,11 +525,15 @@ pub(crate) fn pool_of(options: &RunOptions) -> Result<Arc<rayon::ThreadPool>, Ru
 const RUN_THREAD_STACK: usize = 16 << 20;
 
 /// One run's view of an observer that runs side by side share.
-struct Relay<'a, 'b>(&'a Mutex<&'b mut dyn Observer>);
+struct Relay<'a, 'b> {
+    shared: &'a Mutex<&'b mut dyn Observer>,
+    /// Set when a run failed: the others stop at their next checkpoint.
+    failed: &'a AtomicBool,
+}
 
 impl<'a, 'b> Relay<'a, 'b> {
     fn lock(&self) -> std::sync::MutexGuard<'a, &'b mut dyn Observer> {
-        self.0.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+        self.shared.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
     }
 }
 
@@ -529,7 +542,12 @@ impl Observer for Relay<'_, '_> {
         self.lock().run_started(progress);
     }
     fn generation(&mut self, progress: &Progress) -> Flow {
-        self.lock().generation(progress)
+        let flow = self.lock().generation(progress);
+        if self.failed.load(Ordering::SeqCst) {
+            Flow::Interrupt
+        } else {
+            flow
+        }
     }
     fn run_finished(&mut self, summary: &RunSummary) {
         self.lock().run_finished(summary);

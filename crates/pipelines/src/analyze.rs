@@ -7,7 +7,7 @@ use crate::best_robots::{best_csv, best_robots};
 use crate::classifiers::{classifier_table, train_classifiers};
 use crate::error::AnalysisError;
 use crate::figures::{
-    boxplot, descriptor_figure, fitness_figure, graph_size_figure, isi_figure, pca_figure, species_figure,
+    boxplot, column_figure, column_figures, descriptor_figure, fitness_figure, isi_figure, pca_figure, species_figure,
 };
 use crate::output::{create_folder, write_output};
 use crate::replay::{ReplaySetup, SetupReader};
@@ -152,12 +152,14 @@ pub fn analyze(
             }
         }
     }
-    if let Some(figure) = graph_size_figure(&settings, &experiments) {
-        a.figure(
-            "graph-size",
-            &figure,
-            "size |G| of the best controller graph vs evaluations, median ± sd across runs",
-        )?;
+    // the figures of columns the genotype kinds log (the graph's size, a co-designed body's)
+    let mut declared: Vec<_> = experiments.iter().flat_map(column_figures).collect();
+    declared.sort_by_key(|f| f.file);
+    declared.dedup();
+    for declared in &declared {
+        if let Some(figure) = column_figure(&settings, &experiments, declared) {
+            a.figure(declared.file, &figure, declared.description)?;
+        }
     }
     let best = per_setting(&settings, &experiments, RunData::final_best);
     progress.note("replaying the best robot of every run…");
@@ -289,6 +291,10 @@ impl Analysis<'_> {
     /// The best robots: `best.csv`, the descriptor scatter and the PCA.
     fn best_robots(&mut self, setups: &[Option<ReplaySetup>]) -> Result<(), AnalysisError> {
         let bests = best_robots(self.settings, self.experiments, setups, self.pool, self.progress);
+        if bests.is_empty() {
+            // a figure with no data is not written
+            return Ok(());
+        }
         self.table("best.csv", &best_csv(self.settings, &bests))?;
         self.figure(
             "descriptors",

@@ -11,7 +11,8 @@ use vsrlab_analysis::morphology::MorphologyDescriptors;
 use vsrlab_analysis::progress::Progress;
 use vsrlab_analysis::report::csv_field;
 use vsrlab_analysis::results::ExperimentData;
-use vsrlab_tasks::files::load_robot;
+use vsrlab_tasks::files::{load_any_robot, load_robot};
+use vsrlab_tasks::RobotSpec;
 use vsrlab_tasks::TraceLevel;
 
 /// The best robot of one run and what was computed from it.
@@ -64,6 +65,25 @@ pub(crate) fn best_robots(
                 }
             }
         }
+    }
+    // best robots of other kinds (3D voxels, EvoGym, PSAs) are left out with one note, not a
+    // warning per run: these tables and figures read 2D voxel bodies
+    let mut others: Vec<&'static str> = Vec::new();
+    jobs.retain(|job| match load_any_robot(&job.path) {
+        Ok(robot) if robot.downcast_ref::<RobotSpec>().is_none() => {
+            others.push(robot.kind().name);
+            false
+        }
+        _ => true,
+    });
+    if !others.is_empty() {
+        let count = others.len();
+        others.sort_unstable();
+        others.dedup();
+        progress.note(&format!(
+            "note: {count} best robot(s) of kind {}: best.csv and the descriptor figures read 2D voxel robots, so they are left out",
+            others.join(", ")
+        ));
     }
     pool.install(|| jobs.par_iter().filter_map(|job| best_robot(job, progress)).collect())
 }

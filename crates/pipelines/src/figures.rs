@@ -13,6 +13,7 @@ use vsrlab_analysis::plot::{
 };
 use vsrlab_analysis::report::pairwise;
 use vsrlab_analysis::results::{ExperimentData, GenerationRow};
+use vsrlab_experiment::genotypes::ColumnFigure;
 
 /// Curves are resampled on a common grid of this many points before taking median and sd.
 const GRID_POINTS: usize = 200;
@@ -47,15 +48,22 @@ pub(crate) fn fitness_figure(settings: &[Setting], experiments: &[ExperimentData
     }
 }
 
-/// The size |G| of the best graph vs evaluations, median ± sd across runs; `None` when no run
-/// logs one (genotypes other than graphs).
-pub(crate) fn graph_size_figure(settings: &[Setting], experiments: &[ExperimentData]) -> Option<BandFigure> {
+/// A column logged for the best genotype (`best_<column>`) vs evaluations, median ± sd across
+/// runs, as its genotype kind describes it; `None` without data. Only the experiments of a kind
+/// that declares the figure count.
+pub(crate) fn column_figure(
+    settings: &[Setting],
+    experiments: &[ExperimentData],
+    figure: &ColumnFigure,
+) -> Option<BandFigure> {
+    let declares = |e: &ExperimentData| column_figures(e).contains(figure);
     let curves_of = |s: &Setting| -> Vec<Vec<(f64, f64)>> {
         s.runs(experiments)
+            .filter(|(e, _)| declares(e))
             .map(|(_, r)| {
                 r.generations
                     .iter()
-                    .map(|g| (g.evaluations as f64, g.best_stat("size")))
+                    .map(|g| (g.evaluations as f64, g.best_stat(figure.column)))
                     .filter(|p| p.1.is_finite())
                     .collect()
             })
@@ -67,12 +75,21 @@ pub(crate) fn graph_size_figure(settings: &[Setting], experiments: &[ExperimentD
     }
     Some(BandFigure {
         note: vsrlab_analysis::plot::band::median_sd_note(),
-        title: "Size of the best controller graph during evolution".into(),
+        title: figure.title.into(),
         legend_title: "setting".into(),
-        panels: vec![evaluations_panel("|G| = neurons + edges", "|G|", settings, |s| {
-            curves_of(s)
-        })],
+        panels: vec![evaluations_panel(figure.axis, figure.axis, settings, |s| curves_of(s))],
     })
+}
+
+/// The figures an experiment's genotype kind declares (none for flat vectors, or for a kind
+/// this version does not know).
+pub(crate) fn column_figures(experiment: &ExperimentData) -> Vec<ColumnFigure> {
+    match experiment.config.get("genotype") {
+        Some(toml::Value::Table(table)) => vsrlab_experiment::genotypes::decode_table(table.clone())
+            .map(|kind| kind.column_figures())
+            .unwrap_or_default(),
+        _ => Vec::new(),
+    }
 }
 
 /// ISI of species, morphology and behaviour classes vs evaluations, median ± sd across runs.

@@ -114,6 +114,15 @@ fn both_encodings_run_resume_and_are_analysed() {
         ]);
         assert_eq!(std::fs::read(out.join("run-01/generations.csv")).unwrap(), before);
     }
+    // vsrlab analyze draws the co-design kinds' own size figure, not the graph's (issue 56,
+    // item 4: best_size, a share of the grid, was drawn as "|G| = neurons + edges")
+    let analysis = root.join("analysis");
+    let direct = root.join("out").join("direct");
+    ok(&["analyze", direct.to_str().unwrap(), "--out", analysis.to_str().unwrap()]);
+    assert!(analysis.join("body-size.png").is_file());
+    assert!(!analysis.join("graph-size.png").exists());
+    let summary = std::fs::read_to_string(analysis.join("summary.md")).unwrap();
+    assert!(summary.contains("share of the grid's cells present"), "{summary}");
     let figures = root.join("figures");
     let text = ok(&[
         "codesign",

@@ -86,6 +86,16 @@ evaluations = 8
     assert!(out.join("run-00/best.robot.json").exists());
     let best = std::fs::read_to_string(out.join("run-00/best.robot.json")).unwrap();
     assert!(best.contains("\"voxel3d\""), "{best}");
+    // the analysis of 3D runs draws no empty 2D-descriptor figure and says why once (issue 56,
+    // item 4: an empty descriptors.png and a warning per run)
+    let analysis = dir.path().join("analysis");
+    let text = ok(&["analyze", out.to_str().unwrap(), "--out", analysis.to_str().unwrap()]);
+    assert!(analysis.join("fitness.png").is_file());
+    assert!(!analysis.join("descriptors.png").exists() && !analysis.join("graph-size.png").exists());
+    assert!(!text.contains("reads voxel robots only"), "{text}");
+    assert_eq!(text.matches("of kind voxel3d").count(), 1, "{text}");
+    let summary = std::fs::read_to_string(analysis.join("summary.md")).unwrap();
+    assert!(!summary.contains("descriptors.png"), "{summary}");
 
     let bad = dir.path().join("bad.json");
     std::fs::write(&bad, best.replace("cube-2", "#.#")).unwrap();

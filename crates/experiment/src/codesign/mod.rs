@@ -17,6 +17,6 @@ pub use body::{cppn_body, kept_body, OUTPUT_MATERIALS};
 pub use evaluator::{material_shares, BodyOf, CodesignEvaluator, MATERIAL_COLUMNS};
 pub use learn::{learn, learned_robot, policy_brain, Episode, LearnError, Learned, LEARNING_CURVE, TRAINING_REWARD};
 pub use settings::{
-    codesign_evaluator, evogym_task, implied_representation, run_codesign, time_codesign, timed_ppo, validate_codesign,
-    TIMED_ITERATIONS,
+    codesign_evaluator, column_figures, evogym_task, implied_representation, run_codesign, time_codesign, timed_ppo,
+    validate_codesign, TIMED_ITERATIONS,
 };

@@ -138,3 +138,14 @@ pub fn time_codesign<G: Sync>(evaluator: &CodesignEvaluator<G>, genotypes: &[G])
         .collect();
     crate::genotypes::unless_every_evaluation_failed(&errors)
 }
+
+/// The figure of the co-design kinds' logged body size: the share of the grid's cells present.
+pub fn column_figures() -> Vec<crate::genotypes::ColumnFigure> {
+    vec![crate::genotypes::ColumnFigure {
+        column: "size",
+        file: "body-size",
+        title: "Size of the best body during evolution",
+        axis: "cells present / cells of the grid",
+        description: "share of the grid's cells present in the best body vs evaluations, median ± sd across runs",
+    }]
+}

@@ -167,6 +167,10 @@ impl GenotypeKind for CppnGenotype {
     fn stored(&self, _experiment: &Experiment) -> Result<Arc<dyn StoredGenotypes>, FieldError> {
         Ok(Arc::new(LearnedBodies))
     }
+
+    fn column_figures(&self) -> Vec<super::ColumnFigure> {
+        codesign::column_figures()
+    }
 }
 
 /// The registry entry of `kind = "cppn"`.

@@ -321,6 +321,16 @@ impl GenotypeKind for GraphGenotypeConfig {
         let (_, mapper) = build(experiment, self)?;
         Ok(Arc::new(Stored::<GraphSpec, _>::new(mapper)))
     }
+
+    fn column_figures(&self) -> Vec<super::ColumnFigure> {
+        vec![super::ColumnFigure {
+            column: "size",
+            file: "graph-size",
+            title: "Size of the best controller graph during evolution",
+            axis: "|G| = neurons + edges",
+            description: "size |G| of the best controller graph vs evaluations, median ± sd across runs",
+        }]
+    }
 }
 
 /// The graph operators as an [`evolution` representation](Variation): initial graphs, mutation.

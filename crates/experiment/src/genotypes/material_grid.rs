@@ -253,6 +253,10 @@ impl GenotypeKind for MaterialGridGenotype {
     fn stored(&self, _experiment: &Experiment) -> Result<Arc<dyn StoredGenotypes>, FieldError> {
         Ok(Arc::new(LearnedBodies))
     }
+
+    fn column_figures(&self) -> Vec<super::ColumnFigure> {
+        codesign::column_figures()
+    }
 }
 
 /// Stored co-design genotypes: their robots' brains are learned during the evaluation, so an

@@ -40,6 +40,24 @@ pub struct GenotypeSize {
     pub text: String,
 }
 
+/// A figure the analyses draw of a column the runner logs for each generation's best genotype
+/// (`best_<column>` of `generations.csv`, from the evaluator's `genotype_columns`): the kind says
+/// what its column means, so that a figure is drawn only for kinds that log it, and labelled
+/// for them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ColumnFigure {
+    /// The logged column (`size`).
+    pub column: &'static str,
+    /// The figure's file name, without extension (`graph-size`).
+    pub file: &'static str,
+    /// Its title.
+    pub title: &'static str,
+    /// Its y axis.
+    pub axis: &'static str,
+    /// A line for the analysis summary.
+    pub description: &'static str,
+}
+
 /// A genotype kind with its `[genotype]` settings. The type-erased plumbing ([`GenotypeCopy`])
 /// comes with any `Clone + PartialEq + Serialize` table type.
 pub trait GenotypeKind: Debug + Send + Sync + GenotypeCopy {
@@ -91,6 +109,11 @@ pub trait GenotypeKind: Debug + Send + Sync + GenotypeCopy {
     /// Python, Ray workers) sends.
     fn rows(&self) -> bool {
         false
+    }
+    /// The figures `vsrlab analyze` draws of the columns it logs for the best genotype (none by
+    /// default).
+    fn column_figures(&self) -> Vec<ColumnFigure> {
+        Vec::new()
     }
 }
 

@@ -153,3 +153,46 @@ fn two_settings_of_one_name_are_refused_with_both_files() {
     );
     assert!(matches!(settings(&[], dir.path()), Err(CampaignError::Empty)));
 }
+
+/// Loses every batch, as a cluster that went away.
+struct Lost;
+
+impl vsrlab_experiment::remote::Transport for Lost {
+    fn evaluate(
+        &self,
+        _genotypes: &[String],
+        _seeds: &[u64],
+    ) -> Result<Vec<vsrlab_experiment::Evaluated>, vsrlab_experiment::evaluator::EvaluatorError> {
+        Err(vsrlab_experiment::evaluator::EvaluatorError::Remote(
+            "the cluster went away".into(),
+        ))
+    }
+}
+
+#[test]
+fn a_setting_that_cannot_finish_a_batch_stops_the_campaign_at_its_checkpoints() {
+    let dir = tempfile::tempdir().unwrap();
+    let files = files(dir.path());
+    let out = dir.path().join("campaign");
+    let mut all = settings(&files, &out).unwrap();
+    // the first setting's batches are lost; the others would run 200 generations
+    all[0].evaluations = vsrlab_experiment::remote::Evaluations::Remote(std::sync::Arc::new(Lost));
+    for setting in &mut all[1..] {
+        setting.experiment.stop.evaluations = Some(1200);
+    }
+    let options = RunOptions {
+        threads: 2,
+        ..RunOptions::default()
+    };
+    let err = run_campaign(&all, &options, &mut Quiet).unwrap_err().to_string();
+    assert!(
+        err.starts_with("walk: ") && err.contains("the cluster went away"),
+        "{err}"
+    );
+    assert!(err.contains("--resume"), "{err}");
+    // the others stopped at a checkpoint, unfinished
+    for setting in &all[1..] {
+        assert!(setting.out.join("run-00/checkpoint.json").is_file(), "{}", setting.name);
+        assert!(!setting.out.join("summary.json").exists(), "{} finished", setting.name);
+    }
+}

@@ -2,9 +2,10 @@
 # The Python half of the test suite (the README's test command runs it after `cargo test`):
 # a virtual environment at .venv with python/requirements-test.txt, the extension built into it
 # with maturin in the dev profile (optimised, and shared with `cargo test`'s build, so only the
-# extension itself compiles here), the CLI it is compared with built in the same profile (with
-# --workspace, so that dependencies get the same features as in `cargo test --workspace` and
-# nothing compiles twice; `-p vsrlab-cli` alone would rebuild most of the tree), then pytest.
+# extension itself compiles here), the CLI it is compared with built exactly as `cargo test
+# --workspace` builds it (`cargo test --workspace --no-run`: after `cargo test` nothing compiles;
+# `cargo build --workspace --bins` resolved dependency features without the dev-dependencies
+# and rebuilt much of the tree, 88 s of CI), then pytest.
 # pytest's exit code 5 (no tests collected) is a failure: it means the suite went missing, not
 # that it passed.
 set -euo pipefail
@@ -16,7 +17,7 @@ fi
 .venv/bin/python -m pip install --quiet --disable-pip-version-check -r python/requirements-test.txt
 echo "python/test.sh: the virtual environment took $((SECONDS - start)) s" >&2
 start=$SECONDS
-cargo build --locked --quiet --workspace --bins
+cargo test --locked --quiet --workspace --no-run
 echo "python/test.sh: the binaries took $((SECONDS - start)) s" >&2
 start=$SECONDS
 .venv/bin/maturin develop --locked --quiet -m python/Cargo.toml

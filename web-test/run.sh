@@ -23,5 +23,7 @@ if ! command -v node >/dev/null; then
   exit 1
 fi
 (cd web-test && npm ci --no-audit --no-fund --silent)
-cargo build --locked --quiet --workspace --bins
+# the CLI as `cargo test --workspace` builds it: nothing compiles after the README's `cargo test`
+# (`cargo build --bins` resolves dependency features without the dev-dependencies: a rebuild)
+cargo test --locked --quiet --workspace --no-run
 VSRLAB_BIN="$PWD/target/debug/vsrlab" CHROMIUM="$CHROMIUM" node web-test/viewer.test.mjs

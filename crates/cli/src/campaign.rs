@@ -126,7 +126,15 @@ pub fn run(a: CampaignArgs) -> Result<(), String> {
     }
     let settings = campaign::settings(&a.experiments, &a.out).map_err(|e| e.to_string())?;
     if let Some(address) = &a.ray {
-        return crate::python::hand_over(&ray_arguments(&a, address));
+        let request = crate::python::RayRequest {
+            command: "campaign",
+            files: &a.experiments,
+            out: &a.out,
+            address,
+            resume: a.resume,
+            threads: a.threads,
+        };
+        return crate::python::hand_over(&request.arguments());
     }
     let runs: Vec<usize> = settings.iter().map(|s| s.experiment.runs).collect();
     eprintln!(
@@ -155,23 +163,4 @@ pub fn run(a: CampaignArgs) -> Result<(), String> {
     lines.log(true);
     print!("{}", campaign::table(&settings, &results));
     Ok(())
-}
-
-/// `python -m vsrlab campaign …` with this command's settings.
-fn ray_arguments(a: &CampaignArgs, address: &str) -> Vec<String> {
-    let mut args = vec!["campaign".to_string()];
-    args.extend(a.experiments.iter().map(|p| p.display().to_string()));
-    args.extend([
-        "--out".into(),
-        a.out.display().to_string(),
-        "--ray".into(),
-        address.into(),
-    ]);
-    if a.resume {
-        args.push("--resume".into());
-    }
-    if let Some(threads) = a.threads {
-        args.extend(["--threads".into(), threads.to_string()]);
-    }
-    args
 }

@@ -227,7 +227,7 @@ pub fn run(a: RunArgs) -> Result<(), String> {
         let name = experiment.name.clone().unwrap_or_else(|| "experiment".to_string());
         let out = a.out.clone().unwrap_or_else(|| PathBuf::from("out").join(&name));
         if let Some(address) = &a.ray {
-            return crate::python::hand_over(&ray_arguments("run", &a, &out, address));
+            return crate::python::hand_over(&ray_request("run", &a, &out, address).arguments());
         }
         return run_one(experiment, &out, &a);
     }
@@ -237,7 +237,7 @@ pub fn run(a: RunArgs) -> Result<(), String> {
         .map_or("sweep".to_string(), |s| s.to_string_lossy().into_owned());
     let base = a.out.clone().unwrap_or_else(|| PathBuf::from("out").join(stem));
     if let Some(address) = &a.ray {
-        return crate::python::hand_over(&ray_arguments("campaign", &a, &base, address));
+        return crate::python::hand_over(&ray_request("campaign", &a, &base, address).arguments());
     }
     eprintln!(
         "{}: a sweep of {} settings, each in its own folder under {}",
@@ -294,19 +294,18 @@ fn run_one(experiment: &Experiment, out: &Path, a: &RunArgs) -> Result<(), Strin
 }
 
 /// `python -m vsrlab COMMAND FILE --out OUT --ray ADDRESS …` with this command's settings.
-fn ray_arguments(command: &str, a: &RunArgs, out: &Path, address: &str) -> Vec<String> {
-    let mut args = vec![command.to_string(), a.experiment.display().to_string()];
-    args.extend([
-        "--out".into(),
-        out.display().to_string(),
-        "--ray".into(),
-        address.into(),
-    ]);
-    if a.resume {
-        args.push("--resume".into());
+fn ray_request<'a>(
+    command: &'static str,
+    a: &'a RunArgs,
+    out: &'a Path,
+    address: &'a str,
+) -> crate::python::RayRequest<'a> {
+    crate::python::RayRequest {
+        command,
+        files: std::slice::from_ref(&a.experiment),
+        out,
+        address,
+        resume: a.resume,
+        threads: a.threads,
     }
-    if let Some(threads) = a.threads {
-        args.extend(["--threads".into(), threads.to_string()]);
-    }
-    args
 }

@@ -1,4 +1,4 @@
-//! Many genotypes evaluated in one call (`vsrlab.evaluate_batch`, Ray workers).
+//! Many genotypes evaluated in one call (`vsrlab.evaluate_batch`).
 
 use crate::robot::PyRobot;
 use crate::value_error;
@@ -94,8 +94,8 @@ impl PyBatchEvaluator {
         Ok(PyArray1::from_vec(py, fitness))
     }
 
-    /// Every evaluation in full (fitness values, descriptor, features, record) as JSON text:
-    /// what a Ray worker sends back to the runner.
+    /// Every evaluation in full (fitness values, descriptor, features, record) as JSON text, the
+    /// form the runner reads back (`vsrlab.Worker.evaluations` gives the same for any kind).
     fn evaluations(
         &self,
         py: Python<'_>,

@@ -1,5 +1,5 @@
 //! Many genotypes of one experiment evaluated in one call: the entry point of optimisers that live
-//! outside vsrlab (`vsrlab evaluate`, Python's `evaluate_batch`, Ray workers).
+//! outside vsrlab (`vsrlab evaluate`, Python's `evaluate_batch`).
 //!
 //! A [`BatchEvaluator`] is built from an experiment file's text, so every process that reads the
 //! same text (a worker on another machine included) evaluates the same way; each evaluation is

@@ -24,7 +24,7 @@
 //! - [`remote`]: a run's batches evaluated elsewhere (Ray workers), and the workers' side,
 //!   for every genotype kind.
 //! - [`batch`]: many flat genotypes evaluated in one call, for optimisers outside vsrlab
-//!   (`vsrlab evaluate`, the Python package, Ray workers).
+//!   (`vsrlab evaluate`, the Python package).
 //! - [`bench`](mod@bench): the simulation speed benchmark on the standard robots (`vsrlab bench`),
 //!   timed in CPU seconds ([`cpu_time`]).
 //!

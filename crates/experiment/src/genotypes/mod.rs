@@ -106,7 +106,7 @@ pub trait GenotypeKind: Debug + Send + Sync + GenotypeCopy {
         false
     }
     /// Whether its genotypes are rows of numbers, which batch evaluation (`vsrlab evaluate`,
-    /// Python, Ray workers) sends.
+    /// Python's `evaluate_batch`) takes.
     fn rows(&self) -> bool {
         false
     }

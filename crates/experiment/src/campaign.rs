@@ -128,37 +128,20 @@ pub fn run_campaign(
 ) -> Result<Vec<SettingResult>, CampaignError> {
     let pool = crate::runner::pool_of(options).map_err(|e| CampaignError::Settings(vec![("campaign".into(), e)]))?;
     let shared = Mutex::new(observer);
-    let stop = AtomicBool::new(false);
-    let outcomes: Vec<Result<Vec<RunSummary>, RunError>> = std::thread::scope(|scope| {
-        let threads: Vec<_> = (settings.iter().enumerate())
-            .map(|(index, setting)| {
-                let options = RunOptions {
-                    evaluations: setting.evaluations.clone(),
-                    pool: Some(pool.clone()),
-                    concurrent_runs: true,
-                    ..options.clone()
-                };
-                let (shared, stop) = (&shared, &stop);
-                std::thread::Builder::new()
-                    .name(format!("vsrlab-setting-{index}"))
-                    .spawn_scoped(scope, move || {
-                        let mut relay = SettingRelay { index, shared, stop };
-                        let outcome = crate::run_configured(&setting.experiment, &setting.out, &options, &mut relay);
-                        if outcome.is_err() {
-                            stop.store(true, Ordering::SeqCst);
-                        }
-                        outcome
-                    })
-            })
-            .collect();
-        (threads.into_iter())
-            .map(|thread| match thread {
-                Ok(handle) => handle
-                    .join()
-                    .unwrap_or_else(|_| Err(RunError::Other("a setting's thread panicked".into()))),
-                Err(e) => Err(RunError::Other(format!("a setting's thread could not start: {e}"))),
-            })
-            .collect()
+    let indexed: Vec<(usize, &Setting)> = settings.iter().enumerate().collect();
+    let outcomes = crate::runner::side_by_side(&indexed, "setting", |&(index, setting), stop| {
+        let options = RunOptions {
+            evaluations: setting.evaluations.clone(),
+            pool: Some(pool.clone()),
+            concurrent_runs: true,
+            ..options.clone()
+        };
+        let mut relay = SettingRelay {
+            index,
+            shared: &shared,
+            stop,
+        };
+        crate::run_configured(&setting.experiment, &setting.out, &options, &mut relay)
     });
     let mut results = Vec::new();
     let mut failed = Vec::new();

@@ -458,32 +458,14 @@ fn run_plan<G: Genotype, O: SearchOptimizer<G>>(
     let mut outcomes = Vec::with_capacity(runs);
     if options.concurrent_runs && runs > 1 {
         let shared = Mutex::new(observer);
-        // a run that fails stops the others at their next checkpoint
-        let failed = AtomicBool::new(false);
-        std::thread::scope(|scope| {
-            let threads: Vec<_> = (slots.iter())
-                .map(|slot| {
-                    let (one, shared, failed) = (&one, &shared, &failed);
-                    std::thread::Builder::new()
-                        .name(format!("vsrlab-run-{}", slot.0))
-                        .stack_size(RUN_THREAD_STACK)
-                        .spawn_scoped(scope, move || {
-                            let outcome = one(slot, &mut Relay { shared, failed });
-                            if outcome.is_err() {
-                                failed.store(true, Ordering::SeqCst);
-                            }
-                            outcome
-                        })
-                })
-                .collect();
-            for thread in threads {
-                outcomes.push(match thread {
-                    Ok(handle) => handle
-                        .join()
-                        .unwrap_or_else(|_| Err(RunError::Other("a run's thread panicked".into()))),
-                    Err(e) => Err(RunError::Other(format!("a run's thread could not start: {e}"))),
-                });
-            }
+        outcomes = side_by_side(&slots, "run", |slot, failed| {
+            one(
+                slot,
+                &mut Relay {
+                    shared: &shared,
+                    failed,
+                },
+            )
         });
     } else {
         for slot in &slots {
@@ -519,6 +501,42 @@ pub(crate) fn pool_of(options: &RunOptions) -> Result<Arc<rayon::ThreadPool>, Ru
             rayon::ThreadPoolBuilder::new().num_threads(options.threads).build()?,
         )),
     }
+}
+
+/// Runs `work` on every item at once, each on a thread of its own named `<what>-<index>`; the
+/// outcomes in the items' order. The flag `work` is given is set when any item fails, so that
+/// the others can stop early (at their next checkpoint).
+pub(crate) fn side_by_side<I: Sync, T: Send>(
+    items: &[I],
+    what: &str,
+    work: impl Fn(&I, &AtomicBool) -> Result<T, RunError> + Sync,
+) -> Vec<Result<T, RunError>> {
+    let failed = AtomicBool::new(false);
+    std::thread::scope(|scope| {
+        let threads: Vec<_> = (items.iter().enumerate())
+            .map(|(index, item)| {
+                let (work, failed) = (&work, &failed);
+                std::thread::Builder::new()
+                    .name(format!("vsrlab-{what}-{index}"))
+                    .stack_size(RUN_THREAD_STACK)
+                    .spawn_scoped(scope, move || {
+                        let outcome = work(item, failed);
+                        if outcome.is_err() {
+                            failed.store(true, Ordering::SeqCst);
+                        }
+                        outcome
+                    })
+            })
+            .collect();
+        (threads.into_iter())
+            .map(|thread| match thread {
+                Ok(handle) => handle
+                    .join()
+                    .unwrap_or_else(|_| Err(RunError::Other(format!("a {what}'s thread panicked")))),
+                Err(e) => Err(RunError::Other(format!("a {what}'s thread could not start: {e}"))),
+            })
+            .collect()
+    })
 }
 
 /// Stack of a run's own thread when runs go side by side (the optimizer's work runs there).

@@ -3,6 +3,7 @@
 //! every range computed and each lane keeping its own.
 
 use crate::f64s::F64s;
+use crate::lane::Lanes;
 
 const PI: f64 = std::f64::consts::PI;
 const PIO2_HI: f64 = std::f64::consts::FRAC_PI_2;
@@ -21,69 +22,61 @@ const Q_S4: f64 = 0.07703815055590194;
 
 /// asin(√z)/√z − 1, over z = x², for 0 ≤ z ≤ 1/4 (the rational part of asin).
 #[inline(always)]
-fn ratio<const N: usize>(z: F64s<N>) -> F64s<N> {
-    let p = z * (P_S0 + z * (P_S1 + z * (P_S2 + z * (P_S3 + z * (P_S4 + z * P_S5)))));
-    let q = 1.0 + z * (Q_S1 + z * (Q_S2 + z * (Q_S3 + z * Q_S4)));
+fn ratio<L: Lanes>(z: L) -> L {
+    let p = z * ((z * ((z * ((z * ((z * ((z * P_S5) + P_S4)) + P_S3)) + P_S2)) + P_S1)) + P_S0);
+    let q = (z * ((z * ((z * ((z * Q_S4) + Q_S3)) + Q_S2)) + Q_S1)) + 1.0;
     p / q
 }
 
 /// acos x for |x| < 1/2.
 #[inline(always)]
-fn middle<const N: usize>(x: F64s<N>) -> F64s<N> {
-    PIO2_HI - (x - (PIO2_LO - x * ratio(x * x)))
+fn middle<L: Lanes>(x: L) -> L {
+    L::splat(PIO2_HI) - (x - (L::splat(PIO2_LO) - x * ratio(x * x)))
 }
 
 /// acos x for x ≤ −1/2: π − 2 asin √((1 + x)/2).
 #[inline(always)]
-fn negative<const N: usize>(x: F64s<N>) -> F64s<N> {
-    let z = (1.0 + x) * 0.5;
+fn negative<L: Lanes>(x: L) -> L {
+    let z = (x + 1.0) * 0.5;
     let s = z.sqrt();
-    PI - 2.0 * (s + (ratio(z) * s - PIO2_LO))
+    L::splat(PI) - (s + (ratio(z) * s - PIO2_LO)) * 2.0
 }
 
 /// acos x for x ≥ 1/2: 2 asin √((1 − x)/2), the root split into a head with 32 zero bits and a
 /// tail.
 #[inline(always)]
-fn positive<const N: usize>(x: F64s<N>) -> F64s<N> {
-    let z = (1.0 - x) * 0.5;
+fn positive<L: Lanes>(x: L) -> L {
+    let z = (L::splat(1.0) - x) * 0.5;
     let s = z.sqrt();
-    let head = F64s(s.0.map(|v| f64::from_bits(v.to_bits() & 0xffff_ffff_0000_0000)));
+    let head = s.bits_and(0xffff_ffff_0000_0000);
     let tail = (z - head * head) / (s + head);
-    2.0 * (head + (ratio(z) * s + tail))
+    (head + (ratio(z) * s + tail)) * 2.0
 }
 
 /// acos x in every lane: each range computed when some lane is in it (one lane: a branch).
 #[inline(always)]
-pub(crate) fn acos_lanes<const N: usize>(x: F64s<N>) -> F64s<N> {
-    let below = x.lt(F64s::splat(-0.5));
-    let above = x.gt(F64s::splat(0.5));
+pub(crate) fn acos_lanes<L: Lanes>(x: L) -> L {
+    let below = x.lt(L::splat(-0.5));
+    let above = x.gt(L::splat(0.5));
     let inside = crate::not(crate::or(below, above));
-    let nan = F64s::splat(f64::NAN);
+    let nan = L::splat(f64::NAN);
     let mut value = if crate::any(inside) { middle(x) } else { nan };
     if crate::any(below) {
-        value = F64s::select(below, negative(x), value);
+        value = L::select(below, negative(x), value);
     }
     if crate::any(above) {
-        value = F64s::select(above, positive(x), value);
+        value = L::select(above, positive(x), value);
     }
     // the ends exactly, and NaN outside [−1, 1]
-    let value = F64s::select(x.eq(F64s::splat(1.0)), F64s::splat(0.0), value);
-    let value = F64s::select(x.eq(F64s::splat(-1.0)), F64s::splat(PI), value);
-    let outside = crate::or(x.gt(F64s::splat(1.0)), x.lt(F64s::splat(-1.0)));
-    F64s::select(outside, nan, value)
+    let value = L::select(x.eq(L::splat(1.0)), L::splat(0.0), value);
+    let value = L::select(x.eq(L::splat(-1.0)), L::splat(PI), value);
+    let outside = crate::or(x.gt(L::splat(1.0)), x.lt(L::splat(-1.0)));
+    L::select(outside, nan, value)
 }
 
-/// acos x, the bits of every lane of [`F64s::acos`]; NaN outside [−1, 1].
+/// acos x, the bits of every lane of [`Lanes::acos`]; NaN outside [−1, 1].
 pub fn acos(x: f64) -> f64 {
     acos_lanes(F64s([x])).0[0]
-}
-
-impl<const N: usize> F64s<N> {
-    /// acos x lane by lane, the bits of the scalar [`acos`].
-    #[inline(always)]
-    pub fn acos(self) -> Self {
-        acos_lanes(self)
-    }
 }
 
 #[cfg(test)]

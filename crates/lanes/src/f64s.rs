@@ -1,10 +1,12 @@
 //! N f64 lanes: one value per episode of a population that steps together (population lanes,
 //! stored `[element][field][lane]`). Every operation is the scalar IEEE operation lane by
 //! lane (no fused multiply–add, no approximations), so lane `l` of a computation gives the bits of
-//! the same computation in scalar f64. The arrays are plain; a kernel compiled with AVX2 or
-//! AVX-512 enabled (`#[target_feature]`, chosen at run time) has them vectorised by the compiler.
-//! Branches that differ between lanes are computed both ways and chosen per lane ([`F64s::select`]).
+//! the same computation in scalar f64. The arrays are plain, the portable form of [`Lanes`]: a
+//! kernel compiled with AVX2 enabled has them vectorised by the compiler, only partly (the 3D
+//! engine has its own AVX2 form for that, `physics3d/src/avx.rs`).
+//! Branches that differ between lanes are computed both ways and chosen per lane ([`Lanes::select`]).
 
+use crate::lane::{LaneMask, Lanes};
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 /// One f64 per lane.
@@ -15,80 +17,124 @@ pub struct F64s<const N: usize>(pub [f64; N]);
 /// One bool per lane.
 pub type Mask<const N: usize> = [bool; N];
 
-impl<const N: usize> F64s<N> {
-    /// The same value in every lane.
+impl<const N: usize> Lanes for F64s<N> {
+    type Mask = Mask<N>;
+    const LANES: usize = N;
+
     #[inline(always)]
-    pub fn splat(x: f64) -> Self {
+    fn splat(x: f64) -> Self {
         F64s([x; N])
     }
 
-    /// `f` lane by lane: for functions of the standard library (`acos`, `sin`), whose bits are
-    /// then those of the scalar call.
     #[inline(always)]
-    pub fn map(self, f: impl Fn(f64) -> f64) -> Self {
-        F64s(self.0.map(f))
+    fn get(&self, lane: usize) -> f64 {
+        self.0[lane]
     }
 
-    /// Square root, lane by lane.
     #[inline(always)]
-    pub fn sqrt(self) -> Self {
-        self.map(f64::sqrt)
+    fn set(&mut self, lane: usize, x: f64) {
+        self.0[lane] = x;
     }
 
-    /// Absolute value, lane by lane.
     #[inline(always)]
-    pub fn abs(self) -> Self {
-        self.map(f64::abs)
+    fn sqrt(self) -> Self {
+        F64s(self.0.map(f64::sqrt))
     }
 
-    /// `self < other`, lane by lane (false where either is NaN).
     #[inline(always)]
-    pub fn lt(self, other: Self) -> Mask<N> {
+    fn abs(self) -> Self {
+        F64s(self.0.map(f64::abs))
+    }
+
+    #[inline(always)]
+    fn lt(self, other: Self) -> Mask<N> {
         std::array::from_fn(|l| self.0[l] < other.0[l])
     }
 
-    /// `self > other`, lane by lane.
     #[inline(always)]
-    pub fn gt(self, other: Self) -> Mask<N> {
+    fn gt(self, other: Self) -> Mask<N> {
         std::array::from_fn(|l| self.0[l] > other.0[l])
     }
 
-    /// `self >= other`, lane by lane.
     #[inline(always)]
-    pub fn ge(self, other: Self) -> Mask<N> {
+    fn ge(self, other: Self) -> Mask<N> {
         std::array::from_fn(|l| self.0[l] >= other.0[l])
     }
 
-    /// `self <= other`, lane by lane.
     #[inline(always)]
-    pub fn le(self, other: Self) -> Mask<N> {
+    fn le(self, other: Self) -> Mask<N> {
         std::array::from_fn(|l| self.0[l] <= other.0[l])
     }
 
-    /// `self != other`, lane by lane (true where either is NaN: `x.ne(x)` finds NaN).
     #[inline(always)]
-    pub fn ne(self, other: Self) -> Mask<N> {
+    fn ne(self, other: Self) -> Mask<N> {
         std::array::from_fn(|l| self.0[l] != other.0[l])
     }
 
-    /// `self == other`, lane by lane.
     #[inline(always)]
-    pub fn eq(self, other: Self) -> Mask<N> {
+    fn eq(self, other: Self) -> Mask<N> {
         std::array::from_fn(|l| self.0[l] == other.0[l])
     }
 
-    /// `x.clamp(lo, hi)` lane by lane, as `f64::clamp` (NaN stays NaN).
     #[inline(always)]
-    pub fn clamp(self, lo: f64, hi: f64) -> Self {
-        self.map(|x| x.clamp(lo, hi))
-    }
-
-    /// Per lane: `then` where `mask` holds, else `otherwise`.
-    #[inline(always)]
-    pub fn select(mask: Mask<N>, then: Self, otherwise: Self) -> Self {
+    fn select(mask: Mask<N>, then: Self, otherwise: Self) -> Self {
         F64s(std::array::from_fn(
             |l| if mask[l] { then.0[l] } else { otherwise.0[l] },
         ))
+    }
+
+    #[inline(always)]
+    fn bits_and(self, mask: u64) -> Self {
+        F64s(self.0.map(|x| f64::from_bits(x.to_bits() & mask)))
+    }
+
+    #[inline(always)]
+    fn bits_xor(self, other: Self) -> Self {
+        F64s(std::array::from_fn(|l| {
+            f64::from_bits(self.0[l].to_bits() ^ other.0[l].to_bits())
+        }))
+    }
+
+    #[inline(always)]
+    fn bits_shl<const S: i32>(self) -> Self {
+        F64s(self.0.map(|x| f64::from_bits(x.to_bits() << S)))
+    }
+
+    #[inline(always)]
+    fn sign_mask(self) -> Mask<N> {
+        self.0.map(f64::is_sign_negative)
+    }
+}
+
+impl<const N: usize> LaneMask for Mask<N> {
+    #[inline(always)]
+    fn splat(b: bool) -> Self {
+        [b; N]
+    }
+
+    #[inline(always)]
+    fn get(&self, lane: usize) -> bool {
+        self[lane]
+    }
+
+    #[inline(always)]
+    fn and(self, other: Self) -> Self {
+        std::array::from_fn(|l| self[l] && other[l])
+    }
+
+    #[inline(always)]
+    fn or(self, other: Self) -> Self {
+        std::array::from_fn(|l| self[l] || other[l])
+    }
+
+    #[inline(always)]
+    fn not(self) -> Self {
+        self.map(|x| !x)
+    }
+
+    #[inline(always)]
+    fn any(self) -> bool {
+        self.iter().any(|&x| x)
     }
 }
 
@@ -126,32 +172,8 @@ impl<const N: usize> Neg for F64s<N> {
     type Output = F64s<N>;
     #[inline(always)]
     fn neg(self) -> F64s<N> {
-        self.map(|x| -x)
+        F64s(self.0.map(|x| -x))
     }
-}
-
-/// Per lane: `a && b`.
-#[inline(always)]
-pub fn and<const N: usize>(a: Mask<N>, b: Mask<N>) -> Mask<N> {
-    std::array::from_fn(|l| a[l] && b[l])
-}
-
-/// Per lane: `a || b`.
-#[inline(always)]
-pub fn or<const N: usize>(a: Mask<N>, b: Mask<N>) -> Mask<N> {
-    std::array::from_fn(|l| a[l] || b[l])
-}
-
-/// Whether any lane holds: a branch no lane takes is not computed (its lanes would be dropped).
-#[inline(always)]
-pub fn any<const N: usize>(a: Mask<N>) -> bool {
-    a.iter().any(|&x| x)
-}
-
-/// Per lane: `!a`.
-#[inline(always)]
-pub fn not<const N: usize>(a: Mask<N>) -> Mask<N> {
-    a.map(|x| !x)
 }
 
 #[cfg(test)]

@@ -9,8 +9,10 @@
 
 mod acos;
 mod f64s;
+mod lane;
 mod trig;
 
 pub use acos::acos;
-pub use f64s::{and, any, not, or, F64s, Mask};
+pub use f64s::{F64s, Mask};
+pub use lane::{and, any, not, or, LaneMask, Lanes};
 pub use trig::{cos, sin, sin_cos};

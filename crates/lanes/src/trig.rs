@@ -6,6 +6,7 @@
 //! get there.
 
 use crate::f64s::F64s;
+use crate::lane::{LaneMask, Lanes};
 
 /// π/2 in three parts: the first two have trailing zero bits, so `k · part` is exact.
 const PIO2_1: f64 = 1.5707963267341256;
@@ -35,88 +36,65 @@ const C6: f64 = -1.1359647557788195e-11;
 
 /// sin(r) for |r| ≤ π/4.
 #[inline(always)]
-fn kernel_sin<const N: usize>(r: F64s<N>) -> F64s<N> {
+fn kernel_sin<L: Lanes>(r: L) -> L {
     let z = r * r;
-    let p = S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)));
-    r + r * z * (S1 + z * p)
+    let p = (z * ((z * ((z * ((z * S6) + S5)) + S4)) + S3)) + S2;
+    r + r * z * ((z * p) + S1)
 }
 
 /// cos(r) for |r| ≤ π/4: `1 − r²/2` formed so that its rounding error is recovered.
 #[inline(always)]
-fn kernel_cos<const N: usize>(r: F64s<N>) -> F64s<N> {
+fn kernel_cos<L: Lanes>(r: L) -> L {
     let z = r * r;
-    let p = z * (C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6)))));
-    let half = 0.5 * z;
-    let w = 1.0 - half;
-    w + (((1.0 - w) - half) + z * p)
+    let p = z * ((z * ((z * ((z * ((z * ((z * C6) + C5)) + C4)) + C3)) + C2)) + C1);
+    let half = z * 0.5;
+    let one = L::splat(1.0);
+    let w = one - half;
+    w + (((one - w) - half) + z * p)
 }
 
 /// `(sin x, cos x)` in every lane.
 #[inline(always)]
-pub(crate) fn sin_cos_lanes<const N: usize>(x: F64s<N>) -> (F64s<N>, F64s<N>) {
-    let near = x.abs().le(F64s::splat(std::f64::consts::FRAC_PI_4));
-    let k = F64s::select(
-        near,
-        F64s::splat(0.0),
-        (x * TWO_OVER_PI + ROUNDING_BIAS) - ROUNDING_BIAS,
-    );
-    let r = F64s::select(near, x, ((x - k * PIO2_1) - k * PIO2_2) - k * PIO2_3);
+pub(crate) fn sin_cos_lanes<L: Lanes>(x: L) -> (L, L) {
+    let near = x.abs().le(L::splat(std::f64::consts::FRAC_PI_4));
+    let k = L::select(near, L::splat(0.0), (x * TWO_OVER_PI + ROUNDING_BIAS) - ROUNDING_BIAS);
+    let r = L::select(near, x, ((x - k * PIO2_1) - k * PIO2_2) - k * PIO2_3);
     let (s, c) = (kernel_sin(r), kernel_cos(r));
-    // k is a whole number below 2^51 in magnitude: its low bits are those of k + 1.5 · 2^52
-    let quadrant: [u64; N] = std::array::from_fn(|l| (k.0[l] + ROUNDING_BIAS).to_bits() & 3);
-    let mut sin = F64s(std::array::from_fn(|l| {
-        let v = if quadrant[l] & 1 == 0 { s.0[l] } else { c.0[l] };
-        f64::from_bits(v.to_bits() ^ ((quadrant[l] & 2) << 62))
-    }));
-    let mut cos = F64s(std::array::from_fn(|l| {
-        let v = if quadrant[l] & 1 == 0 { c.0[l] } else { s.0[l] };
-        f64::from_bits(v.to_bits() ^ (((quadrant[l] + 1) & 2) << 62))
-    }));
+    // k is a whole number below 2^51 in magnitude: its low bits are those of k + 1.5 · 2^52; the
+    // quadrant's bit 0 swaps sine and cosine, the sine's sign is bit 1, the cosine's bit 0 xor 1
+    let quadrant = k + ROUNDING_BIAS;
+    let bit0 = quadrant.bits_and(1).bits_shl::<63>();
+    let bit1 = quadrant.bits_and(2).bits_shl::<62>();
+    let odd = bit0.sign_mask();
+    let mut sin = L::select(odd, c, s).bits_xor(bit1);
+    let mut cos = L::select(odd, s, c).bits_xor(bit1.bits_xor(bit0));
     // sin x rounds to x below 2^−27 (and keeps the sign of zero)
-    sin = F64s::select(x.abs().lt(F64s::splat(TINY)), x, sin);
-    let far = x.abs().gt(F64s::splat(REDUCTION_LIMIT));
-    if crate::any(far) {
-        for (l, _) in far.iter().enumerate().filter(|(_, &far)| far) {
-            (sin.0[l], cos.0[l]) = (x.0[l].sin(), x.0[l].cos());
+    sin = L::select(x.abs().lt(L::splat(TINY)), x, sin);
+    let far = x.abs().gt(L::splat(REDUCTION_LIMIT));
+    if far.any() {
+        for l in (0..L::LANES).filter(|&l| far.get(l)) {
+            let x = x.get(l);
+            sin.set(l, x.sin());
+            cos.set(l, x.cos());
         }
     }
     (sin, cos)
 }
 
-/// `(sin x, cos x)`, the bits of every lane of [`F64s::sin_cos`].
+/// `(sin x, cos x)`, the bits of every lane of [`Lanes::sin_cos`].
 pub fn sin_cos(x: f64) -> (f64, f64) {
     let (s, c) = sin_cos_lanes(F64s([x]));
     (s.0[0], c.0[0])
 }
 
-/// sin x, the bits of every lane of [`F64s::sin`].
+/// sin x, the bits of every lane of [`Lanes::sin`].
 pub fn sin(x: f64) -> f64 {
     sin_cos(x).0
 }
 
-/// cos x, the bits of every lane of [`F64s::cos`].
+/// cos x, the bits of every lane of [`Lanes::cos`].
 pub fn cos(x: f64) -> f64 {
     sin_cos(x).1
-}
-
-impl<const N: usize> F64s<N> {
-    /// `(sin x, cos x)` lane by lane: each lane gives the bits of the scalar [`sin_cos`].
-    #[inline(always)]
-    pub fn sin_cos(self) -> (Self, Self) {
-        sin_cos_lanes(self)
-    }
-
-    /// sin x lane by lane, the bits of the scalar [`sin`].
-    #[inline(always)]
-    pub fn sin(self) -> Self {
-        sin_cos_lanes(self).0
-    }
-
-    /// cos x lane by lane, the bits of the scalar [`cos`].
-    #[inline(always)]
-    pub fn cos(self) -> Self {
-        sin_cos_lanes(self).1
-    }
 }
 
 #[cfg(test)]

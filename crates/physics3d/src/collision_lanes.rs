@@ -8,16 +8,16 @@
 
 use crate::collision::{ENVELOPE_RADIUS, SIZE_HEADROOM};
 use crate::lanes::V3;
-use vsrlab_lanes::{and, any, not, or, F64s, Mask};
+use vsrlab_lanes::{and, any, not, or, LaneMask, Lanes};
 
 /// A voxel as the laned collision pass sees it: each lane's start-of-step state, and the
 /// constants its material gives every lane.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct ColliderLanes<const N: usize> {
-    pub pos: V3<N>,
-    pub velocity: V3<N>,
+pub(crate) struct ColliderLanes<L: Lanes> {
+    pub pos: V3<L>,
+    pub velocity: V3<L>,
     /// Rest edge in each lane.
-    pub size: F64s<N>,
+    pub size: L,
     /// Penalty stiffness `2 E s`.
     pub stiffness: f64,
     /// Collision damping coefficient.
@@ -26,7 +26,7 @@ pub(crate) struct ColliderLanes<const N: usize> {
 
 /// The shared candidate list, each lane's build state, and this step's forces and touches.
 #[derive(Debug, Clone)]
-pub(crate) struct CollisionLanes<const N: usize> {
+pub(crate) struct CollisionLanes<L: Lanes> {
     /// Surface voxels (fewer than six links), and whether each is fixed in every DOF.
     surface: Vec<usize>,
     fixed: Vec<bool>,
@@ -35,18 +35,18 @@ pub(crate) struct CollisionLanes<const N: usize> {
     /// Candidate pairs of every lane, sorted.
     pairs: Vec<(usize, usize)>,
     /// Positions of the surface voxels when the list was built, every lane.
-    built_at: Vec<V3<N>>,
+    built_at: Vec<V3<L>>,
     /// Largest rest edge each lane's list allows for (0: never built).
-    built_size: [f64; N],
+    built_size: L,
     /// Contact force on each voxel this step.
-    pub forces: Vec<V3<N>>,
+    pub forces: Vec<V3<L>>,
     /// Whether each voxel touches another this step, in each lane.
-    pub touching: Vec<Mask<N>>,
+    pub touching: Vec<L::Mask>,
     /// The pairs that touch this step in some lane (in the pairs' order), and in which lanes.
-    pub contacts: Vec<(usize, usize, Mask<N>)>,
+    pub contacts: Vec<(usize, usize, L::Mask)>,
 }
 
-impl<const N: usize> CollisionLanes<N> {
+impl<L: Lanes> CollisionLanes<L> {
     /// The pass for `voxels` voxels of which `surface` collide, `fixed` says which of them are
     /// fixed in every DOF, and `linked` lists the directly linked pairs.
     pub fn new(voxels: usize, surface: Vec<usize>, fixed: Vec<bool>, mut linked: Vec<(usize, usize)>) -> Self {
@@ -58,28 +58,36 @@ impl<const N: usize> CollisionLanes<N> {
             linked,
             pairs: Vec::new(),
             built_at: Vec::new(),
-            built_size: [0.0; N],
+            built_size: L::splat(0.0),
             forces: vec![V3::splat(glam::DVec3::ZERO); voxels],
-            touching: vec![[false; N]; voxels],
+            touching: vec![L::Mask::splat(false); voxels],
             contacts: Vec::new(),
         }
     }
 
     /// Sets every voxel's contact force of this step (`forces`) and which voxels touch.
     #[inline(always)]
-    pub fn add_forces(&mut self, colliders: &[ColliderLanes<N>], lattice: f64) {
+    pub fn add_forces(&mut self, colliders: &[ColliderLanes<L>], lattice: f64) {
         let zero = V3::splat(glam::DVec3::ZERO);
         self.forces.iter_mut().for_each(|f| *f = zero);
-        self.touching.iter_mut().for_each(|t| *t = [false; N]);
+        self.touching.iter_mut().for_each(|t| *t = L::Mask::splat(false));
         self.contacts.clear();
         if self.surface.len() < 2 {
             return;
         }
         let margin = 0.5 * lattice;
-        let largest: [f64; N] =
-            std::array::from_fn(|l| self.surface.iter().map(|&v| colliders[v].size.0[l]).fold(0.0, f64::max));
-        if self.needs_rebuild(colliders, margin, &largest) {
-            self.rebuild(colliders, margin, &largest.map(|s| s + SIZE_HEADROOM * lattice));
+        let mut largest = L::splat(0.0);
+        for l in 0..L::LANES {
+            largest.set(
+                l,
+                self.surface
+                    .iter()
+                    .map(|&v| colliders[v].size.get(l))
+                    .fold(0.0, f64::max),
+            );
+        }
+        if self.needs_rebuild(colliders, margin, largest) {
+            self.rebuild(colliders, margin, largest + SIZE_HEADROOM * lattice);
         }
         for &(a, b) in &self.pairs {
             let Some((hit, f)) = contact_force(&colliders[a], &colliders[b]) else {
@@ -95,26 +103,29 @@ impl<const N: usize> CollisionLanes<N> {
 
     /// Whether some lane's list is stale: never built, outgrown, or a voxel moved beyond the
     /// margin since the build.
-    fn needs_rebuild(&self, colliders: &[ColliderLanes<N>], margin: f64, largest: &[f64; N]) -> bool {
-        if (0..N).any(|l| self.built_size[l] == 0.0 || largest[l] > self.built_size[l]) {
+    #[inline(always)]
+    fn needs_rebuild(&self, colliders: &[ColliderLanes<L>], margin: f64, largest: L) -> bool {
+        let built = self.built_size;
+        if (0..L::LANES).any(|l| built.get(l) == 0.0 || largest.get(l) > built.get(l)) {
             return true;
         }
         let limit = margin * margin;
         self.surface.iter().zip(&self.built_at).any(|(&v, at)| {
             let d = colliders[v].pos.sub(*at);
             let squared = d.x * d.x + d.y * d.y + d.z * d.z;
-            any(squared.gt(F64s::splat(limit)))
+            any(squared.gt(L::splat(limit)))
         })
     }
 
     /// Every lane's candidate pairs (collision.rs's sweep along x in that lane), joined.
-    fn rebuild(&mut self, colliders: &[ColliderLanes<N>], margin: f64, largest: &[f64; N]) {
-        self.built_size = *largest;
+    fn rebuild(&mut self, colliders: &[ColliderLanes<L>], margin: f64, largest: L) {
+        self.built_size = largest;
         self.built_at.clear();
         self.built_at.extend(self.surface.iter().map(|&v| colliders[v].pos));
         self.pairs.clear();
         let mut order: Vec<usize> = Vec::with_capacity(self.surface.len());
-        for (l, &size) in largest.iter().enumerate() {
+        for l in 0..L::LANES {
+            let size = largest.get(l);
             let reach = 2.0 * ENVELOPE_RADIUS * size + 2.0 * margin;
             let at = |i: usize| self.built_at[i].lane(l);
             order.clear();
@@ -144,9 +155,9 @@ impl<const N: usize> CollisionLanes<N> {
 /// `collision::contact_force` in every lane: the lanes where the envelopes overlap, and the force
 /// on `b` there; `None` when they overlap in no lane.
 #[inline(always)]
-fn contact_force<const N: usize>(a: &ColliderLanes<N>, b: &ColliderLanes<N>) -> Option<(Mask<N>, V3<N>)> {
+fn contact_force<L: Lanes>(a: &ColliderLanes<L>, b: &ColliderLanes<L>) -> Option<(L::Mask, V3<L>)> {
     let offset = b.pos.sub(a.pos);
-    let reach = ENVELOPE_RADIUS * (a.size + b.size);
+    let reach = (a.size + b.size) * ENVELOPE_RADIUS;
     let squared = offset.x * offset.x + offset.y * offset.y + offset.z * offset.z;
     let near = not(squared.gt(reach * reach * (1.0 + 1e-9)));
     if !any(near) {
@@ -154,7 +165,7 @@ fn contact_force<const N: usize>(a: &ColliderLanes<N>, b: &ColliderLanes<N>) -> 
     }
     let distance = squared.sqrt();
     let overlap = reach - distance;
-    let zero = F64s::splat(0.0);
+    let zero = L::splat(0.0);
     let hit = and(near, and(overlap.gt(zero), not(distance.eq(zero))));
     if !any(hit) {
         return None;
@@ -168,7 +179,7 @@ fn contact_force<const N: usize>(a: &ColliderLanes<N>, b: &ColliderLanes<N>) -> 
     let damping = 0.5 * (a.damping + b.damping);
     let dv = a.velocity.sub(b.velocity);
     let approach = dv.x * u.x + dv.y * u.y + dv.z * u.z;
-    let magnitude = stiffness * overlap + damping * approach;
+    let magnitude = overlap * stiffness + approach * damping;
     Some((
         hit,
         V3 {

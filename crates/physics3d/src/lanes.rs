@@ -1,44 +1,47 @@
-//! Vectors and quaternions in f64 lanes (`vsrlab_lanes::F64s`): one per episode of a population
-//! stepped together, each operation term for term as glam's, so that a lane gives glam's bits.
+//! Vectors and quaternions in f64 lanes (any `vsrlab_lanes::Lanes` form: the portable arrays or
+//! AVX2 registers): one per episode of a population stepped together, each operation term for
+//! term as glam's, so that a lane gives glam's bits.
 
-use vsrlab_lanes::{F64s, Mask};
+use vsrlab_lanes::Lanes;
 
 /// A vector per lane: `x`, `y`, `z` each hold every lane.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct V3<const N: usize> {
-    pub x: F64s<N>,
-    pub y: F64s<N>,
-    pub z: F64s<N>,
+pub(crate) struct V3<L: Lanes> {
+    pub x: L,
+    pub y: L,
+    pub z: L,
 }
 
-impl<const N: usize> V3<N> {
+impl<L: Lanes> V3<L> {
     /// The same vector in every lane.
     pub fn splat(v: glam::DVec3) -> Self {
         V3 {
-            x: F64s::splat(v.x),
-            y: F64s::splat(v.y),
-            z: F64s::splat(v.z),
+            x: L::splat(v.x),
+            y: L::splat(v.y),
+            z: L::splat(v.z),
         }
     }
 
     /// Lane `l` as a glam vector.
     pub fn lane(&self, l: usize) -> glam::DVec3 {
-        glam::DVec3::new(self.x.0[l], self.y.0[l], self.z.0[l])
+        glam::DVec3::new(self.x.get(l), self.y.get(l), self.z.get(l))
     }
 
     /// Sets lane `l`.
     #[cfg(any(test, feature = "bench"))]
     pub fn set_lane(&mut self, l: usize, v: glam::DVec3) {
-        (self.x.0[l], self.y.0[l], self.z.0[l]) = (v.x, v.y, v.z);
+        self.x.set(l, v.x);
+        self.y.set(l, v.y);
+        self.z.set(l, v.z);
     }
 
     /// Component by component: `then` where `mask` holds, else `otherwise`.
     #[inline(always)]
-    pub fn select(mask: Mask<N>, then: Self, otherwise: Self) -> Self {
+    pub fn select(mask: L::Mask, then: Self, otherwise: Self) -> Self {
         V3 {
-            x: F64s::select(mask, then.x, otherwise.x),
-            y: F64s::select(mask, then.y, otherwise.y),
-            z: F64s::select(mask, then.z, otherwise.z),
+            x: L::select(mask, then.x, otherwise.x),
+            y: L::select(mask, then.y, otherwise.y),
+            z: L::select(mask, then.z, otherwise.z),
         }
     }
 
@@ -64,61 +67,63 @@ impl<const N: usize> V3<N> {
 
     /// `s * self` (glam's `f64 * DVec3`).
     #[inline(always)]
-    pub fn scale(self, s: F64s<N>) -> Self {
+    pub fn scale(self, s: L) -> Self {
         V3 {
-            x: s * self.x,
-            y: s * self.y,
-            z: s * self.z,
+            x: self.x * s,
+            y: self.y * s,
+            z: self.z * s,
         }
     }
 
     /// glam's `length`: `sqrt(x·x + y·y + z·z)`.
     #[inline(always)]
-    pub fn length(self) -> F64s<N> {
+    pub fn length(self) -> L {
         (self.x * self.x + self.y * self.y + self.z * self.z).sqrt()
     }
 }
 
 /// A quaternion per lane.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Q<const N: usize> {
-    pub x: F64s<N>,
-    pub y: F64s<N>,
-    pub z: F64s<N>,
-    pub w: F64s<N>,
+pub(crate) struct Q<L: Lanes> {
+    pub x: L,
+    pub y: L,
+    pub z: L,
+    pub w: L,
 }
 
-impl<const N: usize> Q<N> {
+impl<L: Lanes> Q<L> {
     /// The same quaternion in every lane.
     pub fn splat(q: glam::DQuat) -> Self {
         Q {
-            x: F64s::splat(q.x),
-            y: F64s::splat(q.y),
-            z: F64s::splat(q.z),
-            w: F64s::splat(q.w),
+            x: L::splat(q.x),
+            y: L::splat(q.y),
+            z: L::splat(q.z),
+            w: L::splat(q.w),
         }
     }
 
     /// Lane `l` as a glam quaternion.
-    #[cfg(test)]
     pub fn lane(&self, l: usize) -> glam::DQuat {
-        glam::DQuat::from_xyzw(self.x.0[l], self.y.0[l], self.z.0[l], self.w.0[l])
+        glam::DQuat::from_xyzw(self.x.get(l), self.y.get(l), self.z.get(l), self.w.get(l))
     }
 
     /// Sets lane `l`.
     #[cfg(any(test, feature = "bench"))]
     pub fn set_lane(&mut self, l: usize, q: glam::DQuat) {
-        (self.x.0[l], self.y.0[l], self.z.0[l], self.w.0[l]) = (q.x, q.y, q.z, q.w);
+        self.x.set(l, q.x);
+        self.y.set(l, q.y);
+        self.z.set(l, q.z);
+        self.w.set(l, q.w);
     }
 
     /// Component by component: `then` where `mask` holds, else `otherwise`.
     #[inline(always)]
-    pub fn select(mask: Mask<N>, then: Self, otherwise: Self) -> Self {
+    pub fn select(mask: L::Mask, then: Self, otherwise: Self) -> Self {
         Q {
-            x: F64s::select(mask, then.x, otherwise.x),
-            y: F64s::select(mask, then.y, otherwise.y),
-            z: F64s::select(mask, then.z, otherwise.z),
-            w: F64s::select(mask, then.w, otherwise.w),
+            x: L::select(mask, then.x, otherwise.x),
+            y: L::select(mask, then.y, otherwise.y),
+            z: L::select(mask, then.z, otherwise.z),
+            w: L::select(mask, then.w, otherwise.w),
         }
     }
 
@@ -153,11 +158,11 @@ mod tests {
 
     #[test]
     fn a_laned_quaternion_product_gives_glams_bits() {
-        let q = Q::<2>::splat(glam::DQuat::from_xyzw(0.1, -0.2, 0.3, 0.9));
-        let p = Q::<2>::splat(glam::DQuat::from_xyzw(-0.5, 0.4, 0.2, 0.7));
+        let q = Q::<vsrlab_lanes::F64s<2>>::splat(glam::DQuat::from_xyzw(0.1, -0.2, 0.3, 0.9));
+        let p = Q::<vsrlab_lanes::F64s<2>>::splat(glam::DQuat::from_xyzw(-0.5, 0.4, 0.2, 0.7));
         assert_eq!(q.mul(p).lane(1), q.lane(1) * p.lane(1));
         assert_ne!(q.mul(p).lane(1), p.lane(1) * q.lane(1));
-        let v = V3::<2>::splat(glam::DVec3::new(0.3, -0.1, 2.0));
-        assert_eq!(v.length().0[0], glam::DVec3::new(0.3, -0.1, 2.0).length());
+        let v = V3::<vsrlab_lanes::F64s<2>>::splat(glam::DVec3::new(0.3, -0.1, 2.0));
+        assert_eq!(v.length().get(0), glam::DVec3::new(0.3, -0.1, 2.0).length());
     }
 }

@@ -9,47 +9,47 @@ use crate::axis::Axis;
 use crate::lanes::{Q, V3};
 use crate::link::{HYSTERESIS, SMALL_EXTENSION, SMALL_TURN};
 use crate::material::LinkConstants;
-use vsrlab_lanes::{and, any, not, or, F64s, Mask};
+use vsrlab_lanes::{and, any, not, or, LaneMask, Lanes};
 
 /// One end of the link in every lane.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct EndLanes<const N: usize> {
-    pub pos: V3<N>,
-    pub orient: Q<N>,
-    pub damping: F64s<N>,
+pub(crate) struct EndLanes<L: Lanes> {
+    pub pos: V3<L>,
+    pub orient: Q<L>,
+    pub damping: L,
 }
 
 /// A link's constants (shared by the lanes) and each lane's state.
 #[derive(Debug, Clone)]
-pub(crate) struct LinkLanes<const N: usize> {
+pub(crate) struct LinkLanes<L: Lanes> {
     pub axis: Axis,
     pub k: LinkConstants,
     pub area: f64,
-    pub rest: F64s<N>,
-    small_angle: Mask<N>,
-    velocity_valid: Mask<N>,
-    d_old: V3<N>,
-    theta1_old: V3<N>,
-    theta2_old: V3<N>,
+    pub rest: L,
+    small_angle: L::Mask,
+    velocity_valid: L::Mask,
+    d_old: V3<L>,
+    theta1_old: V3<L>,
+    theta2_old: V3<L>,
     /// Results of the last update, in each voxel's own frame.
-    pub force_neg: V3<N>,
-    pub force_pos: V3<N>,
-    pub moment_neg: V3<N>,
-    pub moment_pos: V3<N>,
-    pub strain: F64s<N>,
+    pub force_neg: V3<L>,
+    pub force_pos: V3<L>,
+    pub moment_neg: V3<L>,
+    pub moment_pos: V3<L>,
+    pub strain: L,
 }
 
-impl<const N: usize> LinkLanes<N> {
+impl<L: Lanes> LinkLanes<L> {
     /// A new link in every lane (small-angle mode, no damping history).
-    pub fn new(axis: Axis, k: LinkConstants, area: f64, rest: F64s<N>) -> Self {
+    pub fn new(axis: Axis, k: LinkConstants, area: f64, rest: L) -> Self {
         let zero = V3::splat(glam::DVec3::ZERO);
         LinkLanes {
             axis,
             k,
             area,
             rest,
-            small_angle: [true; N],
-            velocity_valid: [false; N],
+            small_angle: L::Mask::splat(true),
+            velocity_valid: L::Mask::splat(false),
             d_old: zero,
             theta1_old: zero,
             theta2_old: zero,
@@ -57,13 +57,13 @@ impl<const N: usize> LinkLanes<N> {
             force_pos: zero,
             moment_neg: zero,
             moment_pos: zero,
-            strain: F64s::splat(0.0),
+            strain: L::splat(0.0),
         }
     }
 
     /// The relative configuration, as `Link::orient`, lane by lane.
     #[inline(always)]
-    fn orient(&mut self, a: &EndLanes<N>, b: &EndLanes<N>) -> (V3<N>, Q<N>, Q<N>) {
+    fn orient(&mut self, a: &EndLanes<L>, b: &EndLanes<L>) -> (V3<L>, Q<L>, Q<L>) {
         let d = to_x(self.axis, b.pos.sub(a.pos));
         let q1 = quat_to_x(self.axis, a.orient);
         let q2 = quat_to_x(self.axis, b.orient);
@@ -71,33 +71,23 @@ impl<const N: usize> LinkLanes<N> {
         let d = rotate(rot, d);
         let q2 = rot.mul(q2);
         let turn = (d.z.abs() + d.y.abs()) / d.x;
-        let extension = (1.0 - d.x / self.rest).abs();
+        let extension = (L::splat(1.0) - d.x / self.rest).abs();
         let small = self.small_angle;
         let enter = and(
             not(small),
-            and(
-                turn.lt(F64s::splat(SMALL_TURN)),
-                extension.lt(F64s::splat(SMALL_EXTENSION)),
-            ),
+            and(turn.lt(L::splat(SMALL_TURN)), extension.lt(L::splat(SMALL_EXTENSION))),
         );
         let leave = and(
             small,
             or(
-                turn.gt(F64s::splat(SMALL_TURN * HYSTERESIS)),
-                extension.gt(F64s::splat(SMALL_EXTENSION * HYSTERESIS)),
+                turn.gt(L::splat(SMALL_TURN * HYSTERESIS)),
+                extension.gt(L::splat(SMALL_EXTENSION * HYSTERESIS)),
             ),
         );
         let changed = or(enter, leave);
-        self.small_angle = std::array::from_fn(|l| {
-            if enter[l] {
-                true
-            } else if leave[l] {
-                false
-            } else {
-                small[l]
-            }
-        });
-        self.velocity_valid = std::array::from_fn(|l| self.velocity_valid[l] && !changed[l]);
+        // enter and leave exclude each other (one needs the large mode, the other the small)
+        self.small_angle = or(enter, and(small, not(leave)));
+        self.velocity_valid = and(self.velocity_valid, not(changed));
         let small = self.small_angle;
         // small-angle lanes
         let small_d = V3 {
@@ -113,8 +103,8 @@ impl<const N: usize> LinkLanes<N> {
         let large_q2 = align.mul(q2);
         let large_d = V3 {
             x: d.length() - self.rest,
-            y: F64s::splat(0.0),
-            z: F64s::splat(0.0),
+            y: L::splat(0.0),
+            z: L::splat(0.0),
         };
         (
             V3::select(small, small_d, large_d),
@@ -125,7 +115,7 @@ impl<const N: usize> LinkLanes<N> {
 
     /// Computes the forces and moments on both ends in every lane, as `Link::update`.
     #[inline(always)]
-    pub fn update(&mut self, a: &EndLanes<N>, b: &EndLanes<N>) {
+    pub fn update(&mut self, a: &EndLanes<L>, b: &EndLanes<L>) {
         let (d, q1, q2) = self.orient(a, b);
         let small = self.small_angle;
         let zero = V3::splat(glam::DVec3::ZERO);
@@ -135,13 +125,18 @@ impl<const N: usize> LinkLanes<N> {
             false => zero,
         };
         let theta2 = to_rotation_vector(q2);
+        // the constants in every lane, so that each term reads as in `Link::update`
         let k = self.k;
+        let [e, a2, b1, b2, b3] = [k.e, k.a2, k.b1, k.b2, k.b3].map(L::splat);
+        let [sqrt_a1, sqrt_a2, sqrt_b1, sqrt_b2, sqrt_b3] =
+            [k.sqrt_a1, k.sqrt_a2, k.sqrt_b1, k.sqrt_b2, k.sqrt_b3].map(L::splat);
+        let (half, two) = (L::splat(0.5), L::splat(2.0));
         self.strain = d.x / self.rest;
-        let axial = k.e * self.strain * self.area;
+        let axial = e * self.strain * self.area;
         let fn_ = V3 {
             x: axial,
-            y: k.b1 * d.y - k.b2 * (theta1.z + theta2.z),
-            z: k.b1 * d.z + k.b2 * (theta1.y + theta2.y),
+            y: b1 * d.y - b2 * (theta1.z + theta2.z),
+            z: b1 * d.z + b2 * (theta1.y + theta2.y),
         };
         let fp = V3 {
             x: -fn_.x,
@@ -149,47 +144,47 @@ impl<const N: usize> LinkLanes<N> {
             z: -fn_.z,
         };
         let mn = V3 {
-            x: k.a2 * (theta2.x - theta1.x),
-            y: -k.b2 * d.z - k.b3 * (2.0 * theta1.y + theta2.y),
-            z: k.b2 * d.y - k.b3 * (2.0 * theta1.z + theta2.z),
+            x: a2 * (theta2.x - theta1.x),
+            y: -b2 * d.z - b3 * (two * theta1.y + theta2.y),
+            z: b2 * d.y - b3 * (two * theta1.z + theta2.z),
         };
         let mp = V3 {
-            x: k.a2 * (theta1.x - theta2.x),
-            y: -k.b2 * d.z - k.b3 * (theta1.y + 2.0 * theta2.y),
-            z: k.b2 * d.y - k.b3 * (theta1.z + 2.0 * theta2.z),
+            x: a2 * (theta1.x - theta2.x),
+            y: -b2 * d.z - b3 * (theta1.y + two * theta2.y),
+            z: b2 * d.y - b3 * (theta1.z + two * theta2.z),
         };
         // damping, in the lanes whose last update was in the same mode
-        let dd = d.sub(self.d_old).scale(F64s::splat(0.5));
-        let t1 = theta1.sub(self.theta1_old).scale(F64s::splat(0.5));
-        let t2 = theta2.sub(self.theta2_old).scale(F64s::splat(0.5));
+        let dd = d.sub(self.d_old).scale(L::splat(0.5));
+        let t1 = theta1.sub(self.theta1_old).scale(L::splat(0.5));
+        let t2 = theta2.sub(self.theta2_old).scale(L::splat(0.5));
         let c = V3 {
-            x: k.sqrt_a1 * dd.x,
-            y: k.sqrt_b1 * dd.y - k.sqrt_b2 * (t1.z + t2.z),
-            z: k.sqrt_b1 * dd.z + k.sqrt_b2 * (t1.y + t2.y),
+            x: sqrt_a1 * dd.x,
+            y: sqrt_b1 * dd.y - sqrt_b2 * (t1.z + t2.z),
+            z: sqrt_b1 * dd.z + sqrt_b2 * (t1.y + t2.y),
         };
-        let twist = k.sqrt_a2 * (t2.x - t1.x);
+        let twist = sqrt_a2 * (t2.x - t1.x);
         let damped_mn = mn.sub(
             V3 {
                 x: -twist,
-                y: k.sqrt_b2 * dd.z + k.sqrt_b3 * (2.0 * t1.y + t2.y),
-                z: -k.sqrt_b2 * dd.y + k.sqrt_b3 * (2.0 * t1.z + t2.z),
+                y: sqrt_b2 * dd.z + sqrt_b3 * (two * t1.y + t2.y),
+                z: -sqrt_b2 * dd.y + sqrt_b3 * (two * t1.z + t2.z),
             }
-            .scale(0.5 * a.damping),
+            .scale(half * a.damping),
         );
         let damped_mp = mp.sub(
             V3 {
                 x: twist,
-                y: k.sqrt_b2 * dd.z + k.sqrt_b3 * (t1.y + 2.0 * t2.y),
-                z: -k.sqrt_b2 * dd.y + k.sqrt_b3 * (t1.z + 2.0 * t2.z),
+                y: sqrt_b2 * dd.z + sqrt_b3 * (t1.y + two * t2.y),
+                z: -sqrt_b2 * dd.y + sqrt_b3 * (t1.z + two * t2.z),
             }
-            .scale(0.5 * b.damping),
+            .scale(half * b.damping),
         );
         let valid = self.velocity_valid;
         let fn_ = V3::select(valid, fn_.add(c.scale(a.damping)), fn_);
         let fp = V3::select(valid, fp.sub(c.scale(b.damping)), fp);
         let mn = V3::select(valid, damped_mn, mn);
         let mp = V3::select(valid, damped_mp, mp);
-        self.velocity_valid = [true; N];
+        self.velocity_valid = L::Mask::splat(true);
         (self.d_old, self.theta1_old, self.theta2_old) = (d, theta1, theta2);
         let (fn_, mn) = match large {
             true => (
@@ -209,7 +204,7 @@ impl<const N: usize> LinkLanes<N> {
 
 /// `Axis::to_x` in every lane.
 #[inline(always)]
-fn to_x<const N: usize>(axis: Axis, v: V3<N>) -> V3<N> {
+fn to_x<L: Lanes>(axis: Axis, v: V3<L>) -> V3<L> {
     match axis {
         Axis::X => v,
         Axis::Y => V3 {
@@ -227,7 +222,7 @@ fn to_x<const N: usize>(axis: Axis, v: V3<N>) -> V3<N> {
 
 /// `Axis::back_from_x` in every lane.
 #[inline(always)]
-fn back_from_x<const N: usize>(axis: Axis, v: V3<N>) -> V3<N> {
+fn back_from_x<L: Lanes>(axis: Axis, v: V3<L>) -> V3<L> {
     match axis {
         Axis::X => v,
         Axis::Y => V3 {
@@ -245,7 +240,7 @@ fn back_from_x<const N: usize>(axis: Axis, v: V3<N>) -> V3<N> {
 
 /// `Axis::quat_to_x` in every lane.
 #[inline(always)]
-fn quat_to_x<const N: usize>(axis: Axis, q: Q<N>) -> Q<N> {
+fn quat_to_x<L: Lanes>(axis: Axis, q: Q<L>) -> Q<L> {
     let v = to_x(axis, V3 { x: q.x, y: q.y, z: q.z });
     Q {
         x: v.x,
@@ -257,19 +252,19 @@ fn quat_to_x<const N: usize>(axis: Axis, q: Q<N>) -> Q<N> {
 
 /// `quat::rotate` in every lane.
 #[inline(always)]
-fn rotate<const N: usize>(q: Q<N>, v: V3<N>) -> V3<N> {
+fn rotate<L: Lanes>(q: Q<L>, v: V3<L>) -> V3<L> {
     sandwich(q, v, q.conjugate())
 }
 
 /// `quat::rotate_inverse` in every lane.
 #[inline(always)]
-fn rotate_inverse<const N: usize>(q: Q<N>, v: V3<N>) -> V3<N> {
+fn rotate_inverse<L: Lanes>(q: Q<L>, v: V3<L>) -> V3<L> {
     sandwich(q.conjugate(), v, q)
 }
 
 /// `quat::sandwich` in every lane: the same terms in the same order.
 #[inline(always)]
-pub(crate) fn sandwich<const N: usize>(a: Q<N>, v: V3<N>, b: Q<N>) -> V3<N> {
+pub(crate) fn sandwich<L: Lanes>(a: Q<L>, v: V3<L>, b: Q<L>) -> V3<L> {
     let tx = a.w * v.x + a.y * v.z - a.z * v.y;
     let ty = a.w * v.y - a.x * v.z + a.z * v.x;
     let tz = a.w * v.z + a.x * v.y - a.y * v.x;
@@ -283,13 +278,14 @@ pub(crate) fn sandwich<const N: usize>(a: Q<N>, v: V3<N>, b: Q<N>) -> V3<N> {
 
 /// `quat::to_rotation_vector` in every lane: both series computed, each lane takes its own.
 #[inline(always)]
-pub(crate) fn to_rotation_vector<const N: usize>(q: Q<N>) -> V3<N> {
-    let identity = or(q.w.ge(F64s::splat(1.0)), q.w.le(F64s::splat(-1.0)));
-    let s = 1.0 - q.w * q.w;
-    let series = s.lt(F64s::splat(2.4e-3));
-    let near = 2.0 * ((2.0 - 2.0 * q.w) / s).sqrt();
+pub(crate) fn to_rotation_vector<L: Lanes>(q: Q<L>) -> V3<L> {
+    let identity = or(q.w.ge(L::splat(1.0)), q.w.le(L::splat(-1.0)));
+    let (one, two) = (L::splat(1.0), L::splat(2.0));
+    let s = one - q.w * q.w;
+    let series = s.lt(L::splat(2.4e-3));
+    let near = two * ((two - two * q.w) / s).sqrt();
     let scale = match any(and(not(series), not(identity))) {
-        true => F64s::select(series, near, 2.0 * q.w.acos() / s.sqrt()),
+        true => L::select(series, near, two * q.w.acos() / s.sqrt()),
         false => near,
     };
     let v = V3 {
@@ -303,21 +299,19 @@ pub(crate) fn to_rotation_vector<const N: usize>(q: Q<N>) -> V3<N> {
 /// `quat::align_to_x(d, IDENTITY)` in every lane: the zero vector, the first-order branch, the
 /// half-turn and the general rotation, each lane taking its own.
 #[inline(always)]
-fn align_to_x<const N: usize>(d: V3<N>) -> Q<N> {
-    let zero = F64s::splat(0.0);
+fn align_to_x<L: Lanes>(d: V3<L>) -> Q<L> {
+    let zero = L::splat(0.0);
     let is_zero = and(d.x.eq(zero), and(d.y.eq(zero), d.z.eq(zero)));
     let (ry, rz) = (d.y / d.x, d.z / d.x);
-    let limit = F64s::splat(1.732e-2);
-    let nearly = and(
-        and(ry.abs().lt(limit), rz.abs().lt(limit)),
-        std::array::from_fn(|l| d.x.0[l] != 0.0),
-    );
-    let (y, z) = (0.5 * rz, -0.5 * ry);
+    let limit = L::splat(1.732e-2);
+    let nearly = and(and(ry.abs().lt(limit), rz.abs().lt(limit)), d.x.ne(zero));
+    let half = L::splat(0.5);
+    let (y, z) = (half * rz, -half * ry);
     let first_order = Q {
         x: zero,
         y,
         z,
-        w: 1.0 - 0.5 * (y * y + z * z),
+        w: L::splat(1.0) - half * (y * y + z * z),
     };
     if !any(and(not(nearly), not(is_zero))) {
         return Q::select(is_zero, Q::splat(glam::DQuat::IDENTITY), first_order);
@@ -329,7 +323,7 @@ fn align_to_x<const N: usize>(d: V3<N>) -> Q<N> {
         z: d.z / length,
     };
     let theta = n.x.clamp(-1.0, 1.0).acos();
-    let half_turn = theta.gt(F64s::splat(std::f64::consts::PI - 1e-7));
+    let half_turn = theta.gt(L::splat(std::f64::consts::PI - 1e-7));
     let half = theta / 2.0;
     let (sin, cos) = half.sin_cos();
     let s = sin / (n.y * n.y + n.z * n.z).sqrt();
@@ -360,8 +354,14 @@ mod bench {
     /// Returns `(scalar, four lanes, eight lanes)`.
     pub fn benchmark(updates: usize) -> (f64, f64, f64) {
         let scalar = time_scalar(updates);
-        let four = time_lanes::<4>(updates);
-        let eight = time_lanes::<8>(updates);
+        #[cfg(target_arch = "x86_64")]
+        if crate::avx::available() {
+            let four = time_lanes::<crate::avx::Avx<4>>(updates);
+            let eight = time_lanes::<crate::avx::Avx<8>>(updates);
+            return (scalar, four, eight);
+        }
+        let four = time_lanes::<vsrlab_lanes::F64s<4>>(updates);
+        let eight = time_lanes::<vsrlab_lanes::F64s<8>>(updates);
         (scalar, four, eight)
     }
 
@@ -396,31 +396,31 @@ mod bench {
         start.elapsed().as_secs_f64() * 1e9 / updates as f64
     }
 
-    fn time_lanes<const N: usize>(updates: usize) -> f64 {
+    fn time_lanes<L: Lanes>(updates: usize) -> f64 {
         let k = LinkConstants::new(1e6, 1e6, 0.01);
         let lanes_of = |i: usize, positive: bool| {
             let mut e = EndLanes {
                 pos: V3::splat(glam::DVec3::ZERO),
                 orient: Q::splat(glam::DQuat::IDENTITY),
-                damping: F64s::splat(0.0),
+                damping: L::splat(0.0),
             };
-            for l in 0..N {
+            for l in 0..L::LANES {
                 let end = bench_end(i, l, positive);
                 e.pos.set_lane(l, end.pos);
                 e.orient.set_lane(l, end.orient);
-                e.damping.0[l] = end.damping;
+                e.damping.set(l, end.damping);
             }
             e
         };
         let ends: Vec<_> = (0..updates).map(|i| (lanes_of(i, false), lanes_of(i, true))).collect();
-        let mut link = LinkLanes::<N>::new(Axis::X, k, 1e-4, F64s::splat(0.01));
+        let mut link = LinkLanes::<L>::new(Axis::X, k, 1e-4, L::splat(0.01));
         let start = std::time::Instant::now();
         update_all(&mut link, &ends);
-        start.elapsed().as_secs_f64() * 1e9 / (updates * N) as f64
+        start.elapsed().as_secs_f64() * 1e9 / (updates * L::LANES) as f64
     }
 
     /// The laned updates, compiled for the best vector unit this CPU has (the same bits on each).
-    fn update_all<const N: usize>(link: &mut LinkLanes<N>, ends: &[(EndLanes<N>, EndLanes<N>)]) {
+    fn update_all<L: Lanes>(link: &mut LinkLanes<L>, ends: &[(EndLanes<L>, EndLanes<L>)]) {
         #[cfg(target_arch = "x86_64")]
         {
             if is_x86_feature_detected!("avx512f") {
@@ -436,7 +436,7 @@ mod bench {
     }
 
     #[inline(always)]
-    fn update_all_portable<const N: usize>(link: &mut LinkLanes<N>, ends: &[(EndLanes<N>, EndLanes<N>)]) {
+    fn update_all_portable<L: Lanes>(link: &mut LinkLanes<L>, ends: &[(EndLanes<L>, EndLanes<L>)]) {
         for (a, b) in ends {
             link.update(a, b);
             std::hint::black_box(&link.force_pos);
@@ -445,13 +445,13 @@ mod bench {
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    unsafe fn update_all_avx2<const N: usize>(link: &mut LinkLanes<N>, ends: &[(EndLanes<N>, EndLanes<N>)]) {
+    unsafe fn update_all_avx2<L: Lanes>(link: &mut LinkLanes<L>, ends: &[(EndLanes<L>, EndLanes<L>)]) {
         update_all_portable(link, ends);
     }
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx512f")]
-    unsafe fn update_all_avx512<const N: usize>(link: &mut LinkLanes<N>, ends: &[(EndLanes<N>, EndLanes<N>)]) {
+    unsafe fn update_all_avx512<L: Lanes>(link: &mut LinkLanes<L>, ends: &[(EndLanes<L>, EndLanes<L>)]) {
         update_all_portable(link, ends);
     }
 }
@@ -462,6 +462,7 @@ mod tests {
     use crate::link::{End, Link};
     use crate::quat::from_rotation_vector;
     use glam::{DQuat, DVec3};
+    use vsrlab_lanes::F64s;
 
     const LANES: usize = 8;
 
@@ -480,7 +481,7 @@ mod tests {
         (a, b)
     }
 
-    fn lanes_of(ends: &[End; LANES], axis: Axis) -> EndLanes<LANES> {
+    fn lanes_of<L: Lanes>(ends: &[End; LANES], axis: Axis) -> EndLanes<L> {
         // the same configuration turned onto the link's axis
         let turn = |v: DVec3| match axis {
             Axis::X => v,
@@ -490,17 +491,17 @@ mod tests {
         let mut out = EndLanes {
             pos: V3::splat(DVec3::ZERO),
             orient: Q::splat(DQuat::IDENTITY),
-            damping: F64s::splat(0.0),
+            damping: L::splat(0.0),
         };
         for (l, e) in ends.iter().enumerate() {
             out.pos.set_lane(l, turn(e.pos));
             out.orient.set_lane(l, e.orient);
-            out.damping.0[l] = e.damping;
+            out.damping.set(l, e.damping);
         }
         out
     }
 
-    fn same_bits(laned: &V3<LANES>, l: usize, scalar: DVec3, what: &str) {
+    fn same_bits<L: Lanes>(laned: &V3<L>, l: usize, scalar: DVec3, what: &str) {
         let lane = laned.lane(l);
         for k in 0..3 {
             assert_eq!(
@@ -513,6 +514,14 @@ mod tests {
 
     #[test]
     fn every_lane_of_a_laned_link_gives_the_scalar_links_bits() {
+        every_lane_gives_the_scalar_bits::<F64s<LANES>>();
+        #[cfg(target_arch = "x86_64")]
+        if crate::avx::available() {
+            every_lane_gives_the_scalar_bits::<crate::avx::Avx<LANES>>();
+        }
+    }
+
+    fn every_lane_gives_the_scalar_bits<L: Lanes>() {
         let mut state = 0x2545_f491_4f6c_dd1d_u64;
         let mut next = move || {
             state ^= state << 13;
@@ -524,11 +533,15 @@ mod tests {
         for axis in [Axis::X, Axis::Y, Axis::Z] {
             let rests: [f64; LANES] = std::array::from_fn(|l| 0.01 * (1.0 + 0.02 * l as f64));
             let mut scalar: Vec<Link> = rests.iter().map(|&r| Link::new(0, 1, axis, k, 1e-4, r)).collect();
-            let mut laned = LinkLanes::<LANES>::new(axis, k, 1e-4, F64s(rests));
+            let mut rest = L::splat(0.0);
+            for (l, &r) in rests.iter().enumerate() {
+                rest.set(l, r);
+            }
+            let mut laned = LinkLanes::<L>::new(axis, k, 1e-4, rest);
             let mut large = 0;
             for round in 0..40 {
                 let (a, b) = ends(&mut next, round);
-                let (la, lb) = (lanes_of(&a, axis), lanes_of(&b, axis));
+                let (la, lb) = (lanes_of::<L>(&a, axis), lanes_of::<L>(&b, axis));
                 laned.update(&la, &lb);
                 for l in 0..LANES {
                     let (sa, sb) = (
@@ -542,12 +555,12 @@ mod tests {
                         },
                     );
                     scalar[l].update(&sa, &sb);
-                    large += usize::from(!laned.small_angle[l]);
+                    large += usize::from(!laned.small_angle.get(l));
                     same_bits(&laned.force_neg, l, scalar[l].force_neg, "force on the negative end");
                     same_bits(&laned.force_pos, l, scalar[l].force_pos, "force on the positive end");
                     same_bits(&laned.moment_neg, l, scalar[l].moment_neg, "moment on the negative end");
                     same_bits(&laned.moment_pos, l, scalar[l].moment_pos, "moment on the positive end");
-                    assert_eq!(laned.strain.0[l].to_bits(), scalar[l].strain.to_bits());
+                    assert_eq!(laned.strain.get(l).to_bits(), scalar[l].strain.to_bits());
                 }
             }
             // both modes were met, in different lanes at different updates

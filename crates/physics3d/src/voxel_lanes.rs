@@ -9,7 +9,7 @@ use crate::lanes::{Q, V3};
 use crate::material::{Material, VoxelConstants};
 use crate::voxel::DofMask;
 use glam::{DQuat, DVec3};
-use vsrlab_lanes::{and, any, not, F64s, Mask};
+use vsrlab_lanes::{and, any, not, or, LaneMask, Lanes};
 
 /// What every lane's copy of a voxel shares: its material, constants, fixed degrees of freedom
 /// and lattice position, and the world's settings that the step reads.
@@ -27,18 +27,18 @@ pub(crate) struct VoxelShared {
 
 /// Each lane's state of one voxel.
 #[derive(Debug, Clone)]
-pub(crate) struct VoxelLanes<const N: usize> {
-    pub pos: V3<N>,
-    pub orient: Q<N>,
-    pub momentum: V3<N>,
-    pub angular_momentum: V3<N>,
-    pub is_static: Mask<N>,
-    pub dt_prev: F64s<N>,
+pub(crate) struct VoxelLanes<L: Lanes> {
+    pub pos: V3<L>,
+    pub orient: Q<L>,
+    pub momentum: V3<L>,
+    pub angular_momentum: V3<L>,
+    pub is_static: L::Mask,
+    pub dt_prev: L,
     /// Rest edge in each lane (its temperature's).
-    pub size: F64s<N>,
+    pub size: L,
 }
 
-impl<const N: usize> VoxelLanes<N> {
+impl<L: Lanes> VoxelLanes<L> {
     /// The voxel at rest at `home`, static, in every lane.
     pub fn at_rest(home: DVec3, size: f64) -> Self {
         VoxelLanes {
@@ -46,9 +46,9 @@ impl<const N: usize> VoxelLanes<N> {
             orient: Q::splat(DQuat::IDENTITY),
             momentum: V3::splat(DVec3::ZERO),
             angular_momentum: V3::splat(DVec3::ZERO),
-            is_static: [true; N],
-            dt_prev: F64s::splat(0.0),
-            size: F64s::splat(size),
+            is_static: L::Mask::splat(true),
+            dt_prev: L::splat(0.0),
+            size: L::splat(size),
         }
     }
 
@@ -59,15 +59,15 @@ impl<const N: usize> VoxelLanes<N> {
     pub fn step(
         &mut self,
         v: &VoxelShared,
-        link_force: V3<N>,
-        link_moment: V3<N>,
-        contact: V3<N>,
-        external_force: V3<N>,
-        external_moment: V3<N>,
+        link_force: V3<L>,
+        link_moment: V3<L>,
+        contact: V3<L>,
+        external_force: V3<L>,
+        external_moment: V3<L>,
         dt: f64,
     ) {
         let (m, c) = (&v.material, &v.constants);
-        self.dt_prev = F64s::splat(dt);
+        self.dt_prev = L::splat(dt);
         if v.fixed.iter().all(|&f| f) {
             self.pos = V3::splat(v.home);
             self.orient = Q::splat(DQuat::IDENTITY);
@@ -75,35 +75,35 @@ impl<const N: usize> VoxelLanes<N> {
             self.angular_momentum = V3::splat(DVec3::ZERO);
             return;
         }
-        let mass = F64s::splat(c.mass);
+        let mass = L::splat(c.mass);
         let velocity = V3 {
             x: self.momentum.x / mass,
             y: self.momentum.y / mass,
             z: self.momentum.z / mass,
         };
-        let inertia = F64s::splat(c.inertia);
+        let inertia = L::splat(c.inertia);
         let omega = V3 {
             x: self.angular_momentum.x / inertia,
             y: self.angular_momentum.y / inertia,
             z: self.angular_momentum.z / inertia,
         };
         let gravity = V3::splat(DVec3::new(0.0, 0.0, -c.mass * v.gravity));
-        let linear = F64s::splat(m.global_damping * c.linear_damping);
+        let linear = L::splat(m.global_damping * c.linear_damping);
         let mut force = rotate(self.orient, link_force)
             .add(external_force)
             .sub(velocity.scale(linear))
             .add(gravity)
             .add(contact);
-        let angular = F64s::splat(m.global_damping * c.angular_damping);
+        let angular = L::splat(m.global_damping * c.angular_damping);
         let moment = rotate(self.orient, link_moment)
             .add(external_moment)
             .sub(omega.scale(angular));
         let zero = V3::splat(DVec3::ZERO);
         let (touching, friction) = match v.floor {
             true => self.floor(v, &mut force, velocity),
-            false => ([false; N], zero),
+            false => (L::Mask::splat(false), zero),
         };
-        self.momentum = self.momentum.add(force.scale(F64s::splat(dt)));
+        self.momentum = self.momentum.add(force.scale(L::splat(dt)));
         let mut translation = V3 {
             x: self.momentum.x * dt / mass,
             y: self.momentum.y * dt / mass,
@@ -112,17 +112,17 @@ impl<const N: usize> VoxelLanes<N> {
         if any(touching) {
             let work = friction.x * translation.x + friction.y * translation.y;
             let kinetic = (self.momentum.x * self.momentum.x + self.momentum.y * self.momentum.y) / (2.0 * c.mass);
-            let stops = and(touching, (kinetic + work).le(F64s::splat(0.0)));
-            self.is_static = std::array::from_fn(|l| self.is_static[l] || stops[l]);
+            let stops = and(touching, (kinetic + work).le(L::splat(0.0)));
+            self.is_static = or(self.is_static, stops);
             let held = and(touching, self.is_static);
-            let zero = F64s::splat(0.0);
-            self.momentum.x = F64s::select(held, zero, self.momentum.x);
-            self.momentum.y = F64s::select(held, zero, self.momentum.y);
-            translation.x = F64s::select(held, zero, translation.x);
-            translation.y = F64s::select(held, zero, translation.y);
+            let zero = L::splat(0.0);
+            self.momentum.x = L::select(held, zero, self.momentum.x);
+            self.momentum.y = L::select(held, zero, self.momentum.y);
+            translation.x = L::select(held, zero, translation.x);
+            translation.y = L::select(held, zero, translation.y);
         }
         self.pos = self.pos.add(translation);
-        self.angular_momentum = self.angular_momentum.add(moment.scale(F64s::splat(dt)));
+        self.angular_momentum = self.angular_momentum.add(moment.scale(L::splat(dt)));
         let turn = V3 {
             x: self.angular_momentum.x * dt / inertia,
             y: self.angular_momentum.y * dt / inertia,
@@ -135,17 +135,17 @@ impl<const N: usize> VoxelLanes<N> {
     /// The floor's force added to `force`, as `floor::floor_force` lane by lane: whether each
     /// lane touches, and the friction each lane got.
     #[inline(always)]
-    fn floor(&mut self, v: &VoxelShared, force: &mut V3<N>, velocity: V3<N>) -> (Mask<N>, V3<N>) {
+    fn floor(&mut self, v: &VoxelShared, force: &mut V3<L>, velocity: V3<L>) -> (L::Mask, V3<L>) {
         let (m, c) = (&v.material, &v.constants);
-        let zero = F64s::splat(0.0);
+        let zero = L::splat(0.0);
         let penetration = self.size / 2.0 - v.lattice / 2.0 - self.pos.z;
         let touching = not(penetration.lt(zero));
         let was_static = self.is_static;
-        let normal = c.floor_stiffness * penetration;
+        let normal = L::splat(c.floor_stiffness) * penetration;
         let damping = m.collision_damping * c.linear_damping;
-        force.z = F64s::select(touching, force.z + (normal - damping * velocity.z), force.z);
+        force.z = L::select(touching, force.z + (normal - L::splat(damping) * velocity.z), force.z);
         // static lanes: the friction holds until the horizontal force exceeds μs N
-        let limit = m.static_friction * normal;
+        let limit = L::splat(m.static_friction) * normal;
         let breaks = (force.x * force.x + force.y * force.y).gt(limit * limit);
         // sliding lanes: kinetic friction against the horizontal velocity
         let speed = (velocity.x * velocity.x + velocity.y * velocity.y + zero * zero).sqrt();
@@ -156,7 +156,7 @@ impl<const N: usize> VoxelLanes<N> {
             z: zero,
         };
         if any(slides) {
-            let pull = -m.kinetic_friction * normal;
+            let pull = L::splat(-m.kinetic_friction) * normal;
             let kinetic = V3 {
                 x: pull * velocity.x / speed,
                 y: pull * velocity.y / speed,
@@ -165,10 +165,7 @@ impl<const N: usize> VoxelLanes<N> {
             friction = V3::select(slides, kinetic, friction);
             *force = V3::select(slides, force.add(kinetic), *force);
         }
-        self.is_static = std::array::from_fn(|l| match touching[l] {
-            false => false,
-            true => was_static[l] && !breaks[l],
-        });
+        self.is_static = and(touching, and(was_static, not(breaks)));
         (touching, friction)
     }
 
@@ -176,12 +173,12 @@ impl<const N: usize> VoxelLanes<N> {
     /// of `World::step_voxel` (the same degrees of freedom in every lane).
     #[inline(always)]
     fn hold_fixed(&mut self, v: &VoxelShared) {
-        let zero = F64s::splat(0.0);
+        let zero = L::splat(0.0);
         let pos = [&mut self.pos.x, &mut self.pos.y, &mut self.pos.z];
         let momentum = [&mut self.momentum.x, &mut self.momentum.y, &mut self.momentum.z];
         for (k, (p, m)) in pos.into_iter().zip(momentum).enumerate() {
             if v.fixed[k] {
-                *p = F64s::splat(v.home[k]);
+                *p = L::splat(v.home[k]);
                 *m = zero;
             }
         }
@@ -210,26 +207,27 @@ impl<const N: usize> VoxelLanes<N> {
 
 /// `quat::rotate` in every lane.
 #[inline(always)]
-fn rotate<const N: usize>(q: Q<N>, v: V3<N>) -> V3<N> {
+fn rotate<L: Lanes>(q: Q<L>, v: V3<L>) -> V3<L> {
     crate::link_lanes::sandwich(q, v, q.conjugate())
 }
 
 /// `quat::from_rotation_vector` in every lane: the series near zero, sine and cosine beyond.
 #[inline(always)]
-fn from_rotation_vector<const N: usize>(r: V3<N>) -> Q<N> {
+fn from_rotation_vector<L: Lanes>(r: V3<L>) -> Q<L> {
     let h = V3 {
         x: r.x * 0.5,
         y: r.y * 0.5,
         z: r.z * 0.5,
     };
     let h2 = h.x * h.x + h.y * h.y + h.z * h.z;
-    let series = (h2 * h2).lt(F64s::splat(5.328e-15));
-    let (mut w, mut scale) = (1.0 - h2 / 2.0, 1.0 - h2 / 6.0);
+    let series = (h2 * h2).lt(L::splat(5.328e-15));
+    let one = L::splat(1.0);
+    let (mut w, mut scale) = (one - h2 / 2.0, one - h2 / 6.0);
     if any(not(series)) {
         let a = h2.sqrt();
         let (sin, cos) = a.sin_cos();
-        w = F64s::select(series, w, cos);
-        scale = F64s::select(series, scale, sin / a);
+        w = L::select(series, w, cos);
+        scale = L::select(series, scale, sin / a);
     }
     Q {
         x: h.x * scale,
@@ -241,7 +239,7 @@ fn from_rotation_vector<const N: usize>(r: V3<N>) -> Q<N> {
 
 /// `quat::to_rotation_vector` in every lane.
 #[inline(always)]
-fn to_rotation_vector<const N: usize>(q: Q<N>) -> V3<N> {
+fn to_rotation_vector<L: Lanes>(q: Q<L>) -> V3<L> {
     crate::link_lanes::to_rotation_vector(q)
 }
 
@@ -273,12 +271,14 @@ mod bench {
     /// episodes, each under sideways, lifting and twisting loads that make it slide, stick and hop.
     /// Returns `(scalar world, 1 lane, 4 lanes, 8 lanes)`.
     pub fn benchmark(steps: usize) -> (f64, f64, f64, f64) {
-        (
-            time_world(steps),
-            time_lanes::<1>(steps),
-            time_lanes::<4>(steps),
-            time_lanes::<8>(steps),
-        )
+        let (world, one) = (time_world(steps), time_lanes::<vsrlab_lanes::F64s<1>>(steps));
+        #[cfg(target_arch = "x86_64")]
+        if crate::avx::available() {
+            let four = time_lanes::<crate::avx::Avx<4>>(steps);
+            return (world, one, four, time_lanes::<crate::avx::Avx<8>>(steps));
+        }
+        let four = time_lanes::<vsrlab_lanes::F64s<4>>(steps);
+        (world, one, four, time_lanes::<vsrlab_lanes::F64s<8>>(steps))
     }
 
     /// The loads of step `i` in lane `l`.
@@ -311,7 +311,7 @@ mod bench {
         start.elapsed().as_secs_f64() * 1e9 / steps as f64
     }
 
-    fn time_lanes<const N: usize>(steps: usize) -> f64 {
+    fn time_lanes<L: Lanes>(steps: usize) -> f64 {
         let material = bench_material();
         let settings = crate::world::WorldSettings::default();
         let shared = VoxelShared {
@@ -329,26 +329,26 @@ mod bench {
             w.add_voxel(m, [0, 0, 0]).expect("free index");
             w.recommended_time_step()
         };
-        let loads: Vec<(V3<N>, V3<N>)> = (0..steps)
+        let loads: Vec<(V3<L>, V3<L>)> = (0..steps)
             .map(|i| {
-                let lanes: [(DVec3, DVec3); N] = std::array::from_fn(|l| bench_loads(i, l));
-                let pick = |f: fn(&(DVec3, DVec3)) -> DVec3| V3 {
-                    x: F64s(lanes.map(|p| f(&p).x)),
-                    y: F64s(lanes.map(|p| f(&p).y)),
-                    z: F64s(lanes.map(|p| f(&p).z)),
-                };
-                (pick(|p| p.0), pick(|p| p.1))
+                let (mut force, mut moment) = (V3::splat(DVec3::ZERO), V3::splat(DVec3::ZERO));
+                for l in 0..L::LANES {
+                    let (f, m) = bench_loads(i, l);
+                    force.set_lane(l, f);
+                    moment.set_lane(l, m);
+                }
+                (force, moment)
             })
             .collect();
-        let mut voxel = VoxelLanes::<N>::at_rest(DVec3::ZERO, settings.voxel_size);
+        let mut voxel = VoxelLanes::<L>::at_rest(DVec3::ZERO, settings.voxel_size);
         let start = std::time::Instant::now();
         step_all(&mut voxel, &shared, &loads, dt);
         std::hint::black_box(&voxel.pos);
-        start.elapsed().as_secs_f64() * 1e9 / (steps * N) as f64
+        start.elapsed().as_secs_f64() * 1e9 / (steps * L::LANES) as f64
     }
 
     /// The laned steps, compiled for the best vector unit this CPU has (the same bits on each).
-    fn step_all<const N: usize>(voxel: &mut VoxelLanes<N>, shared: &VoxelShared, loads: &[(V3<N>, V3<N>)], dt: f64) {
+    fn step_all<L: Lanes>(voxel: &mut VoxelLanes<L>, shared: &VoxelShared, loads: &[(V3<L>, V3<L>)], dt: f64) {
         #[cfg(target_arch = "x86_64")]
         {
             if is_x86_feature_detected!("avx512f") {
@@ -364,12 +364,7 @@ mod bench {
     }
 
     #[inline(always)]
-    fn step_all_portable<const N: usize>(
-        voxel: &mut VoxelLanes<N>,
-        shared: &VoxelShared,
-        loads: &[(V3<N>, V3<N>)],
-        dt: f64,
-    ) {
+    fn step_all_portable<L: Lanes>(voxel: &mut VoxelLanes<L>, shared: &VoxelShared, loads: &[(V3<L>, V3<L>)], dt: f64) {
         let zero = V3::splat(DVec3::ZERO);
         for (force, moment) in loads {
             voxel.step(shared, zero, zero, zero, *force, *moment, dt);
@@ -378,10 +373,10 @@ mod bench {
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    unsafe fn step_all_avx2<const N: usize>(
-        voxel: &mut VoxelLanes<N>,
+    unsafe fn step_all_avx2<L: Lanes>(
+        voxel: &mut VoxelLanes<L>,
         shared: &VoxelShared,
-        loads: &[(V3<N>, V3<N>)],
+        loads: &[(V3<L>, V3<L>)],
         dt: f64,
     ) {
         step_all_portable(voxel, shared, loads, dt);
@@ -389,10 +384,10 @@ mod bench {
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx512f")]
-    unsafe fn step_all_avx512<const N: usize>(
-        voxel: &mut VoxelLanes<N>,
+    unsafe fn step_all_avx512<L: Lanes>(
+        voxel: &mut VoxelLanes<L>,
         shared: &VoxelShared,
-        loads: &[(V3<N>, V3<N>)],
+        loads: &[(V3<L>, V3<L>)],
         dt: f64,
     ) {
         step_all_portable(voxel, shared, loads, dt);
@@ -406,9 +401,18 @@ mod tests {
 
     const LANES: usize = 4;
 
+    /// [`run_in`] with the portable lanes and, where the CPU has them, AVX2's.
+    fn run(fixed: &[Dof], collisions: bool) {
+        run_in::<vsrlab_lanes::F64s<LANES>>(fixed, collisions);
+        #[cfg(target_arch = "x86_64")]
+        if crate::avx::available() {
+            run_in::<crate::avx::Avx<LANES>>(fixed, collisions);
+        }
+    }
+
     /// Each lane's world: one voxel on the floor pushed sideways, lifted and twisted by its own
     /// loads, warmed to its own size; the laned voxel beside them with the same loads.
-    fn run(fixed: &[Dof], collisions: bool) {
+    fn run_in<L: Lanes>(fixed: &[Dof], collisions: bool) {
         let settings = WorldSettings {
             collisions,
             ..WorldSettings::default()
@@ -437,7 +441,7 @@ mod tests {
             floor: settings.floor,
             gravity: settings.gravity,
         };
-        let mut laned = VoxelLanes::<LANES>::at_rest(DVec3::ZERO, settings.voxel_size);
+        let mut laned = VoxelLanes::<L>::at_rest(DVec3::ZERO, settings.voxel_size);
         let zero = V3::splat(DVec3::ZERO);
         let mut touched = [0usize; 2];
         for step in 0..3000 {
@@ -455,7 +459,7 @@ mod tests {
                 w.set_temperature(*v, 10.0 * (0.01 * step as f64 + l as f64).sin());
                 force.set_lane(l, f);
                 moment.set_lane(l, t);
-                laned.size.0[l] = w.edge(*v);
+                laned.size.set(l, w.edge(*v));
                 w.step(dt).unwrap();
             }
             laned.step(&shared, zero, zero, zero, force, moment, dt);

@@ -1,24 +1,27 @@
 //! A world of N episodes at once (issue 52, population lanes): the same body shape in every lane,
 //! each lane with its own temperatures and so its own motion, stepped as `World::step` does, lane
 //! by lane: every link from the state at the start of the step, the voxel–voxel contacts
-//! (`collision_lanes.rs`), then every voxel. Tests hold every lane to a scalar world's bits, with
-//! and without collisions.
+//! (`collision_lanes.rs`), then every voxel. The lanes are AVX2 registers where the CPU has them
+//! (`avx.rs`, N a multiple of 4) and plain arrays elsewhere, the same bits either way. Tests hold
+//! every lane to a scalar world's bits, with and without collisions, in both forms.
 
+#[cfg(target_arch = "x86_64")]
+use crate::avx::Avx;
 use crate::collision_lanes::{ColliderLanes, CollisionLanes};
-use crate::lanes::{Q, V3};
+use crate::lanes::V3;
 use crate::link_lanes::{EndLanes, LinkLanes};
 use crate::voxel::rest_edge;
 use crate::voxel_lanes::{VoxelLanes, VoxelShared};
 use crate::world::{VoxelId, World, DIVERGED_STRAIN};
 use crate::Physics3dError;
 use glam::DVec3;
-use vsrlab_lanes::F64s;
+use vsrlab_lanes::{F64s, LaneMask, Lanes};
 
 /// One voxel's parts: what the lanes share, and each lane's state.
 #[derive(Debug, Clone)]
-struct Voxel<const N: usize> {
+struct Voxel<L: Lanes> {
     shared: VoxelShared,
-    lanes: VoxelLanes<N>,
+    lanes: VoxelLanes<L>,
     /// Its links (link index, whether it is the negative end), in the order forces are summed.
     links: Vec<(usize, bool)>,
     external_force: DVec3,
@@ -28,32 +31,209 @@ struct Voxel<const N: usize> {
 /// N episodes of one body, stepped together.
 #[derive(Debug, Clone)]
 pub struct WorldLanes<const N: usize> {
-    voxels: Vec<Voxel<N>>,
-    links: Vec<LinkLanes<N>>,
+    engine: Engine<N>,
+}
+
+/// The lanes' number type: AVX2 registers where the CPU has them, plain arrays elsewhere.
+#[derive(Debug, Clone)]
+enum Engine<const N: usize> {
+    Portable(Laned<F64s<N>>),
+    #[cfg(target_arch = "x86_64")]
+    Avx(Laned<Avx<N>>),
+}
+
+/// The world's state in lanes of type `L`.
+#[derive(Debug, Clone)]
+struct Laned<L: Lanes> {
+    voxels: Vec<Voxel<L>>,
+    links: Vec<LinkLanes<L>>,
     /// Each link's negative and positive voxel.
     ends_of: Vec<(usize, usize)>,
-    ends: Vec<EndLanes<N>>,
+    ends: Vec<EndLanes<L>>,
     lattice: f64,
     rests_stale: bool,
     steps: u64,
     /// Voxel–voxel collisions, when the world has them, and each voxel as they see it.
-    collisions: Option<CollisionLanes<N>>,
-    colliders: Vec<ColliderLanes<N>>,
+    collisions: Option<CollisionLanes<L>>,
+    colliders: Vec<ColliderLanes<L>>,
     /// Each lane's divergence, the first: (steps taken before, voxel), as `World::step` names it.
-    diverged: [Option<(u64, usize)>; N],
+    diverged: Vec<Option<(u64, usize)>>,
 }
 
 impl<const N: usize> WorldLanes<N> {
     /// N copies of `world` as it is now: its voxels at rest at their lattice positions (a world
     /// that has not stepped), its links, loads and settings. Refuses a world that has stepped.
     pub fn of(world: &World) -> Result<WorldLanes<N>, Physics3dError> {
+        #[cfg(target_arch = "x86_64")]
+        if N.is_multiple_of(4) && crate::avx::available() {
+            return Ok(WorldLanes {
+                engine: Engine::Avx(Laned::of(world)?),
+            });
+        }
+        WorldLanes::portable(world)
+    }
+
+    /// As [`WorldLanes::of`], in plain arrays whatever the CPU (the tests compare both forms).
+    pub(crate) fn portable(world: &World) -> Result<WorldLanes<N>, Physics3dError> {
+        Ok(WorldLanes {
+            engine: Engine::Portable(Laned::of(world)?),
+        })
+    }
+
+    /// Sets voxel `v`'s temperature in lane `lane` (its rest edge, and its links' rest lengths
+    /// at the next step), as `World::set_temperature`.
+    pub fn set_temperature(&mut self, v: VoxelId, lane: usize, temperature: f64) {
+        match &mut self.engine {
+            Engine::Portable(w) => w.set_temperature(v, lane, temperature),
+            #[cfg(target_arch = "x86_64")]
+            Engine::Avx(w) => w.set_temperature(v, lane, temperature),
+        }
+    }
+
+    /// Sets voxel `v`'s temperature in every lane at once, as [`WorldLanes::set_temperature`].
+    pub fn set_temperatures(&mut self, v: VoxelId, temperatures: [f64; N]) {
+        for (lane, t) in temperatures.into_iter().enumerate() {
+            self.set_temperature(v, lane, t);
+        }
+    }
+
+    /// One step of `dt` seconds in every lane, compiled for the widest vector unit this CPU has
+    /// (AVX-512, AVX2, or portable), the same bits on each. A lane that diverges (as
+    /// `World::step` finds it: a link strained 100-fold, or a voxel state not finite) is kept in
+    /// [`WorldLanes::diverged`] and steps on without touching the other lanes; an error here is
+    /// about `dt` only.
+    pub fn step(&mut self, dt: f64) -> Result<(), Physics3dError> {
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(Physics3dError::Invalid(format!(
+                "dt: must be a finite number > 0, got {dt}"
+            )));
+        }
+        match &mut self.engine {
+            Engine::Portable(w) => w.step_lanes(dt),
+            #[cfg(target_arch = "x86_64")]
+            Engine::Avx(w) => {
+                if is_x86_feature_detected!("avx512f") {
+                    // SAFETY: the CPU supports AVX-512F (and AVX2: `Engine::Avx` was chosen)
+                    unsafe { step_avx512(w, dt) };
+                } else {
+                    // SAFETY: the CPU supports AVX2 (`Engine::Avx` was chosen for it)
+                    unsafe { step_avx2(w, dt) };
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The error `World::step` gave in lane `lane` when that lane diverged (its first), if it did.
+    pub fn diverged(&self, lane: usize) -> Option<Physics3dError> {
+        let diverged = match &self.engine {
+            Engine::Portable(w) => w.diverged[lane],
+            #[cfg(target_arch = "x86_64")]
+            Engine::Avx(w) => w.diverged[lane],
+        };
+        diverged.map(|(step, voxel)| Physics3dError::Diverged { step, voxel })
+    }
+
+    /// Voxel `v`'s centre in lane `lane` (m).
+    pub fn position(&self, v: VoxelId, lane: usize) -> DVec3 {
+        match &self.engine {
+            Engine::Portable(w) => w.voxels[v.0].lanes.pos.lane(lane),
+            #[cfg(target_arch = "x86_64")]
+            Engine::Avx(w) => w.voxels[v.0].lanes.pos.lane(lane),
+        }
+    }
+
+    /// Voxel `v`'s velocity in lane `lane` (m/s), as `World::velocity`.
+    pub fn velocity(&self, v: VoxelId, lane: usize) -> DVec3 {
+        match &self.engine {
+            Engine::Portable(w) => w.velocity(v, lane),
+            #[cfg(target_arch = "x86_64")]
+            Engine::Avx(w) => w.velocity(v, lane),
+        }
+    }
+
+    /// Whether voxel `v` reaches into the floor in lane `lane`, as `World::touches_floor`.
+    pub fn touches_floor(&self, v: VoxelId, lane: usize) -> bool {
+        match &self.engine {
+            Engine::Portable(w) => w.touches_floor(v, lane),
+            #[cfg(target_arch = "x86_64")]
+            Engine::Avx(w) => w.touches_floor(v, lane),
+        }
+    }
+
+    /// Voxel `v`'s orientation in lane `lane`.
+    pub fn orientation(&self, v: VoxelId, lane: usize) -> glam::DQuat {
+        match &self.engine {
+            Engine::Portable(w) => w.voxels[v.0].lanes.orient.lane(lane),
+            #[cfg(target_arch = "x86_64")]
+            Engine::Avx(w) => w.voxels[v.0].lanes.orient.lane(lane),
+        }
+    }
+
+    /// Whether voxel `v` touched another voxel in lane `lane` in the last step (as
+    /// `World::touches_voxel`).
+    pub fn touches_voxel(&self, v: VoxelId, lane: usize) -> bool {
+        match &self.engine {
+            Engine::Portable(w) => w.touches_voxel(v, lane),
+            #[cfg(target_arch = "x86_64")]
+            Engine::Avx(w) => w.touches_voxel(v, lane),
+        }
+    }
+
+    /// The pairs of voxels that touched in lane `lane` in the last step (not linked; the lower
+    /// index first, in `World::contacts`'s order).
+    pub fn contacts(&self, lane: usize) -> impl Iterator<Item = (VoxelId, VoxelId)> + '_ {
+        let count = match &self.engine {
+            Engine::Portable(w) => w.contact_count(),
+            #[cfg(target_arch = "x86_64")]
+            Engine::Avx(w) => w.contact_count(),
+        };
+        (0..count).filter_map(move |i| match &self.engine {
+            Engine::Portable(w) => w.contact(i, lane),
+            #[cfg(target_arch = "x86_64")]
+            Engine::Avx(w) => w.contact(i, lane),
+        })
+    }
+
+    /// Number of voxels.
+    pub fn voxel_count(&self) -> usize {
+        match &self.engine {
+            Engine::Portable(w) => w.voxels.len(),
+            #[cfg(target_arch = "x86_64")]
+            Engine::Avx(w) => w.voxels.len(),
+        }
+    }
+}
+
+/// The AVX2 step.
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn step_avx2<const N: usize>(w: &mut Laned<Avx<N>>, dt: f64) {
+    w.step_lanes(dt)
+}
+
+/// The AVX2 step compiled with AVX-512 available (twice the registers).
+///
+/// # Safety
+/// The CPU must support AVX2 and AVX-512F.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,avx512f")]
+unsafe fn step_avx512<const N: usize>(w: &mut Laned<Avx<N>>, dt: f64) {
+    w.step_lanes(dt)
+}
+
+impl<L: Lanes> Laned<L> {
+    fn of(world: &World) -> Result<Laned<L>, Physics3dError> {
         let (voxels, links, settings) = world.parts();
         if world.steps() > 0 {
             return Err(Physics3dError::Invalid(
                 "a laned copy starts from a world that has not stepped".into(),
             ));
         }
-        let voxels: Vec<Voxel<N>> = voxels
+        let voxels: Vec<Voxel<L>> = voxels
             .into_iter()
             .map(|(shared, size, links, external_force, external_moment)| Voxel {
                 lanes: VoxelLanes::at_rest(shared.home, size),
@@ -67,7 +247,7 @@ impl<const N: usize> WorldLanes<N> {
         let links = links
             .into_iter()
             .map(|(neg, pos, axis, k, area)| {
-                let rest = 0.5 * (voxels[neg].lanes.size + voxels[pos].lanes.size);
+                let rest = (voxels[neg].lanes.size + voxels[pos].lanes.size) * 0.5;
                 LinkLanes::new(axis, k, area, rest)
             })
             .collect();
@@ -76,7 +256,7 @@ impl<const N: usize> WorldLanes<N> {
             .map(|v| EndLanes {
                 pos: v.lanes.pos,
                 orient: v.lanes.orient,
-                damping: F64s::splat(0.0),
+                damping: L::splat(0.0),
             })
             .collect();
         let collisions = settings.collisions.then(|| {
@@ -97,7 +277,7 @@ impl<const N: usize> WorldLanes<N> {
                 damping: v.shared.material.collision_damping * v.shared.constants.linear_damping,
             })
             .collect();
-        Ok(WorldLanes {
+        Ok(Laned {
             voxels,
             links,
             ends_of,
@@ -107,70 +287,17 @@ impl<const N: usize> WorldLanes<N> {
             steps: 0,
             collisions,
             colliders,
-            diverged: [None; N],
+            diverged: vec![None; L::LANES],
         })
     }
 
-    /// Sets voxel `v`'s temperature in lane `lane` (its rest edge, and its links' rest lengths
-    /// at the next step), as `World::set_temperature`.
-    pub fn set_temperature(&mut self, v: VoxelId, lane: usize, temperature: f64) {
+    fn set_temperature(&mut self, v: VoxelId, lane: usize, temperature: f64) {
         let voxel = &mut self.voxels[v.0];
-        voxel.lanes.size.0[lane] = rest_edge(self.lattice, voxel.shared.material.cte, temperature);
+        voxel
+            .lanes
+            .size
+            .set(lane, rest_edge(self.lattice, voxel.shared.material.cte, temperature));
         self.rests_stale |= !voxel.links.is_empty();
-    }
-
-    /// Sets voxel `v`'s temperature in every lane at once, as [`WorldLanes::set_temperature`].
-    #[inline(always)]
-    pub fn set_temperatures(&mut self, v: VoxelId, temperatures: [f64; N]) {
-        let voxel = &mut self.voxels[v.0];
-        let cte = voxel.shared.material.cte;
-        voxel.lanes.size = F64s(temperatures.map(|t| rest_edge(self.lattice, cte, t)));
-        self.rests_stale |= !voxel.links.is_empty();
-    }
-
-    /// One step of `dt` seconds in every lane, compiled for the widest vector unit this CPU has
-    /// (AVX-512, AVX2, or portable), the same bits on each. A lane that diverges (as
-    /// `World::step` finds it: a link strained 100-fold, or a voxel state not finite) is kept in
-    /// [`WorldLanes::diverged`] and steps on without touching the other lanes; an error here is
-    /// about `dt` only.
-    pub fn step(&mut self, dt: f64) -> Result<(), Physics3dError> {
-        if !(dt.is_finite() && dt > 0.0) {
-            return Err(Physics3dError::Invalid(format!(
-                "dt: must be a finite number > 0, got {dt}"
-            )));
-        }
-        #[cfg(target_arch = "x86_64")]
-        {
-            if is_x86_feature_detected!("avx512f") {
-                // SAFETY: the CPU supports AVX-512F.
-                unsafe { self.step_avx512(dt) };
-                return Ok(());
-            }
-            if is_x86_feature_detected!("avx2") {
-                // SAFETY: the CPU supports AVX2.
-                unsafe { self.step_avx2(dt) };
-                return Ok(());
-            }
-        }
-        self.step_lanes(dt);
-        Ok(())
-    }
-
-    /// The error `World::step` gave in lane `lane` when that lane diverged (its first), if it did.
-    pub fn diverged(&self, lane: usize) -> Option<Physics3dError> {
-        self.diverged[lane].map(|(step, voxel)| Physics3dError::Diverged { step, voxel })
-    }
-
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn step_avx2(&mut self, dt: f64) {
-        self.step_lanes(dt)
-    }
-
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx512f")]
-    unsafe fn step_avx512(&mut self, dt: f64) {
-        self.step_lanes(dt)
     }
 
     /// The step itself, inlined into each of the compiled forms above.
@@ -178,7 +305,7 @@ impl<const N: usize> WorldLanes<N> {
     fn step_lanes(&mut self, dt: f64) {
         if self.rests_stale {
             for (link, &(neg, pos)) in self.links.iter_mut().zip(&self.ends_of) {
-                link.rest = 0.5 * (self.voxels[neg].lanes.size + self.voxels[pos].lanes.size);
+                link.rest = (self.voxels[neg].lanes.size + self.voxels[pos].lanes.size) * 0.5;
             }
             self.rests_stale = false;
         }
@@ -189,27 +316,27 @@ impl<const N: usize> WorldLanes<N> {
             *end = EndLanes {
                 pos: v.lanes.pos,
                 orient: v.lanes.orient,
-                damping: F64s::select(dt_prev.gt(F64s::splat(0.0)), factor / dt_prev, F64s::splat(0.0)),
+                damping: L::select(dt_prev.gt(L::splat(0.0)), L::splat(factor) / dt_prev, L::splat(0.0)),
             };
         }
-        let limit = F64s::splat(DIVERGED_STRAIN);
-        for (link, &(neg, pos)) in self.links.iter_mut().zip(&self.ends_of) {
+        let limit = L::splat(DIVERGED_STRAIN);
+        for l in 0..self.links.len() {
+            let (neg, pos) = self.ends_of[l];
+            let link = &mut self.links[l];
             link.update(&self.ends[neg], &self.ends[pos]);
             let strain = link.strain;
-            let bad = vsrlab_lanes::or(strain.ne(strain), strain.abs().gt(limit));
-            if vsrlab_lanes::any(bad) {
-                for (lane, diverged) in self.diverged.iter_mut().enumerate() {
-                    if bad[lane] && diverged.is_none() {
-                        *diverged = Some((self.steps, neg));
-                    }
-                }
+            let bad = strain.ne(strain).or(strain.abs().gt(limit));
+            if bad.any() {
+                self.mark_diverged(bad, neg);
             }
         }
         let zero = V3::splat(DVec3::ZERO);
         if let Some(collisions) = &mut self.collisions {
-            for (collider, v) in self.colliders.iter_mut().zip(&self.voxels) {
-                let mass = F64s::splat(v.shared.constants.mass);
+            for i in 0..self.colliders.len() {
+                let v = &self.voxels[i];
+                let mass = L::splat(v.shared.constants.mass);
                 let m = v.lanes.momentum;
+                let collider = &mut self.colliders[i];
                 collider.pos = v.lanes.pos;
                 collider.velocity = V3 {
                     x: m.x / mass,
@@ -220,8 +347,9 @@ impl<const N: usize> WorldLanes<N> {
             }
             collisions.add_forces(&self.colliders, self.lattice);
         }
-        for (i, v) in self.voxels.iter_mut().enumerate() {
+        for i in 0..self.voxels.len() {
             let (mut force, mut moment) = (zero, zero);
+            let v = &self.voxels[i];
             for &(l, is_neg) in &v.links {
                 let link = &self.links[l];
                 let (f, m) = match is_neg {
@@ -232,78 +360,77 @@ impl<const N: usize> WorldLanes<N> {
                 moment = moment.add(m);
             }
             let (external_force, external_moment) = (V3::splat(v.external_force), V3::splat(v.external_moment));
-            let contact = self.collisions.as_ref().map_or(zero, |c| c.forces[i]);
+            let contact = match &self.collisions {
+                Some(c) => c.forces[i],
+                None => zero,
+            };
+            let v = &mut self.voxels[i];
             v.lanes
                 .step(&v.shared, force, moment, contact, external_force, external_moment, dt);
         }
-        for (i, v) in self.voxels.iter().enumerate() {
+        for i in 0..self.voxels.len() {
             // a sum of each value times zero is NaN exactly where some value is NaN or infinite
-            let l = &v.lanes;
-            let values = [l.pos.x, l.pos.y, l.pos.z, l.momentum.x, l.momentum.y, l.momentum.z]
-                .into_iter()
-                .chain([l.angular_momentum.x, l.angular_momentum.y, l.angular_momentum.z])
-                .chain([l.orient.x, l.orient.y, l.orient.z, l.orient.w]);
-            let sum = values.fold(F64s::splat(0.0), |sum, x| sum + x * 0.0);
+            let l = &self.voxels[i].lanes;
+            let values = [
+                l.pos.x,
+                l.pos.y,
+                l.pos.z,
+                l.momentum.x,
+                l.momentum.y,
+                l.momentum.z,
+                l.angular_momentum.x,
+                l.angular_momentum.y,
+                l.angular_momentum.z,
+                l.orient.x,
+                l.orient.y,
+                l.orient.z,
+                l.orient.w,
+            ];
+            let mut sum = L::splat(0.0);
+            for x in values {
+                sum = sum + x * 0.0;
+            }
             let bad = sum.ne(sum);
-            if vsrlab_lanes::any(bad) {
-                for (lane, diverged) in self.diverged.iter_mut().enumerate() {
-                    if bad[lane] && diverged.is_none() {
-                        *diverged = Some((self.steps, i));
-                    }
-                }
+            if bad.any() {
+                self.mark_diverged(bad, i);
             }
         }
         self.steps += 1;
     }
 
-    /// Voxel `v`'s centre in lane `lane` (m).
-    pub fn position(&self, v: VoxelId, lane: usize) -> DVec3 {
-        let p = &self.voxels[v.0].lanes.pos;
-        DVec3::new(p.x.0[lane], p.y.0[lane], p.z.0[lane])
+    /// Keeps, for each lane in `bad` that had not diverged yet, this step and `voxel`.
+    #[cold]
+    fn mark_diverged(&mut self, bad: L::Mask, voxel: usize) {
+        for (lane, diverged) in self.diverged.iter_mut().enumerate() {
+            if bad.get(lane) && diverged.is_none() {
+                *diverged = Some((self.steps, voxel));
+            }
+        }
     }
 
-    /// Voxel `v`'s velocity in lane `lane` (m/s), as `World::velocity`.
-    pub fn velocity(&self, v: VoxelId, lane: usize) -> DVec3 {
+    fn velocity(&self, v: VoxelId, lane: usize) -> DVec3 {
         let voxel = &self.voxels[v.0];
-        let m = &voxel.lanes.momentum;
-        DVec3::new(m.x.0[lane], m.y.0[lane], m.z.0[lane]) / voxel.shared.constants.mass
+        voxel.lanes.momentum.lane(lane) / voxel.shared.constants.mass
     }
 
-    /// Whether voxel `v` reaches into the floor in lane `lane`, as `World::touches_floor`.
-    pub fn touches_floor(&self, v: VoxelId, lane: usize) -> bool {
+    fn touches_floor(&self, v: VoxelId, lane: usize) -> bool {
         let voxel = &self.voxels[v.0];
         let s = self.lattice;
-        voxel.shared.floor && voxel.lanes.size.0[lane] / 2.0 - s / 2.0 - voxel.lanes.pos.z.0[lane] >= 0.0
+        voxel.shared.floor && voxel.lanes.size.get(lane) / 2.0 - s / 2.0 - voxel.lanes.pos.z.get(lane) >= 0.0
     }
 
-    /// Voxel `v`'s orientation in lane `lane`.
-    pub fn orientation(&self, v: VoxelId, lane: usize) -> glam::DQuat {
-        let q: &Q<N> = &self.voxels[v.0].lanes.orient;
-        glam::DQuat::from_xyzw(q.x.0[lane], q.y.0[lane], q.z.0[lane], q.w.0[lane])
+    fn touches_voxel(&self, v: VoxelId, lane: usize) -> bool {
+        self.collisions.as_ref().is_some_and(|c| c.touching[v.0].get(lane))
     }
 
-    /// Whether voxel `v` touched another voxel in lane `lane` in the last step (as
-    /// `World::touches_voxel`).
-    pub fn touches_voxel(&self, v: VoxelId, lane: usize) -> bool {
-        self.collisions.as_ref().is_some_and(|c| c.touching[v.0][lane])
+    fn contact_count(&self) -> usize {
+        self.collisions.as_ref().map_or(0, |c| c.contacts.len())
     }
 
-    /// The pairs of voxels that touched in lane `lane` in the last step (not linked; the lower
-    /// index first, in `World::contacts`'s order).
-    pub fn contacts(&self, lane: usize) -> impl Iterator<Item = (VoxelId, VoxelId)> + '_ {
-        let contacts: &[(usize, usize, vsrlab_lanes::Mask<N>)] = match &self.collisions {
-            Some(c) => &c.contacts,
-            None => &[],
-        };
-        contacts
-            .iter()
-            .filter(move |c| c.2[lane])
-            .map(|&(a, b, _)| (VoxelId(a), VoxelId(b)))
-    }
-
-    /// Number of voxels.
-    pub fn voxel_count(&self) -> usize {
-        self.voxels.len()
+    /// The `i`-th pair that touched in some lane in the last step, if it touched in `lane`.
+    fn contact(&self, i: usize, lane: usize) -> Option<(VoxelId, VoxelId)> {
+        let (a, b, hit) = self.collisions.as_ref()?.contacts[i];
+        hit.get(lane).then_some((VoxelId(a), VoxelId(b)))
     }
 }
 
@@ -444,10 +571,24 @@ mod tests {
 
     const LANES: usize = 4;
 
+    /// How a test builds its laned world: as `WorldLanes::of` chooses (AVX2 on CPUs that have
+    /// it), or in plain arrays.
+    type Make = fn(&World) -> Result<WorldLanes<LANES>, Physics3dError>;
+
+    /// Both forms, each run by `test` (the same bits are asked of each).
+    fn in_both_forms(test: fn(Make)) {
+        test(WorldLanes::of);
+        test(WorldLanes::portable);
+    }
+
     #[test]
     fn every_lane_of_a_laned_world_gives_a_scalar_worlds_bits() {
+        in_both_forms(every_lane_of_a_laned_world_gives_a_scalar_worlds_bits_in);
+    }
+
+    fn every_lane_of_a_laned_world_gives_a_scalar_worlds_bits_in(make: Make) {
         let mut scalar: Vec<World> = (0..LANES).map(|_| block_with(false)).collect();
-        let mut laned = WorldLanes::<LANES>::of(&scalar[0]).unwrap();
+        let mut laned = make(&scalar[0]).unwrap();
         let dt = scalar[0].recommended_time_step();
         let n = laned.voxel_count();
         let mut moved = 0.0f64;
@@ -497,8 +638,12 @@ mod tests {
 
     #[test]
     fn a_lane_that_diverges_is_named_as_the_scalar_world_names_it_and_the_others_step_on() {
+        in_both_forms(a_lane_that_diverges_is_named_as_the_scalar_world_names_it_and_the_others_step_on_in);
+    }
+
+    fn a_lane_that_diverges_is_named_as_the_scalar_world_names_it_and_the_others_step_on_in(make: Make) {
         let mut scalar: Vec<World> = (0..LANES).map(|_| block_with(true)).collect();
-        let mut laned = WorldLanes::<LANES>::of(&scalar[0]).unwrap();
+        let mut laned = make(&scalar[0]).unwrap();
         let dt = scalar[0].recommended_time_step();
         let n = laned.voxel_count();
         let mut errors: Vec<Option<Physics3dError>> = vec![None; LANES];
@@ -543,6 +688,10 @@ mod tests {
     /// stays finite, and one lane ends on a scalar world's bits.
     #[test]
     fn random_bodies_under_random_actuation_stay_finite_in_every_lane() {
+        in_both_forms(random_bodies_under_random_actuation_stay_finite_in_every_lane_in);
+    }
+
+    fn random_bodies_under_random_actuation_stay_finite_in_every_lane_in(make: Make) {
         let mut state = 0x1A2Eu64;
         let mut next = move || {
             state = state
@@ -555,7 +704,7 @@ mod tests {
             let mut w = World::new(crate::world::WorldSettings::default()).unwrap();
             let m = w.add_material(crate::Material::affordance()).unwrap();
             let ids: Vec<VoxelId> = cells.iter().map(|&c| w.add_voxel(m, c).unwrap()).collect();
-            let mut laned = WorldLanes::<LANES>::of(&w).unwrap();
+            let mut laned = make(&w).unwrap();
             let dt = 0.95 * w.recommended_time_step();
             let per_draw = (0.01 / dt) as usize;
             for step in 0..(0.1 / dt) as usize {
@@ -593,8 +742,12 @@ mod tests {
 
     #[test]
     fn every_lane_of_a_laned_world_with_collisions_gives_a_scalar_worlds_bits() {
+        in_both_forms(every_lane_of_a_laned_world_with_collisions_gives_a_scalar_worlds_bits_in);
+    }
+
+    fn every_lane_of_a_laned_world_with_collisions_gives_a_scalar_worlds_bits_in(make: Make) {
         let mut scalar: Vec<World> = (0..LANES).map(|_| block_and_falling_voxel()).collect();
-        let mut laned = WorldLanes::<LANES>::of(&scalar[0]).unwrap();
+        let mut laned = make(&scalar[0]).unwrap();
         let dt = scalar[0].recommended_time_step();
         let n = laned.voxel_count();
         let (mut touches, mut split) = (0, 0);

@@ -118,6 +118,11 @@ impl<const N: usize> LaneMask for Mask<N> {
     }
 
     #[inline(always)]
+    fn set(&mut self, lane: usize, b: bool) {
+        self[lane] = b;
+    }
+
+    #[inline(always)]
     fn and(self, other: Self) -> Self {
         std::array::from_fn(|l| self[l] && other[l])
     }

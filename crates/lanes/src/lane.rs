@@ -118,6 +118,9 @@ pub trait LaneMask: Copy + Debug + PartialEq {
     /// Lane `lane`'s bool.
     fn get(&self, lane: usize) -> bool;
 
+    /// Sets lane `lane`.
+    fn set(&mut self, lane: usize, b: bool);
+
     /// Per lane: `self && other`.
     fn and(self, other: Self) -> Self;
 

@@ -239,6 +239,11 @@ impl<const N: usize> LaneMask for AvxMask<N> {
     }
 
     #[inline(always)]
+    fn set(&mut self, lane: usize, b: bool) {
+        self.0[lane] = f64::from_bits(if b { u64::MAX } else { 0 });
+    }
+
+    #[inline(always)]
     fn and(self, other: Self) -> Self {
         chunks!(AvxMask, self, other, _mm256_and_pd)
     }

@@ -23,12 +23,13 @@ impl<L: Lanes> V3<L> {
     }
 
     /// Lane `l` as a glam vector.
+    #[inline(always)]
     pub fn lane(&self, l: usize) -> glam::DVec3 {
         glam::DVec3::new(self.x.get(l), self.y.get(l), self.z.get(l))
     }
 
     /// Sets lane `l`.
-    #[cfg(any(test, feature = "bench"))]
+    #[inline(always)]
     pub fn set_lane(&mut self, l: usize, v: glam::DVec3) {
         self.x.set(l, v.x);
         self.y.set(l, v.y);
@@ -103,12 +104,13 @@ impl<L: Lanes> Q<L> {
     }
 
     /// Lane `l` as a glam quaternion.
+    #[inline(always)]
     pub fn lane(&self, l: usize) -> glam::DQuat {
         glam::DQuat::from_xyzw(self.x.get(l), self.y.get(l), self.z.get(l), self.w.get(l))
     }
 
     /// Sets lane `l`.
-    #[cfg(any(test, feature = "bench"))]
+    #[inline(always)]
     pub fn set_lane(&mut self, l: usize, q: glam::DQuat) {
         self.x.set(l, q.x);
         self.y.set(l, q.y);

@@ -19,11 +19,13 @@ mod error;
 mod floor;
 mod lanes;
 mod link;
+mod link_batches;
 #[doc(hidden)]
 pub mod link_lanes;
 mod material;
 mod quat;
 mod voxel;
+mod voxel_batches;
 #[doc(hidden)]
 pub mod voxel_lanes;
 mod world;

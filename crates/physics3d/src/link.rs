@@ -35,11 +35,11 @@ pub(crate) struct Link {
     pub area: f64,
     /// Rest length: the mean of the two voxels' rest sizes along the axis.
     pub rest: f64,
-    small_angle: bool,
-    velocity_valid: bool,
-    d_old: DVec3,
-    theta1_old: DVec3,
-    theta2_old: DVec3,
+    pub(crate) small_angle: bool,
+    pub(crate) velocity_valid: bool,
+    pub(crate) d_old: DVec3,
+    pub(crate) theta1_old: DVec3,
+    pub(crate) theta2_old: DVec3,
     /// Results of the last update, in each voxel's own frame.
     pub force_neg: DVec3,
     pub force_pos: DVec3,
@@ -69,6 +69,12 @@ impl Link {
             moment_pos: DVec3::ZERO,
             strain: 0.0,
         }
+    }
+
+    /// Whether the link is in its small-angle mode.
+    #[cfg(test)]
+    pub fn small_angle(&self) -> bool {
+        self.small_angle
     }
 
     /// Back to the state of a new link (no damping on its next update).

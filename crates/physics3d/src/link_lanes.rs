@@ -7,7 +7,7 @@
 
 use crate::axis::Axis;
 use crate::lanes::{Q, V3};
-use crate::link::{HYSTERESIS, SMALL_EXTENSION, SMALL_TURN};
+use crate::link::{Link, HYSTERESIS, SMALL_EXTENSION, SMALL_TURN};
 use crate::material::LinkConstants;
 use vsrlab_lanes::{and, any, not, or, LaneMask, Lanes};
 
@@ -17,6 +17,26 @@ pub(crate) struct EndLanes<L: Lanes> {
     pub pos: V3<L>,
     pub orient: Q<L>,
     pub damping: L,
+}
+
+impl<L: Lanes> EndLanes<L> {
+    /// Every lane at the origin, unrotated, undamped.
+    #[inline(always)]
+    pub fn zero() -> Self {
+        EndLanes {
+            pos: V3::splat(glam::DVec3::ZERO),
+            orient: Q::splat(glam::DQuat::IDENTITY),
+            damping: L::splat(0.0),
+        }
+    }
+
+    /// Sets lane `lane` to `end`.
+    #[inline(always)]
+    pub fn set_lane(&mut self, lane: usize, end: &crate::link::End) {
+        self.pos.set_lane(lane, end.pos);
+        self.orient.set_lane(lane, end.orient);
+        self.damping.set(lane, end.damping);
+    }
 }
 
 /// A link's constants (shared by the lanes) and each lane's state.
@@ -59,6 +79,38 @@ impl<L: Lanes> LinkLanes<L> {
             moment_pos: zero,
             strain: L::splat(0.0),
         }
+    }
+
+    /// One lane per link of `links` (as many as lanes), which share an axis and constants: their
+    /// rest lengths and carried state (mode, damping history), as `update` reads them.
+    #[inline(always)]
+    pub fn gather(links: &[&Link]) -> Self {
+        let first = links[0];
+        let mut laned = LinkLanes::new(first.axis, first.k, first.area, L::splat(0.0));
+        for (lane, l) in links.iter().enumerate() {
+            laned.rest.set(lane, l.rest);
+            laned.small_angle.set(lane, l.small_angle);
+            laned.velocity_valid.set(lane, l.velocity_valid);
+            laned.d_old.set_lane(lane, l.d_old);
+            laned.theta1_old.set_lane(lane, l.theta1_old);
+            laned.theta2_old.set_lane(lane, l.theta2_old);
+        }
+        laned
+    }
+
+    /// Writes lane `lane`'s results and carried state back to its link.
+    #[inline(always)]
+    pub fn scatter(&self, lane: usize, link: &mut Link) {
+        link.force_neg = self.force_neg.lane(lane);
+        link.force_pos = self.force_pos.lane(lane);
+        link.moment_neg = self.moment_neg.lane(lane);
+        link.moment_pos = self.moment_pos.lane(lane);
+        link.strain = self.strain.get(lane);
+        link.small_angle = self.small_angle.get(lane);
+        link.velocity_valid = self.velocity_valid.get(lane);
+        link.d_old = self.d_old.lane(lane);
+        link.theta1_old = self.theta1_old.lane(lane);
+        link.theta2_old = self.theta2_old.lane(lane);
     }
 
     /// The relative configuration, as `Link::orient`, lane by lane.

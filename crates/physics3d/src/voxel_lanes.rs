@@ -52,6 +52,29 @@ impl<L: Lanes> VoxelLanes<L> {
         }
     }
 
+    /// Sets lane `lane` to the state of a voxel of the scalar world.
+    #[inline(always)]
+    pub fn set_lane(&mut self, lane: usize, v: &crate::voxel::Voxel) {
+        self.pos.set_lane(lane, v.pos);
+        self.orient.set_lane(lane, v.orient);
+        self.momentum.set_lane(lane, v.momentum);
+        self.angular_momentum.set_lane(lane, v.angular_momentum);
+        self.is_static.set(lane, v.is_static);
+        self.dt_prev.set(lane, v.dt_prev);
+        self.size.set(lane, v.size);
+    }
+
+    /// Writes lane `lane`'s state back to a voxel of the scalar world.
+    #[inline(always)]
+    pub fn write_lane(&self, lane: usize, v: &mut crate::voxel::Voxel) {
+        v.pos = self.pos.lane(lane);
+        v.orient = self.orient.lane(lane);
+        v.momentum = self.momentum.lane(lane);
+        v.angular_momentum = self.angular_momentum.lane(lane);
+        v.is_static = self.is_static.get(lane);
+        v.dt_prev = self.dt_prev.get(lane);
+    }
+
     /// One step of `dt` with the summed link forces and moments (in the voxel's frame), the
     /// contact forces and the external loads of each lane, as `World::step_voxel`.
     #[inline(always)]

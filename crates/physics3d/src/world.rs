@@ -5,13 +5,18 @@
 use crate::axis::Axis;
 use crate::collision::{Collider, Collisions};
 use crate::floor::floor_force;
+use crate::lanes::V3;
 use crate::link::{End, Link};
+use crate::link_batches::{lanes_available, LinkBatches};
 use crate::material::{LinkConstants, Material, VoxelConstants};
 use crate::quat::{from_rotation_vector, rotate, to_rotation_vector};
 use crate::voxel::{nominal, Voxel};
+use crate::voxel_batches::{VoxelBatches, BATCH as VOXEL_BATCH};
+use crate::voxel_lanes::{VoxelLanes, VoxelShared};
 use crate::Physics3dError;
 use glam::{DQuat, DVec3};
 use std::collections::HashMap;
+use vsrlab_lanes::Lanes;
 
 /// Standard gravity (m/s²), as Voxelyze scales its gravity.
 pub const STANDARD_GRAVITY: f64 = 9.80665;
@@ -86,6 +91,12 @@ pub struct World {
     /// Each voxel's piece: voxels are linked within a piece only.
     pieces: Vec<u32>,
     links: Vec<Link>,
+    /// Which links update together in lanes (planned again when links are added).
+    link_batches: LinkBatches,
+    batches_stale: bool,
+    /// Which voxels step together in lanes (planned again when voxels or fixed DOFs change).
+    voxel_batches: VoxelBatches,
+    voxel_batches_stale: bool,
     lattice: HashMap<[i32; 3], usize>,
     link_constants: HashMap<(usize, usize), LinkConstants>,
     steps: u64,
@@ -122,6 +133,10 @@ impl World {
             voxels: Vec::new(),
             pieces: Vec::new(),
             links: Vec::new(),
+            link_batches: LinkBatches::default(),
+            batches_stale: false,
+            voxel_batches: VoxelBatches::default(),
+            voxel_batches_stale: false,
             lattice: HashMap::new(),
             link_constants: HashMap::new(),
             steps: 0,
@@ -185,6 +200,7 @@ impl World {
             damping: 0.0,
         });
         self.surface_stale = true;
+        self.voxel_batches_stale = true;
         Ok(VoxelId(id))
     }
 
@@ -200,6 +216,7 @@ impl World {
         let l = self.links.len();
         let rest = 0.5 * (self.rest_size(neg) + self.rest_size(pos));
         self.links.push(Link::new(neg, pos, axis, k, s * s, rest));
+        self.batches_stale = true;
         self.voxels[neg].links.push((l, true));
         self.voxels[pos].links.push((l, false));
     }
@@ -221,6 +238,7 @@ impl World {
             self.voxels[v.0].fixed[d.index()] = fixed;
         }
         self.surface_stale = true;
+        self.voxel_batches_stale = true;
     }
 
     /// Moves a voxel (its links take the new position as a deformation).
@@ -321,9 +339,12 @@ impl World {
                 },
             };
         }
-        for l in &mut self.links {
-            let (a, b) = (self.ends[l.neg], self.ends[l.pos]);
-            l.update(&a, &b);
+        if self.batches_stale {
+            self.link_batches = LinkBatches::plan(&self.links, lanes_available());
+            self.batches_stale = false;
+        }
+        self.link_batches.update(&mut self.links, &self.ends);
+        for l in &self.links {
             if l.strain.is_nan() || l.strain.abs() > DIVERGED_STRAIN {
                 return Err(Physics3dError::Diverged {
                     step: self.steps,
@@ -332,9 +353,7 @@ impl World {
             }
         }
         self.collide();
-        for i in 0..self.voxels.len() {
-            self.step_voxel(i, dt);
-        }
+        self.step_voxels(dt);
         if let Some(bad) = self.voxels.iter().position(|v| {
             !(v.pos.is_finite() && v.momentum.is_finite() && v.angular_momentum.is_finite() && v.orient.is_finite())
         }) {
@@ -396,6 +415,101 @@ impl World {
         }
     }
 
+    /// Plans no batches: every link and voxel steps one by one (the tests compare both ways).
+    #[cfg(test)]
+    pub(crate) fn one_by_one(&mut self) {
+        self.link_batches = LinkBatches::plan(&self.links, false);
+        self.voxel_batches = VoxelBatches::plan(&self.voxels, false);
+        (self.batches_stale, self.voxel_batches_stale) = (false, false);
+    }
+
+    /// Every voxel by semi-implicit Euler: the batches of free voxels in AVX2 lanes
+    /// (`voxel_batches.rs`), the others one by one, the same bits either way.
+    fn step_voxels(&mut self, dt: f64) {
+        if self.voxel_batches_stale {
+            self.voxel_batches = VoxelBatches::plan(&self.voxels, lanes_available());
+            self.voxel_batches_stale = false;
+        }
+        #[cfg(target_arch = "x86_64")]
+        if !self.voxel_batches.batches.is_empty() {
+            // SAFETY: batches exist only where `lanes_available` found AVX2
+            unsafe { self.step_voxel_batches_avx2(dt) };
+        }
+        for k in 0..self.voxel_batches.single.len() {
+            self.step_voxel(self.voxel_batches.single[k], dt);
+        }
+    }
+
+    /// The voxel batches in AVX2 lanes.
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn step_voxel_batches_avx2(&mut self, dt: f64) {
+        for b in 0..self.voxel_batches.batches.len() {
+            let (material, batch) = self.voxel_batches.batches[b];
+            self.step_voxel_batch::<crate::avx::Avx<VOXEL_BATCH>>(material, batch, dt);
+        }
+    }
+
+    /// One batch of free voxels of `material`: gathered into lanes, stepped, written back.
+    #[inline(always)]
+    fn step_voxel_batch<L: Lanes>(&mut self, material: usize, batch: [usize; VOXEL_BATCH], dt: f64) {
+        let shared = VoxelShared {
+            material: self.materials[material],
+            constants: self.constants[material],
+            fixed: [false; 6],
+            home: DVec3::ZERO,
+            lattice: self.settings.voxel_size,
+            floor: self.settings.floor,
+            gravity: self.settings.gravity,
+        };
+        let mut lanes = VoxelLanes::<L>::at_rest(DVec3::ZERO, 0.0);
+        let zero = V3::<L>::splat(DVec3::ZERO);
+        let (mut link_force, mut link_moment, mut contact) = (zero, zero, zero);
+        let (mut external_force, mut external_moment) = (zero, zero);
+        for (lane, &i) in batch.iter().enumerate() {
+            let (f, m) = self.link_loads(i);
+            link_force.set_lane(lane, f);
+            link_moment.set_lane(lane, m);
+            contact.set_lane(lane, self.contact_forces.get(i).copied().unwrap_or(DVec3::ZERO));
+            let v = &self.voxels[i];
+            external_force.set_lane(lane, v.external_force);
+            external_moment.set_lane(lane, v.external_moment);
+            lanes.set_lane(lane, v);
+        }
+        lanes.step(
+            &shared,
+            link_force,
+            link_moment,
+            contact,
+            external_force,
+            external_moment,
+            dt,
+        );
+        for (lane, &i) in batch.iter().enumerate() {
+            lanes.write_lane(lane, &mut self.voxels[i]);
+        }
+    }
+
+    /// The sum of voxel `i`'s link forces and moments (in its own frame), in its links' order.
+    #[inline(always)]
+    fn link_loads(&self, i: usize) -> (DVec3, DVec3) {
+        let (mut link_force, mut link_moment) = (DVec3::ZERO, DVec3::ZERO);
+        for &(l, is_neg) in &self.voxels[i].links {
+            let link = &self.links[l];
+            if is_neg {
+                link_force += link.force_neg;
+                link_moment += link.moment_neg;
+            } else {
+                link_force += link.force_pos;
+                link_moment += link.moment_pos;
+            }
+        }
+        (link_force, link_moment)
+    }
+
     /// Semi-implicit Euler for one voxel (`docs/voxelyze-model.md` §6.2).
     fn step_voxel(&mut self, i: usize, dt: f64) {
         let s = self.settings.voxel_size;
@@ -413,17 +527,7 @@ impl World {
             v.angular_momentum = DVec3::ZERO;
             return;
         }
-        let (mut link_force, mut link_moment) = (DVec3::ZERO, DVec3::ZERO);
-        for &(l, is_neg) in &voxel.links {
-            let link = &self.links[l];
-            if is_neg {
-                link_force += link.force_neg;
-                link_moment += link.moment_neg;
-            } else {
-                link_force += link.force_pos;
-                link_moment += link.moment_pos;
-            }
-        }
+        let (link_force, link_moment) = self.link_loads(i);
         let velocity = voxel.momentum / c.mass;
         let omega = voxel.angular_momentum / c.inertia;
         let mut force = rotate(voxel.orient, link_force) + voxel.external_force

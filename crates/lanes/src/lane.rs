@@ -103,6 +103,12 @@ pub trait Lanes:
         crate::trig::sin_cos_lanes(self).1
     }
 
+    /// tanh x lane by lane, the bits of the scalar [`tanh`](crate::tanh).
+    #[inline(always)]
+    fn tanh(self) -> Self {
+        crate::tanh::tanh_lanes(self)
+    }
+
     /// acos x lane by lane, the bits of the scalar [`acos`](crate::acos).
     #[inline(always)]
     fn acos(self) -> Self {

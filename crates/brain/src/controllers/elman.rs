@@ -15,6 +15,9 @@
 //! unit), then per memory unit its bias and its m recurrent weights, then per output its bias and
 //! its m weights: m(r + 2D) + m(m + 1) + 2(m + 1); 158 for the study (r = 5, D = 6, m = 6).
 //!
+//! Every tanh is vsrlab's own (`vsrlab_lanes::tanh`, within 2 ulp of the platform's): the same
+//! bits on every machine, in scalar and lane form (CHANGELOG.md, 2026-12-06).
+//!
 //! The original never updates `h_prev` (its memory stays 0, thesis-code-facts §7.2); we update it
 //! as the thesis describes, and `inert_memory = true` reproduces the original. Short form:
 //! `elman[:<memory units>]`.
@@ -24,6 +27,7 @@ use crate::validation::{check_count, check_units, set_finite};
 use crate::{BrainError, BrainKind, BrainShape, BrainSpec, Controller};
 use serde::{Deserialize, Serialize};
 use vsrlab_body::{Channel, Probe};
+use vsrlab_lanes::tanh;
 
 /// Each voxel's vote this step, in [−1, 1] (> 0: "passable").
 pub const VOTE: Channel = Channel::replayed("vote", 1e-3);
@@ -174,18 +178,18 @@ impl ElmanController {
         let (m, n) = (self.m, self.inputs);
         // the sensor readings pass through tanh here; the neighbours' signals already did
         // (`previous` holds them squashed; tanh(0) = 0 for a missing neighbour)
-        self.x[..self.readings].iter_mut().for_each(|v| *v = v.tanh());
+        self.x[..self.readings].iter_mut().for_each(|v| *v = tanh(*v));
         let (wx, rest) = self.weights.split_at(m * n);
         let (wh, wy) = rest.split_at(m * (m + 1));
         for (i, u) in self.u.iter_mut().enumerate() {
             let row = &wx[i * n..(i + 1) * n];
-            *u = row.iter().zip(&self.x).map(|(w, x)| w * x).sum::<f64>().tanh();
+            *u = tanh(row.iter().zip(&self.x).map(|(w, x)| w * x).sum::<f64>());
         }
         let memory = &mut self.memory[unit * m..(unit + 1) * m];
         for i in 0..m {
             let row = &wh[i * (m + 1)..(i + 1) * (m + 1)];
             let recurrent: f64 = row[1..].iter().zip(memory.iter()).map(|(w, h)| w * h).sum();
-            self.h[i] = (row[0] + self.u[i] + recurrent).tanh();
+            self.h[i] = tanh(row[0] + self.u[i] + recurrent);
         }
         if !self.inert_memory {
             memory.copy_from_slice(&self.h);
@@ -193,7 +197,7 @@ impl ElmanController {
         for o in 0..OUTPUTS {
             let row = &wy[o * (m + 1)..(o + 1) * (m + 1)];
             let sum: f64 = row[1..].iter().zip(&self.h).map(|(w, h)| w * h).sum();
-            self.outputs[unit * OUTPUTS + o] = (row[0] + sum).tanh();
+            self.outputs[unit * OUTPUTS + o] = tanh(row[0] + sum);
         }
     }
 }
@@ -213,7 +217,7 @@ impl Controller for ElmanController {
             self.think(unit);
         }
         for (p, o) in self.previous.iter_mut().zip(&self.outputs) {
-            *p = o.tanh();
+            *p = tanh(*o);
         }
         for (unit, a) in actuations.iter_mut().enumerate() {
             *a = self.outputs[unit * OUTPUTS];

@@ -13,6 +13,7 @@
 #[cfg(target_arch = "x86_64")]
 mod avx;
 mod axis;
+mod batching;
 mod collision;
 mod collision_lanes;
 mod error;

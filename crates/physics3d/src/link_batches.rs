@@ -5,12 +5,10 @@
 //! lane gives `Link::update`'s bits (link_lanes.rs), so the world's step keeps its bits; links
 //! left over, and every link on a CPU without AVX2, update one by one.
 
+use crate::batching::{in_fours, BATCH};
 use crate::link::{End, Link};
 use crate::link_lanes::{EndLanes, LinkLanes};
 use vsrlab_lanes::Lanes;
-
-/// Links per batch.
-const BATCH: usize = 4;
 
 /// Which links update together.
 #[derive(Debug, Clone, Default)]
@@ -26,30 +24,12 @@ impl LinkBatches {
     /// is left of each group updates alone. No batches when `lanes` is false (a CPU without
     /// AVX2).
     pub fn plan(links: &[Link], lanes: bool) -> LinkBatches {
-        if !lanes {
-            return LinkBatches {
-                batches: Vec::new(),
-                single: (0..links.len()).collect(),
-            };
+        let keys = links.iter().map(|l| lanes.then_some((l.axis, l.k, l.area.to_bits())));
+        let (batches, single) = in_fours(keys);
+        LinkBatches {
+            batches: batches.into_iter().map(|(_, b)| b).collect(),
+            single,
         }
-        let mut groups: Vec<Vec<usize>> = Vec::new();
-        for (i, l) in links.iter().enumerate() {
-            let same = |g: &Vec<usize>| {
-                let first = &links[g[0]];
-                first.axis == l.axis && first.k == l.k && first.area == l.area
-            };
-            match groups.iter_mut().find(|g| same(g)) {
-                Some(g) => g.push(i),
-                None => groups.push(vec![i]),
-            }
-        }
-        let mut plan = LinkBatches::default();
-        for g in groups {
-            let mut chunks = g.chunks_exact(BATCH);
-            plan.batches.extend(chunks.by_ref().map(|c| [c[0], c[1], c[2], c[3]]));
-            plan.single.extend_from_slice(chunks.remainder());
-        }
-        plan
     }
 
     /// Updates every link from `ends` (each voxel's state at the start of the step): the forces,

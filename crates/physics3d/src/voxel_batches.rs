@@ -7,9 +7,8 @@
 
 use crate::voxel::Voxel;
 
-/// Voxels per batch.
-pub(crate) const BATCH: usize = 4;
-
+use crate::batching::in_fours;
+pub(crate) use crate::batching::BATCH;
 /// Which voxels step together.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct VoxelBatches {
@@ -23,25 +22,9 @@ impl VoxelBatches {
     /// Batches for `voxels`: the free ones grouped by material in voxel order, four at a time;
     /// the rest step alone. No batches when `lanes` is false (a CPU without AVX2).
     pub fn plan(voxels: &[Voxel], lanes: bool) -> VoxelBatches {
-        let mut plan = VoxelBatches::default();
-        let mut groups: Vec<(usize, Vec<usize>)> = Vec::new();
-        for (i, v) in voxels.iter().enumerate() {
-            if !lanes || v.fixed.iter().any(|&f| f) {
-                plan.single.push(i);
-                continue;
-            }
-            match groups.iter_mut().find(|g| g.0 == v.material) {
-                Some(g) => g.1.push(i),
-                None => groups.push((v.material, vec![i])),
-            }
-        }
-        for (material, members) in groups {
-            let mut chunks = members.chunks_exact(BATCH);
-            plan.batches
-                .extend(chunks.by_ref().map(|c| (material, [c[0], c[1], c[2], c[3]])));
-            plan.single.extend_from_slice(chunks.remainder());
-        }
-        plan
+        let free = |v: &Voxel| lanes && !v.fixed.iter().any(|&f| f);
+        let (batches, single) = in_fours(voxels.iter().map(|v| free(v).then_some(v.material)));
+        VoxelBatches { batches, single }
     }
 }
 

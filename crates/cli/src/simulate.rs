@@ -311,11 +311,6 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         })
         .map_err(|e| robot_option_error(&e))?,
     };
-    if let Some(path) = &a.save_robot {
-        save_any_robot_as(path, &robot, None, a.robot_format.as_deref()).map_err(|e| e.to_string())?;
-    }
-    let (sensors, preset) = (robot.description().sensors_label(), robot.description().preset_label());
-    let brain = robot.brain();
     let body_name = match &a.robot {
         Some(path) => path.display().to_string(),
         None => a.body.clone(),
@@ -335,6 +330,17 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         None => task_from_args(&a.task, a.duration, a.transient, physics, a.damage.as_deref())?,
     };
     let task = with_initial_x(task, a.initial_x)?;
+    // a robot whose brain depends on the task (EvoGym's) is run, saved and printed as the task
+    // runs it
+    let robot = robot
+        .description()
+        .for_task(task.task(), a.robot.is_none())
+        .unwrap_or(robot);
+    if let Some(path) = &a.save_robot {
+        save_any_robot_as(path, &robot, None, a.robot_format.as_deref()).map_err(|e| e.to_string())?;
+    }
+    let (sensors, preset) = (robot.description().sensors_label(), robot.description().preset_label());
+    let brain = robot.brain();
     let duration = task.task().duration();
     let task_name = match &a.task_of {
         Some(path) => format!("{} of {}", task.kind(), path.display()),

@@ -131,6 +131,11 @@ pub trait Task: Send + Sync + std::fmt::Debug {
     fn metric_names(&self) -> &'static [&'static str];
     /// The fitness values, in order (one for single-objective tasks).
     fn objectives(&self) -> &[Objective];
+    /// The task as its own type, for robot kinds that adapt to the tasks of their family
+    /// (`RobotDescription::for_task`). Default: none.
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        None
+    }
     /// Body parts that break during the episode, if any ([`Damage`]). Default: none.
     fn damage(&self) -> Option<&Damage> {
         None

@@ -195,6 +195,70 @@ fn evogym_robot_files_are_read_and_written() {
     assert!(!ok && err.contains("arr_1: missing"), "{err}");
 }
 
+/// What an EvoGym brain sees follows the task it runs (issue 56, items 6 and 7): a short-form
+/// body on BridgeWalker gets a brain for BridgeWalker's observation (it was refused as a Walker
+/// brain), a body-only `.npz` robot on CaveCrawler prints the brain that runs (it printed
+/// "0 parameters" and Walker's observation), and a brain with weights for another task is
+/// refused with the way out.
+#[test]
+fn an_evogym_brain_follows_the_task_it_runs() {
+    let body = "evogym:33333/33333/33333/33333/33333";
+    let (ok, out, err) = vsrlab(&[
+        "simulate",
+        "--body",
+        body,
+        "--task",
+        "bridge-walker",
+        "--duration",
+        "0.1",
+    ]);
+    assert!(ok, "{err}");
+    assert!(
+        out.contains("BridgeWalker-v0's observation") && !out.contains(" Walker-v0"),
+        "{out}"
+    );
+    let saved = concat!(env!("CARGO_MANIFEST_DIR"), "/../tasks/tests/data/evogym_robot.npz");
+    let (ok, out, err) = vsrlab(&[
+        "simulate",
+        "--robot",
+        saved,
+        "--task",
+        "cave-crawler",
+        "--duration",
+        "0.1",
+    ]);
+    assert!(ok, "{err}");
+    assert!(
+        out.contains("CaveCrawler-v0's observation") && !out.contains("(0 parameters)"),
+        "{out}"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let walker = dir.path().join("walker.json");
+    let (ok, _, err) = vsrlab(&[
+        "simulate",
+        "--body",
+        body,
+        "--task",
+        "walker",
+        "--duration",
+        "0.1",
+        "--save-robot",
+        walker.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let (ok, _, err) = vsrlab(&[
+        "simulate",
+        "--robot",
+        walker.to_str().unwrap(),
+        "--task",
+        "cave-crawler",
+    ]);
+    assert!(
+        !ok && err.contains("Walker-v0") && err.contains("--task walker"),
+        "{err}"
+    );
+}
+
 /// EvoGym's `.npz` robots with bytes changed at random (seeded): every run either succeeds (a
 /// byte that changes nothing that matters) or exits with an error naming the archive or the
 /// array; none crashes.

@@ -118,6 +118,13 @@ pub trait RobotDescription: Robot + Debug {
     fn size(&self) -> usize;
     /// A one-line description (the Python package's `repr`).
     fn label(&self) -> String;
+    /// The robot as `task` runs it, when that differs from the robot as described: a kind whose
+    /// brain depends on the task (an EvoGym robot's brain sees its task's observation) takes the
+    /// task's, for a template brain (no weights) and, when `untrained` (a robot of command-line
+    /// short forms, whose weights are drawn at random), for any brain. Default: unchanged.
+    fn for_task(&self, _task: &dyn crate::task::Task, _untrained: bool) -> Option<AnyRobot> {
+        None
+    }
     /// A boxed copy.
     fn clone_box(&self) -> Box<dyn RobotDescription>;
     /// The robot itself, for code of its own kind.

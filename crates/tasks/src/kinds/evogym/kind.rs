@@ -167,6 +167,24 @@ impl RobotDescription for EvoGymRobot {
         &KIND
     }
 
+    fn for_task(&self, task: &dyn crate::task::Task, untrained: bool) -> Option<AnyRobot> {
+        let task = task.as_any()?.downcast_ref::<super::EvoGym>()?;
+        let template = self.brain.parameters().is_empty();
+        if !template && (!untrained || task.env == self.env) {
+            return None;
+        }
+        // the weights the episode would draw for a template (and the short form for the task's
+        // observation): the same seed, so the same bits as before
+        let mut robot = EvoGymRobot {
+            env: task.env.clone(),
+            ..self.clone()
+        };
+        let shape = robot.brain_shape().ok()?;
+        robot.brain = robot.brain.with_random_parameters(RANDOM_BRAIN_SEED, &shape).ok()?;
+        robot.validate().ok()?;
+        Some(AnyRobot::new(robot))
+    }
+
     fn brain(&self) -> &BrainSpec {
         &self.brain
     }

@@ -103,6 +103,10 @@ impl Task for EvoGym {
         METRICS
     }
 
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+
     fn objectives(&self) -> &[Objective] {
         &self.fitness.0
     }
@@ -119,10 +123,19 @@ impl Task for EvoGym {
         let robot = evogym_robot(robot)?;
         // a brain with weights was sized for one task's observation; a template fits any
         let template = robot.brain.parameters().is_empty();
-        if !template && robot.task().map_err(|e| EpisodeError::Field(e.at("robot")))? != which {
+        let made_for = robot.task().map_err(|e| EpisodeError::Field(e.at("robot")))?;
+        if !template && made_for != which {
             return Err(EpisodeError::Field(FieldError::new(
                 "robot.env",
-                format!("the robot's brain sees {}'s observation, not {}'s", robot.env, self.env),
+                format!(
+                    "the robot's brain sees {}'s observation, not {}'s: its weights were made for {} \
+                     (run it there: --task {}), or give it a brain without weights, which draws \
+                     random ones for the task it runs",
+                    robot.env,
+                    self.env,
+                    robot.env,
+                    made_for.short_name(),
+                ),
             )));
         }
         let grid = robot.grid().map_err(|e| EpisodeError::Field(e.at("robot")))?;

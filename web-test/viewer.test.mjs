@@ -265,6 +265,31 @@ check("a replay's unit_fill colours its units instead of the area colours", fill
 await paintPage.screenshot({ path: join(shots, "unit-fill.png") });
 paint.proc.kill("SIGINT");
 
+// An EvoGym replay has no ground besides its world's objects (world.terrain is empty): the page
+// plays it without errors and draws no ground colour (issue 56, item 5: a grey slab was drawn
+// under BridgeWalker's bridge).
+const evogym = join(work, "evogym.replay.json");
+vsrlab("simulate", "--body", "evogym:33333/33333/33333/33333/33333", "--task", "bridge-walker", "--duration", "0.3", "--replay", evogym);
+check("an EvoGym replay has no ground line", JSON.parse(readFileSync(evogym, "utf8")).world.terrain.length === 0);
+const bridge = await startViewer([evogym]);
+const bridgePage = await browser.newPage({ viewport: { width: 1300, height: 1000 } });
+bridgePage.on("pageerror", (e) => consoleErrors.push(String(e)));
+await bridgePage.goto(bridge.url);
+await bridgePage.waitForFunction(() => window.viewer && window.viewer.ready, null, { timeout: 30000 });
+const ground = await bridgePage.evaluate(() => {
+  const c = document.querySelector(".pane canvas");
+  const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+  let grey = 0, inked = 0;
+  for (let p = 0; p < d.length; p += 4) {
+    if (d[p] === 180 && d[p + 1] === 180 && d[p + 2] === 180) grey++;
+    if (d[p] + d[p + 1] + d[p + 2] < 600) inked++;
+  }
+  return { grey, inked };
+});
+check("an EvoGym replay draws its world and robot but no ground", ground.grey < 50 && ground.inked > 500, JSON.stringify(ground));
+await bridgePage.screenshot({ path: join(shots, "evogym-bridge.png") });
+bridge.proc.kill("SIGINT");
+
 // 3D replays: a quadruped beside a small wall of fixed voxels (1 s), next to the 2D biped. The 3D
 // pane draws shaded cubes on a checkerboard under the sky; scrubbing, dragging (orbit), the wheel
 // and the follow toggle change its pixels; clicking a voxel selects it.

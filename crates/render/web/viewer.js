@@ -72,7 +72,7 @@ function readReplay(json, name) {
   need(json.side > 0, name, "field 'side' must be positive");
   if (json.channels && typeof json.channels === "object" && json.channels.voxel_xyz) return readSolidReplay(json, name);
   const world = json.world, body = json.body;
-  need(world && Array.isArray(world.terrain) && world.terrain.length >= 2, name, "field 'world.terrain' must be a list of at least 2 points");
+  need(world && Array.isArray(world.terrain) && world.terrain.length !== 1, name, "field 'world.terrain' must be a list of at least 2 points, or empty (no ground)");
   world.terrain.forEach((p, i) => need(Array.isArray(p) && isNumber(p[0]) && isNumber(p[1]), name, `field 'world.terrain[${i}]' is not an [x, y] point`));
   const obstacles = world.obstacles || [];
   need(Array.isArray(obstacles), name, "field 'world.obstacles' must be a list of polygons");
@@ -420,19 +420,21 @@ function drawPane(pane) {
   ctx.lineJoin = "round";
   const ov = state.overlays;
   const left = cam.cx - cam.w / 2 / cam.scale, right = cam.cx + cam.w / 2 / cam.scale;
-  // Ground.
-  ctx.beginPath();
+  // Ground (a world without one, as EvoGym's, has only its obstacles).
   const t = r.terrain;
-  ctx.moveTo(cam.x(t[0][0]), cam.h + 10);
-  for (const p of t) ctx.lineTo(cam.x(p[0]), cam.y(p[1]));
-  ctx.lineTo(cam.x(t[t.length - 1][0]), cam.h + 10);
-  ctx.closePath();
-  ctx.fillStyle = "rgb(180,180,180)";
-  ctx.fill();
-  ctx.strokeStyle = "#000";
-  ctx.lineWidth = 1;
-  ctx.stroke();
-  if (ov.ticks) drawTicks(ctx, cam, r, left, right);
+  if (t.length) {
+    ctx.beginPath();
+    ctx.moveTo(cam.x(t[0][0]), cam.h + 10);
+    for (const p of t) ctx.lineTo(cam.x(p[0]), cam.y(p[1]));
+    ctx.lineTo(cam.x(t[t.length - 1][0]), cam.h + 10);
+    ctx.closePath();
+    ctx.fillStyle = "rgb(180,180,180)";
+    ctx.fill();
+    ctx.strokeStyle = "#000";
+    ctx.lineWidth = 1;
+    ctx.stroke();
+    if (ov.ticks) drawTicks(ctx, cam, r, left, right);
+  }
   ctx.fillStyle = "rgb(150,150,150)";
   for (const poly of r.obstacles) {
     ctx.beginPath();
@@ -440,7 +442,7 @@ function drawPane(pane) {
     ctx.closePath();
     ctx.fill();
   }
-  if (ov.footprints) {
+  if (ov.footprints && t.length) {
     ctx.fillStyle = "rgba(60,40,20,0.8)";
     for (const f of r.footprints) {
       if (f.frame > k) break;

@@ -292,8 +292,9 @@ impl Recorder {
     }
 }
 
-/// The cells of the task's terrain (objects whose cells are all fixed) as static squares, and a
-/// ground line at y = 0 for the camera.
+/// The cells of the task's terrain (objects whose cells are all fixed) as static squares. No
+/// ground line: EvoGym's worlds have no ground besides their objects (a line at y = 0 was drawn
+/// as a slab under the start, and under BridgeWalker's bridge).
 fn describe_terrain(which: EvoGymTask, trace: &mut Trace) {
     let cell = super::CELL;
     let mut squares = Vec::new();
@@ -307,8 +308,7 @@ fn describe_terrain(which: EvoGymTask, trace: &mut Trace) {
     }
     trace.fixed(&OBSTACLE_CORNERS, 1, &vec![4.0; squares.len()]);
     trace.fixed(&OBSTACLES, 2, &squares.concat());
-    let right = squares.iter().map(|s| s[2]).fold(0.0, f64::max);
-    trace.terrain = vec![Vec2::new(-1.0, 0.0), Vec2::new(right + 1.0, 0.0)];
+    trace.terrain.clear();
 }
 
 #[cfg(test)]
@@ -357,6 +357,7 @@ mod tests {
             !trace.fixed_values(OBSTACLES.name).is_empty(),
             "the ground's cells are drawn"
         );
+        assert!(trace.terrain.is_empty(), "no ground line besides the ground's cells");
         let again = crate::episode::run(r.as_robot(), task.task(), 0, TraceLevel::None).unwrap();
         assert_eq!(again.metrics, o.metrics, "bit-identical");
     }
@@ -411,6 +412,9 @@ mod tests {
         let last = trace.outlines.len() - 4 * polygons;
         let moved = (3 * 4..4 * polygons).any(|i| trace.outlines[i] != trace.outlines[last + i]);
         assert!(moved, "the bridge sags under the robot");
+        // no ground besides the world's objects: nothing is drawn under the bridge (issue 56, item
+        // 5)
+        assert!(trace.terrain.is_empty(), "{:?}", trace.terrain);
         // written back in vsrlab's form, it reads again as the same robot
         let again = crate::files::any_robot_from_json(&r.to_json(None), "again.json").unwrap();
         assert_eq!(again.to_json(None), r.to_json(None));

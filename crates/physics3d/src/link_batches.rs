@@ -96,13 +96,7 @@ mod tests {
     /// give each link the bits of its own update, over modes that change between updates.
     #[test]
     fn batched_links_give_each_links_own_bits() {
-        let mut state = 0x9E37_79B9_7F4A_7C15_u64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = crate::validation::uniform(0x9E37_79B9_7F4A_7C15_u64);
         let soft = LinkConstants::new(1e6, 1e6, 0.01);
         let stiff = LinkConstants::new(1e6, 1e8, 0.01);
         let axes = [Axis::X, Axis::Y, Axis::Z];

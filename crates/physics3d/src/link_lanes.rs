@@ -574,13 +574,7 @@ mod tests {
     }
 
     fn every_lane_gives_the_scalar_bits<L: Lanes>() {
-        let mut state = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = crate::validation::uniform(0x2545_f491_4f6c_dd1d_u64);
         let k = LinkConstants::new(1e6, 3e6, 0.01);
         for axis in [Axis::X, Axis::Y, Axis::Z] {
             let rests: [f64; LANES] = std::array::from_fn(|l| 0.01 * (1.0 + 0.02 * l as f64));

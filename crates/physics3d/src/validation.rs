@@ -547,6 +547,19 @@ fn a_dropped_voxel_comes_to_rest_without_drift() {
     assert!(w.velocity(v).length() < 1e-6);
 }
 
+/// Numbers uniform in [0, 1) from `seed` (a 64-bit LCG's high bits): the tests' random bodies,
+/// loads and bends.
+#[cfg(test)]
+pub(crate) fn uniform(seed: u64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 /// The piece connected to the first filled cell of a random fill (`fill`: each cell's chance,
 /// drawn from `next`) of a side³ box: a random connected body.
 pub(crate) fn random_piece(next: &mut impl FnMut() -> f64, side: i32, fill: f64) -> Vec<[i32; 3]> {
@@ -584,13 +597,7 @@ pub(crate) fn random_piece(next: &mut impl FnMut() -> f64, side: i32, fill: f64)
 /// bodies is `--example robustness3d`.)
 #[test]
 fn random_bodies_under_random_actuation_stay_finite() {
-    let mut state = 0x5EEDu64;
-    let mut next = move || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = uniform(0x5EED);
     for body in 0..5 {
         let keep = random_piece(&mut next, 2 + body, 0.6);
         let mut w = World::new(WorldSettings::default()).unwrap();

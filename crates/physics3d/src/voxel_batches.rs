@@ -40,13 +40,7 @@ mod tests {
     /// bits of the same world stepping every link and voxel one by one.
     #[test]
     fn a_world_in_batches_gives_the_bits_of_one_stepping_one_by_one() {
-        let mut state = 0x5EED_u64;
-        let mut next = move || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = crate::validation::uniform(0x5EED);
         for side in [4, 5] {
             let cells = crate::validation::random_piece(&mut next, side, 0.7);
             let mut batched = World::new(WorldSettings::default()).unwrap();

@@ -692,13 +692,7 @@ mod tests {
     }
 
     fn random_bodies_under_random_actuation_stay_finite_in_every_lane_in(make: Make) {
-        let mut state = 0x1A2Eu64;
-        let mut next = move || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = crate::validation::uniform(0x1A2E);
         for side in 2..6 {
             let cells = crate::validation::random_piece(&mut next, side, 0.6);
             let mut w = World::new(crate::world::WorldSettings::default()).unwrap();

@@ -83,11 +83,7 @@ impl<const N: usize> WorldLanes<N> {
     /// Sets voxel `v`'s temperature in lane `lane` (its rest edge, and its links' rest lengths
     /// at the next step), as `World::set_temperature`.
     pub fn set_temperature(&mut self, v: VoxelId, lane: usize, temperature: f64) {
-        match &mut self.engine {
-            Engine::Portable(w) => w.set_temperature(v, lane, temperature),
-            #[cfg(target_arch = "x86_64")]
-            Engine::Avx(w) => w.set_temperature(v, lane, temperature),
-        }
+        self.state_mut().set_temperature(v, lane, temperature);
     }
 
     /// Sets voxel `v`'s temperature in every lane at once, as [`WorldLanes::set_temperature`].
@@ -126,83 +122,81 @@ impl<const N: usize> WorldLanes<N> {
 
     /// The error `World::step` gave in lane `lane` when that lane diverged (its first), if it did.
     pub fn diverged(&self, lane: usize) -> Option<Physics3dError> {
-        let diverged = match &self.engine {
-            Engine::Portable(w) => w.diverged[lane],
-            #[cfg(target_arch = "x86_64")]
-            Engine::Avx(w) => w.diverged[lane],
-        };
+        let diverged = self.state().diverged(lane);
         diverged.map(|(step, voxel)| Physics3dError::Diverged { step, voxel })
     }
 
     /// Voxel `v`'s centre in lane `lane` (m).
     pub fn position(&self, v: VoxelId, lane: usize) -> DVec3 {
-        match &self.engine {
-            Engine::Portable(w) => w.voxels[v.0].lanes.pos.lane(lane),
-            #[cfg(target_arch = "x86_64")]
-            Engine::Avx(w) => w.voxels[v.0].lanes.pos.lane(lane),
-        }
+        self.state().position(v, lane)
     }
 
     /// Voxel `v`'s velocity in lane `lane` (m/s), as `World::velocity`.
     pub fn velocity(&self, v: VoxelId, lane: usize) -> DVec3 {
-        match &self.engine {
-            Engine::Portable(w) => w.velocity(v, lane),
-            #[cfg(target_arch = "x86_64")]
-            Engine::Avx(w) => w.velocity(v, lane),
-        }
+        self.state().velocity(v, lane)
     }
 
     /// Whether voxel `v` reaches into the floor in lane `lane`, as `World::touches_floor`.
     pub fn touches_floor(&self, v: VoxelId, lane: usize) -> bool {
-        match &self.engine {
-            Engine::Portable(w) => w.touches_floor(v, lane),
-            #[cfg(target_arch = "x86_64")]
-            Engine::Avx(w) => w.touches_floor(v, lane),
-        }
+        self.state().touches_floor(v, lane)
     }
 
     /// Voxel `v`'s orientation in lane `lane`.
     pub fn orientation(&self, v: VoxelId, lane: usize) -> glam::DQuat {
-        match &self.engine {
-            Engine::Portable(w) => w.voxels[v.0].lanes.orient.lane(lane),
-            #[cfg(target_arch = "x86_64")]
-            Engine::Avx(w) => w.voxels[v.0].lanes.orient.lane(lane),
-        }
+        self.state().orientation(v, lane)
     }
 
     /// Whether voxel `v` touched another voxel in lane `lane` in the last step (as
     /// `World::touches_voxel`).
     pub fn touches_voxel(&self, v: VoxelId, lane: usize) -> bool {
-        match &self.engine {
-            Engine::Portable(w) => w.touches_voxel(v, lane),
-            #[cfg(target_arch = "x86_64")]
-            Engine::Avx(w) => w.touches_voxel(v, lane),
-        }
+        self.state().touches_voxel(v, lane)
     }
 
     /// The pairs of voxels that touched in lane `lane` in the last step (not linked; the lower
     /// index first, in `World::contacts`'s order).
     pub fn contacts(&self, lane: usize) -> impl Iterator<Item = (VoxelId, VoxelId)> + '_ {
-        let count = match &self.engine {
-            Engine::Portable(w) => w.contact_count(),
-            #[cfg(target_arch = "x86_64")]
-            Engine::Avx(w) => w.contact_count(),
-        };
-        (0..count).filter_map(move |i| match &self.engine {
-            Engine::Portable(w) => w.contact(i, lane),
-            #[cfg(target_arch = "x86_64")]
-            Engine::Avx(w) => w.contact(i, lane),
-        })
+        let state = self.state();
+        (0..state.contact_count()).filter_map(move |i| state.contact(i, lane))
     }
 
     /// Number of voxels.
     pub fn voxel_count(&self) -> usize {
+        self.state().voxel_count()
+    }
+
+    /// The state, whichever number type its lanes have (everything but the step, which is
+    /// compiled for each).
+    fn state(&self) -> &dyn LaneState {
         match &self.engine {
-            Engine::Portable(w) => w.voxels.len(),
+            Engine::Portable(w) => w,
             #[cfg(target_arch = "x86_64")]
-            Engine::Avx(w) => w.voxels.len(),
+            Engine::Avx(w) => w,
         }
     }
+
+    /// [`WorldLanes::state`], to change.
+    fn state_mut(&mut self) -> &mut dyn LaneState {
+        match &mut self.engine {
+            Engine::Portable(w) => w,
+            #[cfg(target_arch = "x86_64")]
+            Engine::Avx(w) => w,
+        }
+    }
+}
+
+/// What the public interface reads and sets of a laned world, the same for every number type.
+trait LaneState {
+    fn set_temperature(&mut self, v: VoxelId, lane: usize, temperature: f64);
+    fn diverged(&self, lane: usize) -> Option<(u64, usize)>;
+    fn position(&self, v: VoxelId, lane: usize) -> DVec3;
+    fn velocity(&self, v: VoxelId, lane: usize) -> DVec3;
+    fn touches_floor(&self, v: VoxelId, lane: usize) -> bool;
+    fn orientation(&self, v: VoxelId, lane: usize) -> glam::DQuat;
+    fn touches_voxel(&self, v: VoxelId, lane: usize) -> bool;
+    fn contact_count(&self) -> usize;
+    /// The `i`-th pair that touched in some lane in the last step, if it touched in `lane`.
+    fn contact(&self, i: usize, lane: usize) -> Option<(VoxelId, VoxelId)>;
+    fn voxel_count(&self) -> usize;
 }
 
 /// The AVX2 step.
@@ -289,15 +283,6 @@ impl<L: Lanes> Laned<L> {
             colliders,
             diverged: vec![None; L::LANES],
         })
-    }
-
-    fn set_temperature(&mut self, v: VoxelId, lane: usize, temperature: f64) {
-        let voxel = &mut self.voxels[v.0];
-        voxel
-            .lanes
-            .size
-            .set(lane, rest_edge(self.lattice, voxel.shared.material.cte, temperature));
-        self.rests_stale |= !voxel.links.is_empty();
     }
 
     /// The step itself, inlined into each of the compiled forms above.
@@ -407,6 +392,33 @@ impl<L: Lanes> Laned<L> {
             }
         }
     }
+}
+
+impl<L: Lanes> LaneState for Laned<L> {
+    fn set_temperature(&mut self, v: VoxelId, lane: usize, temperature: f64) {
+        let voxel = &mut self.voxels[v.0];
+        voxel
+            .lanes
+            .size
+            .set(lane, rest_edge(self.lattice, voxel.shared.material.cte, temperature));
+        self.rests_stale |= !voxel.links.is_empty();
+    }
+
+    fn diverged(&self, lane: usize) -> Option<(u64, usize)> {
+        self.diverged[lane]
+    }
+
+    fn position(&self, v: VoxelId, lane: usize) -> DVec3 {
+        self.voxels[v.0].lanes.pos.lane(lane)
+    }
+
+    fn orientation(&self, v: VoxelId, lane: usize) -> glam::DQuat {
+        self.voxels[v.0].lanes.orient.lane(lane)
+    }
+
+    fn voxel_count(&self) -> usize {
+        self.voxels.len()
+    }
 
     fn velocity(&self, v: VoxelId, lane: usize) -> DVec3 {
         let voxel = &self.voxels[v.0];
@@ -427,7 +439,6 @@ impl<L: Lanes> Laned<L> {
         self.collisions.as_ref().map_or(0, |c| c.contacts.len())
     }
 
-    /// The `i`-th pair that touched in some lane in the last step, if it touched in `lane`.
     fn contact(&self, i: usize, lane: usize) -> Option<(VoxelId, VoxelId)> {
         let (a, b, hit) = self.collisions.as_ref()?.contacts[i];
         hit.get(lane).then_some((VoxelId(a), VoxelId(b)))

@@ -44,9 +44,10 @@ pub struct BenchArgs {
     /// Skip the parallel rows.
     #[arg(long)]
     pub single_only: bool,
-    /// Add a population row per voxel robot and PSA: N genotypes of its body (random brain
-    /// weights) evaluated as one batch by the runner's evaluator, as `vsrlab run` does a
-    /// generation (rates per wall-clock second on --threads).
+    /// Add a population row per robot (2D and 3D voxel robots, PSAs, EvoGym robots): N genotypes
+    /// of its body (random brain weights) evaluated as one batch by the runner's evaluator, as
+    /// `vsrlab run` does a generation (3D and EvoGym batches step in population lanes; rates
+    /// per wall-clock second on --threads).
     #[arg(long, value_name = "N")]
     pub population: Option<usize>,
     /// Print JSON instead of a table.

@@ -688,7 +688,7 @@ mod tests {
     }
 
     /// A population row evaluates N different genotypes of each voxel robot and PSA through the
-    /// runner's evaluator (N full episodes); EvoGym rows have none; N is checked.
+    /// runner's evaluator (N full episodes), EvoGym robots too (their row's brain); N is checked.
     #[test]
     fn population_rows_evaluate_a_batch_of_genotypes_of_each_body() {
         let options = BenchOptions {
@@ -707,11 +707,13 @@ mod tests {
                 ("psa:small", Mode::Single),
                 ("psa:small", Mode::Population),
                 ("evogym-walker", Mode::Single),
+                ("evogym-walker", Mode::Population),
             ]
         );
-        for pair in report.rows[..4].chunks(2) {
+        for pair in report.rows.chunks(2) {
             let (single, population) = (&pair[0], &pair[1]);
-            assert_eq!((population.episodes, population.steps), (3, 180), "{population:?}");
+            assert_eq!(population.episodes, 3, "{population:?}");
+            assert_eq!(population.steps, 3 * single.steps / single.episodes as u64, "{population:?}");
             assert_eq!((population.voxels, population.threads), (single.voxels, 2));
             assert!(population.voxel_seconds_per_cpu_s > 0.0 && population.ratio_to_original.is_none());
         }

@@ -20,10 +20,15 @@ use vsrlab_tasks::TaskSpec;
 pub const MAX_POPULATION: usize = 100_000;
 
 /// Whether a standard robot has a population row: the rigid-body robots, voxel robots (which take
-/// the options' brain), PSAs (their `heads` brain) and 3D voxel robots (their row's brain, whose
-/// batches step in population lanes).
+/// the options' brain), PSAs (their `heads` brain), 3D voxel robots and EvoGym robots (their row's
+/// brain; the batches of both step in population lanes).
 pub(crate) fn has_population_row(standard: &StandardCase) -> bool {
-    standard.takes_options || is_psa(standard) || standard.body.starts_with("3d:")
+    standard.takes_options || is_psa(standard) || standard.body.starts_with("3d:") || evogym(standard).is_some()
+}
+
+/// An EvoGym row's task and rows (`evogym:<Task>:<rows>`).
+fn evogym(standard: &StandardCase) -> Option<(&'static str, &'static str)> {
+    standard.body.strip_prefix("evogym:")?.split_once(':')
 }
 
 fn is_psa(standard: &StandardCase) -> bool {
@@ -36,6 +41,15 @@ fn experiment(standard: &StandardCase, options: &BenchOptions, task: &TaskSpec) 
     let option = |e: String| BenchError::Option(format!("population: {e}"));
     let mut representation = toml::Table::new();
     let brain = match (standard.body.strip_prefix("psa:"), standard.body.strip_prefix("3d:")) {
+        _ if evogym(standard).is_some() => {
+            let (env, rows) = evogym(standard).unwrap_or_default();
+            let mut body = toml::Table::new();
+            body.insert("kind".into(), "evogym".into());
+            body.insert("body".into(), rows.into());
+            body.insert("env".into(), env.into());
+            representation.insert("body".into(), body.into());
+            standard.brain.unwrap_or("mlp")
+        }
         (_, Some(shape)) => {
             let mut body = toml::Table::new();
             body.insert("kind".into(), "voxel3d".into());

@@ -1,10 +1,14 @@
 //! Each EvoGym task with a full 5 × 5 body of horizontal actuators driven by a square-wave gait:
 //! the summed reward of one episode, and the time of one environment step (30 substeps).
 //!
-//! `cargo run --release -p vsrlab-tasks --example evogym_speed [steps] [task name part]`; EvoGym's own
-//! environments with the same body and gait: `bench/evogym/tasks.py` (docs/multimaterial.md has both).
+//! `cargo run --release -p vsrlab-tasks --example evogym_speed [steps] [task name part] [lanes]`;
+//! EvoGym's own environments with the same body and gait: `bench/evogym/tasks.py`
+//! (docs/multimaterial.md has both). With `lanes`, also the physics alone: the world stepped
+//! alone, and 4 and 8 episodes of it in population lanes (`MassSpringLanes`), µs per step and
+//! episode.
 
 use std::time::Instant;
+use vsrlab_physics::mass_spring::{MassSpringLanes, MassSpringWorld};
 use vsrlab_tasks::kinds::evogym::{EvoGymEnv, EvoGymTask, MaterialGrid};
 
 fn gait(t: usize, n: usize) -> Vec<f64> {
@@ -15,7 +19,8 @@ fn gait(t: usize, n: usize) -> Vec<f64> {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let steps: usize = std::env::args().nth(1).map_or(Ok(1000), |s| s.parse())?;
-    let only = std::env::args().nth(2);
+    let only = std::env::args().nth(2).filter(|o| o != "all");
+    let lanes = std::env::args().nth(3).is_some_and(|a| a == "lanes");
     let body = MaterialGrid::from_rows("33333/33333/33333/33333/33333")?;
     for task in EvoGymTask::ALL {
         if only.as_deref().is_some_and(|o| !task.name().starts_with(o)) {
@@ -53,6 +58,59 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             env.world().point_count(),
             env.world().spring_count(),
         );
+        if lanes {
+            env.reset(0);
+            let world = env.world().clone();
+            // five alternating rounds, the fastest of each (this machine's timings wander)
+            let (mut alone, mut four, mut eight) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
+            for _ in 0..5 {
+                alone = alone.min(physics_alone(&world, &actions, steps / 5));
+                four = four.min(physics_in_lanes::<4>(&world, &actions, steps / 5)?);
+                eight = eight.min(physics_in_lanes::<8>(&world, &actions, steps / 5)?);
+            }
+            println!(
+                "{:16} physics alone {alone:7.1} µs/step; 4 lanes {four:7.1} ({:.2}x); 8 lanes {eight:7.1} ({:.2}x) per episode",
+                task.name(),
+                alone / four,
+                alone / eight,
+            );
+        }
     }
     Ok(())
+}
+
+/// µs per step of `world` stepped alone with the gait, restarted when it fails.
+fn physics_alone(start: &MassSpringWorld, actions: &[Vec<f64>], steps: usize) -> f64 {
+    let mut world = start.clone();
+    let clock = Instant::now();
+    for t in 0..steps {
+        if world.step(&actions[t % 20]).is_err() {
+            world = start.clone();
+        }
+    }
+    clock.elapsed().as_secs_f64() / steps as f64 * 1e6
+}
+
+/// µs per step and episode of N episodes of `start` in lanes, each a twentieth of the gait ahead
+/// of the last, a failed episode replaced by a fresh one.
+fn physics_in_lanes<const N: usize>(
+    start: &MassSpringWorld,
+    actions: &[Vec<f64>],
+    steps: usize,
+) -> Result<f64, Box<dyn std::error::Error>> {
+    let mut lanes = MassSpringLanes::<N>::new(start);
+    let mut worlds = vec![start.clone(); N];
+    let rounds = steps.div_ceil(N);
+    let clock = Instant::now();
+    for t in 0..rounds {
+        let targets: Vec<&[f64]> = (0..N).map(|l| actions[(t + l) % 20].as_slice()).collect();
+        let mut borrowed: Vec<&mut MassSpringWorld> = worlds.iter_mut().collect();
+        let reports = lanes.step(&mut borrowed, &targets)?;
+        for (world, report) in worlds.iter_mut().zip(reports) {
+            if matches!(report, Some(Err(_))) {
+                *world = start.clone();
+            }
+        }
+    }
+    Ok(clock.elapsed().as_secs_f64() / (rounds * N) as f64 * 1e6)
 }

@@ -28,22 +28,29 @@ mod forces;
 mod ground;
 mod handles;
 mod integrator;
+mod lane_shape;
+mod lanes;
 mod overlap;
 mod points;
 mod projection;
 mod quad_geometry;
+mod rk4_lanes;
 mod runs;
 mod settings;
+mod spring_lanes;
 mod springs;
 mod stage_points;
 mod validate;
 mod world;
 
 #[cfg(test)]
+mod lane_scenarios;
+#[cfg(test)]
 mod scenarios;
 
 pub use builder::{BodyDesc, MassSpringBuilder, PointDesc, QuadDesc, SpringDesc};
 pub use error::MassSpringError;
 pub use handles::{ActuatorId, BodyId, PointId, QuadId, SpringId};
+pub use lanes::{LaneReports, MassSpringLanes};
 pub use settings::{ContactSettings, GroundPlane, MassSpringSettings};
 pub use world::{MassSpringWorld, StepReport};

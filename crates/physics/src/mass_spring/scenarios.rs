@@ -13,13 +13,13 @@ const CELL: f64 = 0.1;
 /// The springs and quads of a `w × h` grid of square cells of side [`CELL`], lower-left corner at
 /// `(x0, y0)`, EvoGym-style: shared corners, side springs, two diagonals per cell, outline sides
 /// as boundary. `rigid` cells also get tight limits of 3 % on their sides.
-struct Grid {
-    body: BodyId,
-    points: Vec<PointId>,
-    sides: Vec<SpringId>,
+pub(super) struct Grid {
+    pub body: BodyId,
+    pub points: Vec<PointId>,
+    pub sides: Vec<SpringId>,
 }
 
-fn grid(
+pub(super) fn grid(
     b: &mut MassSpringBuilder,
     (x0, y0): (f64, f64),
     (w, h): (usize, usize),

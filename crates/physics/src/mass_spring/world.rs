@@ -25,13 +25,13 @@ pub struct StepReport {
 /// [`PointId::index`].
 #[derive(Debug, Clone)]
 pub struct MassSpringWorld {
-    settings: MassSpringSettings,
-    points: Points,
-    springs: Springs,
+    pub(super) settings: MassSpringSettings,
+    pub(super) points: Points,
+    pub(super) springs: Springs,
     actuators: Actuators,
     bodies: Bodies,
     broad: BroadPhase,
-    projection: Projection,
+    pub(super) projection: Projection,
     rk4: Rk4,
     substeps_done: u64,
 }
@@ -67,9 +67,7 @@ impl MassSpringWorld {
     /// boxes; self-overlap check. On an error the remaining substeps are skipped. Allocates
     /// nothing.
     pub fn step(&mut self, targets: &[f64]) -> Result<StepReport, MassSpringError> {
-        self.actuators.check(targets)?;
-        self.actuators
-            .set_goals(targets, self.settings.target_range, &mut self.springs);
+        self.start_step(targets)?;
         let mut report = StepReport::default();
         for _ in 0..self.settings.substeps {
             report.contacts += self.substep()?;
@@ -78,27 +76,49 @@ impl MassSpringWorld {
         Ok(report)
     }
 
+    /// Checks `targets` and sets the goal lengths they ask for: the start of [`Self::step`].
+    pub(crate) fn start_step(&mut self, targets: &[f64]) -> Result<(), MassSpringError> {
+        self.actuators.check(targets)?;
+        self.actuators
+            .set_goals(targets, self.settings.target_range, &mut self.springs);
+        Ok(())
+    }
+
     /// One substep; returns the number of contacts.
     fn substep(&mut self) -> Result<usize, MassSpringError> {
-        let n = self.substeps_done;
-        self.substeps_done += 1;
-        let contacts = compute_contact_forces(&self.bodies, &mut self.broad, &mut self.points, &self.settings.contact);
+        let (n, contacts) = self.begin_substep();
         self.springs
             .track_goals(&self.points.x, &self.points.y, self.settings.tracking_rate);
-        self.points.remember();
         self.rk4.step(&mut self.points, &self.springs, &self.settings);
         self.projection
             .project_bands(&self.springs, &mut self.points, self.settings.band_correction);
         self.projection
             .project_limits(&self.springs, &mut self.points, self.settings.limit_correction);
+        self.end_substep(n)?;
+        Ok(contacts)
+    }
+
+    /// The part of a substep before the springs move anything: counts it, computes the contact
+    /// forces (held through the substep) and remembers the state to undo; returns the substep's
+    /// number and its contacts.
+    pub(crate) fn begin_substep(&mut self) -> (u64, usize) {
+        let n = self.substeps_done;
+        self.substeps_done += 1;
+        let contacts = compute_contact_forces(&self.bodies, &mut self.broad, &mut self.points, &self.settings.contact);
+        self.points.remember();
+        (n, contacts)
+    }
+
+    /// The part of substep `n` after the points moved: the non-finite check (undoing the
+    /// substep), displacement velocities, boxes and the self-overlap check.
+    pub(crate) fn end_substep(&mut self, n: u64) -> Result<(), MassSpringError> {
         if let Some(point) = self.points.first_non_finite() {
             self.points.restore();
             return Err(MassSpringError::NonFinite { substep: n, point });
         }
         self.points.update_moved_velocity(self.settings.dt);
         self.bodies.update_boxes(&self.points.x, &self.points.y, false);
-        check_self_overlap(&self.bodies, n)?;
-        Ok(contacts)
+        check_self_overlap(&self.bodies, n)
     }
 
     /// The settings.

@@ -106,13 +106,30 @@ impl EvoGymEnv {
     /// One step of 30 physics substeps with `actions` (one per actuator voxel, in the robot's
     /// cell order: row-major from the top row; EvoGym's units, clipped into [0.6, 1.6]).
     pub fn step(&mut self, actions: &[f64]) -> Result<StepResult<'_>, EvoGymError> {
+        let before = self.begin_step(actions)?;
+        let physics = self.world.step(actions).map(|_| ());
+        self.finish_step(before, physics)
+    }
+
+    /// The start of a step: refuses a step after the episode's end or bad actions; returns the
+    /// centres before the step.
+    pub(super) fn begin_step(&self, actions: &[f64]) -> Result<RobotAndBeam, EvoGymError> {
         if self.over {
             return Err(EvoGymError::EpisodeOver);
         }
         self.check(actions)?;
-        let before = self.centres();
-        let unstable = match self.world.step(actions) {
-            Ok(_) => false,
+        Ok(self.centres())
+    }
+
+    /// The end of a step whose physics gave `physics` (the world stepped with the actions,
+    /// alone or in lanes): reward, observation, the episode's end.
+    pub(super) fn finish_step(
+        &mut self,
+        before: RobotAndBeam,
+        physics: Result<(), MassSpringError>,
+    ) -> Result<StepResult<'_>, EvoGymError> {
+        let unstable = match physics {
+            Ok(()) => false,
             Err(MassSpringError::SelfOverlap { .. } | MassSpringError::NonFinite { .. }) => true,
             Err(e) => return Err(EvoGymError::Physics(e)),
         };
@@ -136,6 +153,11 @@ impl EvoGymEnv {
             truncated,
             unstable,
         })
+    }
+
+    /// The world, for stepping in lanes.
+    pub(super) fn world_mut(&mut self) -> &mut MassSpringWorld {
+        &mut self.world
     }
 
     fn check(&self, actions: &[f64]) -> Result<(), EvoGymError> {
@@ -230,6 +252,12 @@ impl EvoGymEnv {
     /// The current observation.
     pub fn observation(&self) -> &[f64] {
         &self.observation
+    }
+
+    /// Whether the episode is over (goal, instability or its length): `step` refuses until
+    /// `reset`.
+    pub fn is_over(&self) -> bool {
+        self.over
     }
 
     /// Steps taken since the last reset.

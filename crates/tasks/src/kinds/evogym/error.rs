@@ -34,4 +34,8 @@ pub enum EvoGymError {
     /// `step` after the episode ended (goal, instability or its length): call `reset`.
     #[error("the episode is over: reset the environment first")]
     EpisodeOver,
+    /// Environments given to lanes that cannot step them together (too many, another body or
+    /// task, a missing action list).
+    #[error("{0}")]
+    Lanes(String),
 }

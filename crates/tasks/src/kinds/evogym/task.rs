@@ -6,7 +6,7 @@
 use super::assemble::plan_object;
 use super::robot::{action_of, EvoGymRobot};
 use super::tasks::EvoGymTask;
-use super::EvoGymEnv;
+use super::{EnvLanes, EvoGymEnv};
 use crate::agent::{Agent, Robot};
 use crate::channels::{OBSTACLES, OBSTACLE_CORNERS, UNIT_FILL};
 use crate::episode::EpisodeError;
@@ -15,6 +15,7 @@ use crate::outcome::{Outcome, Trace, TraceLevel};
 use crate::task::{check_objectives, fitness_values, task_field, Metrics, Objective, Task};
 use serde::{Deserialize, Serialize};
 use vsrlab_body::Probe;
+use vsrlab_brain::Controller;
 use vsrlab_field::FieldError;
 use vsrlab_physics::Vec2;
 
@@ -118,6 +119,70 @@ impl Task for EvoGym {
         level: TraceLevel,
         _observe: &mut dyn FnMut(f64, &dyn Agent),
     ) -> Result<Outcome, EpisodeError> {
+        let (mut env, mut episode) = self.prepare(robot, seed)?;
+        let grid = evogym_robot(robot)?
+            .grid()
+            .map_err(|e| EpisodeError::Field(e.at("robot")))?;
+        let mut recorder = Recorder::new(level, env.task(), &grid);
+        recorder.record(&env, 0.0);
+        while !episode.over {
+            let result = env
+                .step(episode.act())
+                .map_err(|e| EpisodeError::Invalid(e.to_string()))?;
+            episode.after(result.reward, result.done || result.truncated, result.observation);
+            recorder.record(&env, episode.steps as f64 * STEP_SECONDS);
+        }
+        Ok(self.outcome(&env, &episode, recorder.finish()))
+    }
+
+    fn episode_group(&self, robot: &dyn Robot) -> Option<String> {
+        let grid = evogym_robot(robot).ok()?.grid().ok()?;
+        Some(format!("evogym {} {grid:?}", self.env))
+    }
+
+    fn episode_batch(&self) -> usize {
+        LANES
+    }
+
+    fn run_episodes(&self, robots: &[&dyn Robot], seeds: &[u64]) -> Vec<Result<Outcome, EpisodeError>> {
+        let prepared: Result<Vec<(EvoGymEnv, Episode)>, EpisodeError> = robots
+            .iter()
+            .zip(seeds)
+            .map(|(robot, &seed)| self.prepare(*robot, seed))
+            .collect();
+        let Ok(mut prepared) = prepared else {
+            // one of them is refused: each gives its own answer alone
+            return crate::task::one_by_one(self, robots, seeds);
+        };
+        let mut results = Vec::with_capacity(robots.len());
+        for (k, chunk) in prepared.chunks_mut(LANES).enumerate() {
+            let mut lanes = EnvLanes::<LANES>::new(&chunk[0].0);
+            let mut refused = false;
+            while !refused && chunk.iter().any(|(_, e)| !e.over) {
+                refused = self.step_together(&mut lanes, chunk).is_err();
+            }
+            if refused {
+                // lanes that cannot take the chunk (not expected of one group): each alone
+                let (robots, seeds) = (&robots[k * LANES..], &seeds[k * LANES..]);
+                let n = chunk.len();
+                results.extend(crate::task::one_by_one(self, &robots[..n], &seeds[..n]));
+                continue;
+            }
+            results.extend(chunk.iter_mut().map(|(env, e)| match e.error.take() {
+                Some(error) => Err(error),
+                None => Ok(self.outcome(env, e, None)),
+            }));
+        }
+        results
+    }
+}
+
+/// Episodes of one group stepped together at most.
+const LANES: usize = 8;
+
+impl EvoGym {
+    /// The environment and brain of `robot`'s episode, checked as `run_episode` checks them.
+    fn prepare(&self, robot: &dyn Robot, seed: u64) -> Result<(EvoGymEnv, Episode), EpisodeError> {
         self.validate()?;
         let which = self.which()?;
         let robot = evogym_robot(robot)?;
@@ -145,33 +210,54 @@ impl Task for EvoGym {
         let spec = crate::kinds::filled_brain(&robot.brain, &shape).map_err(at_brain)?;
         let mut brain = spec.build(&shape).map_err(at_brain)?;
         brain.reset();
-        let mut observation = env.reset(seed).to_vec();
-        let mut outputs = vec![0.0; env.action_count()];
-        let mut actions = vec![0.0; env.action_count()];
-        let mut recorder = Recorder::new(level, which, &grid);
-        let start = env.robot_centre().0;
-        recorder.record(&env, 0.0);
-        let (mut reward, mut steps, limit) = (0.0, 0u64, self.steps(which));
-        loop {
-            let t = steps as f64 * STEP_SECONDS;
-            brain.control(t, &observation, &mut outputs);
-            for (a, &o) in actions.iter_mut().zip(&outputs) {
-                *a = action_of(o);
-            }
-            let result = env.step(&actions).map_err(|e| EpisodeError::Invalid(e.to_string()))?;
-            reward += result.reward;
-            steps += 1;
-            observation.copy_from_slice(result.observation);
-            let over = result.done || result.truncated || steps >= limit;
-            recorder.record(&env, steps as f64 * STEP_SECONDS);
-            if over {
-                break;
+        let observation = env.reset(seed).to_vec();
+        let episode = Episode {
+            brain,
+            observation,
+            outputs: vec![0.0; env.action_count()],
+            actions: vec![0.0; env.action_count()],
+            reward: 0.0,
+            steps: 0,
+            limit: self.steps(which),
+            start: env.robot_centre().0,
+            over: false,
+            error: None,
+        };
+        Ok((env, episode))
+    }
+
+    /// One step of every running episode of `chunk`, their physics in lanes; an episode whose
+    /// step fails ends with its error, as it would alone. Fails when the lanes refuse the chunk.
+    fn step_together(
+        &self,
+        lanes: &mut EnvLanes<LANES>,
+        chunk: &mut [(EvoGymEnv, Episode)],
+    ) -> Result<(), super::EvoGymError> {
+        let mut running: Vec<(&mut EvoGymEnv, &mut Episode)> =
+            chunk.iter_mut().filter(|(_, e)| !e.over).map(|(v, e)| (v, e)).collect();
+        for (_, episode) in running.iter_mut() {
+            episode.act();
+        }
+        let (mut envs, episodes): (Vec<&mut EvoGymEnv>, Vec<&mut Episode>) =
+            running.iter_mut().map(|(v, e)| (&mut **v, &mut **e)).unzip();
+        let actions: Vec<&[f64]> = episodes.iter().map(|e| e.actions.as_slice()).collect();
+        let steps = lanes.step(&mut envs, &actions)?;
+        for ((env, episode), step) in envs.iter().zip(episodes).zip(steps) {
+            match step {
+                Ok(step) => episode.after(step.reward, step.done || step.truncated, env.observation()),
+                Err(e) => episode.fail(EpisodeError::Invalid(e.to_string())),
             }
         }
+        Ok(())
+    }
+
+    /// The outcome of a finished episode.
+    fn outcome(&self, env: &EvoGymEnv, episode: &Episode, trace: Option<Trace>) -> Outcome {
+        let steps = episode.steps;
         let seconds = steps as f64 * STEP_SECONDS;
-        let distance = env.robot_centre().0 - start;
+        let distance = env.robot_centre().0 - episode.start;
         let metrics: Metrics = [
-            ("reward", reward),
+            ("reward", episode.reward),
             ("distance", distance),
             ("velocity", distance / seconds.max(STEP_SECONDS)),
             ("steps", steps as f64),
@@ -179,13 +265,55 @@ impl Task for EvoGym {
         .into_iter()
         .map(|(k, v)| (k.to_string(), v))
         .collect();
-        Ok(Outcome {
+        Outcome {
             fitness: fitness_values(&self.fitness.0, &metrics),
             metrics,
             steps,
             units: env.action_count(),
-            trace: recorder.finish(),
-        })
+            trace,
+        }
+    }
+}
+
+/// One episode's brain and running sums, stepped alone (`run_episode`) or with others in lanes
+/// (`run_episodes`): the same calls in the same order either way.
+struct Episode {
+    brain: Box<dyn Controller>,
+    observation: Vec<f64>,
+    outputs: Vec<f64>,
+    actions: Vec<f64>,
+    reward: f64,
+    steps: u64,
+    limit: u64,
+    start: f64,
+    over: bool,
+    /// Why a step failed (the episode's answer instead of an outcome).
+    error: Option<EpisodeError>,
+}
+
+impl Episode {
+    /// The brain's actions for the current observation.
+    fn act(&mut self) -> &[f64] {
+        let t = self.steps as f64 * STEP_SECONDS;
+        self.brain.control(t, &self.observation, &mut self.outputs);
+        for (a, &o) in self.actions.iter_mut().zip(&self.outputs) {
+            *a = action_of(o);
+        }
+        &self.actions
+    }
+
+    /// Takes a step's reward and observation; `ended` when the task ended the episode.
+    fn after(&mut self, reward: f64, ended: bool, observation: &[f64]) {
+        self.reward += reward;
+        self.steps += 1;
+        self.observation.copy_from_slice(observation);
+        self.over = ended || self.steps >= self.limit;
+    }
+
+    /// Ends the episode with a failed step's error.
+    fn fail(&mut self, error: EpisodeError) {
+        self.error = Some(error);
+        self.over = true;
     }
 }
 
@@ -360,6 +488,86 @@ mod tests {
         assert!(trace.terrain.is_empty(), "no ground line besides the ground's cells");
         let again = crate::episode::run(r.as_robot(), task.task(), 0, TraceLevel::None).unwrap();
         assert_eq!(again.metrics, o.metrics, "bit-identical");
+    }
+
+    /// EvoGym robots of one body, each with its own random MLP.
+    fn walkers(body: &str, env: &str, seeds: std::ops::Range<u64>) -> Vec<EvoGymRobot> {
+        let grid = super::super::MaterialGrid::from_rows(body).unwrap();
+        let task = EvoGymTask::from_name(env).unwrap();
+        let probe = EvoGymEnv::new(task, &grid).unwrap();
+        let shape = super::super::robot::shape(probe.observation_size(), probe.action_count());
+        let template = vsrlab_brain::BrainSpec::parse("mlp").unwrap();
+        seeds
+            .map(|seed| EvoGymRobot {
+                body: body.to_string(),
+                env: env.to_string(),
+                brain: template.with_random_parameters(seed, &shape).unwrap(),
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_batch_in_lanes_gives_every_robot_the_bits_of_its_own_episode() {
+        for (env, body) in [("Walker-v0", "33333/33333/33333"), ("BeamToppler-v0", "3303/3443/1331")] {
+            let task = TaskSpec::parse(&format!("evogym:{env}"))
+                .unwrap()
+                .with_settings(&[("duration", serde_json::json!(0.15))])
+                .unwrap();
+            let task = task.task();
+            // 10 robots: a full chunk of 8 lanes and a chunk of 2 with 6 idle lanes
+            let robots = walkers(body, env, 1..11);
+            let refs: Vec<&dyn Robot> = robots.iter().map(|r| r as &dyn Robot).collect();
+            let groups: Vec<Option<String>> = refs.iter().map(|r| task.episode_group(*r)).collect();
+            assert!(groups[0].is_some() && groups.iter().all(|g| *g == groups[0]));
+            let seeds: Vec<u64> = (0..10).collect();
+            let batch = task.run_episodes(&refs, &seeds);
+            let mut distances = Vec::new();
+            for ((robot, &seed), laned) in refs.iter().zip(&seeds).zip(&batch) {
+                let alone = task
+                    .run_episode(*robot, seed, TraceLevel::None, &mut |_, _| {})
+                    .unwrap();
+                let laned = laned.as_ref().unwrap();
+                assert_eq!(laned.steps, alone.steps);
+                assert_eq!(
+                    laned.fitness.iter().map(|f| f.to_bits()).collect::<Vec<_>>(),
+                    alone.fitness.iter().map(|f| f.to_bits()).collect::<Vec<_>>()
+                );
+                for (name, value) in &alone.metrics {
+                    assert_eq!(laned.metrics[name].to_bits(), value.to_bits(), "{env} {name}");
+                }
+                distances.push(alone.metrics["distance"]);
+            }
+            // the robots moved, each its own way (not one episode compared with itself)
+            distances.sort_by(f64::total_cmp);
+            distances.dedup();
+            assert_eq!(distances.len(), 10, "{env}: {distances:?}");
+        }
+        // another body, or the same body on another task, is another group
+        let task = TaskSpec::parse("evogym:walker-v0").unwrap();
+        let walker = robot("evogym:33333/33333/33333", "mlp");
+        let other = robot("evogym:3333/3333/3333", "mlp");
+        let group = task.task().episode_group(walker.as_robot());
+        assert!(group.is_some());
+        assert_ne!(task.task().episode_group(other.as_robot()), group);
+        let bridge = TaskSpec::parse("evogym:bridgewalker-v0").unwrap();
+        assert_ne!(bridge.task().episode_group(walker.as_robot()), group);
+    }
+
+    /// A batch with a robot its task refuses: every robot gets the answer it gets alone.
+    #[test]
+    fn a_batch_with_a_refused_robot_answers_each_as_alone() {
+        let task = TaskSpec::parse("evogym:walker-v0")
+            .unwrap()
+            .with_settings(&[("duration", serde_json::json!(0.03))])
+            .unwrap();
+        let good = walkers("33333/33333/33333", "Walker-v0", 1..3);
+        let mut bad = good[0].clone();
+        bad.env = "CaveCrawler-v0".into(); // weights for Walker's observation, made for another task
+        let refs: Vec<&dyn Robot> = vec![&good[0], &bad, &good[1]];
+        let batch = task.task().run_episodes(&refs, &[0, 0, 0]);
+        assert!(batch[0].is_ok() && batch[2].is_ok());
+        let err = batch[1].as_ref().unwrap_err().to_string();
+        assert!(err.contains("robot.env"), "{err}");
     }
 
     #[test]

@@ -713,7 +713,11 @@ mod tests {
         for pair in report.rows.chunks(2) {
             let (single, population) = (&pair[0], &pair[1]);
             assert_eq!(population.episodes, 3, "{population:?}");
-            assert_eq!(population.steps, 3 * single.steps / single.episodes as u64, "{population:?}");
+            assert_eq!(
+                population.steps,
+                3 * single.steps / single.episodes as u64,
+                "{population:?}"
+            );
             assert_eq!((population.voxels, population.threads), (single.voxels, 2));
             assert!(population.voxel_seconds_per_cpu_s > 0.0 && population.ratio_to_original.is_none());
         }

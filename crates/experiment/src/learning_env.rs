@@ -4,13 +4,20 @@
 //! the policy's output, commit 7db4202 `evogym/envs/base.py`), an action is an offset from the
 //! rest length: output a becomes target ratio 1 + a, which the task clips into [0.6, 1.6].
 
+use rayon::prelude::*;
 use vsrlab_learning::{Environment, StepError, Transition};
-use vsrlab_tasks::kinds::evogym::{EvoGymEnv, EvoGymError, EvoGymTask, MaterialGrid};
+use vsrlab_tasks::kinds::evogym::{EnvLanes, EvoGymEnv, EvoGymError, EvoGymTask, LaneStep, MaterialGrid};
+
+/// Environments of one training stepped together in population lanes, at most.
+const LANES: usize = 4;
 
 /// An EvoGym task with one body, as a PPO environment.
 #[derive(Debug, Clone)]
 pub struct EvoGymLearning {
     env: EvoGymEnv,
+    /// The lanes of the group this environment leads in [`Environment::step_all`] (made at the
+    /// first group step).
+    lanes: Option<Box<EnvLanes<LANES>>>,
     /// The policy's action shifted to EvoGym's units.
     targets: Vec<f64>,
     /// Steps after which an episode ends, when fewer than the task's own length.
@@ -26,6 +33,7 @@ impl EvoGymLearning {
         Ok(EvoGymLearning {
             targets: vec![1.0; env.action_count()],
             env,
+            lanes: None,
             cap: None,
             steps: 0,
         })
@@ -53,19 +61,88 @@ impl Environment for EvoGymLearning {
     }
 
     fn step(&mut self, action: &[f64]) -> Result<Transition, StepError> {
+        self.set_targets(action);
+        let step = self.env.step(&self.targets)?;
+        let (reward, done, truncated) = (step.reward, step.done, step.truncated);
+        Ok(self.transition(reward, done, truncated))
+    }
+
+    /// Groups of up to four environments of one body step in population lanes (the same bits as
+    /// alone), the groups in parallel.
+    fn step_all(environments: &mut [Self], actions: &[Vec<f64>]) -> Vec<Result<Transition, StepError>> {
+        environments
+            .par_chunks_mut(LANES)
+            .zip(actions.par_chunks(LANES))
+            .flat_map_iter(|(group, actions)| step_group(group, actions))
+            .collect()
+    }
+}
+
+impl EvoGymLearning {
+    /// The targets of the policy's action (EvoGym's offset from the rest length).
+    fn set_targets(&mut self, action: &[f64]) {
         for (target, a) in self.targets.iter_mut().zip(action) {
             *target = 1.0 + a;
         }
-        let step = self.env.step(&self.targets)?;
+    }
+
+    /// The transition of a step that gave `reward`, `done` and `truncated` (the observation is
+    /// the environment's), counting it against the cap.
+    fn transition(&mut self, reward: f64, done: bool, truncated: bool) -> Transition {
         self.steps += 1;
         let capped = self.cap.is_some_and(|cap| self.steps >= cap);
-        Ok(Transition {
-            observation: step.observation.to_vec(),
-            reward: step.reward,
-            done: step.done || step.truncated || capped,
-            truncated: !step.done && (step.truncated || capped),
-        })
+        Transition {
+            observation: self.env.observation().to_vec(),
+            reward,
+            done: done || truncated || capped,
+            truncated: !done && (truncated || capped),
+        }
     }
+}
+
+/// One step of a group of environments in lanes, led by the first (which keeps the lanes); a
+/// group that does not fit the lanes (another body) steps one by one.
+fn step_group(group: &mut [EvoGymLearning], actions: &[Vec<f64>]) -> Vec<Result<Transition, StepError>> {
+    if group.len() < 3 {
+        // fewer worlds than lanes cost as many as a full group: alone is as fast
+        return group
+            .iter_mut()
+            .zip(actions)
+            .map(|(env, action)| env.step(action))
+            .collect();
+    }
+    for (env, action) in group.iter_mut().zip(actions) {
+        env.set_targets(action);
+    }
+    let mut lanes = match group[0].lanes.take() {
+        Some(lanes) if group.iter().all(|g| lanes.fits(&g.env)) => lanes,
+        _ => Box::new(EnvLanes::new(&group[0].env)),
+    };
+    let steps = {
+        let (mut envs, targets): (Vec<&mut EvoGymEnv>, Vec<&[f64]>) =
+            group.iter_mut().map(|g| (&mut g.env, g.targets.as_slice())).unzip();
+        lanes.step(&mut envs, &targets)
+    };
+    group[0].lanes = Some(lanes);
+    let steps: Vec<Result<LaneStep, EvoGymError>> = match steps {
+        Ok(steps) => steps,
+        Err(_) => {
+            // environments the lanes cannot take together (not expected of one training)
+            return group
+                .iter_mut()
+                .zip(actions)
+                .map(|(env, action)| env.step(action))
+                .collect();
+        }
+    };
+    group
+        .iter_mut()
+        .zip(steps)
+        .map(|(env, step)| {
+            let step = step?;
+            Ok(env.transition(step.reward, step.done, step.truncated))
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -129,5 +206,59 @@ mod tests {
         let (stats, action) = train();
         assert!(action.iter().all(|a| a.is_finite()) && stats.contains("mean_reward"));
         assert_eq!(train(), (stats, action));
+    }
+
+    /// An EvoGym environment that steps alone even in a group (the default `step_all`).
+    struct Alone(EvoGymLearning);
+
+    impl Environment for Alone {
+        fn observation_size(&self) -> usize {
+            self.0.observation_size()
+        }
+        fn action_size(&self) -> usize {
+            self.0.action_size()
+        }
+        fn reset(&mut self, seed: u64) -> Vec<f64> {
+            self.0.reset(seed)
+        }
+        fn step(&mut self, action: &[f64]) -> Result<Transition, StepError> {
+            self.0.step(action)
+        }
+    }
+
+    /// Seven environments (a group of four in lanes, one of three, the episodes capped so that
+    /// they end and restart within the rollout) train the same policy as seven stepped alone.
+    #[test]
+    fn ppo_with_environments_in_lanes_learns_what_it_learns_alone() {
+        let body = MaterialGrid::from_rows("3333/3003/3333").unwrap();
+        let make = || {
+            EvoGymLearning::new(EvoGymTask::Walker, &body)
+                .unwrap()
+                .with_episode_steps(13)
+        };
+        let config = PpoConfig {
+            iterations: 2,
+            steps_per_environment: 20,
+            ..PpoConfig::default()
+        };
+        let mut laned: Vec<EvoGymLearning> = (0..7).map(|_| make()).collect();
+        let mut alone: Vec<Alone> = (0..7).map(|_| Alone(make())).collect();
+        let size = (laned[0].observation_size(), laned[0].action_size());
+        let (mut a, mut b) = (
+            Ppo::new(size.0, size.1, config.clone(), 5).unwrap(),
+            Ppo::new(size.0, size.1, config, 5).unwrap(),
+        );
+        let (stats_laned, stats_alone) = (a.train(&mut laned).unwrap(), b.train(&mut alone).unwrap());
+        assert_eq!(format!("{stats_laned:?}"), format!("{stats_alone:?}"));
+        let probe = laned[0].reset(1);
+        let (act_a, act_b) = (a.act(&probe), b.act(&probe));
+        assert_eq!(
+            act_a.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+            act_b.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+        );
+        assert!(
+            laned[0].lanes.is_some() && laned[4].lanes.is_some(),
+            "both groups stepped in lanes"
+        );
     }
 }

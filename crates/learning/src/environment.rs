@@ -1,5 +1,7 @@
 //! What PPO needs of an environment: observations, actions, rewards and the end of an episode.
 
+use rayon::prelude::*;
+
 /// The result of one step.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Transition {
@@ -30,4 +32,18 @@ pub trait Environment: Send {
     /// One step with `action`; an error (the simulation failed in a way the environment cannot
     /// turn into the end of an episode) stops the training.
     fn step(&mut self, action: &[f64]) -> Result<Transition, StepError>;
+
+    /// One step of each of `environments` with its action (`actions[i]` for `environments[i]`),
+    /// in order: what [`Environment::step`] gives each alone, bit for bit. Environments that can
+    /// step together (population lanes) override it; the default steps each alone, in parallel.
+    fn step_all(environments: &mut [Self], actions: &[Vec<f64>]) -> Vec<Result<Transition, StepError>>
+    where
+        Self: Sized,
+    {
+        environments
+            .par_iter_mut()
+            .zip(actions)
+            .map(|(env, action)| env.step(action))
+            .collect()
+    }
 }

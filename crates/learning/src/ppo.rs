@@ -6,7 +6,7 @@
 //! learning rate decayed linearly to 0 over the iterations.
 
 use crate::adam::Adam;
-use crate::environment::{Environment, StepError};
+use crate::environment::{Environment, StepError, Transition};
 use crate::gaussian::{add_log_prob_gradient, entropy, log_prob};
 use crate::mlp::{standard_normal, Mlp};
 use crate::mlp_batch::BatchPass;
@@ -470,16 +470,9 @@ impl Ppo {
             ObservationStatistics::EveryIteration => (steps, 1),
         };
         for _ in 0..rounds {
-            let this = &*self;
-            environments
-                .par_iter_mut()
-                .zip(slots.par_iter_mut())
-                .zip(rngs.par_iter_mut())
-                .zip(rollouts.par_iter_mut())
-                .enumerate()
-                .try_for_each(|(e, (((env, slot), rng), r))| {
-                    (0..chunk).try_for_each(|_| this.step_once(e, env, slot, rng, r))
-                })?;
+            for _ in 0..chunk {
+                self.step_all(environments, slots, &mut rngs, &mut rollouts)?;
+            }
             if chunk == 1 {
                 self.observe(slots);
             }
@@ -493,15 +486,38 @@ impl Ppo {
         Ok(rollouts)
     }
 
-    /// One step of environment `e` from its slot, recorded into `r`.
-    fn step_once<E: Environment>(
+    /// One step of every environment from its slot, recorded into its rollout: the actions
+    /// chosen in parallel, the environments stepped together ([`Environment::step_all`]), the
+    /// steps recorded in parallel. Each environment goes through the same calls as when it
+    /// stepped alone; the first failing environment (in order) stops the training.
+    fn step_all<E: Environment>(
         &self,
-        e: usize,
-        env: &mut E,
-        slot: &mut Slot,
-        rng: &mut ChaCha8Rng,
-        r: &mut Rollout,
+        environments: &mut [E],
+        slots: &mut [Slot],
+        rngs: &mut [ChaCha8Rng],
+        rollouts: &mut [Rollout],
     ) -> Result<(), PpoError> {
+        let actions: Vec<Vec<f64>> = slots
+            .par_iter()
+            .zip(rngs.par_iter_mut())
+            .zip(rollouts.par_iter_mut())
+            .map(|((slot, rng), r)| self.choose(slot, rng, r))
+            .collect();
+        let steps = E::step_all(environments, &actions);
+        let recorded: Vec<Result<(), PpoError>> = environments
+            .par_iter_mut()
+            .zip(slots.par_iter_mut())
+            .zip(rollouts.par_iter_mut())
+            .zip(steps.into_par_iter().zip(actions.into_par_iter()))
+            .enumerate()
+            .map(|(e, (((env, slot), r), (step, action)))| self.record(e, env, slot, r, step, action))
+            .collect();
+        recorded.into_iter().collect()
+    }
+
+    /// The policy's action for a slot's observation, sampled with the environment's generator;
+    /// its log-probability, the value and the normalised observation go into `r`.
+    fn choose(&self, slot: &Slot, rng: &mut ChaCha8Rng, r: &mut Rollout) -> Vec<f64> {
         let observation = self.normalizer.normalize(&slot.observation);
         let mean = self.actor.forward(&observation).output().to_vec();
         let action: Vec<f64> = mean
@@ -511,7 +527,22 @@ impl Ppo {
             .collect();
         r.log_probs.push(log_prob(&action, &mean, &self.log_std));
         r.values.push(self.critic.forward(&observation).output()[0]);
-        let step = env.step(&action).map_err(|source| PpoError::Step {
+        r.observations.push(observation);
+        action
+    }
+
+    /// Records environment `e`'s step with `action` into `r` and its slot; resets the
+    /// environment at the end of an episode.
+    fn record<E: Environment>(
+        &self,
+        e: usize,
+        env: &mut E,
+        slot: &mut Slot,
+        r: &mut Rollout,
+        step: Result<Transition, StepError>,
+        action: Vec<f64>,
+    ) -> Result<(), PpoError> {
+        let step = step.map_err(|source| PpoError::Step {
             environment: Some(e),
             source,
         })?;
@@ -532,7 +563,6 @@ impl Ppo {
         r.bootstraps.push(bootstrap);
         r.raw_observations
             .push(std::mem::replace(&mut slot.observation, step.observation));
-        r.observations.push(observation);
         r.actions.push(action);
         r.rewards.push(step.reward);
         r.dones.push(step.done);

@@ -3,13 +3,12 @@
 //!
 //! `cargo run --release -p vsrlab-tasks --example evogym_speed [steps] [task name part] [lanes]`;
 //! EvoGym's own environments with the same body and gait: `bench/evogym/tasks.py`
-//! (docs/multimaterial.md has both). With `lanes`, also the physics alone: the world stepped
-//! alone, and 4 and 8 episodes of it in population lanes (`MassSpringLanes`), µs per step and
-//! episode.
+//! (docs/multimaterial.md has both). With `lanes`, also the environment stepped alone and 4 and
+//! 8 of its episodes stepped together in population lanes (`EnvLanes`: observations and rewards
+//! included), µs per step and episode, the fastest of five alternating rounds.
 
 use std::time::Instant;
-use vsrlab_physics::mass_spring::{MassSpringLanes, MassSpringWorld};
-use vsrlab_tasks::kinds::evogym::{EvoGymEnv, EvoGymTask, MaterialGrid};
+use vsrlab_tasks::kinds::evogym::{EnvLanes, EvoGymEnv, EvoGymTask, MaterialGrid};
 
 fn gait(t: usize, n: usize) -> Vec<f64> {
     (0..n)
@@ -60,16 +59,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
         if lanes {
             env.reset(0);
-            let world = env.world().clone();
             // five alternating rounds, the fastest of each (this machine's timings wander)
             let (mut alone, mut four, mut eight) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
             for _ in 0..5 {
-                alone = alone.min(physics_alone(&world, &actions, steps / 5));
-                four = four.min(physics_in_lanes::<4>(&world, &actions, steps / 5)?);
-                eight = eight.min(physics_in_lanes::<8>(&world, &actions, steps / 5)?);
+                alone = alone.min(alone_rate(&env, &actions, steps / 5)?);
+                four = four.min(lanes_rate::<4>(&env, &actions, steps / 5)?);
+                eight = eight.min(lanes_rate::<8>(&env, &actions, steps / 5)?);
             }
             println!(
-                "{:16} physics alone {alone:7.1} µs/step; 4 lanes {four:7.1} ({:.2}x); 8 lanes {eight:7.1} ({:.2}x) per episode",
+                "{:16} alone {alone:7.1} µs/step; 4 lanes {four:7.1} ({:.2}x); 8 lanes {eight:7.1} ({:.2}x) per episode",
                 task.name(),
                 alone / four,
                 alone / eight,
@@ -79,37 +77,38 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     Ok(())
 }
 
-/// µs per step of `world` stepped alone with the gait, restarted when it fails.
-fn physics_alone(start: &MassSpringWorld, actions: &[Vec<f64>], steps: usize) -> f64 {
-    let mut world = start.clone();
+/// µs per step of `start` stepped alone with the gait, restarted when its episode ends.
+fn alone_rate(start: &EvoGymEnv, actions: &[Vec<f64>], steps: usize) -> Result<f64, Box<dyn std::error::Error>> {
+    let mut env = start.clone();
     let clock = Instant::now();
     for t in 0..steps {
-        if world.step(&actions[t % 20]).is_err() {
-            world = start.clone();
+        if env.is_over() {
+            env = start.clone();
         }
+        env.step(&actions[t % 20])?;
     }
-    clock.elapsed().as_secs_f64() / steps as f64 * 1e6
+    Ok(clock.elapsed().as_secs_f64() / steps as f64 * 1e6)
 }
 
 /// µs per step and episode of N episodes of `start` in lanes, each a twentieth of the gait ahead
-/// of the last, a failed episode replaced by a fresh one.
-fn physics_in_lanes<const N: usize>(
-    start: &MassSpringWorld,
+/// of the last, an ended episode replaced by a fresh one.
+fn lanes_rate<const N: usize>(
+    start: &EvoGymEnv,
     actions: &[Vec<f64>],
     steps: usize,
 ) -> Result<f64, Box<dyn std::error::Error>> {
-    let mut lanes = MassSpringLanes::<N>::new(start);
-    let mut worlds = vec![start.clone(); N];
+    let mut lanes = EnvLanes::<N>::new(start);
+    let mut envs = vec![start.clone(); N];
     let rounds = steps.div_ceil(N);
     let clock = Instant::now();
     for t in 0..rounds {
+        for env in envs.iter_mut().filter(|e| e.is_over()) {
+            *env = start.clone();
+        }
         let targets: Vec<&[f64]> = (0..N).map(|l| actions[(t + l) % 20].as_slice()).collect();
-        let mut borrowed: Vec<&mut MassSpringWorld> = worlds.iter_mut().collect();
-        let reports = lanes.step(&mut borrowed, &targets)?;
-        for (world, report) in worlds.iter_mut().zip(reports) {
-            if matches!(report, Some(Err(_))) {
-                *world = start.clone();
-            }
+        let mut borrowed: Vec<&mut EvoGymEnv> = envs.iter_mut().collect();
+        for step in lanes.step(&mut borrowed, &targets)? {
+            step?;
         }
     }
     Ok(clock.elapsed().as_secs_f64() / (rounds * N) as f64 * 1e6)

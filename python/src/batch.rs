@@ -122,7 +122,7 @@ impl PyBatchEvaluator {
             .map_err(|e| value_error(format!("genotype: {e}")))?;
         // through its robot file, which validates it
         let robot = any_robot_from_json(&robot.to_json(None), "genotype").map_err(value_error)?;
-        Ok(PyRobot { robot })
+        Ok(PyRobot::trained(robot))
     }
 
     /// The records of every row (fitness, distance, velocity, body, error), as a list of dicts'

@@ -16,6 +16,19 @@ const DEFAULT_DURATION: f64 = 30.0;
 #[derive(Clone)]
 pub struct PyRobot {
     pub(crate) robot: AnyRobot,
+    /// Made from short forms (its weights, if any, drawn at random): a task may give it the
+    /// brain it runs with (`RobotDescription::for_task`), as the CLI's `simulate --body` does.
+    pub(crate) untrained: bool,
+}
+
+impl PyRobot {
+    /// A robot read from a file or made from a genotype: its brain is kept as it is.
+    pub(crate) fn trained(robot: AnyRobot) -> PyRobot {
+        PyRobot {
+            robot,
+            untrained: false,
+        }
+    }
 }
 
 #[pymethods]
@@ -33,21 +46,21 @@ impl PyRobot {
             preset,
         })
         .map_err(|e| value_error(format!("{}: {}", e.part(), e.message())))?;
-        Ok(PyRobot { robot })
+        Ok(PyRobot { robot, untrained: true })
     }
 
     /// Reads a robot file (either kind).
     #[staticmethod]
     fn load(path: PathBuf) -> PyResult<Self> {
         let robot = load_any_robot(&path).map_err(value_error)?;
-        Ok(PyRobot { robot })
+        Ok(PyRobot::trained(robot))
     }
 
     /// A robot from a robot file's JSON text.
     #[staticmethod]
     fn from_json(text: &str) -> PyResult<Self> {
         let robot = any_robot_from_json(text, "robot").map_err(value_error)?;
-        Ok(PyRobot { robot })
+        Ok(PyRobot::trained(robot))
     }
 
     /// Writes the robot file (atomically), with an optional note.
@@ -138,7 +151,13 @@ pub fn simulate<'py>(
     } else {
         TraceLevel::None
     };
-    let any = robot.robot.clone();
+    // a robot whose brain depends on the task (EvoGym's) runs as the task runs it, as in the
+    // CLI's simulate
+    let any = robot
+        .robot
+        .description()
+        .for_task(spec.task(), robot.untrained)
+        .unwrap_or_else(|| robot.robot.clone());
     let (outcome, written) = py
         .detach(move || -> Result<_, String> {
             let outcome = episode::run(any.as_robot(), spec.task(), seed, level).map_err(|e| e.to_string())?;

@@ -82,6 +82,19 @@ def test_bad_simulate_arguments_raise_value_error(kwargs, pattern):
         vsrlab.simulate(**kwargs)
 
 
+def test_an_evogym_short_form_takes_the_observation_of_the_task_it_runs(vsrlab_bin, tmp_path):
+    # issue 56, item 7: Python's simulate kept Walker-v0's observation and refused BridgeWalker
+    body = "evogym:33333/33333/33333/33333/33333"
+    ours = vsrlab.simulate(body, task="bridge-walker", duration=0.03)
+    out = cli(vsrlab_bin, "simulate", "--body", body, "--task", "bridge-walker", "--duration", "0.03", "--json")
+    assert json.loads(out)["reward"] == ours["reward"] and ours["steps"] == 10
+    # a robot file keeps its brain: weights made for Walker-v0 are refused on BridgeWalker
+    path = tmp_path / "walker.json"
+    vsrlab.Robot(body).save(path)
+    with pytest.raises(ValueError, match="robot.env"):
+        vsrlab.simulate(str(path), task="bridge-walker", duration=0.03)
+
+
 def test_short_forms_of_every_kind_take_their_kinds_defaults(vsrlab_bin):
     # issue 56, item 1: simulate() gave every body the voxel robots' preset 2021
     evogym = vsrlab.simulate("evogym:33333/33333/33333/33333/33333", task="walker", duration=0.2)

@@ -141,27 +141,35 @@ impl Summary {
         s
     }
 
-    /// Markdown: the per-setting table, then a matrix of p-values per metric.
+    /// Markdown: the per-setting table (its ISI columns only when some run has a final ISI, that
+    /// is, when species were analysed), then a matrix of p-values per metric.
     pub fn to_markdown(&self) -> String {
         let mut s = String::new();
+        let with_isi = self.settings.iter().any(|x| !x.final_isi.is_empty());
+        let (isi_head, isi_rule) = match with_isi {
+            true => (" median final ISI | sd final ISI |", "---:|---:|"),
+            false => ("", ""),
+        };
         let _ = writeln!(
             s,
-            "| setting | runs | median best {f} | sd best {f} | median final ISI | sd final ISI |",
+            "| setting | runs | median best {f} | sd best {f} |{isi_head}",
             f = self.fitness
         );
-        let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|");
+        let _ = writeln!(s, "|---|---:|---:|---:|{isi_rule}");
         for x in &self.settings {
             let (b, i) = (finite(&x.best), finite(&x.final_isi));
             let dash = |v: f64| if v.is_finite() { format!("{v:.4}") } else { "–".into() };
+            let isi = match with_isi {
+                true => format!(" {} | {} |", dash(median(&i)), dash(std_dev(&i))),
+                false => String::new(),
+            };
             let _ = writeln!(
                 s,
-                "| {} | {} | {} | {} | {} | {} |",
+                "| {} | {} | {} | {} |{isi}",
                 x.name,
                 x.best.len(),
                 dash(median(&b)),
                 dash(std_dev(&b)),
-                dash(median(&i)),
-                dash(std_dev(&i))
             );
         }
         for (metric, title) in [
@@ -235,6 +243,19 @@ mod tests {
             "{md}"
         );
         assert!(s.pvalues_csv().contains("best,es,ga,0,0.1,exact"));
+        assert!(md.contains("| es | 3 | 2.0000 | 1.0000 | 1.5000 | 0.5000 |"), "{md}");
         assert_eq!(csv_field("a,b"), "\"a,b\"");
+        // without species, no ISI columns (not a column of dashes)
+        let plain = Summary::new(
+            "velocity",
+            vec![SettingSummary {
+                name: "es".into(),
+                best: vec![1.0, 2.0, 3.0],
+                final_isi: vec![],
+            }],
+        );
+        let md = plain.to_markdown();
+        assert!(!md.contains("ISI"), "{md}");
+        assert!(md.contains("| es | 3 | 2.0000 | 1.0000 |\n"), "{md}");
     }
 }

@@ -174,18 +174,34 @@ impl ExperimentData {
     }
 
     /// What the fitness is: the task's metric (`velocity`, `distance`), the first objective's
-    /// metric of a multi-objective task, or `velocity` when unset.
+    /// metric of a multi-objective task; when the file sets none, the task kind's own default
+    /// (an EvoGym task's `reward`, locomotion's `velocity`), or `velocity` for a task this
+    /// version cannot read.
     pub fn fitness_kind(&self) -> String {
         let first = match self.config_value("task.fitness") {
             Some(toml::Value::Array(items)) => items.first(),
             other => other,
         };
         let metric = match first {
-            Some(toml::Value::String(s)) => Some(s.as_str()),
-            Some(toml::Value::Table(t)) => t.get("metric").and_then(|m| m.as_str()),
+            Some(toml::Value::String(s)) => Some(s.clone()),
+            Some(toml::Value::Table(t)) => t.get("metric").and_then(|m| m.as_str()).map(str::to_string),
             _ => None,
         };
-        metric.unwrap_or("velocity").to_string()
+        metric
+            .or_else(|| self.default_objective())
+            .unwrap_or_else(|| "velocity".to_string())
+    }
+
+    /// The first objective the experiment's task has by default (its `[task]` table read as the
+    /// runner reads it).
+    fn default_objective(&self) -> Option<String> {
+        let table = self
+            .config_value("task")
+            .cloned()
+            .unwrap_or(toml::Value::Table(Default::default()));
+        let json = serde_json::to_value(table).ok()?;
+        let spec = vsrlab_tasks::registry::TaskSpec::from_json(json).ok()?;
+        spec.task().objectives().first().map(|o| o.metric.clone())
     }
 }
 
@@ -538,6 +554,10 @@ mod tests {
         assert_eq!(two.fitness_kind(), "locomotion", "the first objective of several");
         two.config = toml::from_str("[task]\nfitness = \"distance\"").unwrap();
         assert_eq!(two.fitness_kind(), "distance");
+        // without `fitness`, the task kind's own objective (issue 56: an EvoGym run's reward was
+        // called velocity)
+        two.config = toml::from_str("[task]\nkind = \"evogym\"\nenv = \"BridgeWalker-v0\"").unwrap();
+        assert_eq!(two.fitness_kind(), "reward");
         assert_eq!(exps[0].run_label(run), format!("{}/run-00", root.join("a").display()));
         assert_eq!(run.files().best_robot(), root.join("a/run-00/best.robot.json"));
         assert!(matches!(

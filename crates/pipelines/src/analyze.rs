@@ -171,7 +171,7 @@ pub fn analyze(
             a.path("pareto-robots").display()
         ));
     }
-    a.best_robots(&setups)?;
+    let best_table = a.best_robots(&setups)?;
     let (classifiers, final_isi) = match &options.labels {
         Some(labels) => a.species(labels, &setups)?,
         None => (NO_LABELS.to_string(), vec![Vec::new(); settings.len()]),
@@ -197,6 +197,7 @@ pub fn analyze(
         classifiers: &classifiers,
         figures: &a.figures,
         species: options.labels.is_some(),
+        best_table,
     };
     a.table("summary.md", &page.to_markdown())?;
     Ok(AnalysisReport {
@@ -288,12 +289,13 @@ impl Analysis<'_> {
         write_output(&self.path(name), text.as_bytes())
     }
 
-    /// The best robots: `best.csv`, the descriptor scatter and the PCA.
-    fn best_robots(&mut self, setups: &[Option<ReplaySetup>]) -> Result<(), AnalysisError> {
+    /// The best robots: `best.csv`, the descriptor scatter and the PCA. Returns whether
+    /// `best.csv` was written (not without a replayable best robot).
+    fn best_robots(&mut self, setups: &[Option<ReplaySetup>]) -> Result<bool, AnalysisError> {
         let bests = best_robots(self.settings, self.experiments, setups, self.pool, self.progress);
         if bests.is_empty() {
             // a figure with no data is not written
-            return Ok(());
+            return Ok(false);
         }
         self.table("best.csv", &best_csv(self.settings, &bests))?;
         self.figure(
@@ -311,7 +313,7 @@ impl Analysis<'_> {
                 .progress
                 .note("note: fewer than 3 replayable best robots: no PCA figure"),
         }
-        Ok(())
+        Ok(true)
     }
 
     /// Species with the labels file: trains the classifiers, classifies every snapshot, writes

@@ -39,15 +39,28 @@ pub(crate) fn settings_of(experiments: &[ExperimentData]) -> Vec<Setting> {
         .collect()
 }
 
-/// What the fitness is when every experiment agrees (`velocity`, `distance`), else "fitness".
+/// What the fitness is when every experiment agrees (`velocity`, `distance`, a genotype kind's
+/// own, as a co-design body's `reward per step`), else "fitness".
 pub(crate) fn fitness_label(experiments: &[ExperimentData]) -> String {
-    let mut kinds: Vec<String> = experiments.iter().map(|e| e.fitness_kind()).collect();
+    let mut kinds: Vec<String> = experiments.iter().map(fitness_of).collect();
     kinds.sort();
     kinds.dedup();
     if kinds.len() == 1 {
         kinds.remove(0)
     } else {
         "fitness".into()
+    }
+}
+
+/// What one experiment's fitness is: its genotype kind's name for it, or its task's objective.
+fn fitness_of(experiment: &ExperimentData) -> String {
+    let kind = match experiment.config.get("genotype") {
+        Some(toml::Value::Table(table)) => vsrlab_experiment::genotypes::decode_table(table.clone()).ok(),
+        _ => None,
+    };
+    match kind.and_then(|k| k.fitness_name()) {
+        Some(name) => name.to_string(),
+        None => experiment.fitness_kind(),
     }
 }
 

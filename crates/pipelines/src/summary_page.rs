@@ -24,6 +24,8 @@ pub(crate) struct SummaryPage<'a> {
     pub figures: &'a [FigureNote],
     /// Whether species were analysed (`isi.csv` was written).
     pub species: bool,
+    /// Whether `best.csv` was written (some run's best robot was replayed).
+    pub best_table: bool,
 }
 
 impl SummaryPage<'_> {
@@ -50,15 +52,14 @@ impl SummaryPage<'_> {
         for f in self.figures {
             let _ = writeln!(md, "- `{}.png`: {}", f.name, f.description);
         }
-        let _ = writeln!(
-            md,
-            "\nTables: `summary.csv` (per setting), `pvalues.csv` (pairwise tests), `best.csv` (best robot of each run){}.",
-            if self.species {
-                ", `isi.csv` (ISI per snapshot)"
-            } else {
-                ""
-            }
-        );
+        let mut tables = vec!["`summary.csv` (per setting)", "`pvalues.csv` (pairwise tests)"];
+        if self.best_table {
+            tables.push("`best.csv` (best robot of each run)");
+        }
+        if self.species {
+            tables.push("`isi.csv` (ISI per snapshot)");
+        }
+        let _ = writeln!(md, "\nTables: {}.", tables.join(", "));
         md
     }
 }

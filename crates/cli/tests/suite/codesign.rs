@@ -123,6 +123,13 @@ fn both_encodings_run_resume_and_are_analysed() {
     assert!(!analysis.join("graph-size.png").exists());
     let summary = std::fs::read_to_string(analysis.join("summary.md")).unwrap();
     assert!(summary.contains("share of the grid's cells present"), "{summary}");
+    // the fitness is named as the genotype kind defines it (a body's learned mean reward per
+    // step), not as the task's summed reward nor as a velocity
+    assert!(summary.contains("median best reward per step"), "{summary}");
+    assert!(
+        !summary.contains("velocity") && !summary.contains("final ISI"),
+        "{summary}"
+    );
     let figures = root.join("figures");
     let text = ok(&[
         "codesign",

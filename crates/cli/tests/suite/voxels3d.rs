@@ -96,6 +96,12 @@ evaluations = 8
     assert_eq!(text.matches("of kind voxel3d").count(), 1, "{text}");
     let summary = std::fs::read_to_string(analysis.join("summary.md")).unwrap();
     assert!(!summary.contains("descriptors.png"), "{summary}");
+    // no best.csv is written for them, and none is listed; no ISI columns without species
+    assert!(!analysis.join("best.csv").exists());
+    assert!(
+        !summary.contains("best.csv") && !summary.contains("final ISI"),
+        "{summary}"
+    );
 
     let bad = dir.path().join("bad.json");
     std::fs::write(&bad, best.replace("cube-2", "#.#")).unwrap();

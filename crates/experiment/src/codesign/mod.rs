@@ -18,5 +18,5 @@ pub use evaluator::{material_shares, BodyOf, CodesignEvaluator, MATERIAL_COLUMNS
 pub use learn::{learn, learned_robot, policy_brain, Episode, LearnError, Learned, LEARNING_CURVE, TRAINING_REWARD};
 pub use settings::{
     codesign_evaluator, column_figures, evogym_task, implied_representation, run_codesign, time_codesign, timed_ppo,
-    validate_codesign, TIMED_ITERATIONS,
+    validate_codesign, FITNESS_NAME, TIMED_ITERATIONS,
 };

@@ -139,6 +139,10 @@ pub fn time_codesign<G: Sync>(evaluator: &CodesignEvaluator<G>, genotypes: &[G])
     crate::genotypes::unless_every_evaluation_failed(&errors)
 }
 
+/// What a co-design body's fitness is: the learned policy's mean reward per step, off-line, after
+/// its last iteration (not the task's summed reward).
+pub const FITNESS_NAME: &str = "reward per step";
+
 /// The figure of the co-design kinds' logged body size: the share of the grid's cells present.
 pub fn column_figures() -> Vec<crate::genotypes::ColumnFigure> {
     vec![crate::genotypes::ColumnFigure {

@@ -171,6 +171,10 @@ impl GenotypeKind for CppnGenotype {
     fn column_figures(&self) -> Vec<super::ColumnFigure> {
         codesign::column_figures()
     }
+
+    fn fitness_name(&self) -> Option<&'static str> {
+        Some(codesign::FITNESS_NAME)
+    }
 }
 
 /// The registry entry of `kind = "cppn"`.

@@ -257,6 +257,10 @@ impl GenotypeKind for MaterialGridGenotype {
     fn column_figures(&self) -> Vec<super::ColumnFigure> {
         codesign::column_figures()
     }
+
+    fn fitness_name(&self) -> Option<&'static str> {
+        Some(codesign::FITNESS_NAME)
+    }
 }
 
 /// Stored co-design genotypes: their robots' brains are learned during the evaluation, so an

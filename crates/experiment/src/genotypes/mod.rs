@@ -115,6 +115,11 @@ pub trait GenotypeKind: Debug + Send + Sync + GenotypeCopy {
     fn column_figures(&self) -> Vec<ColumnFigure> {
         Vec::new()
     }
+    /// What its evaluations' fitness is, when it is not the task's first objective (a co-design
+    /// body's learned mean reward per step); `None`, the default: the task's.
+    fn fitness_name(&self) -> Option<&'static str> {
+        None
+    }
 }
 
 /// What a boxed [`GenotypeKind`] needs to be copied, compared and written; implemented for

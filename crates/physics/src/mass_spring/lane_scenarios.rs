@@ -123,15 +123,17 @@ fn lanes_refuse_worlds_of_another_shape_and_too_many_worlds() {
         ..MassSpringSettings::evogym()
     })
     .0;
-    let mut lanes = MassSpringLanes::<2>::new(&a);
+    let mut lanes = MassSpringLanes::<4>::new(&a);
     assert!(lanes.fits(&a) && !lanes.fits(&b));
     let before = bits(&a);
     let targets = vec![1.0; a.actuator_count()];
     assert!(lanes.step(&mut [&mut a, &mut b], &[&targets, &targets]).is_err());
     assert!(bits(&a) == before, "nothing stepped");
-    let (mut c, mut d) = (a.clone(), a.clone());
-    let three = lanes.step(&mut [&mut a, &mut c, &mut d], &[&targets, &targets, &targets]);
-    assert!(three.is_err());
+    let mut more = vec![a.clone(); 4];
+    let mut five: Vec<&mut MassSpringWorld> = more.iter_mut().collect();
+    five.push(&mut a);
+    let lists: Vec<&[f64]> = vec![&targets; 5];
+    assert!(lanes.step(&mut five, &lists).is_err(), "more worlds than lanes");
     assert!(
         lanes.step(&mut [&mut a], &[&targets, &targets]).is_err(),
         "a list per world"

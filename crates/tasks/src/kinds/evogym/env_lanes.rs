@@ -160,9 +160,8 @@ mod tests {
         let mixed = MaterialGrid::from_rows("13231/34443/32023/33033/40004").unwrap();
         for task in EvoGymTask::ALL {
             for grid in [&full, &mixed] {
-                // five environments in lanes of four and of eight: lanes without one, and more
-                // environments than lanes refused
-                let ran = alone_and_in_lanes::<8>(task, grid, 5, 12, (0.4, 1.8), 1);
+                // four environments in four lanes, and three (a lane without one)
+                let ran = alone_and_in_lanes::<4>(task, grid, 4, 12, (0.4, 1.8), 1);
                 assert!(ran.iter().all(|&r| r == 12), "{task:?}: {ran:?}");
                 alone_and_in_lanes::<4>(task, grid, 3, 6, (0.6, 1.6), 2);
             }
@@ -173,8 +172,9 @@ mod tests {
     fn refused_steps_are_each_environments_own() {
         let grid = MaterialGrid::from_rows("33333/33333/33333").unwrap();
         let env = EvoGymEnv::new(EvoGymTask::Walker, &grid).unwrap();
-        let mut lanes = EnvLanes::<2>::new(&env);
-        let (mut a, mut b, mut c) = (env.clone(), env.clone(), env.clone());
+        let mut lanes = EnvLanes::<4>::new(&env);
+        let (mut a, mut b) = (env.clone(), env.clone());
+        let mut extra = vec![env.clone(); 4];
         let good = vec![1.0; env.action_count()];
         let mut bad = good.clone();
         bad[3] = f64::NAN;
@@ -182,9 +182,10 @@ mod tests {
         assert!(out[0].is_ok());
         assert!(matches!(out[1], Err(EvoGymError::NonFiniteAction { index: 3, .. })));
         assert_eq!((a.steps(), b.steps()), (1, 0), "the refused one did not move");
-        assert!(lanes
-            .step(&mut [&mut a, &mut b, &mut c], &[&good, &good, &good])
-            .is_err());
+        let mut more: Vec<&mut EvoGymEnv> = extra.iter_mut().collect();
+        more.push(&mut a);
+        let five: Vec<&[f64]> = vec![&good; 5];
+        assert!(lanes.step(&mut more, &five).is_err(), "more environments than lanes");
         let other = EvoGymEnv::new(EvoGymTask::Walker, &MaterialGrid::from_rows("333/333").unwrap()).unwrap();
         assert!(!lanes.fits(&other));
     }

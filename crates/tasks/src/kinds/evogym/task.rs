@@ -178,7 +178,7 @@ impl Task for EvoGym {
 }
 
 /// Episodes of one group stepped together at most.
-const LANES: usize = 8;
+const LANES: usize = 4;
 
 impl EvoGym {
     /// The environment and brain of `robot`'s episode, checked as `run_episode` checks them.
@@ -514,7 +514,7 @@ mod tests {
                 .with_settings(&[("duration", serde_json::json!(0.15))])
                 .unwrap();
             let task = task.task();
-            // 10 robots: a full chunk of 8 lanes and a chunk of 2 with 6 idle lanes
+            // 10 robots: two full chunks of 4 lanes and a chunk of 2 with 2 idle lanes
             let robots = walkers(body, env, 1..11);
             let refs: Vec<&dyn Robot> = robots.iter().map(|r| r as &dyn Robot).collect();
             let groups: Vec<Option<String>> = refs.iter().map(|r| task.episode_group(*r)).collect();

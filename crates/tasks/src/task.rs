@@ -184,6 +184,29 @@ pub trait Task: Send + Sync + std::fmt::Debug {
     }
 }
 
+/// Test helper: runs `robots` through [`Task::run_episodes`] and each alone through
+/// [`Task::run_episode`], asserts that every batch outcome has the bits of its episode alone
+/// (steps, fitness, every metric), and returns the outcomes alone.
+#[cfg(test)]
+pub(crate) fn assert_batch_is_alone(task: &dyn Task, robots: &[&dyn Robot], seeds: &[u64]) -> Vec<Outcome> {
+    let bits = |values: &[f64]| values.iter().map(|v| v.to_bits()).collect::<Vec<u64>>();
+    let batch = task.run_episodes(robots, seeds);
+    let mut alone_outcomes = Vec::with_capacity(robots.len());
+    for ((robot, &seed), laned) in robots.iter().zip(seeds).zip(&batch) {
+        let alone = task
+            .run_episode(*robot, seed, TraceLevel::None, &mut |_, _| {})
+            .unwrap();
+        let laned = laned.as_ref().unwrap();
+        assert_eq!(laned.steps, alone.steps);
+        assert_eq!(bits(&laned.fitness), bits(&alone.fitness));
+        for (name, value) in &alone.metrics {
+            assert_eq!(laned.metrics[name].to_bits(), value.to_bits(), "{name}");
+        }
+        alone_outcomes.push(alone);
+    }
+    alone_outcomes
+}
+
 /// One summary episode per robot, one after the other: [`Task::run_episodes`]'s default, and
 /// what a task that steps batches together falls back to.
 pub fn one_by_one<T: Task + ?Sized>(

@@ -520,23 +520,8 @@ mod tests {
             let groups: Vec<Option<String>> = refs.iter().map(|r| task.episode_group(*r)).collect();
             assert!(groups[0].is_some() && groups.iter().all(|g| *g == groups[0]));
             let seeds: Vec<u64> = (0..10).collect();
-            let batch = task.run_episodes(&refs, &seeds);
-            let mut distances = Vec::new();
-            for ((robot, &seed), laned) in refs.iter().zip(&seeds).zip(&batch) {
-                let alone = task
-                    .run_episode(*robot, seed, TraceLevel::None, &mut |_, _| {})
-                    .unwrap();
-                let laned = laned.as_ref().unwrap();
-                assert_eq!(laned.steps, alone.steps);
-                assert_eq!(
-                    laned.fitness.iter().map(|f| f.to_bits()).collect::<Vec<_>>(),
-                    alone.fitness.iter().map(|f| f.to_bits()).collect::<Vec<_>>()
-                );
-                for (name, value) in &alone.metrics {
-                    assert_eq!(laned.metrics[name].to_bits(), value.to_bits(), "{env} {name}");
-                }
-                distances.push(alone.metrics["distance"]);
-            }
+            let alone = crate::task::assert_batch_is_alone(task, &refs, &seeds);
+            let mut distances: Vec<f64> = alone.iter().map(|o| o.metrics["distance"]).collect();
             // the robots moved, each its own way (not one episode compared with itself)
             distances.sort_by(f64::total_cmp);
             distances.dedup();

@@ -743,17 +743,8 @@ mod tests {
                 ..Affordance::default()
             };
             assert!(task.episode_group(refs[0]).is_some());
-            let batch = task.run_episodes(&refs, &seeds);
             let mut values = Vec::new();
-            for ((robot, &seed), laned) in refs.iter().zip(&seeds).zip(&batch) {
-                let alone = task
-                    .run_episode(*robot, seed, TraceLevel::None, &mut |_, _| {})
-                    .unwrap();
-                let laned = laned.as_ref().unwrap();
-                assert_eq!(laned.steps, alone.steps);
-                for (name, value) in &alone.metrics {
-                    assert_eq!(laned.metrics[name].to_bits(), value.to_bits(), "{evolved:?} {name}");
-                }
+            for alone in crate::task::assert_batch_is_alone(&task, &refs, &seeds) {
                 penalised += usize::from(alone.metrics["locomotion"] == task.d_max);
                 values.push(alone.metrics["locomotion-impassable"]);
             }

@@ -6,10 +6,7 @@
 
 use rayon::prelude::*;
 use vsrlab_learning::{Environment, StepError, Transition};
-use vsrlab_tasks::kinds::evogym::{EnvLanes, EvoGymEnv, EvoGymError, EvoGymTask, LaneStep, MaterialGrid};
-
-/// Environments of one training stepped together in population lanes, at most.
-const LANES: usize = 4;
+use vsrlab_tasks::kinds::evogym::{EnvLanes, EvoGymEnv, EvoGymError, EvoGymTask, LaneStep, MaterialGrid, LANES};
 
 /// An EvoGym task with one body, as a PPO environment.
 #[derive(Debug, Clone)]
@@ -17,7 +14,7 @@ pub struct EvoGymLearning {
     env: EvoGymEnv,
     /// The lanes of the group this environment leads in [`Environment::step_all`] (made at the
     /// first group step).
-    lanes: Option<Box<EnvLanes<LANES>>>,
+    lanes: Option<Box<EnvLanes>>,
     /// The policy's action shifted to EvoGym's units.
     targets: Vec<f64>,
     /// Steps after which an episode ends, when fewer than the task's own length.

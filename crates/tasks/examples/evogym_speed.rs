@@ -3,12 +3,12 @@
 //!
 //! `cargo run --release -p vsrlab-tasks --example evogym_speed [steps] [task name part] [lanes]`;
 //! EvoGym's own environments with the same body and gait: `bench/evogym/tasks.py`
-//! (docs/multimaterial.md has both). With `lanes`, also the environment stepped alone and 4 and
-//! 8 of its episodes stepped together in population lanes (`EnvLanes`: observations and rewards
+//! (docs/multimaterial.md has both). With `lanes`, also the environment stepped alone and four of
+//! its episodes stepped together in population lanes (`EnvLanes`: observations and rewards
 //! included), µs per step and episode, the fastest of five alternating rounds.
 
 use std::time::Instant;
-use vsrlab_tasks::kinds::evogym::{EnvLanes, EvoGymEnv, EvoGymTask, MaterialGrid};
+use vsrlab_tasks::kinds::evogym::{EnvLanes, EvoGymEnv, EvoGymTask, MaterialGrid, LANES};
 
 fn gait(t: usize, n: usize) -> Vec<f64> {
     (0..n)
@@ -60,17 +60,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         if lanes {
             env.reset(0);
             // five alternating rounds, the fastest of each (this machine's timings wander)
-            let (mut alone, mut four, mut eight) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
+            let (mut alone, mut laned) = (f64::INFINITY, f64::INFINITY);
             for _ in 0..5 {
                 alone = alone.min(alone_rate(&env, &actions, steps / 5)?);
-                four = four.min(lanes_rate::<4>(&env, &actions, steps / 5)?);
-                eight = eight.min(lanes_rate::<8>(&env, &actions, steps / 5)?);
+                laned = laned.min(lanes_rate(&env, &actions, steps / 5)?);
             }
             println!(
-                "{:16} alone {alone:7.1} µs/step; 4 lanes {four:7.1} ({:.2}x); 8 lanes {eight:7.1} ({:.2}x) per episode",
+                "{:16} alone {alone:7.1} µs/step; {LANES} lanes {laned:7.1} ({:.2}x) per episode",
                 task.name(),
-                alone / four,
-                alone / eight,
+                alone / laned,
             );
         }
     }
@@ -90,26 +88,22 @@ fn alone_rate(start: &EvoGymEnv, actions: &[Vec<f64>], steps: usize) -> Result<f
     Ok(clock.elapsed().as_secs_f64() / steps as f64 * 1e6)
 }
 
-/// µs per step and episode of N episodes of `start` in lanes, each a twentieth of the gait ahead
+/// µs per step and episode of [`LANES`] episodes of `start` in lanes, each a twentieth of the gait ahead
 /// of the last, an ended episode replaced by a fresh one.
-fn lanes_rate<const N: usize>(
-    start: &EvoGymEnv,
-    actions: &[Vec<f64>],
-    steps: usize,
-) -> Result<f64, Box<dyn std::error::Error>> {
-    let mut lanes = EnvLanes::<N>::new(start);
-    let mut envs = vec![start.clone(); N];
-    let rounds = steps.div_ceil(N);
+fn lanes_rate(start: &EvoGymEnv, actions: &[Vec<f64>], steps: usize) -> Result<f64, Box<dyn std::error::Error>> {
+    let mut lanes = EnvLanes::new(start);
+    let mut envs = vec![start.clone(); LANES];
+    let rounds = steps.div_ceil(LANES);
     let clock = Instant::now();
     for t in 0..rounds {
         for env in envs.iter_mut().filter(|e| e.is_over()) {
             *env = start.clone();
         }
-        let targets: Vec<&[f64]> = (0..N).map(|l| actions[(t + l) % 20].as_slice()).collect();
+        let targets: Vec<&[f64]> = (0..LANES).map(|l| actions[(t + l) % 20].as_slice()).collect();
         let mut borrowed: Vec<&mut EvoGymEnv> = envs.iter_mut().collect();
         for step in lanes.step(&mut borrowed, &targets)? {
             step?;
         }
     }
-    Ok(clock.elapsed().as_secs_f64() / (rounds * N) as f64 * 1e6)
+    Ok(clock.elapsed().as_secs_f64() / (rounds * LANES) as f64 * 1e6)
 }

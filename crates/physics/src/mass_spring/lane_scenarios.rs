@@ -43,21 +43,21 @@ fn bits(w: &MassSpringWorld) -> Vec<u64> {
 /// the lanes' gaits for `steps` steps, world `bad` given an infinite target at step 10; every
 /// report and every state must agree bit for bit. A world that fails is not stepped again. Returns
 /// the step at which each world failed, and its contacts.
-fn step_both<const N: usize>(
-    lanes: &mut MassSpringLanes<N>,
+fn step_both(
+    lanes: &mut MassSpringLanes,
     laned: &mut [MassSpringWorld],
     alone: &mut [MassSpringWorld],
     steps: usize,
     bad: usize,
 ) -> (Vec<Option<usize>>, Vec<usize>) {
     let actuators = alone[0].actuator_count();
-    let (mut failed, mut contacts) = (vec![None; N], vec![0; N]);
+    let (mut failed, mut contacts) = (vec![None; LANES], vec![0; LANES]);
     for step in 0..steps {
-        let mut targets: Vec<Vec<f64>> = (0..N).map(|l| gait(l, step, actuators)).collect();
+        let mut targets: Vec<Vec<f64>> = (0..LANES).map(|l| gait(l, step, actuators)).collect();
         if step == 10 {
             targets[bad][1] = f64::INFINITY;
         }
-        let live: Vec<usize> = (0..N).filter(|&l| failed[l].is_none()).collect();
+        let live: Vec<usize> = (0..LANES).filter(|&l| failed[l].is_none()).collect();
         let mut worlds: Vec<&mut MassSpringWorld> = laned
             .iter_mut()
             .enumerate()
@@ -104,7 +104,7 @@ fn every_lane_has_the_bits_of_its_world_stepped_alone() {
             alone[3].set_position(p, 0.1 + 0.001 * (i % 4) as f64, 0.15 + 0.001 * (i / 4) as f64);
         }
         let mut laned = alone.clone();
-        let mut lanes = MassSpringLanes::<4>::new(&start);
+        let mut lanes = MassSpringLanes::new(&start);
         let (failed, contacts) = step_both(&mut lanes, &mut laned, &mut alone, 120, 2);
         assert!(failed[3].is_some(), "world 3 fails: {failed:?}");
         assert!(failed[..3].iter().all(Option::is_none), "{failed:?}");
@@ -123,7 +123,7 @@ fn lanes_refuse_worlds_of_another_shape_and_too_many_worlds() {
         ..MassSpringSettings::evogym()
     })
     .0;
-    let mut lanes = MassSpringLanes::<4>::new(&a);
+    let mut lanes = MassSpringLanes::new(&a);
     assert!(lanes.fits(&a) && !lanes.fits(&b));
     let before = bits(&a);
     let targets = vec![1.0; a.actuator_count()];

@@ -1,4 +1,4 @@
-//! [`MassSpringLanes`]: up to N worlds of one shape stepped together, the springs' and the
+//! [`MassSpringLanes`]: up to [`LANES`] worlds of one shape stepped together, the springs' and the
 //! integrator's work in f64 lanes (one per world), the contacts, checks and boxes world by world.
 //!
 //! The worlds stay their owners' (an environment's, an episode's): a step borrows them, loads
@@ -18,18 +18,23 @@ use super::spring_lanes::{project_bands, project_limits, Pull, SpringLanes};
 use super::{MassSpringError, MassSpringSettings, MassSpringWorld, StepReport};
 use vsrlab_lanes::{F64s, Lanes};
 
-/// Lanes for up to N worlds of one shape: what the laned work reads of the shape, and the laned
-/// state and buffers (reloaded from the worlds at every step).
+/// Worlds stepped together at most: four f64 lanes, one AVX2 register. One lane count, compiled
+/// here once: every count is a copy of the kernels in every crate that uses it (the test build,
+/// CI's longest stage, grew by a minute with two).
+pub const LANES: usize = 4;
+
+/// Lanes for up to [`LANES`] worlds of one shape: what the laned work reads of the shape, and
+/// the laned state and buffers (reloaded from the worlds at every step).
 #[derive(Debug, Clone)]
-pub struct MassSpringLanes<const N: usize> {
+pub struct MassSpringLanes {
     /// A world of the shape, for its settings and for checking the worlds of a step.
     model: MassSpringWorld,
     shape: LaneShape,
-    laned: Laned<F64s<N>>,
+    laned: Laned<F64s<LANES>>,
 }
 
 /// What a step did to each world (`None` for lanes without one).
-pub type LaneReports<const N: usize> = [Option<Result<StepReport, MassSpringError>>; N];
+pub type LaneReports = [Option<Result<StepReport, MassSpringError>>; LANES];
 
 /// The laned state and buffers.
 #[derive(Debug, Clone)]
@@ -41,7 +46,7 @@ struct Laned<L> {
     shift_y: Vec<L>,
 }
 
-impl<const N: usize> MassSpringLanes<N> {
+impl MassSpringLanes {
     /// Lanes for worlds of `model`'s shape: the same points, masses, springs, stiffnesses,
     /// bands, limits and settings (their states may differ).
     pub fn new(model: &MassSpringWorld) -> Self {
@@ -79,17 +84,17 @@ impl<const N: usize> MassSpringLanes<N> {
         same_shape(&self.model, world)
     }
 
-    /// One step of each of `worlds` (at most N, each of the lanes' shape) with its `targets`, as
+    /// One step of each of `worlds` (at most [`LANES`], each of the lanes' shape) with its `targets`, as
     /// [`MassSpringWorld::step`] would do it to each alone: the same reports, the same states.
-    /// Refuses more than N worlds, or a world of another shape, before stepping any.
+    /// Refuses more than [`LANES`] worlds, or a world of another shape, before stepping any.
     pub fn step(
         &mut self,
         worlds: &mut [&mut MassSpringWorld],
         targets: &[&[f64]],
-    ) -> Result<LaneReports<N>, MassSpringError> {
+    ) -> Result<LaneReports, MassSpringError> {
         self.check(worlds, targets)?;
-        let mut out: LaneReports<N> = std::array::from_fn(|_| None);
-        let mut stepping = [false; N];
+        let mut out: LaneReports = std::array::from_fn(|_| None);
+        let mut stepping = [false; LANES];
         for (l, world) in worlds.iter_mut().enumerate() {
             let started = world.start_step(targets[l]);
             stepping[l] = started.is_ok();
@@ -110,11 +115,11 @@ impl<const N: usize> MassSpringLanes<N> {
         Ok(out)
     }
 
-    /// The step's arguments: at most N worlds of the lanes' shape, one target list each.
+    /// The step's arguments: at most [`LANES`] worlds of the lanes' shape, one target list each.
     fn check(&self, worlds: &[&mut MassSpringWorld], targets: &[&[f64]]) -> Result<(), MassSpringError> {
-        if worlds.len() > N || targets.len() != worlds.len() {
+        if worlds.len() > LANES || targets.len() != worlds.len() {
             return Err(MassSpringError::Invalid(format!(
-                "{N} lanes step at most {N} worlds with one target list each, got {} worlds and {} lists",
+                "{LANES} lanes step at most {LANES} worlds with one target list each, got {} worlds and {} lists",
                 worlds.len(),
                 targets.len()
             )));
@@ -129,8 +134,8 @@ impl<const N: usize> MassSpringLanes<N> {
 
     /// One substep of the worlds in `stepping`; a world that fails leaves `stepping`, its
     /// error in `out`.
-    fn substep(&mut self, worlds: &mut [&mut MassSpringWorld], stepping: &mut [bool; N], out: &mut LaneReports<N>) {
-        let mut numbers = [0u64; N];
+    fn substep(&mut self, worlds: &mut [&mut MassSpringWorld], stepping: &mut [bool; LANES], out: &mut LaneReports) {
+        let mut numbers = [0u64; LANES];
         for (l, world) in worlds.iter_mut().enumerate().filter(|&(l, _)| stepping[l]) {
             let (n, contacts) = world.begin_substep();
             numbers[l] = n;

@@ -51,6 +51,6 @@ mod scenarios;
 pub use builder::{BodyDesc, MassSpringBuilder, PointDesc, QuadDesc, SpringDesc};
 pub use error::MassSpringError;
 pub use handles::{ActuatorId, BodyId, PointId, QuadId, SpringId};
-pub use lanes::{LaneReports, MassSpringLanes};
+pub use lanes::{LaneReports, MassSpringLanes, LANES};
 pub use settings::{ContactSettings, GroundPlane, MassSpringSettings};
 pub use world::{MassSpringWorld, StepReport};

@@ -1,9 +1,10 @@
-//! [`EnvLanes`]: up to N environments of one task and one robot body stepped together, their
+//! [`EnvLanes`]: up to [`LANES`] environments of one task and one robot body stepped together, their
 //! physics in population lanes ([`MassSpringLanes`]), each environment answering exactly as
 //! [`EvoGymEnv::step`] alone: the same rewards, observations and ends, bit for bit.
 
 use super::env::EvoGymEnv;
 use super::error::EvoGymError;
+pub use vsrlab_physics::mass_spring::LANES;
 use vsrlab_physics::mass_spring::{MassSpringLanes, MassSpringWorld};
 
 /// What one environment's step in lanes gave (its observation is [`EvoGymEnv::observation`]).
@@ -21,11 +22,11 @@ pub struct LaneStep {
 
 /// Lanes for environments of one task and body.
 #[derive(Debug, Clone)]
-pub struct EnvLanes<const N: usize> {
-    lanes: MassSpringLanes<N>,
+pub struct EnvLanes {
+    lanes: MassSpringLanes,
 }
 
-impl<const N: usize> EnvLanes<N> {
+impl EnvLanes {
     /// Lanes for environments like `env` (its task, its robot's body).
     pub fn new(env: &EvoGymEnv) -> Self {
         EnvLanes {
@@ -38,18 +39,18 @@ impl<const N: usize> EnvLanes<N> {
         self.lanes.fits(env.world())
     }
 
-    /// One step of each of `envs` (at most N, each fitting) with its `actions`, each answering
+    /// One step of each of `envs` (at most [`LANES`], each fitting) with its `actions`, each answering
     /// as [`EvoGymEnv::step`] would, in `envs`' order. An environment whose step is refused (its
     /// episode is over, its actions are wrong) gives its error and does not move. Refuses more
-    /// than N environments, or one that does not fit, before stepping any.
+    /// than [`LANES`] environments, or one that does not fit, before stepping any.
     pub fn step(
         &mut self,
         envs: &mut [&mut EvoGymEnv],
         actions: &[&[f64]],
     ) -> Result<Vec<Result<LaneStep, EvoGymError>>, EvoGymError> {
-        if envs.len() > N || actions.len() != envs.len() || !envs.iter().all(|e| self.fits(e)) {
+        if envs.len() > LANES || actions.len() != envs.len() || !envs.iter().all(|e| self.fits(e)) {
             return Err(EvoGymError::Lanes(format!(
-                "{N} lanes step at most {N} environments of one task and body, one action list each \
+                "{LANES} lanes step at most {LANES} environments of one task and body, one action list each \
                  (got {} environments, {} lists)",
                 envs.len(),
                 actions.len()
@@ -95,7 +96,7 @@ mod tests {
     /// actions (in [lo, hi], beyond EvoGym's range included), for `steps` steps or until all
     /// ended; every reward, end, observation and point must have the same bits. Returns the
     /// steps each ran.
-    fn alone_and_in_lanes<const N: usize>(
+    fn alone_and_in_lanes(
         task: EvoGymTask,
         grid: &MaterialGrid,
         n: usize,
@@ -105,7 +106,7 @@ mod tests {
     ) -> Vec<usize> {
         let first = EvoGymEnv::new(task, grid).unwrap();
         let (mut alone, mut laned) = (vec![first.clone(); n], vec![first.clone(); n]);
-        let mut lanes = EnvLanes::<N>::new(&first);
+        let mut lanes = EnvLanes::new(&first);
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
         let mut ran = vec![0; n];
         for step in 0..steps {
@@ -161,9 +162,9 @@ mod tests {
         for task in EvoGymTask::ALL {
             for grid in [&full, &mixed] {
                 // four environments in four lanes, and three (a lane without one)
-                let ran = alone_and_in_lanes::<4>(task, grid, 4, 12, (0.4, 1.8), 1);
+                let ran = alone_and_in_lanes(task, grid, 4, 12, (0.4, 1.8), 1);
                 assert!(ran.iter().all(|&r| r == 12), "{task:?}: {ran:?}");
-                alone_and_in_lanes::<4>(task, grid, 3, 6, (0.6, 1.6), 2);
+                alone_and_in_lanes(task, grid, 3, 6, (0.6, 1.6), 2);
             }
         }
     }
@@ -172,7 +173,7 @@ mod tests {
     fn refused_steps_are_each_environments_own() {
         let grid = MaterialGrid::from_rows("33333/33333/33333").unwrap();
         let env = EvoGymEnv::new(EvoGymTask::Walker, &grid).unwrap();
-        let mut lanes = EnvLanes::<4>::new(&env);
+        let mut lanes = EnvLanes::new(&env);
         let (mut a, mut b) = (env.clone(), env.clone());
         let mut extra = vec![env.clone(); 4];
         let good = vec![1.0; env.action_count()];
@@ -208,7 +209,7 @@ mod tests {
                 prop_assert!(grid.validate_robot().is_err());
                 return Ok(());
             }
-            alone_and_in_lanes::<4>(EvoGymTask::Walker, &grid, 4, 15, (-1.0, 3.0), seed);
+            alone_and_in_lanes(EvoGymTask::Walker, &grid, 4, 15, (-1.0, 3.0), seed);
         }
     }
 }

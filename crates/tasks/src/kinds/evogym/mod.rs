@@ -29,7 +29,7 @@ mod worlds;
 pub use action_stream::ActionStream;
 pub use assemble::{plan_object, ObjectPlan, PlacedObject, PlannedPoint, PlannedQuad, PlannedSpring, CELL, RIGID_BAND};
 pub use env::{EvoGymEnv, StepResult};
-pub use env_lanes::{EnvLanes, LaneStep};
+pub use env_lanes::{EnvLanes, LaneStep, LANES};
 pub use error::EvoGymError;
 pub use grid::{ConnectionError, MaterialGrid, MAX_ROBOT_SIDE, MAX_SIDE};
 pub use kind::{EvoGymTable, KIND};

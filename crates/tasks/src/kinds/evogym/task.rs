@@ -6,7 +6,7 @@
 use super::assemble::plan_object;
 use super::robot::{action_of, EvoGymRobot};
 use super::tasks::EvoGymTask;
-use super::{EnvLanes, EvoGymEnv};
+use super::{EnvLanes, EvoGymEnv, LANES};
 use crate::agent::{Agent, Robot};
 use crate::channels::{OBSTACLES, OBSTACLE_CORNERS, UNIT_FILL};
 use crate::episode::EpisodeError;
@@ -156,7 +156,7 @@ impl Task for EvoGym {
         };
         let mut results = Vec::with_capacity(robots.len());
         for (k, chunk) in prepared.chunks_mut(LANES).enumerate() {
-            let mut lanes = EnvLanes::<LANES>::new(&chunk[0].0);
+            let mut lanes = EnvLanes::new(&chunk[0].0);
             let mut refused = false;
             while !refused && chunk.iter().any(|(_, e)| !e.over) {
                 refused = self.step_together(&mut lanes, chunk).is_err();
@@ -176,9 +176,6 @@ impl Task for EvoGym {
         results
     }
 }
-
-/// Episodes of one group stepped together at most.
-const LANES: usize = 4;
 
 impl EvoGym {
     /// The environment and brain of `robot`'s episode, checked as `run_episode` checks them.
@@ -230,7 +227,7 @@ impl EvoGym {
     /// step fails ends with its error, as it would alone. Fails when the lanes refuse the chunk.
     fn step_together(
         &self,
-        lanes: &mut EnvLanes<LANES>,
+        lanes: &mut EnvLanes,
         chunk: &mut [(EvoGymEnv, Episode)],
     ) -> Result<(), super::EvoGymError> {
         let mut running: Vec<(&mut EvoGymEnv, &mut Episode)> =

@@ -125,6 +125,17 @@ fn lanes_refuse_worlds_of_another_shape_and_too_many_worlds() {
     .0;
     let mut lanes = MassSpringLanes::new(&a);
     assert!(lanes.fits(&a) && !lanes.fits(&b));
+    // a world of another build with the same constants fits, before and after a step remembers
+    // its build; one of another shape does not, however often it is asked
+    let mut twin = scene(MassSpringSettings::evogym()).0;
+    assert!(lanes.fits(&twin));
+    let one = vec![1.0; a.actuator_count()];
+    assert!(lanes.step(&mut [&mut twin], &[&one]).unwrap()[0]
+        .as_ref()
+        .unwrap()
+        .is_ok());
+    assert!(lanes.fits(&twin.clone()));
+    assert!(lanes.step(&mut [&mut b], &[&one]).is_err() && !lanes.fits(&b));
     let before = bits(&a);
     let targets = vec![1.0; a.actuator_count()];
     assert!(lanes.step(&mut [&mut a, &mut b], &[&targets, &targets]).is_err());

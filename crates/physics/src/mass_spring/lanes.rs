@@ -29,9 +29,15 @@ pub const LANES: usize = 4;
 pub struct MassSpringLanes {
     /// A world of the shape, for its settings and for checking the worlds of a step.
     model: MassSpringWorld,
+    /// Builds whose worlds were found to have the model's shape: their copies fit without
+    /// comparing every constant again at every step (a few thousand comparisons per world).
+    fitting_builds: Vec<u64>,
     shape: LaneShape,
     laned: Laned<F64s<LANES>>,
 }
+
+/// Builds a lanes value remembers as fitting, at most.
+const MAX_REMEMBERED: usize = 64;
 
 /// What a step did to each world (`None` for lanes without one).
 pub type LaneReports = [Option<Result<StepReport, MassSpringError>>; LANES];
@@ -74,6 +80,7 @@ impl MassSpringLanes {
         };
         MassSpringLanes {
             model: model.clone(),
+            fitting_builds: vec![model.build()],
             shape,
             laned,
         }
@@ -81,7 +88,19 @@ impl MassSpringLanes {
 
     /// Whether `world` has the lanes' shape.
     pub fn fits(&self, world: &MassSpringWorld) -> bool {
-        same_shape(&self.model, world)
+        self.fitting_builds.contains(&world.build()) || same_shape(&self.model, world)
+    }
+
+    /// [`Self::fits`], remembering a fitting world's build (at most a few dozen).
+    fn fits_remembered(&mut self, world: &MassSpringWorld) -> bool {
+        if self.fitting_builds.contains(&world.build()) {
+            return true;
+        }
+        let fits = same_shape(&self.model, world);
+        if fits && self.fitting_builds.len() < MAX_REMEMBERED {
+            self.fitting_builds.push(world.build());
+        }
+        fits
     }
 
     /// One step of each of `worlds` (at most [`LANES`], each of the lanes' shape) with its `targets`, as
@@ -116,7 +135,7 @@ impl MassSpringLanes {
     }
 
     /// The step's arguments: at most [`LANES`] worlds of the lanes' shape, one target list each.
-    fn check(&self, worlds: &[&mut MassSpringWorld], targets: &[&[f64]]) -> Result<(), MassSpringError> {
+    fn check(&mut self, worlds: &[&mut MassSpringWorld], targets: &[&[f64]]) -> Result<(), MassSpringError> {
         if worlds.len() > LANES || targets.len() != worlds.len() {
             return Err(MassSpringError::Invalid(format!(
                 "{LANES} lanes step at most {LANES} worlds with one target list each, got {} worlds and {} lists",
@@ -124,7 +143,7 @@ impl MassSpringLanes {
                 targets.len()
             )));
         }
-        match worlds.iter().position(|w| !self.fits(w)) {
+        match worlds.iter().position(|w| !self.fits_remembered(w)) {
             Some(l) => Err(MassSpringError::Invalid(format!(
                 "world {l} has another shape than the lanes' (points, springs, limits or settings)"
             ))),

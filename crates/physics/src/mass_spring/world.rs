@@ -34,7 +34,13 @@ pub struct MassSpringWorld {
     pub(super) projection: Projection,
     rk4: Rk4,
     substeps_done: u64,
+    /// Which build this world is a copy of: copies share the build's constants (nothing changes
+    /// them after the build), so lanes that checked one copy's shape need not check the others'.
+    build: u64,
 }
+
+/// Builds so far, numbering them (no result depends on the numbers).
+static BUILDS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
 
 impl MassSpringWorld {
     pub(crate) fn assemble(
@@ -56,6 +62,7 @@ impl MassSpringWorld {
             projection,
             rk4,
             substeps_done: 0,
+            build: BUILDS.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
         }
     }
 
@@ -195,6 +202,11 @@ impl MassSpringWorld {
     pub fn spring_length(&self, s: SpringId) -> f64 {
         let (a, b) = (self.springs.a[s.index()] as usize, self.springs.b[s.index()] as usize);
         length(&self.points.x, &self.points.y, a, b)
+    }
+
+    /// The number of the build this world is a copy of.
+    pub(crate) fn build(&self) -> u64 {
+        self.build
     }
 
     /// Substeps run since the world was built.

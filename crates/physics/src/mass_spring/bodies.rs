@@ -49,6 +49,17 @@ impl Bodies {
         self.neighbours[self.neighbour_offsets[b] + i * n + j]
     }
 
+    /// Whether `other` has the same quads, sides, bodies and boundary slots (the topology the
+    /// contacts read; boxes and neighbours aside).
+    pub fn same_quads(&self, other: &Bodies) -> bool {
+        self.quad_points == other.quad_points
+            && self.quad_sides == other.quad_sides
+            && self.walked_sides == other.walked_sides
+            && self.offsets == other.offsets
+            && self.boundary == other.boundary
+            && self.all_fixed == other.all_fixed
+    }
+
     /// Recomputes the boxes of every body that can move (`all = true`: of every body).
     pub fn update_boxes(&mut self, x: &[f64], y: &[f64], all: bool) {
         self.fixed_boxes_version += u64::from(all);

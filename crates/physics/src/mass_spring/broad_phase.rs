@@ -13,6 +13,7 @@
 //! sweep over every slot, at the cost of the moving slots.
 
 use super::bodies::Bodies;
+use super::quad_geometry::Aabb;
 
 /// The sorted slots and the candidate pairs of the current substep, kept between substeps.
 #[derive(Debug, Clone)]
@@ -51,9 +52,15 @@ impl BroadPhase {
     /// are both all fixed, in sweep order. Allocates nothing once the pair list has grown to its
     /// largest size.
     pub fn update(&mut self, bodies: &Bodies) {
-        self.sort(bodies);
+        self.update_over(&bodies.boxes, Some(bodies.fixed_boxes_version));
+    }
+
+    /// [`BroadPhase::update`] over the slot boxes `boxes` (of one world, or the union of several
+    /// worlds' boxes slot by slot); `fixed_version` is the world's `fixed_boxes_version`, `None`
+    /// when the fixed slots must be sorted again (boxes of several worlds).
+    pub fn update_over(&mut self, boxes: &[Aabb], fixed_version: Option<u64>) {
+        self.sort(boxes, fixed_version);
         self.pairs.clear();
-        let boxes = &bodies.boxes;
         let key = |s: u32| (boxes[s as usize].min_x, s);
         let (fixed, moving) = (&self.fixed_order, &self.moving_order);
         let (mut i, mut j) = (0, 0);
@@ -107,18 +114,18 @@ impl BroadPhase {
     }
 
     /// The fixed slots sorted when their boxes may have changed, the moving ones every time.
-    fn sort(&mut self, bodies: &Bodies) {
-        if self.sorted_for != Some(bodies.fixed_boxes_version) {
-            insertion_sort(&mut self.fixed_order, bodies);
-            self.sorted_for = Some(bodies.fixed_boxes_version);
+    fn sort(&mut self, boxes: &[Aabb], fixed_version: Option<u64>) {
+        if fixed_version.is_none() || self.sorted_for != fixed_version {
+            insertion_sort(&mut self.fixed_order, boxes);
+            self.sorted_for = fixed_version;
         }
-        insertion_sort(&mut self.moving_order, bodies);
+        insertion_sort(&mut self.moving_order, boxes);
     }
 }
 
 /// Insertion sort of slots by (left side, index): linear when little moved.
-fn insertion_sort(order: &mut [u32], bodies: &Bodies) {
-    let key = |s: u32| (bodies.boxes[s as usize].min_x, s);
+fn insertion_sort(order: &mut [u32], boxes: &[Aabb]) {
+    let key = |s: u32| (boxes[s as usize].min_x, s);
     for i in 1..order.len() {
         let s = order[i];
         let k = key(s);
@@ -133,7 +140,7 @@ fn insertion_sort(order: &mut [u32], bodies: &Bodies) {
 
 /// Strict order on (coordinate, index); coordinates are finite (the world undoes non-finite
 /// substeps before boxes are updated).
-fn less(a: (f64, u32), b: (f64, u32)) -> bool {
+pub(crate) fn less(a: (f64, u32), b: (f64, u32)) -> bool {
     a.0 < b.0 || (a.0 == b.0 && a.1 < b.1)
 }
 

@@ -52,17 +52,58 @@ fn quad_into_quad(
         if o.contains(&corner) || !other_box.contains(points.x[p], points.y[p]) {
             continue;
         }
-        let (ox, oy) = (o.map(|q| points.x[q as usize]), o.map(|q| points.y[q as usize]));
-        if !point_in_quad(points.x[p], points.y[p], ox, oy) {
-            continue;
-        }
-        let own = [(k + 3) % 4, k].map(|s| bodies.walked_sides[main_quad][s]);
-        if let Some((a, b, depth)) = exit_side(bodies, points, other, p, own) {
-            push_out(points, c, p, a, b, depth, weight);
+        if let Some(forces) = corner_contact(bodies, points, c, main_quad, other, k, weight) {
+            forces.add_to(points);
             contacts += 1;
         }
     }
     contacts
+}
+
+/// The contact of corner `k` of quad `main_quad` with quad `other` (a corner inside its box and
+/// not one of its corners): the forces on the corner and on the ends of the side it is pushed out
+/// through, `None` when it is outside the quad or crosses no boundary side. The forces are
+/// returned, not added, so that lanes can add them in their own world's order.
+pub(crate) fn corner_contact(
+    bodies: &Bodies,
+    points: &Points,
+    c: &ContactSettings,
+    main_quad: usize,
+    other: usize,
+    k: usize,
+    weight: f64,
+) -> Option<ContactForces> {
+    let p = bodies.quad_points[main_quad][k] as usize;
+    let o = bodies.quad_points[other];
+    let (ox, oy) = (o.map(|q| points.x[q as usize]), o.map(|q| points.y[q as usize]));
+    if !point_in_quad(points.x[p], points.y[p], ox, oy) {
+        return None;
+    }
+    let own = [(k + 3) % 4, k].map(|s| bodies.walked_sides[main_quad][s]);
+    let (a, b, depth) = exit_side(bodies, points, other, p, own)?;
+    Some(push_out(points, c, p, a, b, depth, weight))
+}
+
+/// The forces of one contact: on the point pushed out, then on the two ends of the side, added in
+/// that order.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ContactForces {
+    pub adds: [(u32, f64, f64); 3],
+    /// A side shorter than [`MIN_SIDE`] pushes nothing (the contact still counts).
+    pub none: bool,
+}
+
+impl ContactForces {
+    /// Adds the forces to the points' contact forces, in order.
+    pub fn add_to(&self, points: &mut Points) {
+        if self.none {
+            return;
+        }
+        for &(i, fx, fy) in &self.adds {
+            points.contact_fx[i as usize] += fx;
+            points.contact_fy[i as usize] += fy;
+        }
+    }
 }
 
 /// The boundary side of `other` nearest to point `p` (distance to its line) among those that one
@@ -90,12 +131,23 @@ fn exit_side(
     best
 }
 
-/// Adds the penalty, damping and friction forces of point `p` against side a→b at `depth`.
-fn push_out(points: &mut Points, c: &ContactSettings, p: usize, a: usize, b: usize, depth: f64, weight: f64) {
+/// The penalty, damping and friction forces of point `p` against side a→b at `depth`.
+fn push_out(
+    points: &Points,
+    c: &ContactSettings,
+    p: usize,
+    a: usize,
+    b: usize,
+    depth: f64,
+    weight: f64,
+) -> ContactForces {
     let (sx, sy) = (points.x[b] - points.x[a], points.y[b] - points.y[a]);
     let len = norm(sx, sy);
     if len < MIN_SIDE {
-        return;
+        return ContactForces {
+            adds: [(0, 0.0, 0.0); 3],
+            none: true,
+        };
     }
     let (nx, ny) = (-sy / len, sx / len);
     let push = c.stiffness * (c.offset + depth);
@@ -107,27 +159,23 @@ fn push_out(points: &mut Points, c: &ContactSettings, p: usize, a: usize, b: usi
     let scale = c.friction * push;
     let friction = -c.friction_gain * scale * (vt.abs() / scale).tanh() * vt.signum();
     let (ffx, ffy) = (tx * friction, ty * friction);
-    add(
-        points,
-        p,
-        weight * (nx * (push - dp) + ffx),
-        weight * (ny * (push - dp) + ffy),
-    );
-    add(
-        points,
-        a,
-        -weight * (nx * (push + da) + ffx) / 2.0,
-        -weight * (ny * (push + da) + ffy) / 2.0,
-    );
-    add(
-        points,
-        b,
-        -weight * (nx * (push + db) + ffx) / 2.0,
-        -weight * (ny * (push + db) + ffy) / 2.0,
-    );
-}
-
-fn add(points: &mut Points, i: usize, fx: f64, fy: f64) {
-    points.contact_fx[i] += fx;
-    points.contact_fy[i] += fy;
+    let side = |i: usize, d: f64| {
+        (
+            i as u32,
+            -weight * (nx * (push + d) + ffx) / 2.0,
+            -weight * (ny * (push + d) + ffy) / 2.0,
+        )
+    };
+    ContactForces {
+        adds: [
+            (
+                p as u32,
+                weight * (nx * (push - dp) + ffx),
+                weight * (ny * (push - dp) + ffy),
+            ),
+            side(a, da),
+            side(b, db),
+        ],
+        none: false,
+    }
 }

@@ -5,16 +5,17 @@ use super::scenarios::grid;
 use super::*;
 
 /// Terrain, an actuated soft block on it, and an actuated rigid block (tight limits) beside it,
-/// on the ground when `settings` has one; with the soft and the rigid block's points.
-fn scene(settings: MassSpringSettings) -> (MassSpringWorld, Vec<PointId>, Vec<PointId>) {
+/// on the ground when `settings` has one; with the soft and the rigid block's points and the
+/// terrain's.
+fn scene(settings: MassSpringSettings) -> (MassSpringWorld, Vec<PointId>, Vec<PointId>, Vec<PointId>) {
     let mut b = MassSpringBuilder::new(settings);
-    grid(&mut b, (0.0, 0.0), (5, 1), true, true, false);
+    let terrain = grid(&mut b, (0.0, 0.0), (5, 1), true, true, false);
     let soft = grid(&mut b, (0.05, 0.11), (3, 2), false, false, true);
     let rigid = grid(&mut b, (0.55, 0.0), (2, 2), true, false, true);
     for cell in soft.sides.chunks(4).chain(rigid.sides.chunks(4)) {
         b.add_actuator(cell);
     }
-    (b.build().unwrap(), soft.points, rigid.points)
+    (b.build().unwrap(), soft.points, rigid.points, terrain.points)
 }
 
 /// Lane `lane`'s targets at `step`: a square wave of its own phase and period per actuator.
@@ -93,7 +94,7 @@ fn every_lane_has_the_bits_of_its_world_stepped_alone() {
             ..MassSpringSettings::evogym()
         },
     ] {
-        let (start, soft, rigid) = scene(settings);
+        let (start, soft, rigid, terrain) = scene(settings);
         let mut alone: Vec<MassSpringWorld> = (0..4).map(|_| start.clone()).collect();
         // worlds start apart: the rigid block of world 1 thrown at the soft one, world 3's soft
         // block squeezed into a corner of itself (it folds: self-overlap)
@@ -109,9 +110,18 @@ fn every_lane_has_the_bits_of_its_world_stepped_alone() {
         assert!(failed[3].is_some(), "world 3 fails: {failed:?}");
         assert!(failed[..3].iter().all(Option::is_none), "{failed:?}");
         assert!(contacts[..3].iter().all(|&c| c > 0), "contacts: {contacts:?}");
-        // the failed world's lane refilled with a fresh episode: it steps as a fresh world alone
+        // the failed world's lane refilled with a fresh episode: it steps as a fresh world alone,
+        // also when the new world's terrain was moved by hand (two of its top points raised into
+        // the soft block), which the lane must load instead of the terrain it held
         (laned[3], alone[3]) = (start.clone(), start.clone());
         step_both(&mut lanes, &mut laned, &mut alone, 40, 0);
+        let mut raised = start.clone();
+        for &p in &terrain[7..9] {
+            raised.set_position(p, raised.positions_x()[p.index()], 0.14);
+        }
+        (laned[3], alone[3]) = (raised.clone(), raised);
+        let (_, contacts) = step_both(&mut lanes, &mut laned, &mut alone, 40, 0);
+        assert!(contacts[3] > 0);
     }
 }
 

@@ -3,7 +3,8 @@
 //!
 //! The worlds stay their owners' (an environment's, an episode's): a step borrows them, loads
 //! their state into the lanes, and leaves each world as stepping it alone would. A substep runs
-//! its scalar start in every world (count, contact forces, the state to undo), then, in lanes,
+//! its contacts for all worlds together ([`ContactLanes`]), its scalar start in every world
+//! (count, the state to undo), then, in lanes,
 //! rest-length tracking, the RK4 step and both length projections, then writes the free points
 //! back and runs each world's scalar end (non-finite check, displacement velocities, boxes,
 //! self-overlap). Every lane has the bits of its world stepped alone: the laned kernels are the
@@ -12,6 +13,7 @@
 //! The lanes are plain arrays compiled with AVX2 enabled where the CPU has it (chosen at run
 //! time), else the baseline instructions, the same bits either way.
 
+use super::contact_lanes::ContactLanes;
 use super::lane_shape::LaneShape;
 use super::rk4_lanes::{PointLanes, Rk4Lanes};
 use super::spring_lanes::{project_bands, project_limits, Pull, SpringLanes};
@@ -34,6 +36,7 @@ pub struct MassSpringLanes {
     fitting_builds: Vec<u64>,
     shape: LaneShape,
     laned: Laned<F64s<LANES>>,
+    contacts: ContactLanes,
 }
 
 /// Builds a lanes value remembers as fitting, at most.
@@ -83,6 +86,7 @@ impl MassSpringLanes {
             fitting_builds: vec![model.build()],
             shape,
             laned,
+            contacts: ContactLanes::new(model),
         }
     }
 
@@ -155,11 +159,11 @@ impl MassSpringLanes {
     /// error in `out`.
     fn substep(&mut self, worlds: &mut [&mut MassSpringWorld], stepping: &mut [bool; LANES], out: &mut LaneReports) {
         let mut numbers = [0u64; LANES];
+        let contacts = self.contacts.compute(worlds, stepping);
         for (l, world) in worlds.iter_mut().enumerate().filter(|&(l, _)| stepping[l]) {
-            let (n, contacts) = world.begin_substep();
-            numbers[l] = n;
+            numbers[l] = world.begin_substep_after_contacts();
             if let Some(Ok(report)) = &mut out[l] {
-                report.contacts += contacts;
+                report.contacts += contacts[l];
             }
             let (points, state) = (&world.points, &mut self.laned.points);
             for i in self.shape.stage[0].indices() {
@@ -279,4 +283,5 @@ fn same_shape(a: &MassSpringWorld, b: &MassSpringWorld) -> bool {
         && sa.stages == sb.stages
         && a.projection.limit_spring == b.projection.limit_spring
         && a.projection.limit_band == b.projection.limit_band
+        && a.bodies.same_quads(&b.bodies)
 }

@@ -23,6 +23,7 @@ mod bodies;
 mod broad_phase;
 mod builder;
 mod contact;
+mod contact_lanes;
 mod error;
 mod forces;
 mod ground;

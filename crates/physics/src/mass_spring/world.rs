@@ -29,7 +29,7 @@ pub struct MassSpringWorld {
     pub(super) points: Points,
     pub(super) springs: Springs,
     actuators: Actuators,
-    bodies: Bodies,
+    pub(super) bodies: Bodies,
     broad: BroadPhase,
     pub(super) projection: Projection,
     rk4: Rk4,
@@ -37,9 +37,12 @@ pub struct MassSpringWorld {
     /// Which build this world is a copy of: copies share the build's constants (nothing changes
     /// them after the build), so lanes that checked one copy's shape need not check the others'.
     build: u64,
+    /// Names the positions of the fixed points: copies share it, and it changes whenever a point
+    /// is moved by hand, so lanes reload a world's terrain only when it may differ.
+    pub(super) fixed_points: u64,
 }
 
-/// Builds so far, numbering them (no result depends on the numbers).
+/// Builds and hand-moved positions so far, numbering them (no result depends on the numbers).
 static BUILDS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
 
 impl MassSpringWorld {
@@ -63,6 +66,7 @@ impl MassSpringWorld {
             rk4,
             substeps_done: 0,
             build: BUILDS.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
+            fixed_points: BUILDS.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
         }
     }
 
@@ -109,11 +113,18 @@ impl MassSpringWorld {
     /// forces (held through the substep) and remembers the state to undo; returns the substep's
     /// number and its contacts.
     pub(crate) fn begin_substep(&mut self) -> (u64, usize) {
+        let contacts = compute_contact_forces(&self.bodies, &mut self.broad, &mut self.points, &self.settings.contact);
+        (self.begin_substep_after_contacts(), contacts)
+    }
+
+    /// [`Self::begin_substep`] once the contact forces are in place (lanes compute those of
+    /// several worlds together): counts the substep and remembers the state to undo; returns
+    /// the substep's number.
+    pub(crate) fn begin_substep_after_contacts(&mut self) -> u64 {
         let n = self.substeps_done;
         self.substeps_done += 1;
-        let contacts = compute_contact_forces(&self.bodies, &mut self.broad, &mut self.points, &self.settings.contact);
         self.points.remember();
-        (n, contacts)
+        n
     }
 
     /// The part of substep `n` after the points moved: the non-finite check (undoing the
@@ -230,6 +241,7 @@ impl MassSpringWorld {
         self.points.x[p.index()] = x;
         self.points.y[p.index()] = y;
         self.bodies.update_boxes(&self.points.x, &self.points.y, true);
+        self.fixed_points = BUILDS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     }
 
     /// Sets a free point's velocity, both the integrated one and the displacement velocity that

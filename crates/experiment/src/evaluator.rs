@@ -306,7 +306,8 @@ impl<G, M: Mapper<G>> Evaluator<G> for RobotEvaluator<M> {
         if task.episode_batch() < 2 || self.level() != TraceLevel::None {
             return Ok(evaluate_each(self, genotypes, seeds, done));
         }
-        let groups = crate::batches::group(genotypes.len(), task.episode_batch(), |i| {
+        let threads = rayon::current_num_threads();
+        let groups = crate::batches::group(genotypes.len(), task.episode_batch(), threads, |i| {
             self.mapper
                 .robot(genotypes[i])
                 .ok()

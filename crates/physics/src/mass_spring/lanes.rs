@@ -1,13 +1,13 @@
 //! [`MassSpringLanes`]: up to [`LANES`] worlds of one shape stepped together, the springs' and the
-//! integrator's work in f64 lanes (one per world), the contacts, checks and boxes world by world.
+//! integrator's work in f64 lanes (one per world), the contacts found for all worlds together,
+//! the checks and boxes world by world.
 //!
 //! The worlds stay their owners' (an environment's, an episode's): a step borrows them, loads
-//! their state into the lanes, and leaves each world as stepping it alone would. A substep runs
-//! its contacts for all worlds together ([`ContactLanes`]), its scalar start in every world
-//! (count, the state to undo), then, in lanes,
-//! rest-length tracking, the RK4 step and both length projections, then writes the free points
-//! back and runs each world's scalar end (non-finite check, displacement velocities, boxes,
-//! self-overlap). Every lane has the bits of its world stepped alone: the laned kernels are the
+//! their state into the lanes, and leaves each world as stepping it alone would. A substep finds
+//! the contacts of all its worlds together ([`ContactLanes`]), runs its scalar start in every
+//! world (count, the state to undo), then, in lanes, rest-length tracking, the RK4 step and both
+//! length projections, then writes the free points back and runs each world's scalar end
+//! (non-finite check, displacement velocities, boxes, self-overlap). Every lane has the bits of its world stepped alone: the laned kernels are the
 //! scalar computations lane by lane, in the same order. A world whose episode ended is simply
 //! not passed again, and another episode's world takes its lane: lanes are refilled by the caller.
 //! The lanes are plain arrays compiled with AVX2 enabled where the CPU has it (chosen at run

@@ -154,26 +154,25 @@ impl Task for EvoGym {
             // one of them is refused: each gives its own answer alone
             return crate::task::one_by_one(self, robots, seeds);
         };
-        let mut results = Vec::with_capacity(robots.len());
-        for (k, chunk) in prepared.chunks_mut(LANES).enumerate() {
-            let mut lanes = EnvLanes::new(&chunk[0].0);
-            let mut refused = false;
-            while !refused && chunk.iter().any(|(_, e)| !e.over) {
-                refused = self.step_together(&mut lanes, chunk).is_err();
+        if prepared.is_empty() {
+            return Vec::new();
+        }
+        // the lanes step the first LANES episodes not over: one that ends is replaced by the
+        // batch's next, so the lanes stay full while the batch lasts
+        let mut lanes = EnvLanes::new(&prepared[0].0);
+        while prepared.iter().any(|(_, e)| !e.over) {
+            if self.step_together(&mut lanes, &mut prepared).is_err() {
+                // lanes that cannot take the batch (not expected of one group): each alone
+                return crate::task::one_by_one(self, robots, seeds);
             }
-            if refused {
-                // lanes that cannot take the chunk (not expected of one group): each alone
-                let (robots, seeds) = (&robots[k * LANES..], &seeds[k * LANES..]);
-                let n = chunk.len();
-                results.extend(crate::task::one_by_one(self, &robots[..n], &seeds[..n]));
-                continue;
-            }
-            results.extend(chunk.iter_mut().map(|(env, e)| match e.error.take() {
+        }
+        prepared
+            .iter_mut()
+            .map(|(env, e)| match e.error.take() {
                 Some(error) => Err(error),
                 None => Ok(self.outcome(env, e, None)),
-            }));
-        }
-        results
+            })
+            .collect()
     }
 }
 
@@ -223,15 +222,20 @@ impl EvoGym {
         Ok((env, episode))
     }
 
-    /// One step of every running episode of `chunk`, their physics in lanes; an episode whose
-    /// step fails ends with its error, as it would alone. Fails when the lanes refuse the chunk.
+    /// One step of the first [`LANES`] episodes of `batch` that are not over, their physics in
+    /// lanes; an episode whose step fails ends with its error, as it would alone. Fails when the
+    /// lanes refuse the episodes.
     fn step_together(
         &self,
         lanes: &mut EnvLanes,
-        chunk: &mut [(EvoGymEnv, Episode)],
+        batch: &mut [(EvoGymEnv, Episode)],
     ) -> Result<(), super::EvoGymError> {
-        let mut running: Vec<(&mut EvoGymEnv, &mut Episode)> =
-            chunk.iter_mut().filter(|(_, e)| !e.over).map(|(v, e)| (v, e)).collect();
+        let mut running: Vec<(&mut EvoGymEnv, &mut Episode)> = batch
+            .iter_mut()
+            .filter(|(_, e)| !e.over)
+            .take(LANES)
+            .map(|(v, e)| (v, e))
+            .collect();
         for (_, episode) in running.iter_mut() {
             episode.act();
         }
@@ -533,6 +537,30 @@ mod tests {
         assert_ne!(task.task().episode_group(other.as_robot()), group);
         let bridge = TaskSpec::parse("evogym:bridgewalker-v0").unwrap();
         assert_ne!(bridge.task().episode_group(walker.as_robot()), group);
+    }
+
+    /// Episodes that end early (unstable) leave their lanes to the batch's next robots: every
+    /// robot still gets the bits of its episode alone.
+    #[test]
+    fn lanes_refilled_as_episodes_end_give_every_robot_its_own_bits() {
+        let task = TaskSpec::parse("evogym:walker-v0")
+            .unwrap()
+            .with_settings(&[("duration", serde_json::json!(3.0))])
+            .unwrap();
+        // a body EvoGym itself ends as unstable under extreme actions, driven by brains whose
+        // large weights saturate their outputs
+        let mut robots = walkers("24223/40044/30004/30434/30030", "Walker-v0", 1..10);
+        for r in &mut robots {
+            let strong: Vec<f64> = r.brain.parameters().iter().map(|w| 40.0 * w).collect();
+            r.brain = r.brain.with_parameters(&strong).unwrap();
+        }
+        let refs: Vec<&dyn Robot> = robots.iter().map(|r| r as &dyn Robot).collect();
+        let seeds: Vec<u64> = (0..9).collect();
+        let alone = crate::task::assert_batch_is_alone(task.task(), &refs, &seeds);
+        let mut steps: Vec<u64> = alone.iter().map(|o| o.steps).collect();
+        steps.sort_unstable();
+        steps.dedup();
+        assert!(steps.len() >= 3, "episodes of different lengths: {steps:?}");
     }
 
     /// A batch with a robot its task refuses: every robot gets the answer it gets alone.

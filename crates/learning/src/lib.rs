@@ -11,6 +11,7 @@
 pub mod adam;
 pub mod environment;
 pub mod gaussian;
+pub mod mean_policy;
 pub mod mlp;
 pub mod mlp_batch;
 pub mod normalizer;
@@ -21,6 +22,7 @@ pub mod rollout;
 
 pub use adam::Adam;
 pub use environment::{Environment, StepError, Transition};
+pub use mean_policy::MeanPolicy;
 pub use mlp::Mlp;
 pub use mlp_batch::BatchPass;
 pub use normalizer::Normalizer;

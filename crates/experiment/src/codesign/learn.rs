@@ -4,9 +4,10 @@
 
 use crate::learning_env::EvoGymLearning;
 use vsrlab_brain::{BrainSpec, PolicySpec, TargetAction};
+use vsrlab_learning::mean_policy::{self, MeanPolicy};
 use vsrlab_learning::{Environment, Ppo, PpoConfig, PpoError};
 use vsrlab_tasks::kinds::evogym::{
-    EvoGymError, EvoGymRobot, EvoGymTask, MaterialGrid, TARGET_CENTRE, TARGET_HALF_RANGE, TARGET_RANGE,
+    EvoGymError, EvoGymRobot, EvoGymTask, MaterialGrid, LANES, TARGET_CENTRE, TARGET_HALF_RANGE, TARGET_RANGE,
 };
 
 /// The name of the learning curve among an evaluation's series: the off-line reward per step
@@ -70,16 +71,33 @@ pub fn learn(
     let env = EvoGymLearning::new(task, body)?.with_episode_steps(steps);
     let mut ppo = Ppo::new(env.observation_size(), env.action_size(), config.clone(), seed)?;
     let mut environments = vec![env.clone(); config.environments];
-    let mut offline = env;
+    let offline = env;
+    // the off-line episodes wait for a lane group's worth of policies (the last one does not
+    // wait) and run together, each with the bits of its episode alone
+    let mut waiting: Vec<MeanPolicy> = Vec::new();
     let mut points = Vec::new();
-    let stats = ppo.train_observed(&mut environments, |p, stats| {
-        let last = stats.is_some_and(|s| s.iteration + 1 == config.iterations);
-        if curve || last {
-            let (total, _) = p.episode(&mut offline, seed, steps)?;
+    let mut run_waiting = |waiting: &mut Vec<MeanPolicy>| -> Result<(), PpoError> {
+        let results = mean_policy::episodes(waiting, &offline, seed, steps);
+        waiting.clear();
+        for result in results {
+            let (total, _) = result?;
             points.push(total / steps as f64);
         }
+        Ok(())
+    };
+    let trained = ppo.train_observed(&mut environments, |p, stats| {
+        let last = stats.is_some_and(|s| s.iteration + 1 == config.iterations);
+        if curve || last {
+            waiting.push(MeanPolicy::of(p));
+            if waiting.len() == LANES || last {
+                run_waiting(&mut waiting)?;
+            }
+        }
         Ok::<(), PpoError>(())
-    })?;
+    });
+    // an iteration that failed came after the episodes still waiting: their error comes first
+    run_waiting(&mut waiting)?;
+    let stats = trained?;
     let fitness = *points.last().ok_or(LearnError::NoIteration)?;
     Ok(Learned {
         fitness,
@@ -125,6 +143,45 @@ mod tests {
     use super::*;
     use vsrlab_tasks::registry::TaskSpec;
     use vsrlab_tasks::TraceLevel;
+
+    /// The learning curve, whose off-line episodes wait and run in lane groups, has the bits of
+    /// the episodes run one by one after each iteration; an error-free training of 6 iterations
+    /// gives 7 points (two groups: 4, then 3 with the last).
+    #[test]
+    fn the_learning_curve_run_in_groups_is_the_curve_run_one_by_one() {
+        let body = MaterialGrid::from_rows("33333/34443/30003/40004/40004").unwrap();
+        let episode = Episode {
+            task: EvoGymTask::Walker,
+            steps: 40,
+        };
+        let config = PpoConfig {
+            iterations: 6,
+            environments: 2,
+            steps_per_environment: 16,
+            hidden: vec![8],
+            initial_log_std: 1.0,
+            ..PpoConfig::default()
+        };
+        let learned = learn(&body, episode, &config, true, 5).unwrap();
+        let env = EvoGymLearning::new(episode.task, &body).unwrap().with_episode_steps(40);
+        let mut ppo = Ppo::new(env.observation_size(), env.action_size(), config.clone(), 5).unwrap();
+        let (mut environments, mut offline) = (vec![env.clone(); 2], env);
+        let mut one_by_one = Vec::new();
+        ppo.train_observed(&mut environments, |p, _| {
+            let (total, _) = p.episode(&mut offline, 5, 40)?;
+            one_by_one.push((total / 40.0).to_bits());
+            Ok(())
+        })
+        .unwrap();
+        let grouped: Vec<u64> = learned.curve.iter().map(|v| v.to_bits()).collect();
+        assert_eq!(grouped.len(), 7);
+        assert_eq!(grouped, one_by_one);
+        assert_eq!(learned.fitness.to_bits(), one_by_one[6]);
+        let mut distinct = grouped.clone();
+        distinct.sort_unstable();
+        distinct.dedup();
+        assert!(distinct.len() > 1, "the policy changed the episodes");
+    }
 
     /// The saved robot replays, on the task, to the very reward its fitness came from: the
     /// policy brain gives the robot EvoGym's clipped target bit for bit (before, the robot's

@@ -1,5 +1,6 @@
-//! The best robot of every run: its morphology descriptors, and its features from a replay on
-//! the experiment's task (for the PCA and `best.csv`).
+//! The best robot of every run: its morphology descriptors (from its robot kind), and, for a 2D
+//! voxel robot, its features from a replay on the experiment's task (for the PCA and
+//! `best.csv`).
 
 use crate::replay::{replay, ReplaySetup};
 use crate::settings::Setting;
@@ -11,7 +12,7 @@ use vsrlab_analysis::morphology::MorphologyDescriptors;
 use vsrlab_analysis::progress::Progress;
 use vsrlab_analysis::report::csv_field;
 use vsrlab_analysis::results::ExperimentData;
-use vsrlab_tasks::files::{load_any_robot, load_robot};
+use vsrlab_tasks::files::load_any_robot;
 use vsrlab_tasks::RobotSpec;
 use vsrlab_tasks::TraceLevel;
 
@@ -39,9 +40,10 @@ struct Job<'a> {
     fitness: f64,
 }
 
-/// Loads and replays the best robot of every run that saved one, on `pool`. Robots that cannot
-/// be loaded are left out, and robots that cannot be replayed have no features; both with a
-/// warning.
+/// Loads the best robot of every run that saved one and replays the 2D voxel robots, on `pool`.
+/// Robots that cannot be loaded are left out, and robots that cannot be replayed have no
+/// features; both with a warning. Robots of kinds without morphology descriptors are left out
+/// with one note.
 pub(crate) fn best_robots(
     settings: &[Setting],
     experiments: &[ExperimentData],
@@ -66,45 +68,65 @@ pub(crate) fn best_robots(
             }
         }
     }
-    // best robots of other kinds (3D voxels, EvoGym, PSAs) are left out with one note, not a
-    // warning per run: these tables and figures read 2D voxel bodies
+    let found: Vec<Found> = pool.install(|| jobs.par_iter().map(|job| best_robot(job, progress)).collect());
+    // best robots of kinds without morphology descriptors (3D voxels, PSAs) are left out with
+    // one note, not a warning per run
     let mut others: Vec<&'static str> = Vec::new();
-    jobs.retain(|job| match load_any_robot(&job.path) {
-        Ok(robot) if robot.downcast_ref::<RobotSpec>().is_none() => {
-            others.push(robot.kind().name);
-            false
+    let mut bests = Vec::new();
+    for f in found {
+        match f {
+            Found::Robot(best) => bests.push(*best),
+            Found::Unreadable => {}
+            Found::WithoutDescriptors(kind) => others.push(kind),
         }
-        _ => true,
-    });
+    }
     if !others.is_empty() {
         let count = others.len();
         others.sort_unstable();
         others.dedup();
         progress.note(&format!(
-            "note: {count} best robot(s) of kind {}: best.csv and the descriptor figures read 2D voxel robots, so they are left out",
+            "note: {count} best robot(s) of kind {}: the morphology descriptors (best.csv and its figures) are defined for 2D grids of cells, so they are left out",
             others.join(", ")
         ));
     }
-    pool.install(|| jobs.par_iter().filter_map(|job| best_robot(job, progress)).collect())
+    bests
 }
 
-fn best_robot(job: &Job, progress: &dyn Progress) -> Option<BestRobot> {
-    let robot = load_robot(&job.path)
-        .map_err(|err| progress.note(&format!("warning: {err}")))
-        .ok()?;
-    let features = job.setup.and_then(|setup| {
-        replay(&robot, setup.task.task(), setup.best_robot_seed(), TraceLevel::Full)
+/// What loading one best robot gave.
+enum Found {
+    Robot(Box<BestRobot>),
+    /// Not loaded (a warning was given).
+    Unreadable,
+    /// A robot of a kind without morphology descriptors (3D voxels, PSAs).
+    WithoutDescriptors(&'static str),
+}
+
+fn best_robot(job: &Job, progress: &dyn Progress) -> Found {
+    let robot = match load_any_robot(&job.path) {
+        Ok(robot) => robot,
+        Err(err) => {
+            progress.note(&format!("warning: {err}"));
+            return Found::Unreadable;
+        }
+    };
+    let Some(descriptors) = robot.description().morphology() else {
+        return Found::WithoutDescriptors(robot.kind().name);
+    };
+    // the gait features read a 2D voxel robot's replay
+    let voxel_robot = robot.downcast_ref::<RobotSpec>();
+    let features = job.setup.zip(voxel_robot).and_then(|(setup, robot)| {
+        replay(robot, setup.task.task(), setup.best_robot_seed(), TraceLevel::Full)
             .map_err(|err| progress.note(&format!("warning: {}: {err}", job.path.display())))
             .ok()
             .map(|t| RobotFeatures::from_trace(&t, &FeatureParams::default()))
     });
-    Some(BestRobot {
+    Found::Robot(Box::new(BestRobot {
         setting: job.setting,
         run: job.run.clone(),
         fitness: job.fitness,
-        descriptors: MorphologyDescriptors::of(&robot.body),
+        descriptors,
         features,
-    })
+    }))
 }
 
 /// `best.csv`: every run's best robot with its fitness, descriptors and gait features (empty

@@ -121,6 +121,17 @@ fn both_encodings_run_resume_and_are_analysed() {
     ok(&["analyze", direct.to_str().unwrap(), "--out", analysis.to_str().unwrap()]);
     assert!(analysis.join("body-size.png").is_file());
     assert!(!analysis.join("graph-size.png").exists());
+    // the best robots (EvoGym bodies) have the thesis's morphology descriptors from their kind
+    // (issue 56, item 4: they were left out of best.csv and the descriptor figure)
+    let best = std::fs::read_to_string(analysis.join("best.csv")).unwrap();
+    let rows: Vec<&str> = best.lines().collect();
+    assert!(rows[0].contains(",voxels,elongation,compactness,"), "{best}");
+    assert_eq!(rows.len(), 3, "a row per run: {best}");
+    for row in &rows[1..] {
+        let voxels: usize = row.split(',').nth(3).unwrap().parse().unwrap();
+        assert!((1..=25).contains(&voxels), "{row}");
+    }
+    assert!(analysis.join("descriptors.png").is_file());
     let summary = std::fs::read_to_string(analysis.join("summary.md")).unwrap();
     assert!(summary.contains("share of the grid's cells present"), "{summary}");
     // the fitness is named as the genotype kind defines it (a body's learned mean reward per

@@ -125,6 +125,12 @@ pub trait RobotDescription: Robot + Debug {
     fn for_task(&self, _task: &dyn crate::task::Task, _untrained: bool) -> Option<AnyRobot> {
         None
     }
+    /// The thesis's morphology descriptors of the body (d_num, d_elong, d_compact: a 2D grid of
+    /// cells), for the analyses' tables and figures; `None` (the default) for a kind whose body
+    /// they are not defined for.
+    fn morphology(&self) -> Option<vsrlab_body::MorphologyDescriptors> {
+        None
+    }
     /// A boxed copy.
     fn clone_box(&self) -> Box<dyn RobotDescription>;
     /// The robot itself, for code of its own kind.

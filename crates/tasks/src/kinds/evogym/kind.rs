@@ -167,6 +167,19 @@ impl RobotDescription for EvoGymRobot {
         &KIND
     }
 
+    /// The descriptors of the grid's cells of any material, as a voxel body's.
+    fn morphology(&self) -> Option<vsrlab_body::MorphologyDescriptors> {
+        let grid = self.grid().ok()?;
+        let (w, h) = (grid.width(), grid.height());
+        // a morphology's rows run from the bottom, the grid's from the top
+        let cells = (0..h)
+            .flat_map(|y| (0..w).map(move |x| (x, h - 1 - y)))
+            .map(|(x, y)| grid.at(x, y) != super::Material::Empty)
+            .collect();
+        let body = vsrlab_body::Morphology::from_cells(w, h, cells).ok()?;
+        Some(vsrlab_body::MorphologyDescriptors::of(&body))
+    }
+
     fn for_task(&self, task: &dyn crate::task::Task, untrained: bool) -> Option<AnyRobot> {
         let task = task.as_any()?.downcast_ref::<super::EvoGym>()?;
         let template = self.brain.parameters().is_empty();
@@ -285,5 +298,33 @@ impl FixedBody for EvoGymTable {
 
     fn body_units(&self) -> usize {
         super::MaterialGrid::from_rows(&self.body).map_or(0, |g| g.cell_count())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn robot(body: &str) -> EvoGymRobot {
+        EvoGymRobot {
+            body: body.into(),
+            env: "Walker-v0".into(),
+            brain: BrainSpec::parse("mlp").unwrap(),
+        }
+    }
+
+    /// An EvoGym body's descriptors are those of the voxel body with a cell wherever the grid
+    /// has a material (any material, its rows read from the top), not of its actuators.
+    #[test]
+    fn morphology_descriptors_read_every_cell_of_any_material() {
+        let voxel =
+            |rows: &[&str]| vsrlab_body::MorphologyDescriptors::of(&vsrlab_body::Morphology::from_rows(rows).unwrap());
+        let l_shape = robot("3.../1.../4.../2222").morphology().unwrap();
+        assert_eq!(l_shape, voxel(&["#...", "#...", "#...", "####"]));
+        assert_eq!(l_shape.voxels, 7);
+        assert!(l_shape.elongation > 0.0 && l_shape.compactness < 1.0);
+        let full = robot("33333/33333/33333").morphology().unwrap();
+        assert_eq!((full.voxels, full.compactness), (15, 1.0));
+        assert!(robot("3x3").morphology().is_none(), "not a grid");
     }
 }

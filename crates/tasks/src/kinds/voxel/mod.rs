@@ -94,6 +94,10 @@ impl RobotDescription for RobotSpec {
         &KIND
     }
 
+    fn morphology(&self) -> Option<vsrlab_body::MorphologyDescriptors> {
+        Some(vsrlab_body::MorphologyDescriptors::of(&self.body))
+    }
+
     fn brain(&self) -> &vsrlab_brain::BrainSpec {
         &self.brain
     }

@@ -18,6 +18,19 @@ mkdirSync(shots, { recursive: true });
 const work = mkdtempSync(join(tmpdir(), "vsrlab-viewer-"));
 const results = [];
 
+// Every server and run this test starts is stopped when the test ends, however it ends: a failed
+// check throws, and the servers must not outlive it.
+const children = new Set();
+process.on("exit", () => {
+  for (const child of children) {
+    if (child.exitCode === null && child.signalCode === null) child.kill("SIGKILL");
+  }
+});
+function started(child) {
+  children.add(child);
+  return child;
+}
+
 function check(name, cond, detail) {
   results.push(`${cond ? "ok  " : "FAIL"} ${name}${detail ? `: ${detail}` : ""}`);
   console.log(results[results.length - 1]);
@@ -47,7 +60,7 @@ writeFileSync(join(work, "text.replay.json"), "this is not a replay");
 
 // Starts `vsrlab view args…`; resolves to the server process, its output so far and its URL.
 function startViewer(args) {
-  const proc = spawn(bin, ["view", ...args, "--port", "0"], { cwd: root });
+  const proc = started(spawn(bin, ["view", ...args, "--port", "0"], { cwd: root }));
   const out = { text: "" };
   proc.stdout.on("data", (d) => { out.text += d; });
   proc.stderr.on("data", (d) => { out.text += d; });
@@ -405,7 +418,7 @@ writeFileSync(liveFile, readFileSync(join(root, "experiments/quickstart.toml"), 
   .replace("population_size = 40", "population_size = 8").replace("offspring_size = 40", "offspring_size = 8")
   .replace("evaluations = 8000", "evaluations = 1000000").replace("snapshot_every = 40", "snapshot_every = 8"));
 const liveOut = join(work, "live-out");
-const running = spawn(bin, ["run", liveFile, "--out", liveOut, "--threads", "1"], { cwd: root, stdio: "ignore" });
+const running = started(spawn(bin, ["run", liveFile, "--out", liveOut, "--threads", "1"], { cwd: root, stdio: "ignore" }));
 const waitFor = async (cond, ms, what) => {
   const until = Date.now() + ms;
   while (!cond()) { if (Date.now() > until) throw new Error(`timed out waiting for ${what}`); await new Promise((r) => setTimeout(r, 100)); }

@@ -170,7 +170,7 @@ impl ContactLanes {
             // SAFETY: the CPU has AVX2
             return unsafe { candidates_avx2(pairs, slots, bodies, lanes, out) };
         }
-        candidates(pairs, slots, bodies, lanes, out);
+        candidates::<false>(pairs, slots, bodies, lanes, out);
     }
 
     /// Gathers every stepping world's slot boxes and corners into lanes, and their union: the
@@ -251,30 +251,10 @@ fn shared(m: [u32; 4], o: [u32; 4]) -> u32 {
 }
 
 /// For each pair `(a, b)`: which corners of `a` lie in `b`'s box and which of `b` in `a`'s, lane
-/// by lane ([`corners_inside`]), in the lanes `lanes` ([`lane_bits`]).
+/// by lane ([`corners_inside`], or with `AVX` [`corners_inside_avx`]: the same bits), in the
+/// lanes `lanes` ([`lane_bits`]).
 #[inline(always)]
-fn candidates(pairs: &[(u32, u32)], slots: &[SlotLanes], bodies: &Bodies, lanes: u32, out: &mut [[u32; 2]]) {
-    for (&(a, b), found) in pairs.iter().zip(out) {
-        let (qa, qb) = (
-            bodies.boundary[a as usize] as usize,
-            bodies.boundary[b as usize] as usize,
-        );
-        let (pa, pb) = (bodies.quad_points[qa], bodies.quad_points[qb]);
-        let (sa, sb) = (&slots[a as usize], &slots[b as usize]);
-        *found = [
-            corners_inside(sa, sb) & !shared(pa, pb) & lanes,
-            corners_inside(sb, sa) & !shared(pb, pa) & lanes,
-        ];
-    }
-}
-
-/// [`candidates`] with [`corners_inside_avx`]: the same bits.
-///
-/// # Safety
-/// The CPU must support AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn candidates_avx2(
+fn candidates<const AVX: bool>(
     pairs: &[(u32, u32)],
     slots: &[SlotLanes],
     bodies: &Bodies,
@@ -288,10 +268,30 @@ unsafe fn candidates_avx2(
         );
         let (pa, pb) = (bodies.quad_points[qa], bodies.quad_points[qb]);
         let (sa, sb) = (&slots[a as usize], &slots[b as usize]);
-        // SAFETY: the CPU has AVX2
-        let (in_b, in_a) = unsafe { (corners_inside_avx(sa, sb), corners_inside_avx(sb, sa)) };
+        let (in_b, in_a) = match AVX {
+            // SAFETY: `AVX` is set only by `candidates_avx2`, which runs on CPUs with AVX2
+            #[cfg(target_arch = "x86_64")]
+            true => unsafe { (corners_inside_avx(sa, sb), corners_inside_avx(sb, sa)) },
+            _ => (corners_inside(sa, sb), corners_inside(sb, sa)),
+        };
         *found = [in_b & !shared(pa, pb) & lanes, in_a & !shared(pb, pa) & lanes];
     }
+}
+
+/// [`candidates`] compiled with AVX2, its corner tests in AVX.
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn candidates_avx2(
+    pairs: &[(u32, u32)],
+    slots: &[SlotLanes],
+    bodies: &Bodies,
+    lanes: u32,
+    out: &mut [[u32; 2]],
+) {
+    candidates::<true>(pairs, slots, bodies, lanes, out)
 }
 
 // One AVX register holds the lanes of a coordinate.

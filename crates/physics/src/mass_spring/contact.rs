@@ -85,21 +85,15 @@ pub(crate) fn corner_contact(
 }
 
 /// The forces of one contact: on the point pushed out, then on the two ends of the side, added in
-/// that order.
+/// that order; `None` for a side shorter than [`MIN_SIDE`], which pushes nothing (the contact
+/// still counts).
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct ContactForces {
-    pub adds: [(u32, f64, f64); 3],
-    /// A side shorter than [`MIN_SIDE`] pushes nothing (the contact still counts).
-    pub none: bool,
-}
+pub(crate) struct ContactForces(Option<[(u32, f64, f64); 3]>);
 
 impl ContactForces {
     /// Adds the forces to the points' contact forces, in order.
     pub fn add_to(&self, points: &mut Points) {
-        if self.none {
-            return;
-        }
-        for &(i, fx, fy) in &self.adds {
+        for &(i, fx, fy) in self.0.iter().flatten() {
             points.contact_fx[i as usize] += fx;
             points.contact_fy[i as usize] += fy;
         }
@@ -144,10 +138,7 @@ fn push_out(
     let (sx, sy) = (points.x[b] - points.x[a], points.y[b] - points.y[a]);
     let len = norm(sx, sy);
     if len < MIN_SIDE {
-        return ContactForces {
-            adds: [(0, 0.0, 0.0); 3],
-            none: true,
-        };
+        return ContactForces(None);
     }
     let (nx, ny) = (-sy / len, sx / len);
     let push = c.stiffness * (c.offset + depth);
@@ -166,16 +157,13 @@ fn push_out(
             -weight * (ny * (push + d) + ffy) / 2.0,
         )
     };
-    ContactForces {
-        adds: [
-            (
-                p as u32,
-                weight * (nx * (push - dp) + ffx),
-                weight * (ny * (push - dp) + ffy),
-            ),
-            side(a, da),
-            side(b, db),
-        ],
-        none: false,
-    }
+    ContactForces(Some([
+        (
+            p as u32,
+            weight * (nx * (push - dp) + ffx),
+            weight * (ny * (push - dp) + ffy),
+        ),
+        side(a, da),
+        side(b, db),
+    ]))
 }

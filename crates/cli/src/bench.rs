@@ -10,10 +10,12 @@ use vsrlab_tasks::kinds::voxel::short_forms::DEFAULT_SENSORS;
 /// Arguments of `vsrlab bench`.
 #[derive(Args, Debug)]
 pub struct BenchArgs {
-    /// Simulated seconds per episode (EvoGym rows: at most their task's length; 3D rows: at most 2 s).
+    /// Simulated seconds per episode (EvoGym rows: at most their task's length; 3D rows: at most 2 s;
+    /// PPO rows: rollouts of at most 128 steps per environment, 0.384 s).
     #[arg(long, default_value_t = 30.0)]
     pub duration: f64,
-    /// Minimum CPU seconds to spend on each row (more episodes are run until it is reached).
+    /// Minimum CPU seconds to spend on each row (more episodes are run until it is reached; 0: one
+    /// episode per row, and no warm-up iteration in the PPO rows).
     #[arg(long, default_value_t = 2.0)]
     pub min_seconds: f64,
     /// Threads for the parallel rows (default: every core).

@@ -2,13 +2,13 @@
 //! every voxel's temperature a sine (amplitude 14.4714, 2 Hz) whose phase advances along x. Prints
 //! how far the centre of mass moved and the speed in voxel·steps per CPU-second (one thread).
 //! With `lanes`, a population of 8 episodes (each its own frequency, 2 + 0.05·i Hz) runs as two
-//! laned worlds of 4 (`WorldLanes`, each lane the bits of a scalar world), and the speed counts
+//! laned worlds of 4 (`LanedWorlds`, each lane the bits of a scalar world), and the speed counts
 //! the voxel·steps of all 8.
 //!
 //! `cargo run --release -p vsrlab-physics3d --example walker3d [seconds] [quadruped|box6] [off|on] [lanes]`
 
 use std::time::Instant;
-use vsrlab_physics3d::world_lanes::WorldLanes;
+use vsrlab_physics3d::laned_worlds::{LanedWorlds, LANES};
 use vsrlab_physics3d::{Material, VoxelId, World, WorldSettings};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -88,10 +88,9 @@ fn population(
     seconds: f64,
     collisions: bool,
 ) -> Result<(), Box<dyn std::error::Error>> {
-    const LANES: usize = 4;
     let dt = 0.95 * w.recommended_time_step();
     let steps = (seconds / dt) as usize;
-    let mut worlds = [WorldLanes::<LANES>::of(w)?, WorldLanes::<LANES>::of(w)?];
+    let mut worlds = [LanedWorlds::of(w)?, LanedWorlds::of(w)?];
     let clock = Instant::now();
     for k in 0..steps {
         let t = k as f64 * dt;

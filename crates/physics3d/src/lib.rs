@@ -18,6 +18,7 @@ mod collision;
 mod collision_lanes;
 mod error;
 mod floor;
+pub mod laned_worlds;
 mod lanes;
 mod link;
 mod link_batches;

@@ -44,7 +44,7 @@ use vsrlab_body::Capture;
 use vsrlab_brain::controllers::elman::VOTE;
 use vsrlab_brain::Controller;
 use vsrlab_field::FieldError;
-use vsrlab_physics3d::world_lanes::WorldLanes;
+use vsrlab_physics3d::laned_worlds::LanedWorlds;
 use vsrlab_physics3d::{Dof, VoxelId, World, WorldSettings};
 
 /// What an affordance evaluation reports: the two objectives, then each environment's.
@@ -638,7 +638,7 @@ impl Task for Affordance {
                 .map(|(r, (p, noise))| (r, p, noise))
                 .collect();
             for chunk in brains.chunks_mut(LANES) {
-                let Ok(mut world) = WorldLanes::<LANES>::of(&built.world) else {
+                let Ok(mut world) = LanedWorlds::of(&built.world) else {
                     return one_by_one();
                 };
                 let robots_of_chunk: Vec<usize> = chunk.iter().map(|(r, _, _)| *r).collect();

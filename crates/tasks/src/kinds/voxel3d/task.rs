@@ -19,7 +19,7 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 use vsrlab_brain::Controller;
 use vsrlab_field::FieldError;
-use vsrlab_physics3d::world_lanes::WorldLanes;
+use vsrlab_physics3d::laned_worlds::LanedWorlds;
 use vsrlab_physics3d::VoxelId;
 
 /// What a 3D locomotion episode reports: the centre of mass's horizontal displacement (`distance`,
@@ -168,7 +168,7 @@ impl Task for Locomotion3d {
         let (sensors, steps) = (prepared[0].sensors.clone(), episode_steps(self.duration, built.dt));
         let mut results = Vec::with_capacity(robots.len());
         for chunk in prepared.chunks_mut(LANES) {
-            let Ok(mut world) = WorldLanes::<LANES>::of(&built.world) else {
+            let Ok(mut world) = LanedWorlds::of(&built.world) else {
                 return one_by_one();
             };
             let mut lanes: Vec<Lane> = chunk

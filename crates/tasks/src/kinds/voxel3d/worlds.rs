@@ -1,9 +1,9 @@
 //! What a 3D episode loop needs of its world, whether one episode (`World`) or N episodes of one
-//! body shape stepped together in population lanes (`WorldLanes`, bit for bit the scalar world
+//! body shape stepped together in population lanes (`LanedWorlds`, bit for bit the scalar world
 //! in every lane): so that one loop serves both.
 
 use glam::DVec3;
-use vsrlab_physics3d::world_lanes::WorldLanes;
+use vsrlab_physics3d::laned_worlds::LanedWorlds;
 use vsrlab_physics3d::{Physics3dError, VoxelId, World};
 
 /// One or several episodes of one body in one world.
@@ -61,36 +61,36 @@ impl Worlds for World {
     }
 }
 
-impl<const N: usize> Worlds for WorldLanes<N> {
+impl Worlds for LanedWorlds {
     fn step(&mut self, dt: f64) -> Result<(), Physics3dError> {
-        WorldLanes::step(self, dt)
+        LanedWorlds::step(self, dt)
     }
 
     fn diverged(&self, lane: usize) -> Option<Physics3dError> {
-        WorldLanes::diverged(self, lane)
+        LanedWorlds::diverged(self, lane)
     }
 
     fn position(&self, v: VoxelId, lane: usize) -> DVec3 {
-        WorldLanes::position(self, v, lane)
+        LanedWorlds::position(self, v, lane)
     }
 
     fn velocity(&self, v: VoxelId, lane: usize) -> DVec3 {
-        WorldLanes::velocity(self, v, lane)
+        LanedWorlds::velocity(self, v, lane)
     }
 
     fn touches_voxel(&self, v: VoxelId, lane: usize) -> bool {
-        WorldLanes::touches_voxel(self, v, lane)
+        LanedWorlds::touches_voxel(self, v, lane)
     }
 
     fn touches_floor(&self, v: VoxelId, lane: usize) -> bool {
-        WorldLanes::touches_floor(self, v, lane)
+        LanedWorlds::touches_floor(self, v, lane)
     }
 
     fn set_temperature(&mut self, v: VoxelId, lane: usize, temperature: f64) {
-        WorldLanes::set_temperature(self, v, lane, temperature)
+        LanedWorlds::set_temperature(self, v, lane, temperature)
     }
 
     fn any_contact(&self, lane: usize, test: &dyn Fn(VoxelId, VoxelId) -> bool) -> bool {
-        self.contacts(lane).any(|(a, b)| test(a, b))
+        LanedWorlds::any_contact(self, lane, test)
     }
 }

@@ -8,6 +8,9 @@
 #![warn(missing_docs)]
 
 mod acos;
+#[cfg(target_arch = "x86_64")]
+#[doc(hidden)]
+pub mod avx;
 mod f64s;
 mod lane;
 mod tanh;

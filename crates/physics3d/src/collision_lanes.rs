@@ -109,12 +109,17 @@ impl<L: Lanes> CollisionLanes<L> {
         if (0..L::LANES).any(|l| built.get(l) == 0.0 || largest.get(l) > built.get(l)) {
             return true;
         }
-        let limit = margin * margin;
-        self.surface.iter().zip(&self.built_at).any(|(&v, at)| {
+        // a plain loop, not `Iterator::any`: its `try_fold` was not inlined into the AVX2 step,
+        // so each lane operation inside it ran as a call (2 % of a population's time)
+        let limit = L::splat(margin * margin);
+        for (&v, at) in self.surface.iter().zip(&self.built_at) {
             let d = colliders[v].pos.sub(*at);
             let squared = d.x * d.x + d.y * d.y + d.z * d.z;
-            any(squared.gt(L::splat(limit)))
-        })
+            if any(squared.gt(limit)) {
+                return true;
+            }
+        }
+        false
     }
 
     /// Every lane's candidate pairs (collision.rs's sweep along x in that lane), joined.

@@ -10,8 +10,6 @@
 //! engine does and does not do yet (linear elastic, Poisson's ratio 0 as the affordance study
 //! ran).
 
-#[cfg(target_arch = "x86_64")]
-mod avx;
 mod axis;
 mod batching;
 mod collision;

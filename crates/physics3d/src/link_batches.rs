@@ -51,7 +51,7 @@ impl LinkBatches {
 /// Whether this CPU runs the laned updates (AVX2).
 pub(crate) fn lanes_available() -> bool {
     #[cfg(target_arch = "x86_64")]
-    return crate::avx::available();
+    return vsrlab_lanes::avx::available();
     #[cfg(not(target_arch = "x86_64"))]
     false
 }
@@ -64,7 +64,7 @@ pub(crate) fn lanes_available() -> bool {
 #[target_feature(enable = "avx2")]
 unsafe fn update_avx2(batches: &[[usize; BATCH]], links: &mut [Link], ends: &[End]) {
     for batch in batches {
-        update_batch::<crate::avx::Avx<BATCH>>(batch, links, ends);
+        update_batch::<vsrlab_lanes::avx::Avx<BATCH>>(batch, links, ends);
     }
 }
 

@@ -407,9 +407,9 @@ mod bench {
     pub fn benchmark(updates: usize) -> (f64, f64, f64) {
         let scalar = time_scalar(updates);
         #[cfg(target_arch = "x86_64")]
-        if crate::avx::available() {
-            let four = time_lanes::<crate::avx::Avx<4>>(updates);
-            let eight = time_lanes::<crate::avx::Avx<8>>(updates);
+        if vsrlab_lanes::avx::available() {
+            let four = time_lanes::<vsrlab_lanes::avx::Avx<4>>(updates);
+            let eight = time_lanes::<vsrlab_lanes::avx::Avx<8>>(updates);
             return (scalar, four, eight);
         }
         let four = time_lanes::<vsrlab_lanes::F64s<4>>(updates);
@@ -568,8 +568,8 @@ mod tests {
     fn every_lane_of_a_laned_link_gives_the_scalar_links_bits() {
         every_lane_gives_the_scalar_bits::<F64s<LANES>>();
         #[cfg(target_arch = "x86_64")]
-        if crate::avx::available() {
-            every_lane_gives_the_scalar_bits::<crate::avx::Avx<LANES>>();
+        if vsrlab_lanes::avx::available() {
+            every_lane_gives_the_scalar_bits::<vsrlab_lanes::avx::Avx<LANES>>();
         }
     }
 

@@ -296,9 +296,9 @@ mod bench {
     pub fn benchmark(steps: usize) -> (f64, f64, f64, f64) {
         let (world, one) = (time_world(steps), time_lanes::<vsrlab_lanes::F64s<1>>(steps));
         #[cfg(target_arch = "x86_64")]
-        if crate::avx::available() {
-            let four = time_lanes::<crate::avx::Avx<4>>(steps);
-            return (world, one, four, time_lanes::<crate::avx::Avx<8>>(steps));
+        if vsrlab_lanes::avx::available() {
+            let four = time_lanes::<vsrlab_lanes::avx::Avx<4>>(steps);
+            return (world, one, four, time_lanes::<vsrlab_lanes::avx::Avx<8>>(steps));
         }
         let four = time_lanes::<vsrlab_lanes::F64s<4>>(steps);
         (world, one, four, time_lanes::<vsrlab_lanes::F64s<8>>(steps))
@@ -428,8 +428,8 @@ mod tests {
     fn run(fixed: &[Dof], collisions: bool) {
         run_in::<vsrlab_lanes::F64s<LANES>>(fixed, collisions);
         #[cfg(target_arch = "x86_64")]
-        if crate::avx::available() {
-            run_in::<crate::avx::Avx<LANES>>(fixed, collisions);
+        if vsrlab_lanes::avx::available() {
+            run_in::<vsrlab_lanes::avx::Avx<LANES>>(fixed, collisions);
         }
     }
 

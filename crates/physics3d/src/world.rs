@@ -449,7 +449,7 @@ impl World {
     unsafe fn step_voxel_batches_avx2(&mut self, dt: f64) {
         for b in 0..self.voxel_batches.batches.len() {
             let (material, batch) = self.voxel_batches.batches[b];
-            self.step_voxel_batch::<crate::avx::Avx<VOXEL_BATCH>>(material, batch, dt);
+            self.step_voxel_batch::<vsrlab_lanes::avx::Avx<VOXEL_BATCH>>(material, batch, dt);
         }
     }
 

@@ -5,8 +5,6 @@
 //! (`avx.rs`, N a multiple of 4) and plain arrays elsewhere, the same bits either way. Tests hold
 //! every lane to a scalar world's bits, with and without collisions, in both forms.
 
-#[cfg(target_arch = "x86_64")]
-use crate::avx::Avx;
 use crate::collision_lanes::{ColliderLanes, CollisionLanes};
 use crate::lanes::V3;
 use crate::link_lanes::{EndLanes, LinkLanes};
@@ -15,6 +13,8 @@ use crate::voxel_lanes::{VoxelLanes, VoxelShared};
 use crate::world::{VoxelId, World, DIVERGED_STRAIN};
 use crate::Physics3dError;
 use glam::DVec3;
+#[cfg(target_arch = "x86_64")]
+use vsrlab_lanes::avx::Avx;
 use vsrlab_lanes::{F64s, LaneMask, Lanes};
 
 /// One voxel's parts: what the lanes share, and each lane's state.
@@ -65,7 +65,7 @@ impl<const N: usize> WorldLanes<N> {
     /// that has not stepped), its links, loads and settings. Refuses a world that has stepped.
     pub fn of(world: &World) -> Result<WorldLanes<N>, Physics3dError> {
         #[cfg(target_arch = "x86_64")]
-        if N.is_multiple_of(4) && crate::avx::available() {
+        if N.is_multiple_of(4) && vsrlab_lanes::avx::available() {
             return Ok(WorldLanes {
                 engine: Engine::Avx(Laned::of(world)?),
             });

@@ -27,7 +27,13 @@ use crate::validation::{check_count, check_units, set_finite};
 use crate::{BrainError, BrainKind, BrainShape, BrainSpec, Controller};
 use serde::{Deserialize, Serialize};
 use vsrlab_body::{Channel, Probe};
-use vsrlab_lanes::{tanh, F64s, Lanes};
+use vsrlab_lanes::{tanh, Lanes};
+/// Four voxels' values, one per lane: AVX2 registers where the target can have them (used only
+/// where the CPU has AVX2: `lanes`), plain arrays elsewhere (never used there).
+#[cfg(target_arch = "x86_64")]
+type Lane4 = vsrlab_lanes::avx::Avx<LANES>;
+#[cfg(not(target_arch = "x86_64"))]
+type Lane4 = vsrlab_lanes::F64s<LANES>;
 
 /// Each voxel's vote this step, in [−1, 1] (> 0: "passable").
 pub const VOTE: Channel = Channel::replayed("vote", 1e-3);
@@ -134,10 +140,10 @@ pub struct ElmanController {
     /// Whether four voxels at a time run in AVX2 lanes (`think_lanes`, the same bits).
     lanes: bool,
     /// The lanes' inputs, units, memories of four voxels.
-    xs: Vec<F64s<LANES>>,
-    us: Vec<F64s<LANES>>,
-    hs: Vec<F64s<LANES>>,
-    memories: Vec<F64s<LANES>>,
+    xs: Vec<Lane4>,
+    us: Vec<Lane4>,
+    hs: Vec<Lane4>,
+    memories: Vec<Lane4>,
 }
 
 /// Voxels whose networks run together in lanes.
@@ -159,11 +165,11 @@ fn dot(weights: &[f64], values: &[f64]) -> f64 {
 
 /// [`dot`] in every lane: each lane the bits of `dot` on its own values.
 #[inline(always)]
-fn dot_lanes(weights: &[f64], values: &[F64s<LANES>]) -> F64s<LANES> {
+fn dot_lanes(weights: &[f64], values: &[Lane4]) -> Lane4 {
     weights
         .iter()
         .zip(values)
-        .fold(F64s::splat(-0.0), |sum, (&w, &x)| sum + w * x)
+        .fold(Lane4::splat(-0.0), |sum, (&w, &x)| sum + w * x)
 }
 
 impl ElmanController {
@@ -191,10 +197,10 @@ impl ElmanController {
             h: vec![0.0; m],
             votes: vec![0.0; units],
             lanes: lanes_available(),
-            xs: vec![F64s::splat(0.0); inputs],
-            us: vec![F64s::splat(0.0); m],
-            hs: vec![F64s::splat(0.0); m],
-            memories: vec![F64s::splat(0.0); m],
+            xs: vec![Lane4::splat(0.0); inputs],
+            us: vec![Lane4::splat(0.0); m],
+            hs: vec![Lane4::splat(0.0); m],
+            memories: vec![Lane4::splat(0.0); m],
         })
     }
 
@@ -245,10 +251,10 @@ impl ElmanController {
             let unit = first + lane;
             self.gather(unit, readings);
             for (x, &v) in self.xs.iter_mut().zip(&self.x) {
-                x.0[lane] = v;
+                x.set(lane, v);
             }
             for (h, &v) in self.memories.iter_mut().zip(&self.memory[unit * m..(unit + 1) * m]) {
-                h.0[lane] = v;
+                h.set(lane, v);
             }
         }
         for x in &mut self.xs[..self.readings] {
@@ -267,7 +273,7 @@ impl ElmanController {
             let unit = first + lane;
             if !self.inert_memory {
                 for (v, h) in self.memory[unit * m..(unit + 1) * m].iter_mut().zip(&self.hs) {
-                    *v = h.0[lane];
+                    *v = h.get(lane);
                 }
             }
         }
@@ -275,7 +281,7 @@ impl ElmanController {
             let row = &wy[o * (m + 1)..(o + 1) * (m + 1)];
             let out = (row[0] + dot_lanes(&row[1..], &self.hs)).tanh();
             for lane in 0..LANES {
-                self.outputs[(first + lane) * OUTPUTS + o] = out.0[lane];
+                self.outputs[(first + lane) * OUTPUTS + o] = out.get(lane);
             }
         }
     }
@@ -291,6 +297,43 @@ impl ElmanController {
         for unit in batched..units {
             self.gather(unit, readings);
             self.think(unit);
+        }
+    }
+
+    /// tanh of every output into `previous`, four at a time in lanes where the CPU has AVX2.
+    fn squash_outputs(&mut self) {
+        let laned = if self.lanes {
+            self.outputs.len() / LANES * LANES
+        } else {
+            0
+        };
+        #[cfg(target_arch = "x86_64")]
+        if laned > 0 {
+            // SAFETY: `lanes` is set only where the CPU has AVX2
+            unsafe { self.squash_lanes_avx2(laned) };
+        }
+        for (p, o) in self.previous[laned..].iter_mut().zip(&self.outputs[laned..]) {
+            *p = tanh(*o);
+        }
+    }
+
+    /// [`ElmanController::squash_outputs`] of the first `laned` outputs, compiled for AVX2.
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn squash_lanes_avx2(&mut self, laned: usize) {
+        let outputs = self.outputs[..laned].chunks_exact(LANES);
+        for (p, o) in self.previous[..laned].chunks_exact_mut(LANES).zip(outputs) {
+            let mut x = Lane4::splat(0.0);
+            for (lane, &v) in o.iter().enumerate() {
+                x.set(lane, v);
+            }
+            let y = x.tanh();
+            for (lane, p) in p.iter_mut().enumerate() {
+                *p = y.get(lane);
+            }
         }
     }
 
@@ -317,9 +360,7 @@ impl Controller for ElmanController {
 
     fn control(&mut self, _t: f64, readings: &[f64], actuations: &mut [f64]) {
         self.think_all(actuations.len(), readings);
-        for (p, o) in self.previous.iter_mut().zip(&self.outputs) {
-            *p = tanh(*o);
-        }
+        self.squash_outputs();
         for (unit, a) in actuations.iter_mut().enumerate() {
             *a = self.outputs[unit * OUTPUTS];
             self.votes[unit] = self.outputs[unit * OUTPUTS + 1];

@@ -4,25 +4,27 @@
 //! ones, docs/performance.md); here every operation is one instruction per four lanes. Each is
 //! the IEEE operation of the scalar engine, so every lane keeps the scalar bits.
 //!
-//! Values of these types run AVX2 instructions: they are made only by code that checked the CPU
-//! first (`WorldLanes::of` and the tests), and the crate does not export them.
+//! Values of these types run AVX2 instructions in their operations (making one, reading and
+//! setting a lane do not): only code that checked the CPU first ([`available`]) may compute with
+//! them (the 3D engine's `WorldLanes::of`, the Elman brain, the tests). The module is hidden
+//! from the documentation for that reason: it is the workspace's, not a public interface.
 
+use crate::{LaneMask, Lanes};
 use std::arch::x86_64::*;
 use std::ops::{Add, Div, Mul, Neg, Sub};
-use vsrlab_lanes::{LaneMask, Lanes};
 
 /// N f64 lanes, `N / 4` registers.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C, align(32))]
-pub(crate) struct Avx<const N: usize>([f64; N]);
+pub struct Avx<const N: usize>([f64; N]);
 
 /// One bool per lane as a lane's sign bit (comparisons set all its bits).
 #[derive(Debug, Clone, Copy)]
 #[repr(C, align(32))]
-pub(crate) struct AvxMask<const N: usize>([f64; N]);
+pub struct AvxMask<const N: usize>([f64; N]);
 
 /// Whether this CPU can run [`Avx`] values.
-pub(crate) fn available() -> bool {
+pub fn available() -> bool {
     is_x86_feature_detected!("avx2")
 }
 
@@ -279,7 +281,7 @@ impl<const N: usize> PartialEq for AvxMask<N> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use vsrlab_lanes::F64s;
+    use crate::F64s;
 
     /// Every operation of the trait on awkward values (NaN, ±0, infinities, subnormals) against
     /// the portable lanes, bit for bit.

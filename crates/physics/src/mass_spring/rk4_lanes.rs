@@ -5,7 +5,7 @@
 use super::ground::ground_force;
 use super::lane_shape::LaneShape;
 use super::settings::MassSpringSettings;
-use super::spring_lanes::SpringLanes;
+use super::spring_lanes::{SpringLanes, Xy};
 use vsrlab_lanes::Lanes;
 
 /// The per-episode point state the RK4 step reads and moves, with the contact forces of the
@@ -23,12 +23,11 @@ pub(crate) struct PointLanes<L> {
 /// Stage state, forces and the weighted sums of increments (as `integrator::Rk4`), in lanes.
 #[derive(Debug, Clone)]
 pub(crate) struct Rk4Lanes<L> {
-    sx: Vec<L>,
-    sy: Vec<L>,
+    /// Stage positions and forces, x and y side by side (what the springs gather and add to).
+    s: Vec<Xy<L>>,
     svx: Vec<L>,
     svy: Vec<L>,
-    fx: Vec<L>,
-    fy: Vec<L>,
+    f: Vec<Xy<L>>,
     ax: Vec<L>,
     ay: Vec<L>,
     avx: Vec<L>,
@@ -44,12 +43,10 @@ impl<L: Lanes> Rk4Lanes<L> {
     pub fn new(n: usize) -> Self {
         let z = vec![L::splat(0.0); n];
         Self {
-            sx: z.clone(),
-            sy: z.clone(),
+            s: vec![Xy::zero(); n],
             svx: z.clone(),
             svy: z.clone(),
-            fx: z.clone(),
-            fy: z.clone(),
+            f: vec![Xy::zero(); n],
             ax: z.clone(),
             ay: z.clone(),
             avx: z.clone(),
@@ -67,8 +64,9 @@ impl<L: Lanes> Rk4Lanes<L> {
         spring_state: &mut SpringLanes<L>,
         set: &MassSpringSettings,
     ) {
-        self.sx.copy_from_slice(&state.x);
-        self.sy.copy_from_slice(&state.y);
+        for ((s, &x), &y) in self.s.iter_mut().zip(&state.x).zip(&state.y) {
+            *s = Xy { x, y };
+        }
         self.svx.copy_from_slice(&state.vx);
         self.svy.copy_from_slice(&state.vy);
         let zero = L::splat(0.0);
@@ -97,23 +95,22 @@ impl<L: Lanes> Rk4Lanes<L> {
         spring_state: &mut SpringLanes<L>,
         set: &MassSpringSettings,
     ) {
-        self.fx.fill(L::splat(0.0));
-        self.fy.fill(L::splat(0.0));
-        let (x, y) = (&self.sx, &self.sy);
+        self.f.fill(Xy::zero());
         match k {
-            0 => spring_state.add_forces::<true>(shape, 0, x, y, &mut self.fx, &mut self.fy),
-            _ => spring_state.add_forces::<false>(shape, k, x, y, &mut self.fx, &mut self.fy),
+            0 => spring_state.add_forces::<true>(shape, 0, &self.s, &mut self.f),
+            _ => spring_state.add_forces::<false>(shape, k, &self.s, &mut self.f),
         }
         for i in shape.stage[k].indices() {
             let weight = set.gravity * shape.mass[i];
-            self.fx[i] = self.fx[i] + (self.svx[i] * -set.drag + state.contact_fx[i]);
-            self.fy[i] = self.fy[i] + (self.svy[i] * -set.drag - weight + state.contact_fy[i]);
+            let f = &mut self.f[i];
+            f.x = f.x + (self.svx[i] * -set.drag + state.contact_fx[i]);
+            f.y = f.y + (self.svy[i] * -set.drag - weight + state.contact_fy[i]);
             if let Some(g) = &set.ground {
                 for lane in 0..L::LANES {
-                    let (gx, gy) = ground_force(g, self.sy[i].get(lane), self.svx[i].get(lane));
-                    let (fx, fy) = (self.fx[i].get(lane), self.fy[i].get(lane));
-                    self.fx[i].set(lane, fx + gx);
-                    self.fy[i].set(lane, fy + gy);
+                    let (gx, gy) = ground_force(g, self.s[i].y.get(lane), self.svx[i].get(lane));
+                    let (fx, fy) = (f.x.get(lane), f.y.get(lane));
+                    f.x.set(lane, fx + gx);
+                    f.y.set(lane, fy + gy);
                 }
             }
         }
@@ -128,11 +125,11 @@ impl<L: Lanes> Rk4Lanes<L> {
                 let (kvx, kvy) = match shape.masses_are_powers_of_two {
                     true => {
                         let inverse = shape.inverse_mass[i];
-                        (self.fx[i] * inverse * dt, self.fy[i] * inverse * dt)
+                        (self.f[i].x * inverse * dt, self.f[i].y * inverse * dt)
                     }
                     false => {
                         let mass = shape.mass[i];
-                        (self.fx[i] / mass * dt, self.fy[i] / mass * dt)
+                        (self.f[i].x / mass * dt, self.f[i].y / mass * dt)
                     }
                 };
                 let (kx, ky) = (self.svx[i] * dt, self.svy[i] * dt);
@@ -140,8 +137,10 @@ impl<L: Lanes> Rk4Lanes<L> {
                 self.ay[i] = self.ay[i] + ky * weight;
                 self.avx[i] = self.avx[i] + kvx * weight;
                 self.avy[i] = self.avy[i] + kvy * weight;
-                self.sx[i] = state.x[i] + kx * next;
-                self.sy[i] = state.y[i] + ky * next;
+                self.s[i] = Xy {
+                    x: state.x[i] + kx * next,
+                    y: state.y[i] + ky * next,
+                };
                 self.svx[i] = state.vx[i] + kvx * next;
                 self.svy[i] = state.vy[i] + kvy * next;
             }

@@ -119,7 +119,7 @@ impl<L: Lanes> SpringLanes<L> {
                         x: fa.x - px,
                         y: fa.y - py,
                     };
-                    let fb = force[b]; // `a` may be `b` (a zero-length spring)
+                    let fb = force[b]; // read after `a`'s write, as the scalar code adds them
                     force[b] = Xy {
                         x: fb.x + px,
                         y: fb.y + py,

@@ -11,6 +11,9 @@ mod acos;
 #[cfg(target_arch = "x86_64")]
 #[doc(hidden)]
 pub mod avx;
+#[cfg(target_arch = "x86_64")]
+#[doc(hidden)]
+pub mod avx512;
 mod f64s;
 mod lane;
 mod tanh;

@@ -1,14 +1,14 @@
 //! A 3D soft walker on the affordance study's material: a 4 × 3 × 2 slab on four 1-voxel legs,
 //! every voxel's temperature a sine (amplitude 14.4714, 2 Hz) whose phase advances along x. Prints
 //! how far the centre of mass moved and the speed in voxel·steps per CPU-second (one thread).
-//! With `lanes`, a population of 8 episodes (each its own frequency, 2 + 0.05·i Hz) runs as two
-//! laned worlds of 4 (`LanedWorlds`, each lane the bits of a scalar world), and the speed counts
-//! the voxel·steps of all 8.
+//! With `lanes`, a population of 8 episodes (each its own frequency, 2 + 0.05·i Hz) runs in
+//! laned worlds (`LanedWorlds`, each lane the bits of a scalar world: one world of 8 lanes on a
+//! CPU with AVX-512, two of 4 elsewhere), and the speed counts the voxel·steps of all 8.
 //!
 //! `cargo run --release -p vsrlab-physics3d --example walker3d [seconds] [quadruped|box6] [off|on] [lanes]`
 
 use std::time::Instant;
-use vsrlab_physics3d::laned_worlds::{LanedWorlds, LANES};
+use vsrlab_physics3d::laned_worlds::{lanes, LanedWorlds, MAX_LANES};
 use vsrlab_physics3d::{Material, VoxelId, World, WorldSettings};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -90,31 +90,36 @@ fn population(
 ) -> Result<(), Box<dyn std::error::Error>> {
     let dt = 0.95 * w.recommended_time_step();
     let steps = (seconds / dt) as usize;
-    let mut worlds = [LanedWorlds::of(w)?, LanedWorlds::of(w)?];
+    let n = lanes();
+    let mut worlds = (0..MAX_LANES / n)
+        .map(|_| LanedWorlds::of(w))
+        .collect::<Result<Vec<_>, _>>()?;
     let clock = Instant::now();
     for k in 0..steps {
         let t = k as f64 * dt;
         for (i, laned) in worlds.iter_mut().enumerate() {
             for &(v, x) in ids {
                 let phase = std::f64::consts::PI * f64::from(x) / 2.0;
-                let temperatures = std::array::from_fn(|l| {
-                    let hz = 2.0 + 0.05 * (i * LANES + l) as f64;
-                    14.4714 * (2.0 * std::f64::consts::PI * hz * t - phase).sin()
-                });
-                laned.set_temperatures(v, temperatures);
+                for l in 0..n {
+                    let hz = 2.0 + 0.05 * (i * n + l) as f64;
+                    let temperature = 14.4714 * (2.0 * std::f64::consts::PI * hz * t - phase).sin();
+                    laned.set_temperature(v, l, temperature);
+                }
             }
             laned.step(dt)?;
         }
     }
     let elapsed = clock.elapsed().as_secs_f64();
-    let diverged = (0..LANES)
-        .filter(|&l| worlds.iter().any(|w| w.diverged(l).is_some()))
-        .count();
-    let voxel_steps = (2 * LANES * ids.len() * steps) as f64;
+    let diverged: usize = worlds
+        .iter()
+        .map(|w| (0..n).filter(|&l| w.diverged(l).is_some()).count())
+        .sum();
+    let voxel_steps = (MAX_LANES * ids.len() * steps) as f64;
     println!(
-        "vsrlab lanes (collisions {}): 8 episodes of {} voxels in 2 x {LANES} lanes, {steps} steps in {elapsed:.2} s ({diverged} lanes diverged): {:.0} voxel·steps/s",
+        "vsrlab lanes (collisions {}): {MAX_LANES} episodes of {} voxels in {} x {n} lanes, {steps} steps in {elapsed:.2} s ({diverged} lanes diverged): {:.0} voxel·steps/s",
         if collisions { "on" } else { "off" },
         ids.len(),
+        MAX_LANES / n,
         voxel_steps / elapsed,
     );
     Ok(())

@@ -1,9 +1,11 @@
 //! A world of N episodes at once (issue 52, population lanes): the same body shape in every lane,
 //! each lane with its own temperatures and so its own motion, stepped as `World::step` does, lane
 //! by lane: every link from the state at the start of the step, the voxel–voxel contacts
-//! (`collision_lanes.rs`), then every voxel. The lanes are AVX2 registers where the CPU has them
-//! (`avx.rs`, N a multiple of 4) and plain arrays elsewhere, the same bits either way. Tests hold
-//! every lane to a scalar world's bits, with and without collisions, in both forms.
+//! (`collision_lanes.rs`), then every voxel. The lanes are AVX-512 registers where the CPU has
+//! them and N is a multiple of 8 (`vsrlab_lanes::avx512`), else AVX2 registers where the CPU has
+//! them and N is a multiple of 4 (`vsrlab_lanes::avx`), else plain arrays, the same bits in every
+//! form. Tests hold every lane to a scalar world's bits, with and without collisions, in each
+//! form.
 
 use crate::collision_lanes::{ColliderLanes, CollisionLanes};
 use crate::lanes::V3;
@@ -15,6 +17,8 @@ use crate::Physics3dError;
 use glam::DVec3;
 #[cfg(target_arch = "x86_64")]
 use vsrlab_lanes::avx::Avx;
+#[cfg(target_arch = "x86_64")]
+use vsrlab_lanes::avx512::Avx512;
 use vsrlab_lanes::{F64s, LaneMask, Lanes};
 
 /// One voxel's parts: what the lanes share, and each lane's state.
@@ -34,12 +38,15 @@ pub struct WorldLanes<const N: usize> {
     engine: Engine<N>,
 }
 
-/// The lanes' number type: AVX2 registers where the CPU has them, plain arrays elsewhere.
+/// The lanes' number type: AVX-512 or AVX2 registers where the CPU has them, plain arrays
+/// elsewhere.
 #[derive(Debug, Clone)]
 enum Engine<const N: usize> {
     Portable(Laned<F64s<N>>),
     #[cfg(target_arch = "x86_64")]
     Avx(Laned<Avx<N>>),
+    #[cfg(target_arch = "x86_64")]
+    Avx512(Laned<Avx512<N>>),
 }
 
 /// The world's state in lanes of type `L`.
@@ -65,12 +72,26 @@ impl<const N: usize> WorldLanes<N> {
     /// that has not stepped), its links, loads and settings. Refuses a world that has stepped.
     pub fn of(world: &World) -> Result<WorldLanes<N>, Physics3dError> {
         #[cfg(target_arch = "x86_64")]
-        if N.is_multiple_of(4) && vsrlab_lanes::avx::available() {
+        if N.is_multiple_of(8) && vsrlab_lanes::avx512::available() {
             return Ok(WorldLanes {
-                engine: Engine::Avx(Laned::of(world)?),
+                engine: Engine::Avx512(Laned::of(world)?),
             });
         }
+        #[cfg(target_arch = "x86_64")]
+        if N.is_multiple_of(4) && vsrlab_lanes::avx::available() {
+            return WorldLanes::avx2(world);
+        }
         WorldLanes::portable(world)
+    }
+
+    /// As [`WorldLanes::of`], in AVX2 registers whatever else the CPU has (the tests compare
+    /// every form). The CPU must have AVX2 and N must be a multiple of 4.
+    #[cfg(target_arch = "x86_64")]
+    pub(crate) fn avx2(world: &World) -> Result<WorldLanes<N>, Physics3dError> {
+        assert!(N.is_multiple_of(4) && vsrlab_lanes::avx::available());
+        Ok(WorldLanes {
+            engine: Engine::Avx(Laned::of(world)?),
+        })
     }
 
     /// As [`WorldLanes::of`], in plain arrays whatever the CPU (the tests compare both forms).
@@ -116,6 +137,9 @@ impl<const N: usize> WorldLanes<N> {
                     unsafe { step_avx2(w, dt) };
                 }
             }
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: the CPU supports AVX-512F (`Engine::Avx512` was chosen for it)
+            Engine::Avx512(w) => unsafe { step_avx512_wide(w, dt) },
         }
         Ok(())
     }
@@ -171,6 +195,8 @@ impl<const N: usize> WorldLanes<N> {
             Engine::Portable(w) => w,
             #[cfg(target_arch = "x86_64")]
             Engine::Avx(w) => w,
+            #[cfg(target_arch = "x86_64")]
+            Engine::Avx512(w) => w,
         }
     }
 
@@ -180,6 +206,8 @@ impl<const N: usize> WorldLanes<N> {
             Engine::Portable(w) => w,
             #[cfg(target_arch = "x86_64")]
             Engine::Avx(w) => w,
+            #[cfg(target_arch = "x86_64")]
+            Engine::Avx512(w) => w,
         }
     }
 }
@@ -216,6 +244,16 @@ unsafe fn step_avx2<const N: usize>(w: &mut Laned<Avx<N>>, dt: f64) {
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,avx512f")]
 unsafe fn step_avx512<const N: usize>(w: &mut Laned<Avx<N>>, dt: f64) {
+    w.step_lanes(dt)
+}
+
+/// The AVX-512 step: eight lanes per register.
+///
+/// # Safety
+/// The CPU must support AVX-512F.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,avx512f")]
+unsafe fn step_avx512_wide<const N: usize>(w: &mut Laned<Avx512<N>>, dt: f64) {
     w.step_lanes(dt)
 }
 
@@ -580,21 +618,26 @@ mod tests {
     use super::*;
     use crate::world::VoxelId;
 
-    const LANES: usize = 4;
+    /// Eight lanes: one AVX-512 register, two AVX2 registers.
+    const LANES: usize = 8;
 
-    /// How a test builds its laned world: as `WorldLanes::of` chooses (AVX2 on CPUs that have
-    /// it), or in plain arrays.
+    /// How a test builds its laned world: as `WorldLanes::of` chooses (AVX-512 on CPUs that have
+    /// it), in AVX2 registers, or in plain arrays.
     type Make = fn(&World) -> Result<WorldLanes<LANES>, Physics3dError>;
 
-    /// Both forms, each run by `test` (the same bits are asked of each).
-    fn in_both_forms(test: fn(Make)) {
+    /// Every form this CPU can run, each run by `test` (the same bits are asked of each).
+    fn in_every_form(test: fn(Make)) {
         test(WorldLanes::of);
+        #[cfg(target_arch = "x86_64")]
+        if vsrlab_lanes::avx::available() {
+            test(WorldLanes::avx2);
+        }
         test(WorldLanes::portable);
     }
 
     #[test]
     fn every_lane_of_a_laned_world_gives_a_scalar_worlds_bits() {
-        in_both_forms(every_lane_of_a_laned_world_gives_a_scalar_worlds_bits_in);
+        in_every_form(every_lane_of_a_laned_world_gives_a_scalar_worlds_bits_in);
     }
 
     fn every_lane_of_a_laned_world_gives_a_scalar_worlds_bits_in(make: Make) {
@@ -649,7 +692,7 @@ mod tests {
 
     #[test]
     fn a_lane_that_diverges_is_named_as_the_scalar_world_names_it_and_the_others_step_on() {
-        in_both_forms(a_lane_that_diverges_is_named_as_the_scalar_world_names_it_and_the_others_step_on_in);
+        in_every_form(a_lane_that_diverges_is_named_as_the_scalar_world_names_it_and_the_others_step_on_in);
     }
 
     fn a_lane_that_diverges_is_named_as_the_scalar_world_names_it_and_the_others_step_on_in(make: Make) {
@@ -699,7 +742,7 @@ mod tests {
     /// stays finite, and one lane ends on a scalar world's bits.
     #[test]
     fn random_bodies_under_random_actuation_stay_finite_in_every_lane() {
-        in_both_forms(random_bodies_under_random_actuation_stay_finite_in_every_lane_in);
+        in_every_form(random_bodies_under_random_actuation_stay_finite_in_every_lane_in);
     }
 
     fn random_bodies_under_random_actuation_stay_finite_in_every_lane_in(make: Make) {
@@ -747,7 +790,7 @@ mod tests {
 
     #[test]
     fn every_lane_of_a_laned_world_with_collisions_gives_a_scalar_worlds_bits() {
-        in_both_forms(every_lane_of_a_laned_world_with_collisions_gives_a_scalar_worlds_bits_in);
+        in_every_form(every_lane_of_a_laned_world_with_collisions_gives_a_scalar_worlds_bits_in);
     }
 
     fn every_lane_of_a_laned_world_with_collisions_gives_a_scalar_worlds_bits_in(make: Make) {

@@ -29,7 +29,7 @@ use super::aperture::{aperture_world, random_aperture_world, shape_length, Apert
 use super::physics::{Built, Physics3d, MAX_STEPS};
 use super::recorder::Recorder;
 use super::robot::Voxel3dRobot;
-use super::setup::{prepare, prepare_batch, sense, Prepared, LANES};
+use super::setup::{lanes, prepare, prepare_batch, sense, Prepared};
 use super::worlds::Worlds as WorldView;
 use super::BodyGrid3;
 use crate::agent::{Agent, Robot};
@@ -597,7 +597,7 @@ impl Task for Affordance {
     }
 
     fn episode_batch(&self) -> usize {
-        LANES
+        lanes()
     }
 
     fn run_episodes(&self, robots: &[&dyn Robot], seeds: &[u64]) -> Vec<Result<Outcome, EpisodeError>> {
@@ -637,7 +637,7 @@ impl Task for Affordance {
                 .filter(|(r, _)| running.contains(r))
                 .map(|(r, (p, noise))| (r, p, noise))
                 .collect();
-            for chunk in brains.chunks_mut(LANES) {
+            for chunk in brains.chunks_mut(lanes()) {
                 let Ok(mut world) = LanedWorlds::of(&built.world) else {
                     return one_by_one();
                 };
@@ -727,11 +727,12 @@ mod tests {
 
     #[test]
     fn a_batch_in_lanes_gives_every_robot_the_bits_of_its_own_evaluation() {
-        // 5 robots: a chunk of 4 lanes and one of 1 (3 idle lanes); each control, with its noise
-        // per seed, and the flying penalty (lanes penalised at different steps)
-        let robots = random_elmans("3d:starfish", 1..6);
+        // 9 robots: a full chunk of lanes (8 with AVX-512, else 4) and a chunk with idle lanes;
+        // each control, with its noise per seed, and the flying penalty (lanes penalised at
+        // different steps)
+        let robots = random_elmans("3d:starfish", 1..10);
         let refs: Vec<&dyn Robot> = robots.iter().map(|r| r as &dyn Robot).collect();
-        let seeds = [11, 12, 13, 14, 15];
+        let seeds = [11, 12, 13, 14, 15, 16, 17, 18, 19];
         let mut penalised = 0;
         // (EvolvedBoth runs below, with bodies at the wall)
         for (evolved, flying) in [(Evolved::Affordance, true), (Evolved::Locomotion, false)] {
@@ -755,7 +756,7 @@ mod tests {
             }
         }
         // the flying rule penalised some lanes (at their own steps), not all
-        assert!(penalised > 0 && penalised < 10, "{penalised}");
+        assert!(penalised > 0 && penalised < 18, "{penalised}");
         // bodies that touch the wall from the start (L = 2, as the test below): the votes count
         let robots = random_elmans("3d:###/###/###/###", 1..5);
         let refs: Vec<&dyn Robot> = robots.iter().map(|r| r as &dyn Robot).collect();

@@ -51,8 +51,8 @@ pub(crate) fn prepare<'a>(robot: &'a dyn Robot, task_kind: &str) -> Result<Prepa
     })
 }
 
-/// Episodes a 3D task steps together in population lanes (4: one AVX2 register of f64).
-pub(crate) use vsrlab_physics3d::laned_worlds::LANES;
+/// Episodes a 3D task steps together in population lanes (8 with AVX-512, else 4).
+pub(crate) use vsrlab_physics3d::laned_worlds::lanes;
 
 /// The robots of a batch ready for one laned world: `None` unless every one is a 3D robot of the
 /// same body grid and sensors (the caller then runs them one by one, which names any error).

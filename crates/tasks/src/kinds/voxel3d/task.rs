@@ -8,7 +8,7 @@
 use super::physics::{Built, Physics3d, MAX_STEPS};
 use super::recorder::Recorder;
 use super::robot::Voxel3dRobot;
-use super::setup::{prepare, prepare_batch, sense, Prepared, LANES};
+use super::setup::{lanes, prepare, prepare_batch, sense, Prepared};
 use super::worlds::Worlds;
 use crate::agent::{Agent, Robot};
 use crate::episode::EpisodeError;
@@ -151,7 +151,7 @@ impl Task for Locomotion3d {
     }
 
     fn episode_batch(&self) -> usize {
-        LANES
+        lanes()
     }
 
     fn run_episodes(&self, robots: &[&dyn Robot], seeds: &[u64]) -> Vec<Result<Outcome, EpisodeError>> {
@@ -167,7 +167,7 @@ impl Task for Locomotion3d {
         };
         let (sensors, steps) = (prepared[0].sensors.clone(), episode_steps(self.duration, built.dt));
         let mut results = Vec::with_capacity(robots.len());
-        for chunk in prepared.chunks_mut(LANES) {
+        for chunk in prepared.chunks_mut(lanes()) {
             let Ok(mut world) = LanedWorlds::of(&built.world) else {
                 return one_by_one();
             };
@@ -349,18 +349,18 @@ mod tests {
     fn a_batch_in_lanes_gives_every_robot_the_bits_of_its_own_episode() {
         let task = TaskSpec::parse("locomotion3d:0.1").unwrap();
         let task = task.task();
-        // 6 robots: a full chunk of 4 lanes and a chunk of 2 with 2 idle lanes
-        let robots = quadrupeds("mlp", 1..7);
+        // 10 robots: a full chunk of lanes (8 with AVX-512, else 4) and a chunk with idle lanes
+        let robots = quadrupeds("mlp", 1..11);
         let refs: Vec<&dyn Robot> = robots.iter().map(|r| r as &dyn Robot).collect();
         let groups: Vec<Option<String>> = refs.iter().map(|r| task.episode_group(*r)).collect();
         assert!(groups[0].is_some() && groups.iter().all(|g| *g == groups[0]));
-        let seeds = [3, 1, 4, 1, 5, 9];
+        let seeds = [3, 1, 4, 1, 5, 9, 2, 6, 5, 3];
         let alone = crate::task::assert_batch_is_alone(task, &refs, &seeds);
         let mut distances: Vec<f64> = alone.iter().map(|o| o.metrics["distance"]).collect();
         // the robots moved, each its own way (not one episode compared with itself)
         distances.sort_by(f64::total_cmp);
         distances.dedup();
-        assert_eq!(distances.len(), 6, "{distances:?}");
+        assert_eq!(distances.len(), 10, "{distances:?}");
         // another body is another group
         let other = robot("3d:worm", "mlp");
         assert_ne!(task.episode_group(other.as_robot()), groups[0]);

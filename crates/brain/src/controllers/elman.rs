@@ -28,12 +28,13 @@ use crate::{BrainError, BrainKind, BrainShape, BrainSpec, Controller};
 use serde::{Deserialize, Serialize};
 use vsrlab_body::{Channel, Probe};
 use vsrlab_lanes::{tanh, Lanes};
-/// Four voxels' values, one per lane: AVX2 registers where the target can have them (used only
-/// where the CPU has AVX2: `lanes`), plain arrays elsewhere (never used there).
+/// Four voxels' values, one per lane, in an AVX2 register (used only where the CPU has AVX2).
 #[cfg(target_arch = "x86_64")]
-type Lane4 = vsrlab_lanes::avx::Avx<LANES>;
-#[cfg(not(target_arch = "x86_64"))]
-type Lane4 = vsrlab_lanes::F64s<LANES>;
+type Lane4 = vsrlab_lanes::avx::Avx<4>;
+/// Eight voxels' values, one per lane, in an AVX-512 register (used only where the CPU has
+/// AVX-512F).
+#[cfg(target_arch = "x86_64")]
+type Lane8 = vsrlab_lanes::avx512::Avx512<8>;
 
 /// Each voxel's vote this step, in [−1, 1] (> 0: "passable").
 pub const VOTE: Channel = Channel::replayed("vote", 1e-3);
@@ -137,24 +138,34 @@ pub struct ElmanController {
     u: Vec<f64>,
     h: Vec<f64>,
     votes: Vec<f64>,
-    /// Whether four voxels at a time run in AVX2 lanes (`think_lanes`, the same bits).
-    lanes: bool,
-    /// The lanes' inputs, units, memories of four voxels.
-    xs: Vec<Lane4>,
-    us: Vec<Lane4>,
-    hs: Vec<Lane4>,
-    memories: Vec<Lane4>,
+    /// Four voxels' networks at a time in AVX2 lanes, where the CPU has AVX2 (`think_lanes`,
+    /// the same bits).
+    #[cfg(target_arch = "x86_64")]
+    fours: Option<NetLanes<Lane4>>,
+    /// Eight at a time in AVX-512 lanes, where the CPU has AVX-512F (before the fours).
+    #[cfg(target_arch = "x86_64")]
+    eights: Option<NetLanes<Lane8>>,
 }
 
-/// Voxels whose networks run together in lanes.
-const LANES: usize = 4;
+/// The inputs, units and memories of as many voxels as `L` has lanes, one voxel per lane.
+#[derive(Debug, Clone, Default)]
+struct NetLanes<L> {
+    xs: Vec<L>,
+    us: Vec<L>,
+    hs: Vec<L>,
+    memories: Vec<L>,
+}
 
-/// Whether this CPU runs the laned networks.
-fn lanes_available() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    return is_x86_feature_detected!("avx2");
-    #[cfg(not(target_arch = "x86_64"))]
-    false
+impl<L: Lanes> NetLanes<L> {
+    /// Buffers for `inputs` inputs and `m` memory units, if `available` (the CPU can run `L`).
+    fn new(available: bool, inputs: usize, m: usize) -> Option<NetLanes<L>> {
+        available.then(|| NetLanes {
+            xs: vec![L::splat(0.0); inputs],
+            us: vec![L::splat(0.0); m],
+            hs: vec![L::splat(0.0); m],
+            memories: vec![L::splat(0.0); m],
+        })
+    }
 }
 
 /// `Σ w·x` over the pairs in order, from −0 as `Iterator::sum` of f64 adds them.
@@ -165,11 +176,11 @@ fn dot(weights: &[f64], values: &[f64]) -> f64 {
 
 /// [`dot`] in every lane: each lane the bits of `dot` on its own values.
 #[inline(always)]
-fn dot_lanes(weights: &[f64], values: &[Lane4]) -> Lane4 {
+fn dot_lanes<L: Lanes>(weights: &[f64], values: &[L]) -> L {
     weights
         .iter()
         .zip(values)
-        .fold(Lane4::splat(-0.0), |sum, (&w, &x)| sum + w * x)
+        .fold(L::splat(-0.0), |sum, (&w, &x)| sum + L::splat(w) * x)
 }
 
 impl ElmanController {
@@ -196,11 +207,10 @@ impl ElmanController {
             u: vec![0.0; m],
             h: vec![0.0; m],
             votes: vec![0.0; units],
-            lanes: lanes_available(),
-            xs: vec![Lane4::splat(0.0); inputs],
-            us: vec![Lane4::splat(0.0); m],
-            hs: vec![Lane4::splat(0.0); m],
-            memories: vec![Lane4::splat(0.0); m],
+            #[cfg(target_arch = "x86_64")]
+            fours: NetLanes::new(vsrlab_lanes::avx::available(), inputs, m),
+            #[cfg(target_arch = "x86_64")]
+            eights: NetLanes::new(vsrlab_lanes::avx512::available(), inputs, m),
         })
     }
 
@@ -242,91 +252,111 @@ impl ElmanController {
         }
     }
 
-    /// [`ElmanController::think`] for the four voxels from `first`, each in its own lane, the
-    /// same operations in the same order (so each voxel gets its scalar bits).
+    /// [`ElmanController::think`] for the `L::LANES` voxels from `first`, each in its own lane
+    /// of `net`, the same operations in the same order (so each voxel gets its scalar bits).
     #[inline(always)]
-    fn think_lanes(&mut self, first: usize, readings: &[f64]) {
+    fn think_lanes<L: Lanes>(&mut self, net: &mut NetLanes<L>, first: usize, readings: &[f64]) {
         let (m, n) = (self.m, self.inputs);
-        for lane in 0..LANES {
+        for lane in 0..L::LANES {
             let unit = first + lane;
             self.gather(unit, readings);
-            for (x, &v) in self.xs.iter_mut().zip(&self.x) {
+            for (x, &v) in net.xs.iter_mut().zip(&self.x) {
                 x.set(lane, v);
             }
-            for (h, &v) in self.memories.iter_mut().zip(&self.memory[unit * m..(unit + 1) * m]) {
+            for (h, &v) in net.memories.iter_mut().zip(&self.memory[unit * m..(unit + 1) * m]) {
                 h.set(lane, v);
             }
         }
-        for x in &mut self.xs[..self.readings] {
+        for x in &mut net.xs[..self.readings] {
             *x = x.tanh();
         }
         let (wx, rest) = self.weights.split_at(m * n);
         let (wh, wy) = rest.split_at(m * (m + 1));
         for i in 0..m {
-            self.us[i] = dot_lanes(&wx[i * n..(i + 1) * n], &self.xs).tanh();
+            net.us[i] = dot_lanes(&wx[i * n..(i + 1) * n], &net.xs).tanh();
         }
         for i in 0..m {
             let row = &wh[i * (m + 1)..(i + 1) * (m + 1)];
-            self.hs[i] = (row[0] + self.us[i] + dot_lanes(&row[1..], &self.memories)).tanh();
+            net.hs[i] = (L::splat(row[0]) + net.us[i] + dot_lanes(&row[1..], &net.memories)).tanh();
         }
-        for lane in 0..LANES {
-            let unit = first + lane;
-            if !self.inert_memory {
-                for (v, h) in self.memory[unit * m..(unit + 1) * m].iter_mut().zip(&self.hs) {
+        if !self.inert_memory {
+            for lane in 0..L::LANES {
+                let unit = first + lane;
+                for (v, h) in self.memory[unit * m..(unit + 1) * m].iter_mut().zip(&net.hs) {
                     *v = h.get(lane);
                 }
             }
         }
         for o in 0..OUTPUTS {
             let row = &wy[o * (m + 1)..(o + 1) * (m + 1)];
-            let out = (row[0] + dot_lanes(&row[1..], &self.hs)).tanh();
-            for lane in 0..LANES {
+            let out = (L::splat(row[0]) + dot_lanes(&row[1..], &net.hs)).tanh();
+            for lane in 0..L::LANES {
                 self.outputs[(first + lane) * OUTPUTS + o] = out.get(lane);
             }
         }
     }
 
-    /// Every voxel's network, four at a time in lanes where the CPU has AVX2 (the rest alone).
+    /// Every voxel's network: eight at a time in AVX-512 lanes where the CPU has AVX-512F, then
+    /// four at a time in AVX2 lanes where it has AVX2, the rest alone.
     fn think_all(&mut self, units: usize, readings: &[f64]) {
-        let batched = if self.lanes { units / LANES * LANES } else { 0 };
+        #[allow(unused_mut)]
+        let mut done = 0;
         #[cfg(target_arch = "x86_64")]
-        if batched > 0 {
-            // SAFETY: `lanes` is set only where the CPU has AVX2
-            unsafe { self.think_lanes_avx2(batched, readings) };
+        {
+            if let Some(mut net) = self.eights.take() {
+                let end = units / 8 * 8;
+                // SAFETY: `eights` is made only where the CPU has AVX-512F
+                unsafe { self.think_lanes_avx512(&mut net, done, end, readings) };
+                self.eights = Some(net);
+                done = end;
+            }
+            if let Some(mut net) = self.fours.take() {
+                let end = done + (units - done) / 4 * 4;
+                // SAFETY: `fours` is made only where the CPU has AVX2
+                unsafe { self.think_lanes_avx2(&mut net, done, end, readings) };
+                self.fours = Some(net);
+                done = end;
+            }
         }
-        for unit in batched..units {
+        for unit in done..units {
             self.gather(unit, readings);
             self.think(unit);
         }
     }
 
-    /// tanh of every output into `previous`, four at a time in lanes where the CPU has AVX2.
+    /// tanh of every output into `previous`: eight at a time in AVX-512 lanes, then four in
+    /// AVX2 lanes, where the CPU has them, the rest alone.
     fn squash_outputs(&mut self) {
-        let laned = if self.lanes {
-            self.outputs.len() / LANES * LANES
-        } else {
-            0
-        };
+        #[allow(unused_mut)]
+        let mut done = 0;
         #[cfg(target_arch = "x86_64")]
-        if laned > 0 {
-            // SAFETY: `lanes` is set only where the CPU has AVX2
-            unsafe { self.squash_lanes_avx2(laned) };
+        {
+            let total = self.outputs.len();
+            if self.eights.is_some() {
+                let end = total / 8 * 8;
+                // SAFETY: `eights` is made only where the CPU has AVX-512F
+                unsafe { self.squash_lanes_avx512(done, end) };
+                done = end;
+            }
+            if self.fours.is_some() {
+                let end = done + (total - done) / 4 * 4;
+                // SAFETY: `fours` is made only where the CPU has AVX2
+                unsafe { self.squash_lanes_avx2(done, end) };
+                done = end;
+            }
         }
-        for (p, o) in self.previous[laned..].iter_mut().zip(&self.outputs[laned..]) {
+        for (p, o) in self.previous[done..].iter_mut().zip(&self.outputs[done..]) {
             *p = tanh(*o);
         }
     }
 
-    /// [`ElmanController::squash_outputs`] of the first `laned` outputs, compiled for AVX2.
-    ///
-    /// # Safety
-    /// The CPU must support AVX2.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn squash_lanes_avx2(&mut self, laned: usize) {
-        let outputs = self.outputs[..laned].chunks_exact(LANES);
-        for (p, o) in self.previous[..laned].chunks_exact_mut(LANES).zip(outputs) {
-            let mut x = Lane4::splat(0.0);
+    /// tanh of outputs `start..end` into `previous`, `L::LANES` at a time (`end − start` a
+    /// multiple of it).
+    #[inline(always)]
+    fn squash_lanes<L: Lanes>(&mut self, start: usize, end: usize) {
+        let outputs = self.outputs[start..end].chunks_exact(L::LANES);
+        for (p, o) in self.previous[start..end].chunks_exact_mut(L::LANES).zip(outputs) {
+            let mut x = L::splat(0.0);
             for (lane, &v) in o.iter().enumerate() {
                 x.set(lane, v);
             }
@@ -337,15 +367,47 @@ impl ElmanController {
         }
     }
 
-    /// The laned networks of the first `batched` voxels, compiled for AVX2.
+    /// [`ElmanController::squash_lanes`] in AVX2 lanes of four.
     ///
     /// # Safety
     /// The CPU must support AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    unsafe fn think_lanes_avx2(&mut self, batched: usize, readings: &[f64]) {
-        for first in (0..batched).step_by(LANES) {
-            self.think_lanes(first, readings);
+    unsafe fn squash_lanes_avx2(&mut self, start: usize, end: usize) {
+        self.squash_lanes::<Lane4>(start, end)
+    }
+
+    /// [`ElmanController::squash_lanes`] in AVX-512 lanes of eight.
+    ///
+    /// # Safety
+    /// The CPU must support AVX-512F.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f")]
+    unsafe fn squash_lanes_avx512(&mut self, start: usize, end: usize) {
+        self.squash_lanes::<Lane8>(start, end)
+    }
+
+    /// The laned networks of voxels `start..end` in AVX2 lanes of four.
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn think_lanes_avx2(&mut self, net: &mut NetLanes<Lane4>, start: usize, end: usize, readings: &[f64]) {
+        for first in (start..end).step_by(4) {
+            self.think_lanes(net, first, readings);
+        }
+    }
+
+    /// The laned networks of voxels `start..end` in AVX-512 lanes of eight.
+    ///
+    /// # Safety
+    /// The CPU must support AVX-512F.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f")]
+    unsafe fn think_lanes_avx512(&mut self, net: &mut NetLanes<Lane8>, start: usize, end: usize, readings: &[f64]) {
+        for first in (start..end).step_by(8) {
+            self.think_lanes(net, first, readings);
         }
     }
 }
@@ -402,12 +464,14 @@ mod tests {
         BrainShape::new(layout, vec![readings; units])
     }
 
-    /// A 3 × 3 × 2 body (18 voxels: four batches of four and two alone) with random weights
-    /// and readings, memory on and inert: the laned networks give every voxel the actuation and
-    /// vote of the one-by-one networks, bit for bit, step after step.
+    /// A 5 × 3 × 1 body (15 voxels: a batch of eight, one of four and three alone where the CPU
+    /// has AVX-512; three of four and three alone with AVX2 only) with random weights and
+    /// readings, memory on and inert: the laned networks give every voxel the actuation and vote
+    /// of the one-by-one networks, bit for bit, step after step.
     #[test]
     fn voxels_in_lanes_give_the_bits_of_voxels_one_by_one() {
-        let sh = shape([3, 3, 2], 5);
+        const N: usize = 15;
+        let sh = shape([5, 3, 1], 5);
         let mut state = 0xE1_u64;
         let mut next = move || {
             state = state
@@ -422,23 +486,31 @@ mod tests {
             };
             let count = spec.parameter_count(&sh).unwrap();
             spec.weights = (0..count).map(|_| 2.0 * next()).collect();
-            let mut laned = ElmanController::new(&spec, &sh).unwrap();
-            let mut alone = laned.clone();
-            laned.lanes = lanes_available();
-            alone.lanes = false;
-            let (mut a, mut b) = ([0.0; 18], [0.0; 18]);
+            let laned = ElmanController::new(&spec, &sh).unwrap();
+            #[allow(unused_mut)]
+            let (mut fours, mut alone) = (laned.clone(), laned.clone());
+            #[cfg(target_arch = "x86_64")]
+            {
+                fours.eights = None;
+                (alone.eights, alone.fours) = (None, None);
+            }
+            let mut forms = [laned, fours];
+            let mut b = [0.0; N];
             for step in 0..40 {
-                let readings: Vec<f64> = (0..18 * 5).map(|_| 3.0 * next()).collect();
-                laned.control(0.0, &readings, &mut a);
+                let readings: Vec<f64> = (0..N * 5).map(|_| 3.0 * next()).collect();
                 alone.control(0.0, &readings, &mut b);
-                assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits), "step {step}");
-                assert_eq!(
-                    laned.votes.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
-                    alone.votes.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
-                );
+                for (f, form) in forms.iter_mut().enumerate() {
+                    let mut a = [0.0; N];
+                    form.control(0.0, &readings, &mut a);
+                    assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits), "form {f}, step {step}");
+                    assert_eq!(
+                        form.votes.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                        alone.votes.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+                    );
+                }
             }
             // the memory moved (not zeros compared with zeros)
-            assert_eq!(laned.memory.iter().any(|&h| h != 0.0), !inert_memory);
+            assert_eq!(forms[0].memory.iter().any(|&h| h != 0.0), !inert_memory);
         }
     }
 

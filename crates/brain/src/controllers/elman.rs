@@ -256,15 +256,28 @@ impl ElmanController {
     /// of `net`, the same operations in the same order (so each voxel gets its scalar bits).
     #[inline(always)]
     fn think_lanes<L: Lanes>(&mut self, net: &mut NetLanes<L>, first: usize, readings: &[f64]) {
-        let (m, n) = (self.m, self.inputs);
-        for lane in 0..L::LANES {
-            let unit = first + lane;
-            self.gather(unit, readings);
-            for (x, &v) in net.xs.iter_mut().zip(&self.x) {
-                x.set(lane, v);
+        let (m, n, r) = (self.m, self.inputs, self.readings);
+        // the inputs of `gather` and the memories, input by input (each lane its voxel's)
+        for (i, x) in net.xs[..r].iter_mut().enumerate() {
+            *x = L::splat(0.0);
+            for lane in 0..L::LANES {
+                x.set(lane, readings[(first + lane) * r + i]);
             }
-            for (h, &v) in net.memories.iter_mut().zip(&self.memory[unit * m..(unit + 1) * m]) {
-                h.set(lane, v);
+        }
+        for d in 0..self.directions {
+            for o in 0..OUTPUTS {
+                let x = &mut net.xs[r + OUTPUTS * d + o];
+                *x = L::splat(0.0);
+                for lane in 0..L::LANES {
+                    if let Some(k) = self.neighbours[(first + lane) * self.directions + d] {
+                        x.set(lane, self.previous[k * OUTPUTS + o]);
+                    }
+                }
+            }
+        }
+        for (i, h) in net.memories.iter_mut().enumerate() {
+            for lane in 0..L::LANES {
+                h.set(lane, self.memory[(first + lane) * m + i]);
             }
         }
         for x in &mut net.xs[..self.readings] {

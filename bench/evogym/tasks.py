@@ -17,7 +17,7 @@ import gymnasium as gym
 import numpy as np
 import evogym.envs  # noqa: F401  (registers the environments)
 
-TASKS = [("Walker-v0", 500), ("BridgeWalker-v0", 500), ("BeamToppler-v0", 1000), ("CaveCrawler-v0", 1000)]
+TASKS = ["Walker-v0", "BridgeWalker-v0", "BeamToppler-v0", "CaveCrawler-v0"]
 
 
 def gait(t, n):
@@ -51,8 +51,10 @@ def speed(name, steps):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--steps", type=int, default=1000, help="env steps timed per task")
+    parser.add_argument("--tasks", default=",".join(TASKS), help="comma-separated EvoGym ids (default: ch. 5.2's four)")
     args = parser.parse_args()
-    for name, length in TASKS:
+    for name in args.tasks.split(","):
+        length = gym.spec(name).max_episode_steps
         env, total, k = episode(name, length)
         us = speed(name, args.steps)
         print(

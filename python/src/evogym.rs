@@ -1,5 +1,5 @@
 //! EvoGym's tasks stepped from Python ([`PyEvoGymEnv`], behind `gymnasium.make("vsrlab/Walker-v0")`
-//! and the other three): EvoGym's observation, action (one target length ratio in [0.6, 1.6] per
+//! and every other task of [`evogym_tasks`]): EvoGym's observation, action (one target length ratio in [0.6, 1.6] per
 //! actuator voxel), reward and ends, on vsrlab's mass-spring engine (docs/multimaterial.md).
 
 use crate::value_error;
@@ -7,6 +7,13 @@ use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use std::sync::Mutex;
 use vsrlab_tasks::kinds::evogym::{EvoGymEnv, EvoGymTask, MaterialGrid};
+
+/// The EvoGym ids vsrlab implements, in EvoGym's registration order (the gym ids are these
+/// under `vsrlab/`).
+#[pyfunction]
+pub fn evogym_tasks() -> Vec<&'static str> {
+    EvoGymTask::ALL.iter().map(|t| t.name()).collect()
+}
 
 /// One EvoGym task with one robot.
 #[pyclass(name = "EvoGymEnv", module = "vsrlab")]
@@ -24,15 +31,12 @@ impl PyEvoGymEnv {
 
 #[pymethods]
 impl PyEvoGymEnv {
-    /// `task`: `Walker-v0`, `BridgeWalker-v0`, `BeamToppler-v0` or `CaveCrawler-v0`; `body`: the
-    /// material grid as rows of digits 0-4 joined by `/`, top row first.
+    /// `task`: an EvoGym id that vsrlab implements (`evogym_tasks()`: `Walker-v0`, …); `body`:
+    /// the material grid as rows of digits 0-4 joined by `/`, top row first.
     #[new]
     fn new(task: &str, body: &str) -> PyResult<Self> {
-        let which = EvoGymTask::from_name(task).ok_or_else(|| {
-            value_error(format!(
-                "task: unknown EvoGym task '{task}': expected Walker-v0, BridgeWalker-v0, BeamToppler-v0 or CaveCrawler-v0"
-            ))
-        })?;
+        let which =
+            EvoGymTask::from_name(task).ok_or_else(|| value_error(format!("task: {}", EvoGymTask::unknown(task))))?;
         let grid = MaterialGrid::from_rows(body).map_err(|e| value_error(e.at("body")))?;
         let env = EvoGymEnv::new(which, &grid).map_err(|e| value_error(format!("body: {e}")))?;
         Ok(PyEvoGymEnv {

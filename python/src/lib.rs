@@ -32,6 +32,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<episode::PyEpisode>()?;
     m.add_class::<episode::PyVectorEpisode>()?;
     m.add_class::<evogym::PyEvoGymEnv>()?;
+    m.add_function(wrap_pyfunction!(evogym::evogym_tasks, m)?)?;
     m.add_class::<batch::PyBatchEvaluator>()?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
     m.add_function(wrap_pyfunction!(run::deterministic_files, m)?)?;

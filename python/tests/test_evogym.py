@@ -21,7 +21,21 @@ def test_check_env_passes_for_every_evogym_task(env_id):
 
 
 @pytest.mark.parametrize(
-    "env_id,observations", [("vsrlab/Walker-v0", 74), ("vsrlab/BridgeWalker-v0", 75), ("vsrlab/BeamToppler-v0", 79), ("vsrlab/CaveCrawler-v0", 96)]
+    "env_id,observations",
+    [
+        ("vsrlab/Walker-v0", 74),
+        ("vsrlab/BridgeWalker-v0", 75),
+        ("vsrlab/BeamToppler-v0", 79),
+        ("vsrlab/CaveCrawler-v0", 96),
+        ("vsrlab/Jumper-v0", 79),
+        ("vsrlab/Balancer-v0", 73),
+        ("vsrlab/Balancer-v1", 73),
+        ("vsrlab/Climber-v0", 74),
+        ("vsrlab/Climber-v1", 74),
+        ("vsrlab/Climber-v2", 82),
+        ("vsrlab/UpStepper-v0", 86),
+        ("vsrlab/GapJumper-v0", 86),
+    ],
 )
 def test_sizes_are_evogyms_for_a_full_5x5_body(env_id, observations):
     env = gymnasium.make(env_id, body=np.full((5, 5), 3))
@@ -43,11 +57,19 @@ def test_a_square_wave_gait_earns_evogyms_reward_on_walker():
     assert abs(total - 1.172) < 0.002, total
 
 
+def test_every_implemented_task_is_a_gym_id_with_its_class():
+    tasks = vsrlab.evogym_tasks()
+    assert {"Walker-v0", "Jumper-v0", "Balancer-v1", "Climber-v1"} <= set(tasks)
+    assert sorted(EVOGYM_ENVIRONMENTS) == sorted(f"vsrlab/{t}" for t in tasks)
+    assert vsrlab.envs.BalancerV1Env().unwrapped._env.observation_size == 73
+    assert f"vsrlab/{tasks[-1]}" in gymnasium.registry
+
+
 def test_bad_bodies_and_actions_are_refused_naming_the_field():
     with pytest.raises(ValueError, match="body"):
         vsrlab.EvoGymEnv("Walker-v0", "1.3")
-    with pytest.raises(ValueError, match="task"):
-        vsrlab.EvoGymEnv("Jumper-v0", FULL)
+    with pytest.raises(ValueError, match="task: unknown EvoGym task 'Runner-v0': expected one of Walker-v0"):
+        vsrlab.EvoGymEnv("Runner-v0", FULL)
     env = vsrlab.EvoGymEnv("Walker-v0", "131")
     env.reset()
     with pytest.raises(ValueError, match="actions"):

@@ -22,7 +22,7 @@ from typing import Any, Optional, Sequence, Union
 import numpy as np
 
 from . import _native
-from ._native import BatchEvaluator, Episode, EvoGymEnv, Robot, VectorEpisode, __version__
+from ._native import BatchEvaluator, Episode, EvoGymEnv, Robot, VectorEpisode, __version__, evogym_tasks
 
 __all__ = [
     "BatchEvaluator",
@@ -32,6 +32,7 @@ __all__ = [
     "VectorEpisode",
     "__version__",
     "config_text",
+    "evogym_tasks",
     "evaluate_batch",
     "genotype_length",
     "evaluate_records",

@@ -11,10 +11,10 @@ Registered ids (``gymnasium.make`` and ``gymnasium.make_vec``):
 ``vsrlab/Carrier-v0`` (pressure-based soft agents by default).
 
 EvoGym's tasks on vsrlab's engine (docs/multimaterial.md), with EvoGym's observations, actions (a
-target length ratio in [0.6, 1.6] per actuator voxel), rewards and ends: ``vsrlab/Walker-v0``,
-``vsrlab/BridgeWalker-v0``, ``vsrlab/BeamToppler-v0`` and ``vsrlab/CaveCrawler-v0`` (``body=``:
-the material grid as rows of digits joined by ``/``, or a 2-D array of codes as EvoGym's
-``body=``, top row first).
+target length ratio in [0.6, 1.6] per actuator voxel), rewards and ends: ``vsrlab/<id>`` for
+every EvoGym id in ``vsrlab.evogym_tasks()`` (``vsrlab/Walker-v0``, ``vsrlab/Jumper-v0``,
+``vsrlab/Balancer-v1``, …; ``body=``: the material grid as rows of digits joined by ``/``, or a
+2-D array of codes as EvoGym's ``body=``, top row first).
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ import numpy as np
 from gymnasium import spaces
 from gymnasium.vector.utils import batch_space
 
-from ._native import Episode, EvoGymEnv, Robot, VectorEpisode
+from ._native import Episode, EvoGymEnv, Robot, VectorEpisode, evogym_tasks
 
 # the robot's own brain is never called: the policy gives the actions
 _IDLE_BRAIN = "constant:0"
@@ -203,22 +203,23 @@ def _evogym_env(task: str):
         def __init__(self, body: Any = "33333/33333/33333/33333/33333"):
             super().__init__(task=task, body=body)
 
-    TaskEnv.__name__ = TaskEnv.__qualname__ = task.split("-")[0] + "Env"
+    TaskEnv.__name__ = TaskEnv.__qualname__ = _evogym_class_name(task)
     return TaskEnv
 
 
-WalkerEnv = _evogym_env("Walker-v0")
-BridgeWalkerEnv = _evogym_env("BridgeWalker-v0")
-BeamTopplerEnv = _evogym_env("BeamToppler-v0")
-CaveCrawlerEnv = _evogym_env("CaveCrawler-v0")
+def _evogym_class_name(task: str) -> str:
+    """``Walker-v0`` → ``WalkerEnv``, ``Balancer-v1`` → ``BalancerV1Env``."""
+    name, version = task.rsplit("-", 1)
+    return name + ("" if version == "v0" else version.upper()) + "Env"
 
-#: EvoGym's task ids (under ``vsrlab/``) and their environment classes.
-EVOGYM_ENVIRONMENTS = {
-    "vsrlab/Walker-v0": "WalkerEnv",
-    "vsrlab/BridgeWalker-v0": "BridgeWalkerEnv",
-    "vsrlab/BeamToppler-v0": "BeamTopplerEnv",
-    "vsrlab/CaveCrawler-v0": "CaveCrawlerEnv",
-}
+
+#: EvoGym's task ids (under ``vsrlab/``) and their environment classes: every task vsrlab
+#: implements (``evogym_tasks()``), each a class of this module (``WalkerEnv``, ``BalancerV1Env``…).
+EVOGYM_ENVIRONMENTS = {}
+for _task in evogym_tasks():
+    globals()[_evogym_class_name(_task)] = _evogym_env(_task)
+    EVOGYM_ENVIRONMENTS[f"vsrlab/{_task}"] = _evogym_class_name(_task)
+
 
 #: Every registered id and its environment classes.
 ENVIRONMENTS = {

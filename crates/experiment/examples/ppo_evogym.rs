@@ -19,8 +19,7 @@ use vsrlab_tasks::kinds::evogym::{EvoGymTask, MaterialGrid};
 fn main() -> Result<(), PpoError> {
     let mut args = std::env::args().skip(1);
     let task_name = args.next().unwrap_or_else(|| "Walker-v0".to_string());
-    let task =
-        EvoGymTask::from_name(&task_name).expect("a task: Walker-v0, BridgeWalker-v0, BeamToppler-v0, CaveCrawler-v0");
+    let task = EvoGymTask::from_name(&task_name).unwrap_or_else(|| panic!("{}", EvoGymTask::unknown(&task_name)));
     let iterations: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(100);
     let seed: u64 = args.next().and_then(|a| a.parse().ok()).unwrap_or(1);
     let every: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(25).max(1);

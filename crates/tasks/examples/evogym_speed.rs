@@ -21,7 +21,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let only = std::env::args().nth(2).filter(|o| o != "all");
     let lanes = std::env::args().nth(3).is_some_and(|a| a == "lanes");
     let body = MaterialGrid::from_rows("33333/33333/33333/33333/33333")?;
-    for task in EvoGymTask::ALL {
+    for &task in EvoGymTask::ALL {
         if only.as_deref().is_some_and(|o| !task.name().starts_with(o)) {
             continue;
         }

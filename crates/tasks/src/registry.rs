@@ -170,11 +170,7 @@ fn parse_locomotion(arg: Option<&str>) -> Result<TaskSpec, FieldError> {
 fn parse_evogym(arg: Option<&str>) -> Result<TaskSpec, FieldError> {
     let mut task = EvoGym::default();
     if let Some(name) = arg {
-        let which = EvoGymTask::from_name(name).ok_or_else(|| {
-            FieldError::message(format!(
-                "unknown EvoGym task '{name}': expected Walker-v0, BridgeWalker-v0, BeamToppler-v0 or CaveCrawler-v0"
-            ))
-        })?;
+        let which = EvoGymTask::from_name(name).ok_or_else(|| FieldError::message(EvoGymTask::unknown(name)))?;
         task.env = which.name().to_string();
     }
     Ok(TaskSpec::Evogym(task))

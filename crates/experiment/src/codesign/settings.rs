@@ -27,15 +27,8 @@ pub fn evogym_task(experiment: &Experiment) -> Result<Episode, FieldError> {
             ),
         ));
     };
-    let which = EvoGymTask::from_name(&task.env).ok_or_else(|| {
-        FieldError::new(
-            "task.env",
-            format!(
-                "unknown EvoGym task '{}': expected Walker-v0, BridgeWalker-v0, BeamToppler-v0 or CaveCrawler-v0",
-                task.env
-            ),
-        )
-    })?;
+    let which =
+        EvoGymTask::from_name(&task.env).ok_or_else(|| FieldError::new("task.env", EvoGymTask::unknown(&task.env)))?;
     let own = which.episode_steps();
     let steps = task
         .duration

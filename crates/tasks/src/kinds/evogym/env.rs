@@ -5,9 +5,9 @@
 use super::assemble::plan_object;
 use super::error::EvoGymError;
 use super::grid::MaterialGrid;
-use super::observe::{mean, relative_positions, terrain_distances, Look, Orientation};
-use super::rewards::{self, RobotAndBeam};
-use super::tasks::{EvoGymTask, CAVE_SIGHT};
+use super::observe::{mean, relative_positions, terrain_distances, Centre, Look, Orientation};
+use super::rewards::RobotAndBeam;
+use super::tasks::{EvoGymTask, Piece, SIGHT_RANGE};
 use super::worlds::WorldObject;
 use std::ops::Range;
 use vsrlab_physics::mass_spring::{MassSpringBuilder, MassSpringError, MassSpringSettings, MassSpringWorld};
@@ -20,7 +20,8 @@ pub struct StepResult<'a> {
     pub observation: &'a [f64],
     /// The step's reward.
     pub reward: f64,
-    /// The episode ended: goal reached or unstable (gym's `terminated`).
+    /// The episode ended: unstable, or the task ended it (its goal, or a fall or flip in the
+    /// tasks that have them) (gym's `terminated`).
     pub done: bool,
     /// The episode reached its length (gym's `truncated` from `max_episode_steps`).
     pub truncated: bool,
@@ -37,9 +38,12 @@ pub struct EvoGymEnv {
     start: MassSpringWorld,
     world: MassSpringWorld,
     robot: Range<usize>,
-    beam: Range<usize>,
-    terrain: Range<usize>,
-    orientation: Option<Orientation>,
+    /// The task's object (`TaskDefinition::object`), empty without one.
+    object: Range<usize>,
+    /// Every point but the robot's: what the floor and ceiling observations see.
+    others: Range<usize>,
+    robot_orientation: Option<Orientation>,
+    object_orientation: Option<Orientation>,
     actions: usize,
     observation: Vec<f64>,
     steps: usize,
@@ -58,23 +62,24 @@ impl EvoGymEnv {
         let mut builder = MassSpringBuilder::new(MassSpringSettings::evogym());
         // EvoGym loads robots first, then the other objects by name (`evogym/sim.py:49-59`).
         let placed_robot = plan_object(robot, task.robot_origin()).add_to(&mut builder, true);
-        let (mut beam, mut terrain) = (0..0, 0..0);
-        for object in world.objects().iter().filter(|o| o.name != "robot") {
-            let placed = plan_object(&object.grid, object.origin).add_to(&mut builder, false);
-            match object.name.as_str() {
-                "beam" => beam = placed.points(),
-                "terrain" => terrain = placed.points(),
-                _ => {}
+        let mut object = 0..0;
+        for o in world.objects().iter().filter(|o| o.name != "robot") {
+            let placed = plan_object(&o.grid, o.origin).add_to(&mut builder, false);
+            if task.object() == Some(o.name.as_str()) {
+                object = placed.points();
             }
         }
         let start = builder.build().map_err(EvoGymError::Physics)?;
         let robot_points = placed_robot.points();
-        let orientation = match task {
-            EvoGymTask::BridgeWalker => Some(robot_points.clone()),
-            EvoGymTask::BeamToppler => Some(beam.clone()),
-            _ => None,
-        }
-        .map(|points| Orientation::new(start.positions_x(), start.positions_y(), points));
+        let others = robot_points.end..start.point_count();
+        let pieces = task.observation();
+        let orientation = |piece: Piece, points: &Range<usize>| {
+            pieces
+                .contains(&piece)
+                .then(|| Orientation::new(start.positions_x(), start.positions_y(), points.clone()))
+        };
+        let robot_orientation = orientation(Piece::RobotOrientation, &robot_points);
+        let object_orientation = orientation(Piece::ObjectOrientation, &object);
         let mut env = EvoGymEnv {
             task,
             world: start.clone(),
@@ -82,9 +87,10 @@ impl EvoGymEnv {
             actions: robot.actuator_count(),
             observation: vec![0.0; task.observation_size(robot_points.len())],
             robot: robot_points,
-            beam,
-            terrain,
-            orientation,
+            object,
+            others,
+            robot_orientation,
+            object_orientation,
             steps: 0,
             over: false,
         };
@@ -92,8 +98,8 @@ impl EvoGymEnv {
         Ok(env)
     }
 
-    /// Back to the start; returns the first observation. EvoGym's four tasks have no randomness:
-    /// `seed` changes nothing and is taken for the gym-like signature.
+    /// Back to the start; returns the first observation. The tasks implemented have no
+    /// randomness: `seed` changes nothing and is taken for the gym-like signature.
     pub fn reset(&mut self, seed: u64) -> &[f64] {
         let _ = seed;
         self.world.clone_from(&self.start);
@@ -135,16 +141,13 @@ impl EvoGymEnv {
         };
         // EvoGym reads the snapshot of the last stable step: nothing moved when unstable.
         let after = if unstable { before } else { self.centres() };
-        let reward = match self.task.goal_x() {
-            Some(goal) => rewards::forward(before.robot.0, after.robot.0, goal, unstable),
-            None => rewards::topple(before, after, unstable),
-        };
+        let reward = self.task.reward(before, after, unstable);
         if !unstable {
             self.write_observation();
         }
         self.steps += 1;
         let truncated = self.steps >= self.task.episode_steps();
-        let done = unstable || reward.goal;
+        let done = unstable || reward.ends;
         self.over = done || truncated;
         Ok(StepResult {
             observation: &self.observation,
@@ -176,7 +179,7 @@ impl EvoGymEnv {
         }
     }
 
-    /// Centres of the robot and (BeamToppler) the beam now.
+    /// Centres of the robot and the task's object, and the robot's orientation, now.
     fn centres(&self) -> RobotAndBeam {
         let (xs, ys) = (self.world.positions_x(), self.world.positions_y());
         let centre = |r: &Range<usize>| {
@@ -186,51 +189,66 @@ impl EvoGymEnv {
                 (mean(xs, r.clone()), mean(ys, r.clone()))
             }
         };
+        let robot_angle = self
+            .robot_orientation
+            .as_ref()
+            .map_or(0.0, |a| a.angle(xs, ys, self.robot.clone()));
         RobotAndBeam {
             robot: centre(&self.robot),
-            beam: centre(&self.beam),
+            beam: centre(&self.object),
+            robot_angle,
         }
     }
 
-    /// Writes the task's observation of the current state.
+    /// Writes the task's observation of the current state, piece by piece.
     fn write_observation(&mut self) {
         let (xs, ys) = (self.world.positions_x(), self.world.positions_y());
         let (vx, vy) = (self.world.velocities_x(), self.world.velocities_y());
-        let r = self.robot.clone();
-        let velocity = (mean(vx, r.clone()), mean(vy, r.clone()));
-        let o = &mut self.observation;
-        let positions = 2 * r.len();
-        let head = match self.task {
-            EvoGymTask::Walker | EvoGymTask::CaveCrawler => {
-                o[..2].copy_from_slice(&[velocity.0, velocity.1]);
-                2
+        let (r, b) = (self.robot.clone(), self.object.clone());
+        let mut at = 0;
+        for &piece in self.task.observation() {
+            let size = piece.size(r.len());
+            let o = &mut self.observation[at..at + size];
+            at += size;
+            match piece {
+                Piece::RobotVelocity => o.copy_from_slice(&[mean(vx, r.clone()), mean(vy, r.clone())]),
+                Piece::RobotOrientation => {
+                    o[0] = self
+                        .robot_orientation
+                        .as_ref()
+                        .map_or(0.0, |a| a.angle(xs, ys, r.clone()))
+                }
+                Piece::RobotPositions => relative_positions(xs, ys, r.clone(), o),
+                Piece::ObjectOffset => {
+                    let (rc, bc) = (
+                        (mean(xs, r.clone()), mean(ys, r.clone())),
+                        (mean(xs, b.clone()), mean(ys, b.clone())),
+                    );
+                    o.copy_from_slice(&[bc.0 - rc.0, bc.1 - rc.1]);
+                }
+                Piece::ObjectVelocity => o.copy_from_slice(&[mean(vx, b.clone()), mean(vy, b.clone())]),
+                Piece::ObjectOrientation => {
+                    o[0] = self
+                        .object_orientation
+                        .as_ref()
+                        .map_or(0.0, |a| a.angle(xs, ys, b.clone()))
+                }
+                Piece::Floor(sight)
+                | Piece::Ceiling(sight)
+                | Piece::FloorMeanFirst(sight)
+                | Piece::CeilingMeanFirst(sight) => {
+                    let look = match piece {
+                        Piece::Floor(_) | Piece::FloorMeanFirst(_) => Look::Floor,
+                        _ => Look::Ceiling,
+                    };
+                    let centre = match piece {
+                        Piece::Floor(_) | Piece::Ceiling(_) => Centre::EvoGym,
+                        _ => Centre::MeanFirst,
+                    };
+                    let (t, range) = (self.others.clone(), (sight, SIGHT_RANGE));
+                    terrain_distances(xs, ys, t, r.clone(), centre, range, look, o);
+                }
             }
-            EvoGymTask::BridgeWalker => {
-                let angle = self.orientation.as_ref().map_or(0.0, |a| a.angle(xs, ys, r.clone()));
-                o[..3].copy_from_slice(&[velocity.0, velocity.1, angle]);
-                3
-            }
-            EvoGymTask::BeamToppler => {
-                let b = self.beam.clone();
-                let (rc, bc) = (
-                    (mean(xs, r.clone()), mean(ys, r.clone())),
-                    (mean(xs, b.clone()), mean(ys, b.clone())),
-                );
-                let angle = self.orientation.as_ref().map_or(0.0, |a| a.angle(xs, ys, b.clone()));
-                let (bvx, bvy) = (mean(vx, b.clone()), mean(vy, b));
-                o[..7].copy_from_slice(&[bc.0 - rc.0, bc.1 - rc.1, velocity.0, velocity.1, bvx, bvy, angle]);
-                7
-            }
-        };
-        relative_positions(xs, ys, r.clone(), &mut o[head..head + positions]);
-        if self.task == EvoGymTask::CaveCrawler {
-            let centre = (mean(xs, r.clone()), mean(ys, r));
-            let bins = 2 * CAVE_SIGHT.0 + 1;
-            let rest = &mut o[head + positions..];
-            let (floor, ceiling) = rest.split_at_mut(bins);
-            let t = self.terrain.clone();
-            terrain_distances(xs, ys, t.clone(), centre, CAVE_SIGHT, Look::Floor, floor);
-            terrain_distances(xs, ys, t, centre, CAVE_SIGHT, Look::Ceiling, ceiling);
         }
     }
 
@@ -298,12 +316,35 @@ mod tests {
 
     #[test]
     fn observation_sizes_of_a_full_body() {
-        let sizes = EvoGymTask::ALL.map(|t| {
-            let e = env(t, FULL);
-            assert_eq!(e.observation().len(), e.observation_size());
-            e.observation_size()
-        });
-        assert_eq!(sizes, [74, 75, 79, 96]);
+        let sizes: Vec<(&str, usize)> = EvoGymTask::ALL
+            .iter()
+            .map(|&t| {
+                let e = env(t, FULL);
+                assert_eq!(e.observation().len(), e.observation_size());
+                (t.name(), e.observation_size())
+            })
+            .collect();
+        // the sizes EvoGym's `gym.make` gives (docs/evogym-tasks-reference.md §4)
+        let expected = [
+            ("Walker-v0", 74),
+            ("BridgeWalker-v0", 75),
+            ("CaveCrawler-v0", 96),
+            ("Jumper-v0", 79),
+            ("Balancer-v0", 73),
+            ("Balancer-v1", 73),
+            ("UpStepper-v0", 86),
+            ("DownStepper-v0", 86),
+            ("ObstacleTraverser-v0", 86),
+            ("ObstacleTraverser-v1", 86),
+            ("Hurdler-v0", 86),
+            ("GapJumper-v0", 86),
+            ("PlatformJumper-v0", 86),
+            ("BeamToppler-v0", 79),
+            ("Climber-v0", 74),
+            ("Climber-v1", 74),
+            ("Climber-v2", 82),
+        ];
+        assert_eq!(sizes, expected);
     }
 
     /// "31240/22222/00400": actuators 3, 4 (row 0) and 4 (row 2): three actions.
@@ -399,7 +440,7 @@ mod tests {
 
     #[test]
     fn every_task_steps_finite_and_deterministically() {
-        for task in EvoGymTask::ALL {
+        for &task in EvoGymTask::ALL {
             let mut a = env(task, FULL);
             let mut b = env(task, FULL);
             for t in 0..20 {
@@ -421,7 +462,7 @@ mod tests {
         for _ in 0..50 {
             e.step(&ones).unwrap();
         }
-        let beam_y = mean(e.world().positions_y(), e.beam.clone());
+        let beam_y = mean(e.world().positions_y(), e.object.clone());
         assert!((beam_y - 0.6).abs() < 0.01, "{beam_y}");
         let o = e.observation();
         // Beam centre (3.4, 0.6) minus robot centre (≈ 0.35, ≈ 0.35).
@@ -453,8 +494,9 @@ mod tests {
     }
 
     /// Random 5 × 5 bodies of every material mix (codes 0–4, kept when EvoGym would accept them
-    /// as robots) under random actions for a whole episode of every task: every observation is
-    /// finite, and an episode ends early only at the goal or as unstable with the −3 penalty.
+    /// as robots) under random actions for up to 400 steps of every task: every observation is
+    /// finite, and an episode ends early only at the task's end (goal, fall, flip) or as
+    /// unstable with the −3 penalty.
     #[test]
     fn random_5x5_bodies_run_whole_episodes_of_every_task() {
         use rand::{Rng, SeedableRng};
@@ -470,7 +512,7 @@ mod tests {
             }
         }
         let mut episodes = 0;
-        for task in EvoGymTask::ALL {
+        for &task in EvoGymTask::ALL {
             for grid in &robots {
                 let Ok(mut e) = EvoGymEnv::new(task, grid) else {
                     continue; // overlaps the task's terrain (CaveCrawler's ceiling)
@@ -478,7 +520,9 @@ mod tests {
                 episodes += 1;
                 let n = e.action_count();
                 let mut actions = vec![0.0; n];
-                for step in 1..=task.episode_steps() {
+                // the first 400 steps (Climber-v0's whole episode, with its truncation), to keep
+                // the test's time as tasks are added
+                for step in 1..=task.episode_steps().min(400) {
                     actions.iter_mut().for_each(|a| *a = rng.random_range(0.0..2.0));
                     let r = e.step(&actions).unwrap();
                     assert!(

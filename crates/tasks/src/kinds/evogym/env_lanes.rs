@@ -159,7 +159,7 @@ mod tests {
     fn every_task_steps_in_lanes_as_alone() {
         let full = MaterialGrid::from_rows("33333/33333/33333/33333/33333").unwrap();
         let mixed = MaterialGrid::from_rows("13231/34443/32023/33033/40004").unwrap();
-        for task in EvoGymTask::ALL {
+        for &task in EvoGymTask::ALL {
             for grid in [&full, &mixed] {
                 // four environments in four lanes, and three (a lane without one)
                 let ran = alone_and_in_lanes(task, grid, 4, 12, (0.4, 1.8), 1);

@@ -93,24 +93,83 @@ pub enum Look {
     Ceiling,
 }
 
+/// How a floor or ceiling observation places the robot's centre in cells, and what an empty bin
+/// reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Centre {
+    /// EvoGym's arithmetic: each point's coordinate divided by the cell size, then numpy's mean
+    /// of them (its pairwise sum, [`numpy_sum`]); an empty bin reads `cy − (cy − range)` (floor)
+    /// or `(range + cy) − cy` (ceiling) before the clip, as `base.py:313`/`:366` compute it.
+    /// At reset the centre sits on a bin border, and only this arithmetic puts the border points
+    /// in EvoGym's bins.
+    EvoGym,
+    /// vsrlab's first form, kept for CaveCrawler-v0 (ch. 5.2's results were run with it): the
+    /// mean in simulator units, then divided by the cell size; an empty bin reads `range`. It
+    /// differs from EvoGym's in bins whose points lie on a border (docs/evogym-envs.md).
+    MeanFirst,
+}
+
+/// numpy's sum of `n` values `value(0)`, …, `value(n − 1)` along a contiguous row (`add.reduce`):
+/// fewer than 8 left to right from 0; up to 128 in eight interleaved sums, combined pairwise,
+/// then the rest; more in halves (a multiple of 8 first), recursively. `np.mean` is this over n.
+pub fn numpy_sum(n: usize, value: &impl Fn(usize) -> f64) -> f64 {
+    numpy_sum_from(0, n, value)
+}
+
+fn numpy_sum_from(start: usize, n: usize, value: &impl Fn(usize) -> f64) -> f64 {
+    if n < 8 {
+        return (start..start + n).fold(0.0, |sum, i| sum + value(i));
+    }
+    if n <= 128 {
+        let mut r: [f64; 8] = std::array::from_fn(|j| value(start + j));
+        let mut i = 8;
+        while i < n - n % 8 {
+            for (j, r) in r.iter_mut().enumerate() {
+                *r += value(start + i + j);
+            }
+            i += 8;
+        }
+        let mut sum = ((r[0] + r[1]) + (r[2] + r[3])) + ((r[4] + r[5]) + (r[6] + r[7]));
+        for k in i..n {
+            sum += value(start + k);
+        }
+        return sum;
+    }
+    let half = n / 2 - (n / 2) % 8;
+    numpy_sum_from(start, half, value) + numpy_sum_from(start + half, n - half, value)
+}
+
 /// EvoGym's floor or ceiling observation (`evogym/envs/base.py:276-379`, scaled by 0.1 at
 /// `:420-424`). In cells: for each column offset `i` in `-sight..=sight`, the terrain points whose
 /// x lies strictly between `cx + i - 0.5` and `cx + i + 0.5` and whose y is below (floor) or
 /// above (ceiling) the centre `cy`; the distance from `cy` to the highest (floor) or lowest
 /// (ceiling) of them, `range` when there is none, clipped into `[0, range]`; then times 0.1.
-/// `centre` is the robot's centre in simulator units; `out` holds `2 sight + 1` values; bins past
-/// the 64th are never filled (EvoGym's tasks use a sight of 5).
+/// The centre is the mean of the `robot` points, placed as `centre` says; `out` holds
+/// `2 sight + 1` values; bins past the 64th are never filled (EvoGym's tasks use a sight of at
+/// most 5).
+#[allow(clippy::too_many_arguments)]
 pub fn terrain_distances(
     xs: &[f64],
     ys: &[f64],
     terrain: Range<usize>,
-    centre: (f64, f64),
+    robot: Range<usize>,
+    centre: Centre,
     (sight, range): (usize, f64),
     look: Look,
     out: &mut [f64],
 ) {
     const VOXEL: f64 = 0.1;
-    let (cx, cy) = (centre.0 / VOXEL, centre.1 / VOXEL);
+    let n = robot.len();
+    let (cx, cy) = match centre {
+        Centre::EvoGym => {
+            let (x, y) = (&xs[robot.clone()], &ys[robot]);
+            (
+                numpy_sum(n, &|i| x[i] / VOXEL) / n as f64,
+                numpy_sum(n, &|i| y[i] / VOXEL) / n as f64,
+            )
+        }
+        Centre::MeanFirst => (mean(xs, robot.clone()) / VOXEL, mean(ys, robot) / VOXEL),
+    };
     let s = sight as f64;
     let mut found = [false; 64];
     for i in terrain {
@@ -143,10 +202,13 @@ pub fn terrain_distances(
         }
     }
     for (k, v) in out.iter_mut().enumerate().take(2 * sight + 1) {
-        let distance = match (found.get(k).copied().unwrap_or(false), look) {
-            (false, _) => range,
-            (true, Look::Floor) => cy - *v,
-            (true, Look::Ceiling) => *v - cy,
+        let found = found.get(k).copied().unwrap_or(false);
+        let distance = match (found, look, centre) {
+            (false, _, Centre::MeanFirst) => range,
+            (false, Look::Floor, Centre::EvoGym) => cy - (-range + cy),
+            (false, Look::Ceiling, Centre::EvoGym) => (range + cy) - cy,
+            (true, Look::Floor, _) => cy - *v,
+            (true, Look::Ceiling, _) => *v - cy,
         };
         *v = distance.clamp(0.0, range) * VOXEL;
     }
@@ -182,29 +244,84 @@ mod tests {
         assert!((o.angle(&wx, &wy, 0..4) - expected).abs() < 1e-12);
     }
 
-    /// Robot centre at (0, 0.3) = cell coordinates (0, 3). Terrain points in cells: (0, 1) and
-    /// (0, 2) below (highest 2: distance 1 cell), (2, 9) above (distance 6, clipped to 5),
+    /// A one-point robot at (0, 0.3) = cell coordinates (0, 3). Terrain points in cells: (0, 1)
+    /// and (0, 2) below (highest 2: distance 1 cell), (2, 9) above (distance 6, clipped to 5),
     /// (0.5, 0) exactly on the border of bins 0 and 1 (in neither), (6, 0) beyond the sight of 5.
     #[test]
     fn floor_and_ceiling_distances_by_hand() {
-        let pts = [(0.0, 1.0), (0.0, 2.0), (2.0, 9.0), (0.5, 0.0), (6.0, 0.0)];
+        let pts = [(0.0, 1.0), (0.0, 2.0), (2.0, 9.0), (0.5, 0.0), (6.0, 0.0), (0.0, 3.0)];
         let xs: Vec<f64> = pts.iter().map(|p| p.0 * 0.1).collect();
         let ys: Vec<f64> = pts.iter().map(|p| p.1 * 0.1).collect();
         let mut floor = [0.0; 11];
-        terrain_distances(&xs, &ys, 0..5, (0.0, 0.3), (5, 5.0), Look::Floor, &mut floor);
+        terrain_distances(
+            &xs,
+            &ys,
+            0..5,
+            5..6,
+            Centre::MeanFirst,
+            (5, 5.0),
+            Look::Floor,
+            &mut floor,
+        );
         for (k, v) in floor.iter().enumerate() {
             let expected = if k == 5 { 0.1 } else { 0.5 };
             assert!((v - expected).abs() < 1e-12, "floor[{k}] = {v}");
         }
         let mut ceiling = [0.0; 11];
-        terrain_distances(&xs, &ys, 0..5, (0.0, 0.3), (5, 5.0), Look::Ceiling, &mut ceiling);
+        terrain_distances(
+            &xs,
+            &ys,
+            0..5,
+            5..6,
+            Centre::MeanFirst,
+            (5, 5.0),
+            Look::Ceiling,
+            &mut ceiling,
+        );
         assert!(ceiling.iter().all(|v| (v - 0.5).abs() < 1e-12), "{ceiling:?}");
         // Terrain above the centre in bin +2 closer than the range: 4 − 3 = 1 cell.
-        let ys2: Vec<f64> = [1.0, 2.0, 4.0, 0.0, 0.0].iter().map(|y| y * 0.1).collect();
-        terrain_distances(&xs, &ys2, 0..5, (0.0, 0.3), (5, 5.0), Look::Ceiling, &mut ceiling);
+        let ys2: Vec<f64> = [1.0, 2.0, 4.0, 0.0, 0.0, 3.0].iter().map(|y| y * 0.1).collect();
+        terrain_distances(
+            &xs,
+            &ys2,
+            0..5,
+            5..6,
+            Centre::MeanFirst,
+            (5, 5.0),
+            Look::Ceiling,
+            &mut ceiling,
+        );
         assert!(
             (ceiling[7] - 0.1).abs() < 1e-12 && (ceiling[6] - 0.5).abs() < 1e-12,
             "{ceiling:?}"
         );
+        // EvoGym's arithmetic agrees away from borders
+        let mut exact = [0.0; 11];
+        terrain_distances(
+            &xs,
+            &ys2,
+            0..5,
+            5..6,
+            Centre::EvoGym,
+            (5, 5.0),
+            Look::Ceiling,
+            &mut exact,
+        );
+        assert_eq!(exact, ceiling);
+    }
+
+    /// numpy's pairwise sum, not left to right, against numpy's own results (`np.add.reduce`,
+    /// numpy 1.26 of bench/evogym/.venv): 2^53 then eight 1.0s sums to 2^53 + 8 (left to right
+    /// each 1.0 is lost: 2^53 + 1 rounds to 2^53), the first seven to 2^53; 129 values, 1.0 but
+    /// 2^53 at index 64, to 2^53 + 120.
+    #[test]
+    fn numpy_sum_adds_in_numpys_order() {
+        let big = 2f64.powi(53);
+        let values: Vec<f64> = std::iter::once(big).chain([1.0; 8]).collect();
+        assert_eq!(values.iter().fold(0.0, |s, v| s + v), big);
+        assert_eq!(numpy_sum(9, &|i| values[i]), big + 8.0);
+        assert_eq!(numpy_sum(7, &|i| values[i]), big);
+        let many: Vec<f64> = (0..129).map(|i| if i == 64 { big } else { 1.0 }).collect();
+        assert_eq!(numpy_sum(129, &|i| many[i]), big + 120.0);
     }
 }

@@ -12,8 +12,9 @@ pub const GOAL_BONUS: f64 = 1.0;
 pub struct Reward {
     /// The reward.
     pub value: f64,
-    /// The goal was reached (the episode ends with the bonus).
-    pub goal: bool,
+    /// The task ends the episode: its goal was reached (with the bonus), or, in some tasks, the
+    /// robot fell or flipped (with a penalty).
+    pub ends: bool,
 }
 
 /// Walker-v0, BridgeWalker-v0, CaveCrawler-v0 (`walk.py:56-69`, `:128-141`, `:203-216`): the
@@ -29,16 +30,25 @@ pub fn forward(x_before: f64, x_after: f64, goal_x: f64, unstable: bool) -> Rewa
     if goal {
         value += GOAL_BONUS;
     }
-    Reward { value, goal }
+    Reward { value, ends: goal }
 }
 
-/// Centres of the robot and the beam at one time.
+/// How much closer `q` came to `target` in a step: `|target − q before| − |target − q after|`
+/// (the balancers, `balance.py:37-38`).
+pub fn approach(target: f64, before: f64, after: f64) -> f64 {
+    (target - before).abs() - (target - after).abs()
+}
+
+/// Centres of the robot and of the task's object (BeamToppler's beam) at one time.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RobotAndBeam {
     /// The robot's centre (x, y).
     pub robot: (f64, f64),
-    /// The beam's centre (x, y).
+    /// The task's object's centre (x, y); (0, 0) in a task without one.
     pub beam: (f64, f64),
+    /// The robot's orientation since the start (`observe::Orientation`), in tasks that observe
+    /// it; 0 in the others.
+    pub robot_angle: f64,
 }
 
 /// BeamToppler-v0 (`manipulate.py:647-669`, `:695-704`): the robot's approach to the beam along
@@ -57,7 +67,7 @@ pub fn topple(before: RobotAndBeam, after: RobotAndBeam, unstable: bool) -> Rewa
     if goal {
         value += GOAL_BONUS;
     }
-    Reward { value, goal }
+    Reward { value, ends: goal }
 }
 
 #[cfg(test)]
@@ -65,12 +75,19 @@ mod tests {
     use super::*;
 
     #[test]
+    fn approach_is_the_distance_lost() {
+        assert_eq!(approach(1.5, 0.5, 1.25), 0.75);
+        assert_eq!(approach(1.5, 2.0, 2.5), -0.5);
+        assert_eq!(approach(1.5, 1.0, 2.0), 0.0, "passing the target");
+    }
+
+    #[test]
     fn forward_reward_is_the_x_gain_with_penalty_and_bonus() {
         assert_eq!(
             forward(0.25, 0.375, 9.9, false),
             Reward {
                 value: 0.125,
-                goal: false
+                ends: false
             }
         );
         assert_eq!(forward(0.5, 0.25, 9.9, false).value, -0.25);
@@ -78,17 +95,17 @@ mod tests {
             forward(0.5, 0.5, 9.9, true),
             Reward {
                 value: -3.0,
-                goal: false
+                ends: false
             }
         );
         assert_eq!(
             forward(9.875, 10.0, 9.9, false),
             Reward {
                 value: 1.125,
-                goal: true
+                ends: true
             }
         );
-        assert!(!forward(9.9, 9.9, 9.9, false).goal, "strictly beyond");
+        assert!(!forward(9.9, 9.9, 9.9, false).ends, "strictly beyond");
     }
 
     /// Robot from x 1 to 1.5 while the beam (x 3.5) moves 0.25 right and drops 0.5:
@@ -99,23 +116,26 @@ mod tests {
         let before = RobotAndBeam {
             robot: (1.0, 0.25),
             beam: (3.5, 0.625),
+            robot_angle: 0.0,
         };
         let after = RobotAndBeam {
             robot: (1.5, 0.25),
             beam: (3.75, 0.125),
+            robot_angle: 0.0,
         };
         assert_eq!(
             topple(before, after, false),
             Reward {
                 value: 7.0,
-                goal: false
+                ends: false
             }
         );
         assert_eq!(topple(before, before, true).value, -3.0);
         let far = RobotAndBeam {
             robot: (1.5, 0.25),
             beam: (0.125, 0.125),
+            robot_angle: 0.0,
         };
-        assert!(topple(before, far, false).goal);
+        assert!(topple(before, far, false).ends);
     }
 }

@@ -62,15 +62,7 @@ impl EvoGymRobot {
 
     /// The task named by `env`; the error names the field.
     pub fn task(&self) -> Result<EvoGymTask, FieldError> {
-        EvoGymTask::from_name(&self.env).ok_or_else(|| {
-            FieldError::new(
-                "env",
-                format!(
-                    "unknown EvoGym task '{}': expected Walker-v0, BridgeWalker-v0, BeamToppler-v0 or CaveCrawler-v0",
-                    self.env
-                ),
-            )
-        })
+        EvoGymTask::from_name(&self.env).ok_or_else(|| FieldError::new("env", EvoGymTask::unknown(&self.env)))
     }
 
     /// The brain's view: one unit per actuator voxel, the whole observation as the first unit's

@@ -62,15 +62,8 @@ impl EvoGym {
 
     /// The task named by `env`, the error naming `task.env`.
     fn which(&self) -> Result<EvoGymTask, EpisodeError> {
-        EvoGymTask::from_name(&self.env).ok_or_else(|| {
-            task_field(FieldError::new(
-                "env",
-                format!(
-                    "unknown EvoGym task '{}': expected Walker-v0, BridgeWalker-v0, BeamToppler-v0 or CaveCrawler-v0",
-                    self.env
-                ),
-            ))
-        })
+        EvoGymTask::from_name(&self.env)
+            .ok_or_else(|| task_field(FieldError::new("env", EvoGymTask::unknown(&self.env))))
     }
 }
 

@@ -1,0 +1,74 @@
+//! Balancer-v0 (`balance.py:15`, class `Balance`) and Balancer-v1 (`balance.py:97`, class
+//! `BalanceJump`): get the robot's centre to a point over a thin pole and stay there; in v0 the
+//! robot starts on the pole, in v1 beside it.
+
+use super::{Piece, TaskDefinition};
+use crate::kinds::evogym::rewards::{approach, Reward, RobotAndBeam, UNSTABLE_PENALTY};
+use crate::kinds::evogym::worlds::{self, World};
+
+/// A balancing task: its world, start and the target point (cells).
+pub struct Balancer {
+    name: &'static str,
+    short_name: &'static str,
+    world: fn() -> World,
+    origin: (usize, usize),
+    /// The target's x and y in cells, as EvoGym writes them (times 0.1 in the reward).
+    target: (f64, f64),
+}
+
+/// Balancer-v0: the robot starts on the pole (column 17, two cells high).
+pub const BALANCER_V0: Balancer = Balancer {
+    name: "Balancer-v0",
+    short_name: "balancer",
+    world: worlds::balancer_v0,
+    origin: (15, 3),
+    target: (17.0, 5.0),
+};
+
+/// Balancer-v1: the robot starts on the floor beside a pole three cells high.
+pub const BALANCER_V1: Balancer = Balancer {
+    name: "Balancer-v1",
+    short_name: "balancer-v1",
+    world: worlds::balancer_v1,
+    origin: (10, 1),
+    target: (17.5, 6.0),
+};
+
+impl TaskDefinition for Balancer {
+    fn name(&self) -> &'static str {
+        self.name
+    }
+
+    fn short_name(&self) -> &'static str {
+        self.short_name
+    }
+
+    fn world(&self) -> World {
+        (self.world)()
+    }
+
+    fn robot_origin(&self) -> (usize, usize) {
+        self.origin
+    }
+
+    /// `envs/__init__.py`: 600 for both.
+    fn episode_steps(&self) -> usize {
+        600
+    }
+
+    /// The robot's orientation and relative positions, no velocity (`balance.py:50-54`).
+    fn observation(&self) -> &'static [Piece] {
+        &[Piece::RobotOrientation, Piece::RobotPositions]
+    }
+
+    /// The centre's approach to the target along x, plus along y; no goal (`balance.py:33-39`).
+    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool) -> Reward {
+        let (tx, ty) = (self.target.0 * 0.1, self.target.1 * 0.1);
+        let mut value = approach(tx, before.robot.0, after.robot.0);
+        value += approach(ty, before.robot.1, after.robot.1);
+        if unstable {
+            value -= UNSTABLE_PENALTY;
+        }
+        Reward { value, ends: false }
+    }
+}

@@ -1,0 +1,49 @@
+//! CaveCrawler-v0 (`walk.py:159-233`, class `Duck`): crawl right through a low cave.
+
+use super::{Piece, TaskDefinition, CAVE_SIGHT};
+use crate::kinds::evogym::rewards::{forward, Reward, RobotAndBeam};
+use crate::kinds::evogym::worlds::{self, World};
+
+/// CaveCrawler-v0.
+pub struct CaveCrawler;
+
+impl TaskDefinition for CaveCrawler {
+    fn name(&self) -> &'static str {
+        "CaveCrawler-v0"
+    }
+
+    fn short_name(&self) -> &'static str {
+        "cave-crawler"
+    }
+
+    fn world(&self) -> World {
+        worlds::cave_crawler_v0()
+    }
+
+    /// `walk.py:171`.
+    fn robot_origin(&self) -> (usize, usize) {
+        (1, 2)
+    }
+
+    /// `envs/__init__.py:140`.
+    fn episode_steps(&self) -> usize {
+        1000
+    }
+
+    /// Centre velocity, relative positions, floor and ceiling distances with a sight of 5
+    /// (`walk.py:179`, `:196-201`), the centre placed as vsrlab first did (it differs from
+    /// EvoGym in bins whose points lie on a border, at reset; docs/evogym-envs.md).
+    fn observation(&self) -> &'static [Piece] {
+        &[
+            Piece::RobotVelocity,
+            Piece::RobotPositions,
+            Piece::FloorMeanFirst(CAVE_SIGHT.0),
+            Piece::CeilingMeanFirst(CAVE_SIGHT.0),
+        ]
+    }
+
+    /// The centre's x gain; the goal beyond 69 cells (`walk.py:203-216`).
+    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool) -> Reward {
+        forward(before.robot.0, after.robot.0, 69.0 * 0.1, unstable)
+    }
+}

@@ -1,0 +1,330 @@
+//! EvoGym's tasks, one module each: its world, where the robot starts, how long an episode
+//! lasts, what is observed, the reward and what ends an episode ([`TaskDefinition`]). Every task
+//! is listed once, in [`EvoGymTask::ALL`]: a new task is one module and one line there. Sources
+//! (commit `f63c649`): `evogym/envs/__init__.py` (names, episode lengths) and the task classes of
+//! `evogym/envs/*.py`; `docs/evogym-envs.md` has the details of each task and where the thesis
+//! differs, `docs/evogym-tasks-reference.md` the facts of all 32.
+
+mod balancer;
+mod beam_toppler;
+mod bridge_walker;
+mod cave_crawler;
+mod climber;
+mod jumper;
+mod stairs;
+mod walker;
+
+use super::rewards::{Reward, RobotAndBeam};
+use super::worlds::World;
+use std::fmt;
+use std::hash::{Hash, Hasher};
+
+/// How far the floor and ceiling observations look, in cells: a bin is empty, or farther, at
+/// this distance (`base.py:281`, default `sight_range = 5`; a task's sight, the bins each side,
+/// is its own).
+pub const SIGHT_RANGE: f64 = 5.0;
+
+/// Cells seen to each side by CaveCrawler's floor and ceiling observations, and how far
+/// (`walk.py:179`).
+pub const CAVE_SIGHT: (usize, f64) = (5, SIGHT_RANGE);
+
+/// One piece of a task's observation, in the order the task lists them (simulator units).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Piece {
+    /// The robot's mean velocity (x, y) (`base.py:236`).
+    RobotVelocity,
+    /// The robot's orientation since the start (`observe::Orientation`, `base.py:264`).
+    RobotOrientation,
+    /// Each robot point minus the robot's centre: all x, then all y (`base.py:250`): 2 per point.
+    RobotPositions,
+    /// The task's object's centre minus the robot's (x, y).
+    ObjectOffset,
+    /// The task's object's mean velocity (x, y).
+    ObjectVelocity,
+    /// The task's object's orientation since the start.
+    ObjectOrientation,
+    /// Distances down to the other objects, this many bins each side of the robot's centre
+    /// (`observe::terrain_distances`, `base.py:276`).
+    Floor(usize),
+    /// Distances up to the other objects, this many bins each side (`base.py:329`).
+    Ceiling(usize),
+    /// [`Piece::Floor`] with vsrlab's first arithmetic for the centre
+    /// (`observe::Centre::MeanFirst`), kept for CaveCrawler-v0, whose ch. 5.2 results used it.
+    FloorMeanFirst(usize),
+    /// [`Piece::Ceiling`] with vsrlab's first arithmetic, kept for CaveCrawler-v0.
+    CeilingMeanFirst(usize),
+}
+
+impl Piece {
+    /// Values this piece adds for a robot of `robot_points` points.
+    pub fn size(self, robot_points: usize) -> usize {
+        match self {
+            Piece::RobotVelocity | Piece::ObjectOffset | Piece::ObjectVelocity => 2,
+            Piece::RobotOrientation | Piece::ObjectOrientation => 1,
+            Piece::RobotPositions => 2 * robot_points,
+            Piece::Floor(sight)
+            | Piece::Ceiling(sight)
+            | Piece::FloorMeanFirst(sight)
+            | Piece::CeilingMeanFirst(sight) => 2 * sight + 1,
+        }
+    }
+}
+
+/// What makes an EvoGym task: implemented once per task, in its own module.
+pub trait TaskDefinition: Sync {
+    /// EvoGym's registered name (`Walker-v0`).
+    fn name(&self) -> &'static str;
+
+    /// Its short name on vsrlab's command line (`walker`).
+    fn short_name(&self) -> &'static str;
+
+    /// Its world, without the robot.
+    fn world(&self) -> World;
+
+    /// Cell of the robot's bottom-left corner.
+    fn robot_origin(&self) -> (usize, usize);
+
+    /// Steps per episode (`max_episode_steps`).
+    fn episode_steps(&self) -> usize;
+
+    /// The object besides the robot whose centre the reward or the observation reads (the
+    /// beam), if any.
+    fn object(&self) -> Option<&'static str> {
+        None
+    }
+
+    /// The observation, piece by piece.
+    fn observation(&self) -> &'static [Piece];
+
+    /// A step's reward and whether the task ends the episode (besides instability, which ends
+    /// every task), from the centres before and after the step (equal when unstable: EvoGym reads
+    /// the last stable snapshot).
+    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool) -> Reward;
+}
+
+/// One of EvoGym's tasks: a handle on its [`TaskDefinition`], compared and hashed by name.
+#[derive(Clone, Copy)]
+pub struct EvoGymTask(&'static dyn TaskDefinition);
+
+#[allow(non_upper_case_globals)]
+impl EvoGymTask {
+    /// Walker-v0: walk right on flat ground.
+    pub const Walker: EvoGymTask = EvoGymTask(&walker::Walker);
+    /// BridgeWalker-v0: walk right on a soft bridge.
+    pub const BridgeWalker: EvoGymTask = EvoGymTask(&bridge_walker::BridgeWalker);
+    /// BeamToppler-v0: push a beam off two pegs.
+    pub const BeamToppler: EvoGymTask = EvoGymTask(&beam_toppler::BeamToppler);
+    /// CaveCrawler-v0: crawl right through a low cave.
+    pub const CaveCrawler: EvoGymTask = EvoGymTask(&cave_crawler::CaveCrawler);
+
+    /// Every task, in EvoGym's registration order: the registry.
+    pub const ALL: &'static [EvoGymTask] = &[
+        EvoGymTask::Walker,
+        EvoGymTask::BridgeWalker,
+        EvoGymTask::CaveCrawler,
+        EvoGymTask(&jumper::Jumper),
+        EvoGymTask(&balancer::BALANCER_V0),
+        EvoGymTask(&balancer::BALANCER_V1),
+        EvoGymTask(&stairs::UP_STEPPER),
+        EvoGymTask(&stairs::DOWN_STEPPER),
+        EvoGymTask(&stairs::OBSTACLE_TRAVERSER_V0),
+        EvoGymTask(&stairs::OBSTACLE_TRAVERSER_V1),
+        EvoGymTask(&stairs::HURDLER),
+        EvoGymTask(&stairs::GAP_JUMPER),
+        EvoGymTask(&stairs::PLATFORM_JUMPER),
+        EvoGymTask::BeamToppler,
+        EvoGymTask(&climber::CLIMBER_V0),
+        EvoGymTask(&climber::CLIMBER_V1),
+        EvoGymTask(&climber::Climber2),
+    ];
+
+    /// The task named `name`: EvoGym's name in any case (`BridgeWalker-v0`, `bridgewalker-v0`)
+    /// or the short name with or without the version (`bridge-walker`, `bridge-walker-v0`;
+    /// `balancer-v1`).
+    pub fn from_name(name: &str) -> Option<EvoGymTask> {
+        let short = name.strip_suffix("-v0").unwrap_or(name);
+        EvoGymTask::ALL.iter().copied().find(|t| {
+            t.name().eq_ignore_ascii_case(name)
+                || t.short_name().eq_ignore_ascii_case(short)
+                || t.short_name().eq_ignore_ascii_case(name)
+        })
+    }
+
+    /// The error for a task name that [`EvoGymTask::from_name`] does not know, listing those it
+    /// does.
+    pub fn unknown(name: &str) -> String {
+        let known: Vec<&str> = EvoGymTask::ALL.iter().map(|t| t.name()).collect();
+        format!("unknown EvoGym task '{name}': expected one of {}", known.join(", "))
+    }
+
+    /// EvoGym's name (`Walker-v0`, …).
+    pub fn name(self) -> &'static str {
+        self.0.name()
+    }
+
+    /// Its short name on vsrlab's command line (`walker`, `bridge-walker`, …).
+    pub fn short_name(self) -> &'static str {
+        self.0.short_name()
+    }
+
+    /// Its world, without the robot.
+    pub fn world(self) -> World {
+        self.0.world()
+    }
+
+    /// Cell of the robot's bottom-left corner.
+    pub fn robot_origin(self) -> (usize, usize) {
+        self.0.robot_origin()
+    }
+
+    /// Steps per episode (`max_episode_steps`).
+    pub fn episode_steps(self) -> usize {
+        self.0.episode_steps()
+    }
+
+    /// The object besides the robot that the task reads, if any.
+    pub fn object(self) -> Option<&'static str> {
+        self.0.object()
+    }
+
+    /// The observation, piece by piece.
+    pub fn observation(self) -> &'static [Piece] {
+        self.0.observation()
+    }
+
+    /// Observation length for a robot of `robot_points` points.
+    pub fn observation_size(self, robot_points: usize) -> usize {
+        self.observation().iter().map(|p| p.size(robot_points)).sum()
+    }
+
+    /// A step's reward and whether the task ends the episode ([`TaskDefinition::reward`]).
+    pub fn reward(self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool) -> Reward {
+        self.0.reward(before, after, unstable)
+    }
+}
+
+impl PartialEq for EvoGymTask {
+    fn eq(&self, other: &EvoGymTask) -> bool {
+        self.name() == other.name()
+    }
+}
+
+impl Eq for EvoGymTask {}
+
+impl Hash for EvoGymTask {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        self.name().hash(state);
+    }
+}
+
+impl fmt::Debug for EvoGymTask {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip_and_are_unique() {
+        for &t in EvoGymTask::ALL {
+            assert_eq!(EvoGymTask::from_name(t.name()), Some(t));
+            assert_eq!(EvoGymTask::from_name(t.short_name()), Some(t), "{t:?}");
+            let same = EvoGymTask::ALL
+                .iter()
+                .filter(|o| o.name() == t.name() || o.short_name() == t.short_name());
+            assert_eq!(same.count(), 1, "{t:?}");
+        }
+        assert_eq!(EvoGymTask::from_name("Walker-v1"), None);
+        assert_eq!(
+            EvoGymTask::from_name("balancer-v1").map(|t| t.name()),
+            Some("Balancer-v1")
+        );
+    }
+
+    /// EvoGym's own first 50 steps of a full 5 × 5 body of horizontal actuators, every action
+    /// 1.0 (docs/evogym-tasks-reference.md §6, measured with EvoGym 2.0's `gym.make`): the summed
+    /// reward to the six decimals printed there, and no episode ends before. Not CaveCrawler-v0
+    /// or Hurdler-v0: their robots fall (one and three cells) onto the floor and then rest, so
+    /// their 50-step sums (EvoGym −0.000610 and −0.003760, vsrlab −0.002591 and −0.001351) are
+    /// the sideways drift of a symmetric body at rest, set by rounding (both under 3e-4 per
+    /// step); with a gait their episodes agree within 0.1 % and 0.22 % (docs/evogym-envs.md).
+    #[test]
+    fn fifty_steps_of_a_full_body_sum_to_evogyms_rewards() {
+        use crate::kinds::evogym::{EvoGymEnv, MaterialGrid};
+        let body = MaterialGrid::from_rows("33333/33333/33333/33333/33333").unwrap();
+        let evogym = [
+            ("Walker-v0", 0.006405),
+            ("BeamToppler-v0", 0.055659),
+            ("Jumper-v0", -0.059703),
+            ("Balancer-v0", -0.007735),
+            ("Balancer-v1", -0.009900),
+            ("Climber-v0", -0.001512),
+            ("Climber-v1", -0.001438),
+            ("UpStepper-v0", -0.002571),
+            ("DownStepper-v0", -0.004461),
+            ("ObstacleTraverser-v0", 0.006405),
+            ("ObstacleTraverser-v1", 0.036173),
+            ("GapJumper-v0", 0.006619),
+            ("PlatformJumper-v0", 0.006619),
+            ("Climber-v2", -0.001531),
+        ];
+        for (name, expected) in evogym {
+            let task = EvoGymTask::from_name(name).unwrap();
+            let mut env = EvoGymEnv::new(task, &body).unwrap();
+            let mut total = 0.0;
+            for step in 0..50 {
+                let r = env.step(&[1.0; 25]).unwrap();
+                assert!(!r.done && !r.truncated, "{name} ended at step {step}");
+                total += r.reward;
+            }
+            assert!(
+                (total - expected).abs() <= 0.5e-6,
+                "{name}: {total:.9} against EvoGym's {expected}"
+            );
+        }
+    }
+
+    /// The floor (or ceiling) bins of the first observation of a full 5 × 5 body, EvoGym's
+    /// (reference sheet §6, measured with `gym.make`): at reset the centre sits on a bin border,
+    /// and only EvoGym's arithmetic (`observe::Centre::EvoGym`) puts the border points in its bins.
+    #[test]
+    fn first_floor_bins_are_evogyms() {
+        use crate::kinds::evogym::{EvoGymEnv, MaterialGrid};
+        let body = MaterialGrid::from_rows("33333/33333/33333/33333/33333").unwrap();
+        let (h, t) = (0.5, 0.25);
+        let evogym: [(&str, &[f64]); 9] = [
+            ("Jumper-v0", &[h; 5]),
+            ("UpStepper-v0", &[h, h, h, h, h, t, h, h, t, h, h]),
+            ("DownStepper-v0", &[h, h, h, h, h, 0.35, h, h, 0.35, h, h]),
+            ("ObstacleTraverser-v0", &[h, h, h, h, t, h, h, t, h, h, h]),
+            ("ObstacleTraverser-v1", &[h, h, h, h, t, h, h, 0.35, h, h, h]),
+            ("Hurdler-v0", &[h; 11]),
+            ("GapJumper-v0", &[h, h, h, h, h, t, h, h, t, h, h]),
+            ("PlatformJumper-v0", &[h, h, h, h, h, t, h, h, t, h, h]),
+            ("Climber-v2", &[h, h, h, h, h, h, 0.05]),
+        ];
+        for (name, bins) in evogym {
+            let env = EvoGymEnv::new(EvoGymTask::from_name(name).unwrap(), &body).unwrap();
+            let o = env.observation();
+            let tail = &o[o.len() - bins.len()..];
+            let close = tail.iter().zip(bins).all(|(a, b)| (a - b).abs() < 1e-12);
+            assert!(close, "{name}: {tail:?} against EvoGym's {bins:?}");
+        }
+    }
+
+    /// A full 5 × 5 robot has 36 points: Walker 2 + 72 = 74, BridgeWalker 75, BeamToppler 79,
+    /// CaveCrawler 2 + 72 + 22 = 96 (the sizes EvoGym's `gym.make` gives, docs/evogym-envs.md).
+    #[test]
+    fn observation_sizes_for_36_points() {
+        let tasks = [
+            EvoGymTask::Walker,
+            EvoGymTask::BridgeWalker,
+            EvoGymTask::BeamToppler,
+            EvoGymTask::CaveCrawler,
+        ];
+        assert_eq!(tasks.map(|t| t.observation_size(36)), [74, 75, 79, 96]);
+    }
+}

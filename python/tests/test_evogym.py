@@ -35,6 +35,12 @@ def test_check_env_passes_for_every_evogym_task(env_id):
         ("vsrlab/Climber-v2", 82),
         ("vsrlab/UpStepper-v0", 86),
         ("vsrlab/GapJumper-v0", 86),
+        ("vsrlab/Flipper-v0", 73),
+        ("vsrlab/AreaMaximizer-v0", 72),
+        ("vsrlab/Lifter-v0", 79),
+        ("vsrlab/Carrier-v0", 78),
+        ("vsrlab/Traverser-v0", 86),
+        ("vsrlab/BidirectionalWalker-v0", 77),
     ],
 )
 def test_sizes_are_evogyms_for_a_full_5x5_body(env_id, observations):
@@ -59,7 +65,8 @@ def test_a_square_wave_gait_earns_evogyms_reward_on_walker():
 
 def test_every_implemented_task_is_a_gym_id_with_its_class():
     tasks = vsrlab.evogym_tasks()
-    assert {"Walker-v0", "Jumper-v0", "Balancer-v1", "Climber-v1"} <= set(tasks)
+    assert {"Walker-v0", "Jumper-v0", "Balancer-v1", "Climber-v1", "WingspanMazimizer-v0"} <= set(tasks)
+    assert len(tasks) == 31
     assert sorted(EVOGYM_ENVIRONMENTS) == sorted(f"vsrlab/{t}" for t in tasks)
     assert vsrlab.envs.BalancerV1Env().unwrapped._env.observation_size == 73
     assert f"vsrlab/{tasks[-1]}" in gymnasium.registry

@@ -44,6 +44,8 @@ pub struct EvoGymEnv {
     others: Range<usize>,
     robot_orientation: Option<Orientation>,
     object_orientation: Option<Orientation>,
+    /// The task's numbers kept across the episode (`TaskDefinition::start`).
+    memory: Vec<f64>,
     actions: usize,
     observation: Vec<f64>,
     steps: usize,
@@ -91,6 +93,7 @@ impl EvoGymEnv {
             others,
             robot_orientation,
             object_orientation,
+            memory: Vec::new(),
             steps: 0,
             over: false,
         };
@@ -98,12 +101,12 @@ impl EvoGymEnv {
         Ok(env)
     }
 
-    /// Back to the start; returns the first observation. The tasks implemented have no
-    /// randomness: `seed` changes nothing and is taken for the gym-like signature.
+    /// Back to the start; returns the first observation. `seed` sets what the task draws at
+    /// reset (BidirectionalWalker's goals); the other tasks have no randomness.
     pub fn reset(&mut self, seed: u64) -> &[f64] {
-        let _ = seed;
         self.world.clone_from(&self.start);
         self.steps = 0;
+        self.task.start(seed, &mut self.memory);
         self.over = false;
         self.write_observation();
         &self.observation
@@ -141,10 +144,11 @@ impl EvoGymEnv {
         };
         // EvoGym reads the snapshot of the last stable step: nothing moved when unstable.
         let after = if unstable { before } else { self.centres() };
-        let reward = self.task.reward(before, after, unstable);
+        // EvoGym writes the observation before the reward (which may change the task's memory)
         if !unstable {
             self.write_observation();
         }
+        let reward = self.task.reward(before, after, unstable, &mut self.memory);
         self.steps += 1;
         let truncated = self.steps >= self.task.episode_steps();
         let done = unstable || reward.ends;
@@ -193,10 +197,12 @@ impl EvoGymEnv {
             .robot_orientation
             .as_ref()
             .map_or(0.0, |a| a.angle(xs, ys, self.robot.clone()));
+        let r = self.robot.clone();
         RobotAndBeam {
             robot: centre(&self.robot),
             beam: centre(&self.object),
             robot_angle,
+            own: self.task.measure(&xs[r.clone()], &ys[r]),
         }
     }
 
@@ -232,6 +238,13 @@ impl EvoGymEnv {
                         .object_orientation
                         .as_ref()
                         .map_or(0.0, |a| a.angle(xs, ys, b.clone()))
+                }
+                Piece::Task(_) => {
+                    let now = RobotAndBeam {
+                        robot: (mean(xs, r.clone()), mean(ys, r.clone())),
+                        ..RobotAndBeam::default()
+                    };
+                    self.task.observe(now, &self.memory, o);
                 }
                 Piece::Floor(sight)
                 | Piece::Ceiling(sight)
@@ -330,6 +343,7 @@ mod tests {
             ("BridgeWalker-v0", 75),
             ("CaveCrawler-v0", 96),
             ("Jumper-v0", 79),
+            ("Flipper-v0", 73),
             ("Balancer-v0", 73),
             ("Balancer-v1", 73),
             ("UpStepper-v0", 86),
@@ -339,10 +353,23 @@ mod tests {
             ("Hurdler-v0", 86),
             ("GapJumper-v0", 86),
             ("PlatformJumper-v0", 86),
+            ("Traverser-v0", 86),
+            ("Lifter-v0", 79),
+            ("Carrier-v0", 78),
+            ("Carrier-v1", 78),
+            ("Pusher-v0", 78),
+            ("Pusher-v1", 78),
             ("BeamToppler-v0", 79),
+            ("BeamSlider-v0", 79),
+            ("Thrower-v0", 78),
+            ("AreaMaximizer-v0", 72),
+            ("AreaMinimizer-v0", 72),
+            ("WingspanMazimizer-v0", 72),
+            ("HeightMaximizer-v0", 72),
             ("Climber-v0", 74),
             ("Climber-v1", 74),
             ("Climber-v2", 82),
+            ("BidirectionalWalker-v0", 77),
         ];
         assert_eq!(sizes, expected);
     }

@@ -40,7 +40,7 @@ pub fn approach(target: f64, before: f64, after: f64) -> f64 {
 }
 
 /// Centres of the robot and of the task's object (BeamToppler's beam) at one time.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct RobotAndBeam {
     /// The robot's centre (x, y).
     pub robot: (f64, f64),
@@ -49,6 +49,9 @@ pub struct RobotAndBeam {
     /// The robot's orientation since the start (`observe::Orientation`), in tasks that observe
     /// it; 0 in the others.
     pub robot_angle: f64,
+    /// The task's own measure of the robot's shape (`TaskDefinition::measure`): a hull's area,
+    /// a span; 0 in tasks without one.
+    pub own: f64,
 }
 
 /// BeamToppler-v0 (`manipulate.py:647-669`, `:695-704`): the robot's approach to the beam along
@@ -117,11 +120,13 @@ mod tests {
             robot: (1.0, 0.25),
             beam: (3.5, 0.625),
             robot_angle: 0.0,
+            own: 0.0,
         };
         let after = RobotAndBeam {
             robot: (1.5, 0.25),
             beam: (3.75, 0.125),
             robot_angle: 0.0,
+            own: 0.0,
         };
         assert_eq!(
             topple(before, after, false),
@@ -135,6 +140,7 @@ mod tests {
             robot: (1.5, 0.25),
             beam: (0.125, 0.125),
             robot_angle: 0.0,
+            own: 0.0,
         };
         assert!(topple(before, far, false).ends);
     }

@@ -143,11 +143,14 @@ pub fn cave_crawler_v0() -> World {
     transcribed(&[("terrain", (0, 0), ROWS)])
 }
 
-/// One object at (0, 0) given as EvoGym's task sheet writes layouts
-/// (docs/evogym-tasks-reference.md §5): for each run of rows from the bottom (`first`, `last`),
-/// its cells as comma-separated columns or column runs `a-b`, each fixed unless followed by
-/// `[2]` (soft) or `[1]` (rigid).
-fn layout(rows: &[(usize, usize, &str)]) -> MaterialGrid {
+/// A run of rows from the bottom (first, last) and their cells ([`laid_out_object`]).
+type Rows<'a> = (usize, usize, &'a str);
+
+/// One object given as EvoGym's task sheet writes layouts (docs/evogym-tasks-reference.md §5):
+/// for each run of rows from the bottom (`first`, `last`), its cells as comma-separated columns
+/// or column runs `a-b`, each fixed unless followed by `[2]` (soft) or `[1]` (rigid); placed with
+/// the bottom-left corner of its cells' bounding box as its origin.
+fn laid_out_object(name: &str, rows: &[Rows]) -> WorldObject {
     let mut cells: Vec<(usize, usize, char)> = Vec::new();
     for &(first, last, spec) in rows {
         for run in spec.split(',').map(str::trim) {
@@ -165,23 +168,33 @@ fn layout(rows: &[(usize, usize, &str)]) -> MaterialGrid {
             }
         }
     }
-    let width = cells.iter().map(|c| c.0).max().expect("cells") + 1;
-    let height = cells.iter().map(|c| c.1).max().expect("cells") + 1;
+    let left = cells.iter().map(|c| c.0).min().expect("cells");
+    let bottom = cells.iter().map(|c| c.1).min().expect("cells");
+    let width = cells.iter().map(|c| c.0).max().expect("cells") + 1 - left;
+    let height = cells.iter().map(|c| c.1).max().expect("cells") + 1 - bottom;
     let mut grid = vec![vec!['.'; width]; height];
     for (column, row, code) in cells {
-        grid[height - 1 - row][column] = code;
+        grid[height - 1 - (row - bottom)][column - left] = code;
     }
     let rows: Vec<String> = grid.into_iter().map(|r| r.into_iter().collect()).collect();
-    MaterialGrid::from_rows(&rows.join("/")).expect("a layout reads")
+    let grid = MaterialGrid::from_rows(&rows.join("/")).expect("a layout reads");
+    WorldObject::new(name, (left, bottom), grid)
 }
 
-/// A world of one object named `name` at (0, 0), given by [`layout`].
-fn laid_out(name: &str, rows: &[(usize, usize, &str)]) -> World {
+/// A world of objects given by [`laid_out_object`], `(name, rows)` each.
+fn laid_out_objects(objects: &[(&str, &[Rows])]) -> World {
     let mut world = World::new();
+    for (name, rows) in objects {
+        world
+            .add(laid_out_object(name, rows))
+            .expect("laid-out objects do not overlap");
+    }
     world
-        .add(WorldObject::new(name, (0, 0), layout(rows)))
-        .expect("one object");
-    world
+}
+
+/// A world of one object given by [`laid_out_object`].
+fn laid_out(name: &str, rows: &[Rows]) -> World {
+    laid_out_objects(&[(name, rows)])
 }
 
 /// Jumper-v0's world (`Jumper-v0.json`, 60 × 8): `ground`, a floor with a wall at each end.
@@ -274,6 +287,148 @@ pub fn climber_v2() -> World {
             (41, 41, "7-26"),
         ],
     )
+}
+
+/// Flipper-v0's world (`Flipper-v0.json`): `new_object_1`, a row of 70 fixed cells at (0, 0).
+pub fn flipper_v0() -> World {
+    laid_out("new_object_1", &[(0, 0, "0-69")])
+}
+
+/// The shape tasks' world (`ShapeChange.json`, 20 × 10): `new_object_4`, a floor with walls two
+/// cells thick at each end.
+pub fn shape_change() -> World {
+    laid_out("new_object_4", &[(0, 0, "0-19"), (1, 9, "0-1, 18-19")])
+}
+
+/// Carrier-v0's world (`Carrier-v0.json`, 100 × 8): `ground`, a row of 100 fixed cells, and
+/// `package`, 3 × 2 soft cells at (3, 6), on top of the robot.
+pub fn carrier_v0() -> World {
+    laid_out_objects(&[("ground", &[(0, 0, "0-99")]), ("package", &[(6, 7, "3-5[2]")])])
+}
+
+/// Carrier-v1's world (`Carrier-v1.json`, 60 × 12): `ground`, a shelf, a step, a lower floor and
+/// a table post, and `package`, 3 × 2 rigid cells at (3, 10), above the robot.
+pub fn carrier_v1() -> World {
+    laid_out_objects(&[
+        (
+            "ground",
+            &[
+                (1, 1, "26-59"),
+                (2, 2, "23-26, 48-49"),
+                (3, 3, "0-23, 48-49"),
+                (4, 4, "48-49"),
+            ],
+        ),
+        ("package", &[(10, 11, "3-5[1]")]),
+    ])
+}
+
+/// Pusher-v0's world (`Pusher-v0.json`, 100 × 3): `ground`, a row of 100 fixed cells, and
+/// `package`, 3 × 2 soft cells at (8, 1).
+pub fn pusher_v0() -> World {
+    laid_out_objects(&[("ground", &[(0, 0, "0-99")]), ("package", &[(1, 2, "8-10[2]")])])
+}
+
+/// Pusher-v1's world (`Pusher-v1.json`): as Pusher-v0's, the package rigid.
+pub fn pusher_v1() -> World {
+    laid_out_objects(&[("ground", &[(0, 0, "0-99")]), ("package", &[(1, 2, "8-10[1]")])])
+}
+
+/// Thrower-v0's world (`Thrower-v0.json`, 70 × 10): `ground`, a floor with posts of rising
+/// heights and an end wall, and `package`, 3 × 2 soft cells at (3, 7), above the robot.
+pub fn thrower_v0() -> World {
+    laid_out_objects(&[
+        (
+            "ground",
+            &[
+                (0, 0, "0-69"),
+                (1, 2, "10, 14, 18, 23, 28, 39, 69"),
+                (3, 3, "14, 18, 23, 28, 39, 69"),
+                (4, 4, "18, 23, 28, 39, 69"),
+                (5, 6, "23, 28, 39, 69"),
+                (7, 7, "28, 39, 69"),
+                (8, 9, "39, 69"),
+            ],
+        ),
+        ("package", &[(7, 8, "3-5[2]")]),
+    ])
+}
+
+/// Lifter-v0's world (`Lifter-v0.json`, 11 × 5): `ground`, a pit between two ledges, and
+/// `package`, 1 × 2 rigid cells standing in the pit at (5, 1).
+pub fn lifter_v0() -> World {
+    laid_out_objects(&[
+        (
+            "ground",
+            &[(0, 0, "3-7"), (1, 1, "3, 7"), (2, 2, "0-3, 7-10"), (3, 4, "0, 10")],
+        ),
+        ("package", &[(1, 2, "5[1]")]),
+    ])
+}
+
+/// BeamSlider-v0's world (`BeamSlider-v0.json`, 70 × 7): `ground`, five fixed pegs in row 4 and
+/// `beam`, 10 × 2 rigid cells at (22, 5) on the first peg.
+pub fn beam_slider_v0() -> World {
+    laid_out_objects(&[
+        ("beam", &[(5, 6, "22-31[1]")]),
+        ("ground", &[(0, 0, "0-69")]),
+        ("peg1", &[(4, 4, "20-24")]),
+        ("peg2", &[(4, 4, "29-31")]),
+        ("peg3", &[(4, 4, "35-37")]),
+        ("peg4", &[(4, 4, "41-43")]),
+        ("peg5", &[(4, 4, "49-51")]),
+    ])
+}
+
+/// Traverser-v0's world (`Traverser-v0.json`, 60 × 9, and `traverse.py:553-580`): `ground`, a
+/// left shelf, a pit and a right shelf, and 27 free rigid blocks `block_0` … `block_26` of 3 × 3,
+/// 2 × 2 or 1 × 1 cells placed in the pit in three layers, as EvoGym's code places them.
+pub fn traverser_v0() -> World {
+    let mut world = laid_out(
+        "ground",
+        &[
+            (0, 0, "19-49"),
+            (1, 5, "19, 49"),
+            (6, 6, "19, 49-59"),
+            (7, 7, "19"),
+            (8, 8, "0-19"),
+        ],
+    );
+    let mut blocks: Vec<(usize, usize, usize)> = vec![
+        (20, 1, 3),
+        (24, 1, 3),
+        (27, 1, 2),
+        (31, 1, 3),
+        (34, 1, 3),
+        (38, 1, 2),
+        (41, 1, 3),
+        (45, 1, 3),
+        (21, 4, 3),
+        (24, 4, 2),
+        (26, 4, 1),
+        (29, 4, 2),
+        (31, 4, 3),
+        (34, 4, 2),
+        (36, 4, 2),
+        (40, 4, 3),
+        (43, 4, 2),
+        (46, 4, 3),
+    ];
+    blocks.extend((20..45).step_by(3).map(|x| (x, 7, 2)));
+    for (k, &(x, y, side)) in blocks.iter().enumerate() {
+        let rows = vec!["1".repeat(side); side].join("/");
+        let grid = MaterialGrid::from_rows(&rows).expect("a rigid block");
+        world
+            .add(WorldObject::new(&format!("block_{k}"), (x, y), grid))
+            .expect("the blocks do not overlap");
+    }
+    world
+}
+
+/// BidirectionalWalker-v0's world (`BidirectionalWalker-v0.json`): `new_object_1`, a row of 70
+/// fixed cells at (0, 0).
+pub fn bidirectional_walker_v0() -> World {
+    laid_out("new_object_1", &[(0, 0, "0-69")])
 }
 
 /// UpStepper-v0's world (`UpStepper-v0.json`, 70 × 9): `ground`, a staircase up from row 0 to

@@ -62,7 +62,7 @@ impl TaskDefinition for Balancer {
     }
 
     /// The centre's approach to the target along x, plus along y; no goal (`balance.py:33-39`).
-    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool) -> Reward {
+    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool, _memory: &mut [f64]) -> Reward {
         let (tx, ty) = (self.target.0 * 0.1, self.target.1 * 0.1);
         let mut value = approach(tx, before.robot.0, after.robot.0);
         value += approach(ty, before.robot.1, after.robot.1);

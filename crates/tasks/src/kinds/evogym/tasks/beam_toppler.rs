@@ -48,7 +48,7 @@ impl TaskDefinition for BeamToppler {
 
     /// Approach, the beam's displacement and drop; the goal when the beam's centre is below
     /// x = 2 cells (`manipulate.py:647-704`).
-    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool) -> Reward {
+    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool, _memory: &mut [f64]) -> Reward {
         topple(before, after, unstable)
     }
 }

@@ -36,7 +36,7 @@ impl TaskDefinition for BridgeWalker {
     }
 
     /// The centre's x gain; the goal beyond 60 cells (`walk.py:128-141`).
-    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool) -> Reward {
+    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool, _memory: &mut [f64]) -> Reward {
         forward(before.robot.0, after.robot.0, 60.0 * 0.1, unstable)
     }
 }

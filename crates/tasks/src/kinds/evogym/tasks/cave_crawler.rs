@@ -43,7 +43,7 @@ impl TaskDefinition for CaveCrawler {
     }
 
     /// The centre's x gain; the goal beyond 69 cells (`walk.py:203-216`).
-    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool) -> Reward {
+    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool, _memory: &mut [f64]) -> Reward {
         forward(before.robot.0, after.robot.0, 69.0 * 0.1, unstable)
     }
 }

@@ -62,7 +62,7 @@ impl TaskDefinition for Climber {
     }
 
     /// The centre's rise; +1 and the end once the centre is above the goal (`climb.py:80-92`).
-    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool) -> Reward {
+    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool, _memory: &mut [f64]) -> Reward {
         let mut value = after.robot.1 - before.robot.1;
         if unstable {
             value -= UNSTABLE_PENALTY;
@@ -112,7 +112,7 @@ impl TaskDefinition for Climber2 {
     }
 
     /// The centre's rise plus 0.2 × its x gain (`climb.py:200-202`).
-    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool) -> Reward {
+    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool, _memory: &mut [f64]) -> Reward {
         let mut value = (after.robot.1 - before.robot.1) + (after.robot.0 - before.robot.0) * 0.2;
         if unstable {
             value -= UNSTABLE_PENALTY;

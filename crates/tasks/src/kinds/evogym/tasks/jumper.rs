@@ -36,7 +36,7 @@ impl TaskDefinition for Jumper {
     }
 
     /// 10 × the centre's rise minus 5 × its sideways move; no goal (`jump.py:60-62`).
-    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool) -> Reward {
+    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool, _memory: &mut [f64]) -> Reward {
         let mut value = (after.robot.1 - before.robot.1) * 10.0 - (after.robot.0 - before.robot.0).abs() * 5.0;
         if unstable {
             value -= UNSTABLE_PENALTY;

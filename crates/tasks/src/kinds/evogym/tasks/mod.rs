@@ -7,10 +7,14 @@
 
 mod balancer;
 mod beam_toppler;
+mod bidirectional_walker;
 mod bridge_walker;
 mod cave_crawler;
 mod climber;
+mod flipper;
 mod jumper;
+mod package;
+mod shape;
 mod stairs;
 mod walker;
 
@@ -53,6 +57,8 @@ pub enum Piece {
     FloorMeanFirst(usize),
     /// [`Piece::Ceiling`] with vsrlab's first arithmetic, kept for CaveCrawler-v0.
     CeilingMeanFirst(usize),
+    /// This many values the task writes itself ([`TaskDefinition::observe`]: a goal).
+    Task(usize),
 }
 
 impl Piece {
@@ -66,6 +72,7 @@ impl Piece {
             | Piece::Ceiling(sight)
             | Piece::FloorMeanFirst(sight)
             | Piece::CeilingMeanFirst(sight) => 2 * sight + 1,
+            Piece::Task(n) => n,
         }
     }
 }
@@ -96,10 +103,33 @@ pub trait TaskDefinition: Sync {
     /// The observation, piece by piece.
     fn observation(&self) -> &'static [Piece];
 
+    /// The task's own measure of the robot's shape (its points' `xs` and `ys`), read before and
+    /// after every step into [`RobotAndBeam::own`]: the hull's area, a span. 0 by default.
+    fn measure(&self, xs: &[f64], ys: &[f64]) -> f64 {
+        let _ = (xs, ys);
+        0.0
+    }
+
+    /// The task's numbers kept across an episode's steps (`memory`), set at reset from the
+    /// episode's seed: by default one 0 (Flipper counts whole turns in it);
+    /// BidirectionalWalker draws its goals.
+    fn start(&self, seed: u64, memory: &mut Vec<f64>) {
+        let _ = seed;
+        memory.clear();
+        memory.push(0.0);
+    }
+
+    /// The values of [`Piece::Task`], from the measures now and the memory (before this step's
+    /// reward changes it, as EvoGym writes the observation first).
+    fn observe(&self, now: RobotAndBeam, memory: &[f64], out: &mut [f64]) {
+        let _ = (now, memory);
+        out.fill(0.0);
+    }
+
     /// A step's reward and whether the task ends the episode (besides instability, which ends
-    /// every task), from the centres before and after the step (equal when unstable: EvoGym reads
-    /// the last stable snapshot).
-    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool) -> Reward;
+    /// every task), from the measures before and after the step (equal when unstable: EvoGym
+    /// reads the last stable snapshot), and the task's memory ([`TaskDefinition::start`]).
+    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool, memory: &mut [f64]) -> Reward;
 }
 
 /// One of EvoGym's tasks: a handle on its [`TaskDefinition`], compared and hashed by name.
@@ -123,6 +153,7 @@ impl EvoGymTask {
         EvoGymTask::BridgeWalker,
         EvoGymTask::CaveCrawler,
         EvoGymTask(&jumper::Jumper),
+        EvoGymTask(&flipper::Flipper),
         EvoGymTask(&balancer::BALANCER_V0),
         EvoGymTask(&balancer::BALANCER_V1),
         EvoGymTask(&stairs::UP_STEPPER),
@@ -132,10 +163,23 @@ impl EvoGymTask {
         EvoGymTask(&stairs::HURDLER),
         EvoGymTask(&stairs::GAP_JUMPER),
         EvoGymTask(&stairs::PLATFORM_JUMPER),
+        EvoGymTask(&stairs::TRAVERSER),
+        EvoGymTask(&package::LIFTER),
+        EvoGymTask(&package::CARRIER_V0),
+        EvoGymTask(&package::CARRIER_V1),
+        EvoGymTask(&package::PUSHER_V0),
+        EvoGymTask(&package::PUSHER_V1),
         EvoGymTask::BeamToppler,
+        EvoGymTask(&package::BEAM_SLIDER),
+        EvoGymTask(&package::THROWER),
+        EvoGymTask(&shape::AREA_MAXIMIZER),
+        EvoGymTask(&shape::AREA_MINIMIZER),
+        EvoGymTask(&shape::WINGSPAN_MAXIMIZER),
+        EvoGymTask(&shape::HEIGHT_MAXIMIZER),
         EvoGymTask(&climber::CLIMBER_V0),
         EvoGymTask(&climber::CLIMBER_V1),
         EvoGymTask(&climber::Climber2),
+        EvoGymTask(&bidirectional_walker::BidirectionalWalker),
     ];
 
     /// The task named `name`: EvoGym's name in any case (`BridgeWalker-v0`, `bridgewalker-v0`)
@@ -197,9 +241,24 @@ impl EvoGymTask {
         self.observation().iter().map(|p| p.size(robot_points)).sum()
     }
 
+    /// The task's own measure of the robot's shape ([`TaskDefinition::measure`]).
+    pub fn measure(self, xs: &[f64], ys: &[f64]) -> f64 {
+        self.0.measure(xs, ys)
+    }
+
+    /// The task's memory at reset ([`TaskDefinition::start`]).
+    pub fn start(self, seed: u64, memory: &mut Vec<f64>) {
+        self.0.start(seed, memory)
+    }
+
+    /// The values of [`Piece::Task`] ([`TaskDefinition::observe`]).
+    pub fn observe(self, now: RobotAndBeam, memory: &[f64], out: &mut [f64]) {
+        self.0.observe(now, memory, out)
+    }
+
     /// A step's reward and whether the task ends the episode ([`TaskDefinition::reward`]).
-    pub fn reward(self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool) -> Reward {
-        self.0.reward(before, after, unstable)
+    pub fn reward(self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool, memory: &mut [f64]) -> Reward {
+        self.0.reward(before, after, unstable, memory)
     }
 }
 
@@ -251,6 +310,10 @@ mod tests {
     /// their 50-step sums (EvoGym −0.000610 and −0.003760, vsrlab −0.002591 and −0.001351) are
     /// the sideways drift of a symmetric body at rest, set by rounding (both under 3e-4 per
     /// step); with a gait their episodes agree within 0.1 % and 0.22 % (docs/evogym-envs.md).
+    /// Nor Flipper-v0, whose reward is the change of the robot's orientation: its orientation
+    /// at reset, where the body has its start shape and should read 0, is rounding (EvoGym
+    /// 0.000617, vsrlab 0.000077: points whose unit vectors' dot rounds above 1 read acos(0.99999));
+    /// its first step's reward, and so every sum, differs by that 0.00054.
     #[test]
     fn fifty_steps_of_a_full_body_sum_to_evogyms_rewards() {
         use crate::kinds::evogym::{EvoGymEnv, MaterialGrid};
@@ -270,6 +333,18 @@ mod tests {
             ("GapJumper-v0", 0.006619),
             ("PlatformJumper-v0", 0.006619),
             ("Climber-v2", -0.001531),
+            ("AreaMaximizer-v0", -0.011549),
+            ("AreaMinimizer-v0", 0.011549),
+            ("WingspanMazimizer-v0", 0.001572),
+            ("HeightMaximizer-v0", -0.003275),
+            ("Lifter-v0", -0.177975),
+            ("Carrier-v0", 0.011824),
+            ("Carrier-v1", -0.002465),
+            ("Pusher-v0", 0.009607),
+            ("Pusher-v1", -0.000000),
+            ("BeamSlider-v0", 0.006405),
+            ("Thrower-v0", 0.014746),
+            ("Traverser-v0", 0.006405),
         ];
         for (name, expected) in evogym {
             let task = EvoGymTask::from_name(name).unwrap();
@@ -295,7 +370,7 @@ mod tests {
         use crate::kinds::evogym::{EvoGymEnv, MaterialGrid};
         let body = MaterialGrid::from_rows("33333/33333/33333/33333/33333").unwrap();
         let (h, t) = (0.5, 0.25);
-        let evogym: [(&str, &[f64]); 9] = [
+        let evogym: [(&str, &[f64]); 10] = [
             ("Jumper-v0", &[h; 5]),
             ("UpStepper-v0", &[h, h, h, h, h, t, h, h, t, h, h]),
             ("DownStepper-v0", &[h, h, h, h, h, 0.35, h, h, 0.35, h, h]),
@@ -304,6 +379,7 @@ mod tests {
             ("Hurdler-v0", &[h; 11]),
             ("GapJumper-v0", &[h, h, h, h, h, t, h, h, t, h, h]),
             ("PlatformJumper-v0", &[h, h, h, h, h, t, h, h, t, h, h]),
+            ("Traverser-v0", &[h, h, h, h, h, t, h, h, t, h, h]),
             ("Climber-v2", &[h, h, h, h, h, h, 0.05]),
         ];
         for (name, bins) in evogym {

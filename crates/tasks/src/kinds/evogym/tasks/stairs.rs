@@ -1,7 +1,7 @@
 //! The walking tasks of `traverse.py` on class `StairsBase`: UpStepper-v0 (`StepsUp`),
 //! DownStepper-v0 (`StepsDown`), ObstacleTraverser-v0 and -v1 (`WalkingBumpy`,
 //! `WalkingBumpy2`), Hurdler-v0 (`VerticalBarrier`), PlatformJumper-v0 (`FloatingPlatform`) and
-//! GapJumper-v0 (`Gaps`): walk right over uneven ground; each ends on its own mix of a goal (+2),
+//! GapJumper-v0 (`Gaps`), Traverser-v0 (`BlockSoup`): walk right over uneven ground; each ends on its own mix of a goal (+2),
 //! a fall (−3) and a flip (−3).
 
 use super::{Piece, TaskDefinition};
@@ -116,6 +116,18 @@ pub const GAP_JUMPER: Stairs = Stairs {
     flip: None,
 };
 
+/// Traverser-v0 (`traverse.py:536`, `BlockSoup`): over a pit filled with 27 free rigid blocks.
+pub const TRAVERSER: Stairs = Stairs {
+    name: "Traverser-v0",
+    short_name: "traverser",
+    world: worlds::traverser_v0,
+    origin: (1, 9),
+    steps: 600,
+    goal_cells: Some(59.0),
+    fall_below: None,
+    flip: None,
+};
+
 impl TaskDefinition for Stairs {
     fn name(&self) -> &'static str {
         self.name
@@ -148,7 +160,7 @@ impl TaskDefinition for Stairs {
     }
 
     /// The centre's x gain; then, in the file's order, the goal, the fall and the flip.
-    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool) -> Reward {
+    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool, _memory: &mut [f64]) -> Reward {
         let mut value = after.robot.0 - before.robot.0;
         if unstable {
             value -= UNSTABLE_PENALTY;

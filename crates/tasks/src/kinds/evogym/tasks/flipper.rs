@@ -1,0 +1,61 @@
+//! Flipper-v0 (`flip.py:16`, class `Flipping`): roll over and over, counter-clockwise (to the
+//! left), on flat ground.
+
+use super::{Piece, TaskDefinition};
+use crate::kinds::evogym::rewards::{Reward, RobotAndBeam, UNSTABLE_PENALTY};
+use crate::kinds::evogym::worlds::{self, World};
+use std::f64::consts::PI;
+
+/// Flipper-v0.
+pub struct Flipper;
+
+impl TaskDefinition for Flipper {
+    fn name(&self) -> &'static str {
+        "Flipper-v0"
+    }
+
+    fn short_name(&self) -> &'static str {
+        "flipper"
+    }
+
+    fn world(&self) -> World {
+        worlds::flipper_v0()
+    }
+
+    /// Near the right end of the ground, rolling left.
+    fn robot_origin(&self) -> (usize, usize) {
+        (60, 1)
+    }
+
+    fn episode_steps(&self) -> usize {
+        600
+    }
+
+    /// The robot's orientation and relative positions (`flip.py:47-50`).
+    fn observation(&self) -> &'static [Piece] {
+        &[Piece::RobotOrientation, Piece::RobotPositions]
+    }
+
+    /// The gain of the unwrapped orientation: `memory[0]` counts whole turns (−1 when the angle
+    /// wraps from below π/3 to above 5π/3, +1 the other way); the episode ends, without a bonus,
+    /// once the centre's x is below one cell (`flip.py:52-71`).
+    fn reward(&self, before: RobotAndBeam, after: RobotAndBeam, unstable: bool, memory: &mut [f64]) -> Reward {
+        let (old, new, turns) = (before.robot_angle, after.robot_angle, &mut memory[0]);
+        let unwrapped_before = *turns * 2.0 * PI + old;
+        if old < PI / 3.0 && new > 5.0 * PI / 3.0 {
+            *turns -= 1.0;
+        }
+        if old > 5.0 * PI / 3.0 && new < PI / 3.0 {
+            *turns += 1.0;
+        }
+        let unwrapped_after = *turns * 2.0 * PI + new;
+        let mut value = unwrapped_after - unwrapped_before;
+        if unstable {
+            value -= UNSTABLE_PENALTY;
+        }
+        Reward {
+            value,
+            ends: after.robot.0 < 1.0 * 0.1,
+        }
+    }
+}

@@ -38,7 +38,7 @@ def test_check_env_passes_for_every_evogym_task(env_id):
         ("vsrlab/Flipper-v0", 73),
         ("vsrlab/AreaMaximizer-v0", 72),
         ("vsrlab/Lifter-v0", 79),
-        ("vsrlab/Carrier-v0", 78),
+        ("vsrlab-evogym/Carrier-v0", 78),
         ("vsrlab/Traverser-v0", 86),
         ("vsrlab/BidirectionalWalker-v0", 77),
     ],
@@ -67,9 +67,14 @@ def test_every_implemented_task_is_a_gym_id_with_its_class():
     tasks = vsrlab.evogym_tasks()
     assert {"Walker-v0", "Jumper-v0", "Balancer-v1", "Climber-v1", "WingspanMazimizer-v0"} <= set(tasks)
     assert len(tasks) == 31
-    assert sorted(EVOGYM_ENVIRONMENTS) == sorted(f"vsrlab/{t}" for t in tasks)
+    assert {f"vsrlab-evogym/{t}" for t in tasks} <= set(EVOGYM_ENVIRONMENTS)
     assert vsrlab.envs.BalancerV1Env().unwrapped._env.observation_size == 73
     assert f"vsrlab/{tasks[-1]}" in gymnasium.registry
+    # vsrlab's own carrier task keeps vsrlab/Carrier-v0; EvoGym's is under vsrlab-evogym/
+    assert EVOGYM_ENVIRONMENTS["vsrlab-evogym/Carrier-v0"] == "EvoGymCarrierEnv"
+    assert "vsrlab/Carrier-v0" not in EVOGYM_ENVIRONMENTS
+    assert gymnasium.make("vsrlab-evogym/Carrier-v0").observation_space.shape == (78,)
+    assert vsrlab.envs.CarrierEnv is not vsrlab.envs.EvoGymCarrierEnv
 
 
 def test_bad_bodies_and_actions_are_refused_naming_the_field():

@@ -11,10 +11,11 @@ Registered ids (``gymnasium.make`` and ``gymnasium.make_vec``):
 ``vsrlab/Carrier-v0`` (pressure-based soft agents by default).
 
 EvoGym's tasks on vsrlab's engine (docs/multimaterial.md), with EvoGym's observations, actions (a
-target length ratio in [0.6, 1.6] per actuator voxel), rewards and ends: ``vsrlab/<id>`` for
-every EvoGym id in ``vsrlab.evogym_tasks()`` (``vsrlab/Walker-v0``, ``vsrlab/Jumper-v0``,
-``vsrlab/Balancer-v1``, …; ``body=``: the material grid as rows of digits joined by ``/``, or a
-2-D array of codes as EvoGym's ``body=``, top row first).
+target length ratio in [0.6, 1.6] per actuator voxel), rewards and ends: ``vsrlab-evogym/<id>``
+for every EvoGym id in ``vsrlab.evogym_tasks()``, and ``vsrlab/<id>`` too but for
+``Carrier-v0`` (``vsrlab/Carrier-v0`` is vsrlab's own carrier task) (``vsrlab/Walker-v0``,
+``vsrlab-evogym/Jumper-v0``, ``vsrlab/Balancer-v1``, …; ``body=``: the material grid as rows of
+digits joined by ``/``, or a 2-D array of codes as EvoGym's ``body=``, top row first).
 """
 
 from __future__ import annotations
@@ -208,17 +209,30 @@ def _evogym_env(task: str):
 
 
 def _evogym_class_name(task: str) -> str:
-    """``Walker-v0`` → ``WalkerEnv``, ``Balancer-v1`` → ``BalancerV1Env``."""
+    """``Walker-v0`` → ``WalkerEnv``, ``Balancer-v1`` → ``BalancerV1Env``; ``EvoGym`` in front
+    where vsrlab has a class of that name (``Carrier-v0`` → ``EvoGymCarrierEnv``)."""
     name, version = task.rsplit("-", 1)
-    return name + ("" if version == "v0" else version.upper()) + "Env"
+    name = name + ("" if version == "v0" else version.upper()) + "Env"
+    return "EvoGym" + name if name in _OWN_CLASSES else name
 
 
-#: EvoGym's task ids (under ``vsrlab/``) and their environment classes: every task vsrlab
-#: implements (``evogym_tasks()``), each a class of this module (``WalkerEnv``, ``BalancerV1Env``…).
+#: vsrlab's own environment classes, whose names EvoGym's must not take.
+_OWN_CLASSES = {"LocomotionEnv", "JumpEnv", "EscapeEnv", "CarrierEnv"}
+
+#: vsrlab's own ids, which EvoGym's must not take under ``vsrlab/``.
+_OWN_IDS = {"vsrlab/Locomotion-v0", "vsrlab/Jump-v0", "vsrlab/Escape-v0", "vsrlab/Carrier-v0"}
+
+#: EvoGym's task ids and their environment classes: every task vsrlab implements
+#: (``evogym_tasks()``), each a class of this module (``WalkerEnv``, ``BalancerV1Env``…), under
+#: ``vsrlab-evogym/<id>`` (all of them) and under ``vsrlab/<id>`` (all but ``Carrier-v0``, which
+#: is vsrlab's own carrier task there).
 EVOGYM_ENVIRONMENTS = {}
 for _task in evogym_tasks():
-    globals()[_evogym_class_name(_task)] = _evogym_env(_task)
-    EVOGYM_ENVIRONMENTS[f"vsrlab/{_task}"] = _evogym_class_name(_task)
+    _class = _evogym_class_name(_task)
+    globals()[_class] = _evogym_env(_task)
+    EVOGYM_ENVIRONMENTS[f"vsrlab-evogym/{_task}"] = _class
+    if f"vsrlab/{_task}" not in _OWN_IDS:
+        EVOGYM_ENVIRONMENTS[f"vsrlab/{_task}"] = _class
 
 
 #: Every registered id and its environment classes.

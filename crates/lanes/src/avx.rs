@@ -281,78 +281,16 @@ impl<const N: usize> PartialEq for AvxMask<N> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::F64s;
 
-    /// Every operation of the trait on awkward values (NaN, ±0, infinities, subnormals) against
-    /// the portable lanes, bit for bit.
+    /// Every operation of the trait on awkward values against the portable lanes, bit for bit,
+    /// in one register and in two.
     #[test]
     fn every_operation_gives_the_portable_bits() {
         if !available() {
             eprintln!("no AVX2 on this CPU: nothing to compare");
             return;
         }
-        let values = [
-            0.1,
-            -3.0,
-            1e-310,
-            f64::NAN,
-            -0.0,
-            0.0,
-            f64::INFINITY,
-            -2.5,
-            7.0,
-            1e300,
-            -1e-300,
-            0.75,
-        ];
-        for i in 0..values.len() {
-            let a: [f64; 8] = std::array::from_fn(|l| values[(i + l) % values.len()]);
-            let b: [f64; 8] = std::array::from_fn(|l| values[(i + 3 * l + 1) % values.len()]);
-            let (pa, pb) = (F64s(a), F64s(b));
-            let (va, vb) = (Avx(a), Avx(b));
-            let same = |p: F64s<8>, v: Avx<8>, what: &str| {
-                for l in 0..8 {
-                    assert_eq!(p.0[l].to_bits(), v.0[l].to_bits(), "{what}, lane {l}: {a:?} {b:?}");
-                }
-            };
-            let same_mask = |p: [bool; 8], v: AvxMask<8>, what: &str| {
-                for (l, &p) in p.iter().enumerate() {
-                    assert_eq!(p, v.get(l), "{what}, lane {l}: {a:?} {b:?}");
-                }
-            };
-            same(pa + pb, va + vb, "add");
-            same(pa - pb, va - vb, "sub");
-            same(pa * pb, va * vb, "mul");
-            same(pa / pb, va / vb, "div");
-            same(pa * 0.3 - 2.0, va * 0.3 - 2.0, "scalar operands");
-            same(-pa, -va, "neg");
-            same(pa.sqrt(), va.sqrt(), "sqrt");
-            same(pa.abs(), va.abs(), "abs");
-            same(pa.clamp(-1.0, 2.0), va.clamp(-1.0, 2.0), "clamp");
-            same(
-                pa.bits_and(0xffff_ffff_0000_0000),
-                va.bits_and(0xffff_ffff_0000_0000),
-                "and",
-            );
-            same(pa.bits_xor(pb), va.bits_xor(vb), "xor");
-            same(pa.bits_and(3).bits_shl::<62>(), va.bits_and(3).bits_shl::<62>(), "shl");
-            same(pa.sin_cos().0, va.sin_cos().0, "sin");
-            same(pa.cos(), va.cos(), "cos");
-            same(pa.acos(), va.acos(), "acos");
-            let (pm, vm) = (pa.lt(pb), va.lt(vb));
-            same_mask(pm, vm, "lt");
-            same_mask(pa.gt(pb), va.gt(vb), "gt");
-            same_mask(pa.ge(pb), va.ge(vb), "ge");
-            same_mask(pa.le(pb), va.le(vb), "le");
-            same_mask(pa.ne(pb), va.ne(vb), "ne");
-            same_mask(pa.eq(pb), va.eq(vb), "eq");
-            same_mask(pa.sign_mask(), va.sign_mask(), "sign");
-            same_mask(pm.not(), vm.not(), "not");
-            same_mask(pm.and(pa.gt(pb)), vm.and(va.gt(vb)), "and");
-            same_mask(pm.or(pa.ne(pb)), vm.or(va.ne(vb)), "or");
-            assert_eq!(pm.any(), vm.any());
-            same(F64s::select(pm, pa, pb), Avx::select(vm, va, vb), "select");
-        }
-        assert!(!AvxMask::<4>::splat(false).any() && AvxMask::<8>::splat(true).any());
+        crate::conformance::every_operation_gives_the_portable_bits::<Avx<4>, 4>(Avx);
+        crate::conformance::every_operation_gives_the_portable_bits::<Avx<8>, 8>(Avx);
     }
 }

@@ -293,91 +293,16 @@ impl<const N: usize> LaneMask for Avx512Mask<N> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::F64s;
 
-    /// Every operation of the trait on awkward values (NaN, ±0, infinities, subnormals) against
-    /// the portable lanes, bit for bit, in one register and in two.
+    /// Every operation of the trait on awkward values against the portable lanes, bit for bit,
+    /// in one register and in two.
     #[test]
     fn every_operation_gives_the_portable_bits() {
         if !available() {
             eprintln!("no AVX-512 on this CPU: nothing to compare");
             return;
         }
-        // SAFETY: the CPU has AVX-512F (checked above)
-        unsafe {
-            compare_all::<8>();
-            compare_all::<16>();
-        }
-        assert!(!Avx512Mask::<8>::splat(false).any() && Avx512Mask::<16>::splat(true).any());
-        assert_eq!(Avx512Mask::<8>::splat(true).not(), Avx512Mask::<8>::splat(false));
-    }
-
-    /// # Safety
-    /// The CPU must support AVX-512F.
-    #[target_feature(enable = "avx512f")]
-    unsafe fn compare_all<const N: usize>() {
-        let values = [
-            0.1,
-            -3.0,
-            1e-310,
-            f64::NAN,
-            -0.0,
-            0.0,
-            f64::INFINITY,
-            -2.5,
-            7.0,
-            1e300,
-            -1e-300,
-            0.75,
-        ];
-        for i in 0..values.len() {
-            let a: [f64; N] = std::array::from_fn(|l| values[(i + l) % values.len()]);
-            let b: [f64; N] = std::array::from_fn(|l| values[(i + 3 * l + 1) % values.len()]);
-            let (pa, pb) = (F64s(a), F64s(b));
-            let (va, vb) = (Avx512(a), Avx512(b));
-            let same = |p: F64s<N>, v: Avx512<N>, what: &str| {
-                for l in 0..N {
-                    assert_eq!(p.0[l].to_bits(), v.0[l].to_bits(), "{what}, lane {l}: {a:?} {b:?}");
-                }
-            };
-            let same_mask = |p: [bool; N], v: Avx512Mask<N>, what: &str| {
-                for (l, &p) in p.iter().enumerate() {
-                    assert_eq!(p, v.get(l), "{what}, lane {l}: {a:?} {b:?}");
-                }
-            };
-            same(pa + pb, va + vb, "add");
-            same(pa - pb, va - vb, "sub");
-            same(pa * pb, va * vb, "mul");
-            same(pa / pb, va / vb, "div");
-            same(pa * 0.3 - 2.0, va * 0.3 - 2.0, "scalar operands");
-            same(-pa, -va, "neg");
-            same(pa.sqrt(), va.sqrt(), "sqrt");
-            same(pa.abs(), va.abs(), "abs");
-            same(pa.clamp(-1.0, 2.0), va.clamp(-1.0, 2.0), "clamp");
-            same(
-                pa.bits_and(0xffff_ffff_0000_0000),
-                va.bits_and(0xffff_ffff_0000_0000),
-                "and",
-            );
-            same(pa.bits_xor(pb), va.bits_xor(vb), "xor");
-            same(pa.bits_and(3).bits_shl::<62>(), va.bits_and(3).bits_shl::<62>(), "shl");
-            same(pa.sin_cos().0, va.sin_cos().0, "sin");
-            same(pa.cos(), va.cos(), "cos");
-            same(pa.acos(), va.acos(), "acos");
-            same(pa.tanh(), va.tanh(), "tanh");
-            let (pm, vm) = (pa.lt(pb), va.lt(vb));
-            same_mask(pm, vm, "lt");
-            same_mask(pa.gt(pb), va.gt(vb), "gt");
-            same_mask(pa.ge(pb), va.ge(vb), "ge");
-            same_mask(pa.le(pb), va.le(vb), "le");
-            same_mask(pa.ne(pb), va.ne(vb), "ne");
-            same_mask(pa.eq(pb), va.eq(vb), "eq");
-            same_mask(pa.sign_mask(), va.sign_mask(), "sign");
-            same_mask(pm.not(), vm.not(), "not");
-            same_mask(pm.and(pa.gt(pb)), vm.and(va.gt(vb)), "and");
-            same_mask(pm.or(pa.ne(pb)), vm.or(va.ne(vb)), "or");
-            assert_eq!(pm.any(), vm.any());
-            same(F64s::select(pm, pa, pb), Avx512::select(vm, va, vb), "select");
-        }
+        crate::conformance::every_operation_gives_the_portable_bits::<Avx512<8>, 8>(Avx512);
+        crate::conformance::every_operation_gives_the_portable_bits::<Avx512<16>, 16>(Avx512);
     }
 }

@@ -14,6 +14,8 @@ pub mod avx;
 #[cfg(target_arch = "x86_64")]
 #[doc(hidden)]
 pub mod avx512;
+#[cfg(test)]
+mod conformance;
 mod f64s;
 mod lane;
 mod tanh;

@@ -67,7 +67,7 @@ fn bad_evogym_tables_are_refused_naming_the_field() {
         (r#"{ kind = "evogym", body = "1.3" }"#, "representation.body"),
         (r#"{ kind = "evogym", body = "12" }"#, "representation.body"),
         (
-            r#"{ kind = "evogym", body = "131", env = "Jumper-v0" }"#,
+            r#"{ kind = "evogym", body = "131", env = "Runner-v0" }"#,
             "representation.body",
         ),
         (r#"{ kind = "evogym", body = "131", size = 3 }"#, "representation.body"),

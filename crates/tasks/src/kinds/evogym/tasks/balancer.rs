@@ -2,58 +2,45 @@
 //! `BalanceJump`): get the robot's centre to a point over a thin pole and stay there; in v0 the
 //! robot starts on the pole, in v1 beside it.
 
-use super::{Piece, TaskDefinition};
+use super::{Basics, Piece, TaskDefinition};
 use crate::kinds::evogym::rewards::{approach, Reward, RobotAndBeam, UNSTABLE_PENALTY};
-use crate::kinds::evogym::worlds::{self, World};
+use crate::kinds::evogym::worlds;
 
 /// A balancing task: its world, start and the target point (cells).
 pub struct Balancer {
-    name: &'static str,
-    short_name: &'static str,
-    world: fn() -> World,
-    origin: (usize, usize),
+    basics: Basics,
     /// The target's x and y in cells, as EvoGym writes them (times 0.1 in the reward).
     target: (f64, f64),
 }
 
 /// Balancer-v0: the robot starts on the pole (column 17, two cells high).
 pub const BALANCER_V0: Balancer = Balancer {
-    name: "Balancer-v0",
-    short_name: "balancer",
-    world: worlds::balancer_v0,
-    origin: (15, 3),
+    basics: Basics {
+        name: "Balancer-v0",
+        short_name: "balancer",
+        world: worlds::balancer_v0,
+        robot_origin: (15, 3),
+        episode_steps: 600,
+    },
     target: (17.0, 5.0),
 };
 
 /// Balancer-v1: the robot starts on the floor beside a pole three cells high.
 pub const BALANCER_V1: Balancer = Balancer {
-    name: "Balancer-v1",
-    short_name: "balancer-v1",
-    world: worlds::balancer_v1,
-    origin: (10, 1),
+    basics: Basics {
+        name: "Balancer-v1",
+        short_name: "balancer-v1",
+        world: worlds::balancer_v1,
+        robot_origin: (10, 1),
+        episode_steps: 600,
+    },
     target: (17.5, 6.0),
 };
 
 impl TaskDefinition for Balancer {
-    fn name(&self) -> &'static str {
-        self.name
-    }
-
-    fn short_name(&self) -> &'static str {
-        self.short_name
-    }
-
-    fn world(&self) -> World {
-        (self.world)()
-    }
-
-    fn robot_origin(&self) -> (usize, usize) {
-        self.origin
-    }
-
-    /// `envs/__init__.py`: 600 for both.
-    fn episode_steps(&self) -> usize {
-        600
+    /// (`envs/__init__.py`: 600 steps for both.)
+    fn basics(&self) -> &Basics {
+        &self.basics
     }
 
     /// The robot's orientation and relative positions, no velocity (`balance.py:50-54`).

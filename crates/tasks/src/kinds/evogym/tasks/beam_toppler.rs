@@ -1,33 +1,24 @@
 //! BeamToppler-v0 (`manipulate.py:609-726`, class `ToppleBeam`): push a beam off two pegs.
 
-use super::{Piece, TaskDefinition};
+use super::{Basics, Piece, TaskDefinition};
 use crate::kinds::evogym::rewards::{topple, Reward, RobotAndBeam};
-use crate::kinds::evogym::worlds::{self, World};
+use crate::kinds::evogym::worlds;
 
 /// BeamToppler-v0.
 pub struct BeamToppler;
 
+/// BeamToppler-v0's names, world, start and length (`manipulate.py:621`; `envs/__init__.py:31`).
+const BASICS: Basics = Basics {
+    name: "BeamToppler-v0",
+    short_name: "beam-toppler",
+    world: worlds::beam_toppler_v0,
+    robot_origin: (1, 1),
+    episode_steps: 1000,
+};
+
 impl TaskDefinition for BeamToppler {
-    fn name(&self) -> &'static str {
-        "BeamToppler-v0"
-    }
-
-    fn short_name(&self) -> &'static str {
-        "beam-toppler"
-    }
-
-    fn world(&self) -> World {
-        worlds::beam_toppler_v0()
-    }
-
-    /// `manipulate.py:621`.
-    fn robot_origin(&self) -> (usize, usize) {
-        (1, 1)
-    }
-
-    /// `envs/__init__.py:31`.
-    fn episode_steps(&self) -> usize {
-        1000
+    fn basics(&self) -> &Basics {
+        &BASICS
     }
 
     fn object(&self) -> Option<&'static str> {

@@ -6,9 +6,9 @@
 //! same goals), with EvoGym's rule: from x = 35 cells, goals uniform in 20 … 49 cells until their
 //! summed distances reach 100 cells.
 
-use super::{Piece, TaskDefinition};
+use super::{Basics, Piece, TaskDefinition};
 use crate::kinds::evogym::rewards::{Reward, RobotAndBeam, GOAL_BONUS, UNSTABLE_PENALTY};
-use crate::kinds::evogym::worlds::{self, World};
+use crate::kinds::evogym::worlds;
 use rand::{Rng, SeedableRng};
 
 /// BidirectionalWalker-v0. Its memory: the current goal's index, then the goals (cells).
@@ -20,26 +20,18 @@ const DISTANCE_CELLS: f64 = 100.0;
 /// A goal is reached within this distance of the centre.
 const REACHED: f64 = 2.0 * 0.1;
 
+/// BidirectionalWalker-v0's names, world, start and length (Mid-line: a 5-wide robot's centre at 35.5 cells.).
+const BASICS: Basics = Basics {
+    name: "BidirectionalWalker-v0",
+    short_name: "bidirectional-walker",
+    world: worlds::bidirectional_walker_v0,
+    robot_origin: (33, 1),
+    episode_steps: 1000,
+};
+
 impl TaskDefinition for BidirectionalWalker {
-    fn name(&self) -> &'static str {
-        "BidirectionalWalker-v0"
-    }
-
-    fn short_name(&self) -> &'static str {
-        "bidirectional-walker"
-    }
-
-    fn world(&self) -> World {
-        worlds::bidirectional_walker_v0()
-    }
-
-    /// Mid-line: a 5-wide robot's centre at 35.5 cells.
-    fn robot_origin(&self) -> (usize, usize) {
-        (33, 1)
-    }
-
-    fn episode_steps(&self) -> usize {
-        1000
+    fn basics(&self) -> &Basics {
+        &BASICS
     }
 
     /// Centre velocity, relative positions, then the current goal's index, its x and its x

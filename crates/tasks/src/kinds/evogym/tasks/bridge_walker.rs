@@ -1,33 +1,24 @@
 //! BridgeWalker-v0 (`walk.py:86-157`, class `SoftBridge`): walk right on a soft bridge.
 
-use super::{Piece, TaskDefinition};
+use super::{Basics, Piece, TaskDefinition};
 use crate::kinds::evogym::rewards::{forward, Reward, RobotAndBeam};
-use crate::kinds::evogym::worlds::{self, World};
+use crate::kinds::evogym::worlds;
 
 /// BridgeWalker-v0.
 pub struct BridgeWalker;
 
+/// BridgeWalker-v0's names, world, start and length (`walk.py:98`; `envs/__init__.py:25`).
+const BASICS: Basics = Basics {
+    name: "BridgeWalker-v0",
+    short_name: "bridge-walker",
+    world: worlds::bridge_walker_v0,
+    robot_origin: (2, 5),
+    episode_steps: 500,
+};
+
 impl TaskDefinition for BridgeWalker {
-    fn name(&self) -> &'static str {
-        "BridgeWalker-v0"
-    }
-
-    fn short_name(&self) -> &'static str {
-        "bridge-walker"
-    }
-
-    fn world(&self) -> World {
-        worlds::bridge_walker_v0()
-    }
-
-    /// `walk.py:98`.
-    fn robot_origin(&self) -> (usize, usize) {
-        (2, 5)
-    }
-
-    /// `envs/__init__.py:25`.
-    fn episode_steps(&self) -> usize {
-        500
+    fn basics(&self) -> &Basics {
+        &BASICS
     }
 
     /// Centre velocity, the robot's orientation, relative positions (`walk.py:121-126`).

@@ -1,33 +1,24 @@
 //! CaveCrawler-v0 (`walk.py:159-233`, class `Duck`): crawl right through a low cave.
 
-use super::{Piece, TaskDefinition, CAVE_SIGHT};
+use super::{Basics, Piece, TaskDefinition, CAVE_SIGHT};
 use crate::kinds::evogym::rewards::{forward, Reward, RobotAndBeam};
-use crate::kinds::evogym::worlds::{self, World};
+use crate::kinds::evogym::worlds;
 
 /// CaveCrawler-v0.
 pub struct CaveCrawler;
 
+/// CaveCrawler-v0's names, world, start and length (`walk.py:171`; `envs/__init__.py:140`).
+const BASICS: Basics = Basics {
+    name: "CaveCrawler-v0",
+    short_name: "cave-crawler",
+    world: worlds::cave_crawler_v0,
+    robot_origin: (1, 2),
+    episode_steps: 1000,
+};
+
 impl TaskDefinition for CaveCrawler {
-    fn name(&self) -> &'static str {
-        "CaveCrawler-v0"
-    }
-
-    fn short_name(&self) -> &'static str {
-        "cave-crawler"
-    }
-
-    fn world(&self) -> World {
-        worlds::cave_crawler_v0()
-    }
-
-    /// `walk.py:171`.
-    fn robot_origin(&self) -> (usize, usize) {
-        (1, 2)
-    }
-
-    /// `envs/__init__.py:140`.
-    fn episode_steps(&self) -> usize {
-        1000
+    fn basics(&self) -> &Basics {
+        &BASICS
     }
 
     /// Centre velocity, relative positions, floor and ceiling distances with a sight of 5

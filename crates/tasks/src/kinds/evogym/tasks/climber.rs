@@ -2,58 +2,45 @@
 //! climb up a vertical pipe five cells wide, with fixed walls (v0) or walls with soft stretches
 //! (v1).
 
-use super::{Piece, TaskDefinition};
+use super::{Basics, Piece, TaskDefinition};
 use crate::kinds::evogym::rewards::{Reward, RobotAndBeam, GOAL_BONUS, UNSTABLE_PENALTY};
-use crate::kinds::evogym::worlds::{self, World};
+use crate::kinds::evogym::worlds;
 
 /// A climbing task: its world, length and goal height.
 pub struct Climber {
-    name: &'static str,
-    short_name: &'static str,
-    world: fn() -> World,
-    steps: usize,
+    basics: Basics,
     /// The goal: the centre above this many cells.
     goal_cells: f64,
 }
 
 /// Climber-v0: fixed walls, a cap in row 89, the goal above 86 cells.
 pub const CLIMBER_V0: Climber = Climber {
-    name: "Climber-v0",
-    short_name: "climber",
-    world: worlds::climber_v0,
-    steps: 400,
+    basics: Basics {
+        name: "Climber-v0",
+        short_name: "climber",
+        world: worlds::climber_v0,
+        robot_origin: (1, 1),
+        episode_steps: 400,
+    },
     goal_cells: 86.0,
 };
 
 /// Climber-v1: walls with soft stretches, a cap in row 69, the goal above 65 cells.
 pub const CLIMBER_V1: Climber = Climber {
-    name: "Climber-v1",
-    short_name: "climber-v1",
-    world: worlds::climber_v1,
-    steps: 600,
+    basics: Basics {
+        name: "Climber-v1",
+        short_name: "climber-v1",
+        world: worlds::climber_v1,
+        robot_origin: (1, 1),
+        episode_steps: 600,
+    },
     goal_cells: 65.0,
 };
 
 impl TaskDefinition for Climber {
-    fn name(&self) -> &'static str {
-        self.name
-    }
-
-    fn short_name(&self) -> &'static str {
-        self.short_name
-    }
-
-    fn world(&self) -> World {
-        (self.world)()
-    }
-
-    /// Inside the pipe, on its floor.
-    fn robot_origin(&self) -> (usize, usize) {
-        (1, 1)
-    }
-
-    fn episode_steps(&self) -> usize {
-        self.steps
+    /// (The robot inside the pipe, on its floor.)
+    fn basics(&self) -> &Basics {
+        &self.basics
     }
 
     /// Centre velocity and relative positions (`climb.py:74-77`).
@@ -75,29 +62,22 @@ impl TaskDefinition for Climber {
     }
 }
 
+/// Climber-v2's names, world, start and length.
+const CLIMBER_V2: Basics = Basics {
+    name: "Climber-v2",
+    short_name: "climber-v2",
+    world: worlds::climber_v2,
+    robot_origin: (1, 1),
+    episode_steps: 1000,
+};
+
 /// Climber-v2 (`climb.py:155`, class `Climb2`): up a pipe that slants and turns right into a
 /// tunnel; rewarded for height and, a fifth as much, for going right; no goal.
 pub struct Climber2;
 
 impl TaskDefinition for Climber2 {
-    fn name(&self) -> &'static str {
-        "Climber-v2"
-    }
-
-    fn short_name(&self) -> &'static str {
-        "climber-v2"
-    }
-
-    fn world(&self) -> World {
-        worlds::climber_v2()
-    }
-
-    fn robot_origin(&self) -> (usize, usize) {
-        (1, 1)
-    }
-
-    fn episode_steps(&self) -> usize {
-        1000
+    fn basics(&self) -> &Basics {
+        &CLIMBER_V2
     }
 
     /// Centre velocity, the robot's orientation, relative positions, the ceiling with a sight of

@@ -1,34 +1,26 @@
 //! Flipper-v0 (`flip.py:16`, class `Flipping`): roll over and over, counter-clockwise (to the
 //! left), on flat ground.
 
-use super::{Piece, TaskDefinition};
+use super::{Basics, Piece, TaskDefinition};
 use crate::kinds::evogym::rewards::{Reward, RobotAndBeam, UNSTABLE_PENALTY};
-use crate::kinds::evogym::worlds::{self, World};
+use crate::kinds::evogym::worlds;
 use std::f64::consts::PI;
 
 /// Flipper-v0.
 pub struct Flipper;
 
+/// Flipper-v0's names, world, start and length (Near the right end of the ground, rolling left.).
+const BASICS: Basics = Basics {
+    name: "Flipper-v0",
+    short_name: "flipper",
+    world: worlds::flipper_v0,
+    robot_origin: (60, 1),
+    episode_steps: 600,
+};
+
 impl TaskDefinition for Flipper {
-    fn name(&self) -> &'static str {
-        "Flipper-v0"
-    }
-
-    fn short_name(&self) -> &'static str {
-        "flipper"
-    }
-
-    fn world(&self) -> World {
-        worlds::flipper_v0()
-    }
-
-    /// Near the right end of the ground, rolling left.
-    fn robot_origin(&self) -> (usize, usize) {
-        (60, 1)
-    }
-
-    fn episode_steps(&self) -> usize {
-        600
+    fn basics(&self) -> &Basics {
+        &BASICS
     }
 
     /// The robot's orientation and relative positions (`flip.py:47-50`).

@@ -1,33 +1,25 @@
 //! Jumper-v0 (`jump.py:15`, class `StationaryJump`): jump as high as possible without moving
 //! sideways, between two walls.
 
-use super::{Piece, TaskDefinition};
+use super::{Basics, Piece, TaskDefinition};
 use crate::kinds::evogym::rewards::{Reward, RobotAndBeam, UNSTABLE_PENALTY};
-use crate::kinds::evogym::worlds::{self, World};
+use crate::kinds::evogym::worlds;
 
 /// Jumper-v0.
 pub struct Jumper;
 
+/// Jumper-v0's names, world, start and length (On the floor, mid-way between the walls (`jump.py:27`).).
+const BASICS: Basics = Basics {
+    name: "Jumper-v0",
+    short_name: "jumper",
+    world: worlds::jumper_v0,
+    robot_origin: (32, 1),
+    episode_steps: 500,
+};
+
 impl TaskDefinition for Jumper {
-    fn name(&self) -> &'static str {
-        "Jumper-v0"
-    }
-
-    fn short_name(&self) -> &'static str {
-        "jumper"
-    }
-
-    fn world(&self) -> World {
-        worlds::jumper_v0()
-    }
-
-    /// On the floor, mid-way between the walls (`jump.py:27`).
-    fn robot_origin(&self) -> (usize, usize) {
-        (32, 1)
-    }
-
-    fn episode_steps(&self) -> usize {
-        500
+    fn basics(&self) -> &Basics {
+        &BASICS
     }
 
     /// Centre velocity, relative positions, the floor with a sight of 2 (`jump.py:35`, `:53-57`).

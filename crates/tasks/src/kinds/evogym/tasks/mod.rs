@@ -77,22 +77,26 @@ impl Piece {
     }
 }
 
+/// What every task states: its names, its world, where the robot starts and how long an episode
+/// lasts.
+#[derive(Debug, Clone, Copy)]
+pub struct Basics {
+    /// EvoGym's registered name (`Walker-v0`).
+    pub name: &'static str,
+    /// Its short name on vsrlab's command line (`walker`).
+    pub short_name: &'static str,
+    /// Its world, without the robot.
+    pub world: fn() -> World,
+    /// Cell of the robot's bottom-left corner.
+    pub robot_origin: (usize, usize),
+    /// Steps per episode (`max_episode_steps`).
+    pub episode_steps: usize,
+}
+
 /// What makes an EvoGym task: implemented once per task, in its own module.
 pub trait TaskDefinition: Sync {
-    /// EvoGym's registered name (`Walker-v0`).
-    fn name(&self) -> &'static str;
-
-    /// Its short name on vsrlab's command line (`walker`).
-    fn short_name(&self) -> &'static str;
-
-    /// Its world, without the robot.
-    fn world(&self) -> World;
-
-    /// Cell of the robot's bottom-left corner.
-    fn robot_origin(&self) -> (usize, usize);
-
-    /// Steps per episode (`max_episode_steps`).
-    fn episode_steps(&self) -> usize;
+    /// Its names, world, start cell and episode length.
+    fn basics(&self) -> &Basics;
 
     /// The object besides the robot whose centre the reward or the observation reads (the
     /// beam), if any.
@@ -203,27 +207,27 @@ impl EvoGymTask {
 
     /// EvoGym's name (`Walker-v0`, …).
     pub fn name(self) -> &'static str {
-        self.0.name()
+        self.0.basics().name
     }
 
     /// Its short name on vsrlab's command line (`walker`, `bridge-walker`, …).
     pub fn short_name(self) -> &'static str {
-        self.0.short_name()
+        self.0.basics().short_name
     }
 
     /// Its world, without the robot.
     pub fn world(self) -> World {
-        self.0.world()
+        (self.0.basics().world)()
     }
 
     /// Cell of the robot's bottom-left corner.
     pub fn robot_origin(self) -> (usize, usize) {
-        self.0.robot_origin()
+        self.0.basics().robot_origin
     }
 
     /// Steps per episode (`max_episode_steps`).
     pub fn episode_steps(self) -> usize {
-        self.0.episode_steps()
+        self.0.basics().episode_steps
     }
 
     /// The object besides the robot that the task reads, if any.

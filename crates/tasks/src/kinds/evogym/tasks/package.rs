@@ -6,17 +6,13 @@
 //! after (`⁺`) a step. (BeamToppler-v0 has its own module; Catcher-v0, whose start is random, is
 //! not implemented yet.)
 
-use super::{Piece, TaskDefinition};
+use super::{Basics, Piece, TaskDefinition};
 use crate::kinds::evogym::rewards::{Reward, RobotAndBeam, GOAL_BONUS, UNSTABLE_PENALTY};
-use crate::kinds::evogym::worlds::{self, World};
+use crate::kinds::evogym::worlds;
 
 /// A manipulation task.
 pub struct PackageTask {
-    name: &'static str,
-    short_name: &'static str,
-    world: fn() -> World,
-    origin: (usize, usize),
-    steps: usize,
+    basics: Basics,
     /// The free object's name: `package` or `beam`.
     object: &'static str,
     observation: &'static [Piece],
@@ -37,11 +33,13 @@ const K6: &[Piece] = &[
 
 /// Carrier-v0 (`manipulate.py:84`): carry a soft package, resting on the robot, to the right.
 pub const CARRIER_V0: PackageTask = PackageTask {
-    name: "Carrier-v0",
-    short_name: "carrier",
-    world: worlds::carrier_v0,
-    origin: (1, 1),
-    steps: 500,
+    basics: Basics {
+        name: "Carrier-v0",
+        short_name: "carrier",
+        world: worlds::carrier_v0,
+        robot_origin: (1, 1),
+        episode_steps: 500,
+    },
     object: "package",
     observation: K6,
     reward: |b, a| carry(b, a, 3.0 * 0.1),
@@ -52,11 +50,13 @@ pub const CARRIER_V0: PackageTask = PackageTask {
 /// writes it, the package's approach to the table is computed and then overwritten
 /// (`manipulate.py:204-205`), so only the robot's approach to x = 4 counts.
 pub const CARRIER_V1: PackageTask = PackageTask {
-    name: "Carrier-v1",
-    short_name: "carrier-v1",
-    world: worlds::carrier_v1,
-    origin: (1, 4),
-    steps: 1000,
+    basics: Basics {
+        name: "Carrier-v1",
+        short_name: "carrier-v1",
+        world: worlds::carrier_v1,
+        robot_origin: (1, 4),
+        episode_steps: 1000,
+    },
     object: "package",
     observation: K6,
     reward: |b, a| {
@@ -73,11 +73,13 @@ pub const CARRIER_V1: PackageTask = PackageTask {
 
 /// Pusher-v0 (`manipulate.py:250`): push a soft package to the right.
 pub const PUSHER_V0: PackageTask = PackageTask {
-    name: "Pusher-v0",
-    short_name: "pusher",
-    world: worlds::pusher_v0,
-    origin: (1, 1),
-    steps: 500,
+    basics: Basics {
+        name: "Pusher-v0",
+        short_name: "pusher",
+        world: worlds::pusher_v0,
+        robot_origin: (1, 1),
+        episode_steps: 500,
+    },
     object: "package",
     observation: K6,
     reward: |b, a| push(b, a, 0.0 * 0.1),
@@ -87,11 +89,13 @@ pub const PUSHER_V0: PackageTask = PackageTask {
 /// Pusher-v1 (`manipulate.py:316`): push a rigid package from its other side (the robot starts
 /// to its right).
 pub const PUSHER_V1: PackageTask = PackageTask {
-    name: "Pusher-v1",
-    short_name: "pusher-v1",
-    world: worlds::pusher_v1,
-    origin: (13, 1),
-    steps: 600,
+    basics: Basics {
+        name: "Pusher-v1",
+        short_name: "pusher-v1",
+        world: worlds::pusher_v1,
+        robot_origin: (13, 1),
+        episode_steps: 600,
+    },
     object: "package",
     observation: K6,
     reward: |b, a| push(b, a, 0.0 * 0.1),
@@ -100,11 +104,13 @@ pub const PUSHER_V1: PackageTask = PackageTask {
 
 /// Thrower-v0 (`manipulate.py:382`): throw a soft package to the right without following it.
 pub const THROWER: PackageTask = PackageTask {
-    name: "Thrower-v0",
-    short_name: "thrower",
-    world: worlds::thrower_v0,
-    origin: (1, 1),
-    steps: 300,
+    basics: Basics {
+        name: "Thrower-v0",
+        short_name: "thrower",
+        world: worlds::thrower_v0,
+        robot_origin: (1, 1),
+        episode_steps: 300,
+    },
     object: "package",
     observation: K6,
     reward: |b, a| {
@@ -119,11 +125,13 @@ pub const THROWER: PackageTask = PackageTask {
 
 /// Lifter-v0 (`manipulate.py:843`): lift a small rigid package out of a pit.
 pub const LIFTER: PackageTask = PackageTask {
-    name: "Lifter-v0",
-    short_name: "lifter",
-    world: worlds::lifter_v0,
-    origin: (2, 3),
-    steps: 300,
+    basics: Basics {
+        name: "Lifter-v0",
+        short_name: "lifter",
+        world: worlds::lifter_v0,
+        robot_origin: (2, 3),
+        episode_steps: 300,
+    },
     object: "package",
     observation: &[
         Piece::RobotVelocity,
@@ -146,11 +154,13 @@ pub const LIFTER: PackageTask = PackageTask {
 
 /// BeamSlider-v0 (`manipulate.py:728`): slide a beam along five pegs.
 pub const BEAM_SLIDER: PackageTask = PackageTask {
-    name: "BeamSlider-v0",
-    short_name: "beam-slider",
-    world: worlds::beam_slider_v0,
-    origin: (1, 1),
-    steps: 1000,
+    basics: Basics {
+        name: "BeamSlider-v0",
+        short_name: "beam-slider",
+        world: worlds::beam_slider_v0,
+        robot_origin: (1, 1),
+        episode_steps: 1000,
+    },
     object: "beam",
     observation: &[
         Piece::ObjectOffset,
@@ -192,24 +202,8 @@ fn push(b: RobotAndBeam, a: RobotAndBeam, height: f64) -> f64 {
 }
 
 impl TaskDefinition for PackageTask {
-    fn name(&self) -> &'static str {
-        self.name
-    }
-
-    fn short_name(&self) -> &'static str {
-        self.short_name
-    }
-
-    fn world(&self) -> World {
-        (self.world)()
-    }
-
-    fn robot_origin(&self) -> (usize, usize) {
-        self.origin
-    }
-
-    fn episode_steps(&self) -> usize {
-        self.steps
+    fn basics(&self) -> &Basics {
+        &self.basics
     }
 
     fn object(&self) -> Option<&'static str> {

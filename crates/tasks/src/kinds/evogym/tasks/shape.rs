@@ -3,9 +3,9 @@
 //! spelling; `MaximizeXShape`) and HeightMaximizer-v0 (`MaximizeYShape`): change the body's
 //! shape in a pit, rewarded for the change of its convex hull's area or of its span.
 
-use super::{Piece, TaskDefinition};
+use super::{Basics, Piece, TaskDefinition};
 use crate::kinds::evogym::rewards::{Reward, RobotAndBeam, UNSTABLE_PENALTY};
-use crate::kinds::evogym::worlds::{self, World};
+use crate::kinds::evogym::worlds;
 
 /// What a shape task measures of the robot's points.
 #[derive(Clone, Copy)]
@@ -20,64 +20,61 @@ enum Shape {
 
 /// A shape task.
 pub struct ShapeTask {
-    name: &'static str,
-    short_name: &'static str,
-    steps: usize,
+    basics: Basics,
     shape: Shape,
 }
 
 /// AreaMaximizer-v0: grow the hull's area.
 pub const AREA_MAXIMIZER: ShapeTask = ShapeTask {
-    name: "AreaMaximizer-v0",
-    short_name: "area-maximizer",
-    steps: 600,
+    basics: Basics {
+        name: "AreaMaximizer-v0",
+        short_name: "area-maximizer",
+        world: worlds::shape_change,
+        robot_origin: (7, 1),
+        episode_steps: 600,
+    },
     shape: Shape::Area(10.0),
 };
 
 /// AreaMinimizer-v0: shrink the hull's area.
 pub const AREA_MINIMIZER: ShapeTask = ShapeTask {
-    name: "AreaMinimizer-v0",
-    short_name: "area-minimizer",
-    steps: 600,
+    basics: Basics {
+        name: "AreaMinimizer-v0",
+        short_name: "area-minimizer",
+        world: worlds::shape_change,
+        robot_origin: (7, 1),
+        episode_steps: 600,
+    },
     shape: Shape::Area(-10.0),
 };
 
 /// WingspanMazimizer-v0 (EvoGym's spelling): grow the span along x.
 pub const WINGSPAN_MAXIMIZER: ShapeTask = ShapeTask {
-    name: "WingspanMazimizer-v0",
-    short_name: "wingspan-maximizer",
-    steps: 600,
+    basics: Basics {
+        name: "WingspanMazimizer-v0",
+        short_name: "wingspan-maximizer",
+        world: worlds::shape_change,
+        robot_origin: (7, 1),
+        episode_steps: 600,
+    },
     shape: Shape::Width,
 };
 
 /// HeightMaximizer-v0: grow the span along y.
 pub const HEIGHT_MAXIMIZER: ShapeTask = ShapeTask {
-    name: "HeightMaximizer-v0",
-    short_name: "height-maximizer",
-    steps: 500,
+    basics: Basics {
+        name: "HeightMaximizer-v0",
+        short_name: "height-maximizer",
+        world: worlds::shape_change,
+        robot_origin: (7, 1),
+        episode_steps: 500,
+    },
     shape: Shape::Height,
 };
 
 impl TaskDefinition for ShapeTask {
-    fn name(&self) -> &'static str {
-        self.name
-    }
-
-    fn short_name(&self) -> &'static str {
-        self.short_name
-    }
-
-    fn world(&self) -> World {
-        worlds::shape_change()
-    }
-
-    /// On the pit's floor, between its walls.
-    fn robot_origin(&self) -> (usize, usize) {
-        (7, 1)
-    }
-
-    fn episode_steps(&self) -> usize {
-        self.steps
+    fn basics(&self) -> &Basics {
+        &self.basics
     }
 
     /// The relative positions only.

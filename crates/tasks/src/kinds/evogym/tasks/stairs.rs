@@ -4,9 +4,9 @@
 //! GapJumper-v0 (`Gaps`), Traverser-v0 (`BlockSoup`): walk right over uneven ground; each ends on its own mix of a goal (+2),
 //! a fall (−3) and a flip (−3).
 
-use super::{Piece, TaskDefinition};
+use super::{Basics, Piece, TaskDefinition};
 use crate::kinds::evogym::rewards::{Reward, RobotAndBeam, UNSTABLE_PENALTY};
-use crate::kinds::evogym::worlds::{self, World};
+use crate::kinds::evogym::worlds;
 use std::f64::consts::PI;
 
 /// The goal bonus of this family (the walkers of `walk.py` give +1).
@@ -16,11 +16,7 @@ const STAIRS_PENALTY: f64 = 3.0;
 
 /// A task of the family.
 pub struct Stairs {
-    name: &'static str,
-    short_name: &'static str,
-    world: fn() -> World,
-    origin: (usize, usize),
-    steps: usize,
+    basics: Basics,
     /// The goal: the centre's x beyond this many cells (+2, the end).
     goal_cells: Option<f64>,
     /// The fall: the centre's y below this (−3, the end).
@@ -34,11 +30,13 @@ const UPSIDE_DOWN: (f64, f64) = (PI / 2.0, 3.0 * PI / 2.0);
 
 /// UpStepper-v0 (`traverse.py:51`): up a staircase.
 pub const UP_STEPPER: Stairs = Stairs {
-    name: "UpStepper-v0",
-    short_name: "up-stepper",
-    world: worlds::up_stepper_v0,
-    origin: (1, 1),
-    steps: 600,
+    basics: Basics {
+        name: "UpStepper-v0",
+        short_name: "up-stepper",
+        world: worlds::up_stepper_v0,
+        robot_origin: (1, 1),
+        episode_steps: 600,
+    },
     goal_cells: Some(69.0),
     fall_below: None,
     flip: Some((PI / 2.0 - PI / 12.0, 3.0 * PI / 2.0 + PI / 12.0)),
@@ -46,11 +44,13 @@ pub const UP_STEPPER: Stairs = Stairs {
 
 /// DownStepper-v0 (`traverse.py:116`): down a staircase, starting a cell above its top.
 pub const DOWN_STEPPER: Stairs = Stairs {
-    name: "DownStepper-v0",
-    short_name: "down-stepper",
-    world: worlds::down_stepper_v0,
-    origin: (1, 11),
-    steps: 500,
+    basics: Basics {
+        name: "DownStepper-v0",
+        short_name: "down-stepper",
+        world: worlds::down_stepper_v0,
+        robot_origin: (1, 11),
+        episode_steps: 500,
+    },
     goal_cells: Some(74.0),
     fall_below: None,
     flip: Some(UPSIDE_DOWN),
@@ -58,11 +58,13 @@ pub const DOWN_STEPPER: Stairs = Stairs {
 
 /// ObstacleTraverser-v0 (`traverse.py:181`): over bumps one or two cells high.
 pub const OBSTACLE_TRAVERSER_V0: Stairs = Stairs {
-    name: "ObstacleTraverser-v0",
-    short_name: "obstacle-traverser",
-    world: worlds::obstacle_traverser_v0,
-    origin: (2, 1),
-    steps: 1000,
+    basics: Basics {
+        name: "ObstacleTraverser-v0",
+        short_name: "obstacle-traverser",
+        world: worlds::obstacle_traverser_v0,
+        robot_origin: (2, 1),
+        episode_steps: 1000,
+    },
     goal_cells: Some(79.0),
     fall_below: None,
     flip: Some(UPSIDE_DOWN),
@@ -70,11 +72,13 @@ pub const OBSTACLE_TRAVERSER_V0: Stairs = Stairs {
 
 /// ObstacleTraverser-v1 (`traverse.py:247`): over rugged ground; no flip test.
 pub const OBSTACLE_TRAVERSER_V1: Stairs = Stairs {
-    name: "ObstacleTraverser-v1",
-    short_name: "obstacle-traverser-v1",
-    world: worlds::obstacle_traverser_v1,
-    origin: (2, 4),
-    steps: 1000,
+    basics: Basics {
+        name: "ObstacleTraverser-v1",
+        short_name: "obstacle-traverser-v1",
+        world: worlds::obstacle_traverser_v1,
+        robot_origin: (2, 4),
+        episode_steps: 1000,
+    },
     goal_cells: Some(59.0),
     fall_below: None,
     flip: None,
@@ -82,11 +86,13 @@ pub const OBSTACLE_TRAVERSER_V1: Stairs = Stairs {
 
 /// Hurdler-v0 (`traverse.py:310`): over hurdles; no goal.
 pub const HURDLER: Stairs = Stairs {
-    name: "Hurdler-v0",
-    short_name: "hurdler",
-    world: worlds::hurdler_v0,
-    origin: (2, 4),
-    steps: 1000,
+    basics: Basics {
+        name: "Hurdler-v0",
+        short_name: "hurdler",
+        world: worlds::hurdler_v0,
+        robot_origin: (2, 4),
+        episode_steps: 1000,
+    },
     goal_cells: None,
     fall_below: None,
     flip: Some(UPSIDE_DOWN),
@@ -94,11 +100,13 @@ pub const HURDLER: Stairs = Stairs {
 
 /// PlatformJumper-v0 (`traverse.py:371`): from platform to floating platform; no goal.
 pub const PLATFORM_JUMPER: Stairs = Stairs {
-    name: "PlatformJumper-v0",
-    short_name: "platform-jumper",
-    world: worlds::platform_jumper_v0,
-    origin: (1, 6),
-    steps: 1000,
+    basics: Basics {
+        name: "PlatformJumper-v0",
+        short_name: "platform-jumper",
+        world: worlds::platform_jumper_v0,
+        robot_origin: (1, 6),
+        episode_steps: 1000,
+    },
     goal_cells: None,
     fall_below: Some(0.4),
     flip: Some(UPSIDE_DOWN),
@@ -106,11 +114,13 @@ pub const PLATFORM_JUMPER: Stairs = Stairs {
 
 /// GapJumper-v0 (`traverse.py:456`): over gaps between platforms; no goal, no flip test.
 pub const GAP_JUMPER: Stairs = Stairs {
-    name: "GapJumper-v0",
-    short_name: "gap-jumper",
-    world: worlds::gap_jumper_v0,
-    origin: (1, 6),
-    steps: 1000,
+    basics: Basics {
+        name: "GapJumper-v0",
+        short_name: "gap-jumper",
+        world: worlds::gap_jumper_v0,
+        robot_origin: (1, 6),
+        episode_steps: 1000,
+    },
     goal_cells: None,
     fall_below: Some(4.0 * 0.1),
     flip: None,
@@ -118,35 +128,21 @@ pub const GAP_JUMPER: Stairs = Stairs {
 
 /// Traverser-v0 (`traverse.py:536`, `BlockSoup`): over a pit filled with 27 free rigid blocks.
 pub const TRAVERSER: Stairs = Stairs {
-    name: "Traverser-v0",
-    short_name: "traverser",
-    world: worlds::traverser_v0,
-    origin: (1, 9),
-    steps: 600,
+    basics: Basics {
+        name: "Traverser-v0",
+        short_name: "traverser",
+        world: worlds::traverser_v0,
+        robot_origin: (1, 9),
+        episode_steps: 600,
+    },
     goal_cells: Some(59.0),
     fall_below: None,
     flip: None,
 };
 
 impl TaskDefinition for Stairs {
-    fn name(&self) -> &'static str {
-        self.name
-    }
-
-    fn short_name(&self) -> &'static str {
-        self.short_name
-    }
-
-    fn world(&self) -> World {
-        (self.world)()
-    }
-
-    fn robot_origin(&self) -> (usize, usize) {
-        self.origin
-    }
-
-    fn episode_steps(&self) -> usize {
-        self.steps
+    fn basics(&self) -> &Basics {
+        &self.basics
     }
 
     /// Centre velocity, the robot's orientation, relative positions, the floor with a sight of 5.

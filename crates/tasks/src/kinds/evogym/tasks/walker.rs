@@ -1,33 +1,24 @@
 //! Walker-v0 (`walk.py:15-84`, class `WalkingFlat`): walk right on flat ground.
 
-use super::{Piece, TaskDefinition};
+use super::{Basics, Piece, TaskDefinition};
 use crate::kinds::evogym::rewards::{forward, Reward, RobotAndBeam};
-use crate::kinds::evogym::worlds::{self, World};
+use crate::kinds::evogym::worlds;
 
 /// Walker-v0.
 pub struct Walker;
 
+/// Walker-v0's names, world, start and length (`walk.py:27`; `envs/__init__.py:19`).
+const BASICS: Basics = Basics {
+    name: "Walker-v0",
+    short_name: "walker",
+    world: worlds::walker_v0,
+    robot_origin: (1, 1),
+    episode_steps: 500,
+};
+
 impl TaskDefinition for Walker {
-    fn name(&self) -> &'static str {
-        "Walker-v0"
-    }
-
-    fn short_name(&self) -> &'static str {
-        "walker"
-    }
-
-    fn world(&self) -> World {
-        worlds::walker_v0()
-    }
-
-    /// `walk.py:27`.
-    fn robot_origin(&self) -> (usize, usize) {
-        (1, 1)
-    }
-
-    /// `envs/__init__.py:19`.
-    fn episode_steps(&self) -> usize {
-        500
+    fn basics(&self) -> &Basics {
+        &BASICS
     }
 
     /// Centre velocity and relative positions (`walk.py:51-54`).

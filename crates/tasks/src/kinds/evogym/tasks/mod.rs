@@ -1,6 +1,8 @@
 //! EvoGym's tasks, one module each: its world, where the robot starts, how long an episode
 //! lasts, what is observed, the reward and what ends an episode ([`TaskDefinition`]). Every task
-//! is listed once, in [`EvoGymTask::ALL`]: a new task is one module and one line there. Sources
+//! is listed once, in [`EvoGymTask::ALL`]: a new task is one module, its `mod` line and its line
+//! there, and its world, a function in `worlds.rs` built from that file's layout helpers
+//! (moving the worlds into the task modules would make it the module and two lines). Sources
 //! (commit `f63c649`): `evogym/envs/__init__.py` (names, episode lengths) and the task classes of
 //! `evogym/envs/*.py`; `docs/evogym-envs.md` has the details of each task and where the thesis
 //! differs, `docs/evogym-tasks-reference.md` the facts of all 32.

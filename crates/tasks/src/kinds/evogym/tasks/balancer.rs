@@ -18,7 +18,7 @@ pub const BALANCER_V0: Balancer = Balancer {
     basics: Basics {
         name: "Balancer-v0",
         short_name: "balancer",
-        world: worlds::balancer_v0,
+        world: balancer_v0,
         robot_origin: (15, 3),
         episode_steps: 600,
     },
@@ -30,7 +30,7 @@ pub const BALANCER_V1: Balancer = Balancer {
     basics: Basics {
         name: "Balancer-v1",
         short_name: "balancer-v1",
-        world: worlds::balancer_v1,
+        world: balancer_v1,
         robot_origin: (10, 1),
         episode_steps: 600,
     },
@@ -58,4 +58,15 @@ impl TaskDefinition for Balancer {
         }
         Reward { value, ends: false }
     }
+}
+
+/// Balancer-v0's world (`Balancer-v0.json`, 30 × 5): `ground`, a floor, walls at the ends and a
+/// pole two cells high in column 17.
+fn balancer_v0() -> worlds::World {
+    worlds::laid_out("ground", &[(0, 0, "0-29"), (1, 2, "0, 17, 29"), (3, 4, "0, 29")])
+}
+
+/// Balancer-v1's world (`Balancer-v1.json`): as Balancer-v0's, the pole three cells high.
+fn balancer_v1() -> worlds::World {
+    worlds::laid_out("ground", &[(0, 0, "0-29"), (1, 3, "0, 17, 29"), (4, 4, "0, 29")])
 }

@@ -24,7 +24,7 @@ const REACHED: f64 = 2.0 * 0.1;
 const BASICS: Basics = Basics {
     name: "BidirectionalWalker-v0",
     short_name: "bidirectional-walker",
-    world: worlds::bidirectional_walker_v0,
+    world: bidirectional_walker_v0,
     robot_origin: (33, 1),
     episode_steps: 1000,
 };
@@ -85,6 +85,12 @@ impl TaskDefinition for BidirectionalWalker {
         }
         Reward { value, ends }
     }
+}
+
+/// BidirectionalWalker-v0's world (`BidirectionalWalker-v0.json`): `new_object_1`, a row of 70
+/// fixed cells at (0, 0).
+fn bidirectional_walker_v0() -> worlds::World {
+    worlds::laid_out("new_object_1", &[(0, 0, "0-69")])
 }
 
 #[cfg(test)]

@@ -18,7 +18,7 @@ pub const CLIMBER_V0: Climber = Climber {
     basics: Basics {
         name: "Climber-v0",
         short_name: "climber",
-        world: worlds::climber_v0,
+        world: climber_v0,
         robot_origin: (1, 1),
         episode_steps: 400,
     },
@@ -30,7 +30,7 @@ pub const CLIMBER_V1: Climber = Climber {
     basics: Basics {
         name: "Climber-v1",
         short_name: "climber-v1",
-        world: worlds::climber_v1,
+        world: climber_v1,
         robot_origin: (1, 1),
         episode_steps: 600,
     },
@@ -66,7 +66,7 @@ impl TaskDefinition for Climber {
 const CLIMBER_V2: Basics = Basics {
     name: "Climber-v2",
     short_name: "climber-v2",
-    world: worlds::climber_v2,
+    world: climber_v2,
     robot_origin: (1, 1),
     episode_steps: 1000,
 };
@@ -99,4 +99,80 @@ impl TaskDefinition for Climber2 {
         }
         Reward { value, ends: false }
     }
+}
+
+/// Climber-v0's world (`Climber-v0.json`, 7 × 90): `pipe`, fixed walls in columns 0 and 6, a
+/// floor and a cap.
+fn climber_v0() -> worlds::World {
+    worlds::laid_out("pipe", &[(0, 0, "0-6"), (1, 88, "0, 6"), (89, 89, "0-6")])
+}
+
+/// Climber-v1's world (`Climber-v1.json`, 7 × 70): `pipe`, as Climber-v0's with the cap in row 69
+/// and 42 soft wall cells in stretches on either side.
+fn climber_v1() -> worlds::World {
+    worlds::laid_out(
+        "pipe",
+        &[
+            (0, 0, "0-6"),
+            (1, 7, "0, 6"),
+            (8, 8, "0, 6[2]"),
+            (9, 10, "0, 6"),
+            (11, 12, "0[2], 6"),
+            (13, 14, "0, 6"),
+            (15, 17, "0, 6[2]"),
+            (18, 20, "0, 6"),
+            (21, 22, "0[2], 6"),
+            (23, 24, "0, 6[2]"),
+            (25, 26, "0, 6"),
+            (27, 27, "0[2], 6"),
+            (28, 28, "0[2], 6[2]"),
+            (29, 29, "0, 6[2]"),
+            (30, 30, "0, 6"),
+            (31, 32, "0[2], 6"),
+            (33, 34, "0, 6"),
+            (35, 35, "0[2], 6[2]"),
+            (36, 37, "0, 6[2]"),
+            (38, 38, "0, 6"),
+            (39, 41, "0[2], 6"),
+            (42, 44, "0, 6"),
+            (45, 46, "0[2], 6[2]"),
+            (47, 50, "0, 6"),
+            (51, 53, "0[2], 6[2]"),
+            (54, 55, "0, 6"),
+            (56, 59, "0, 6[2]"),
+            (60, 64, "0[2], 6"),
+            (65, 68, "0, 6"),
+            (69, 69, "0-6"),
+        ],
+    )
+}
+
+/// Climber-v2's world (`Climber-v2.json`, 27 × 42): `pipe`, fixed, rising straight, then stepping
+/// right cell by cell, then turning right into a tunnel that ends at column 26.
+fn climber_v2() -> worlds::World {
+    worlds::laid_out(
+        "pipe",
+        &[
+            (0, 0, "0-6"),
+            (1, 18, "0, 6"),
+            (19, 19, "0, 6-7"),
+            (20, 22, "0, 7"),
+            (23, 23, "0-1, 7"),
+            (24, 26, "1, 7"),
+            (27, 27, "1, 7-8"),
+            (28, 29, "1, 8"),
+            (30, 30, "1-2, 8"),
+            (31, 31, "2, 8"),
+            (32, 32, "2, 8-9"),
+            (33, 33, "2, 9-10"),
+            (34, 34, "2-3, 10-11"),
+            (35, 35, "3, 11-26"),
+            (36, 36, "3, 26"),
+            (37, 37, "3-4, 26"),
+            (38, 38, "4-5, 26"),
+            (39, 39, "5-6, 26"),
+            (40, 40, "6-7, 26"),
+            (41, 41, "7-26"),
+        ],
+    )
 }

@@ -13,7 +13,7 @@ pub struct Flipper;
 const BASICS: Basics = Basics {
     name: "Flipper-v0",
     short_name: "flipper",
-    world: worlds::flipper_v0,
+    world: flipper_v0,
     robot_origin: (60, 1),
     episode_steps: 600,
 };
@@ -50,4 +50,9 @@ impl TaskDefinition for Flipper {
             ends: after.robot.0 < 1.0 * 0.1,
         }
     }
+}
+
+/// Flipper-v0's world (`Flipper-v0.json`): `new_object_1`, a row of 70 fixed cells at (0, 0).
+fn flipper_v0() -> worlds::World {
+    worlds::laid_out("new_object_1", &[(0, 0, "0-69")])
 }

@@ -12,7 +12,7 @@ pub struct Jumper;
 const BASICS: Basics = Basics {
     name: "Jumper-v0",
     short_name: "jumper",
-    world: worlds::jumper_v0,
+    world: jumper_v0,
     robot_origin: (32, 1),
     episode_steps: 500,
 };
@@ -35,4 +35,9 @@ impl TaskDefinition for Jumper {
         }
         Reward { value, ends: false }
     }
+}
+
+/// Jumper-v0's world (`Jumper-v0.json`, 60 × 8): `ground`, a floor with a wall at each end.
+fn jumper_v0() -> worlds::World {
+    worlds::laid_out("ground", &[(0, 0, "0-59"), (1, 7, "0, 59")])
 }

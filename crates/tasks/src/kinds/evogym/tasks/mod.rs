@@ -1,8 +1,7 @@
 //! EvoGym's tasks, one module each: its world, where the robot starts, how long an episode
 //! lasts, what is observed, the reward and what ends an episode ([`TaskDefinition`]). Every task
-//! is listed once, in [`EvoGymTask::ALL`]: a new task is one module, its `mod` line and its line
-//! there, and its world, a function in `worlds.rs` built from that file's layout helpers
-//! (moving the worlds into the task modules would make it the module and two lines). Sources
+//! is listed once, in [`EvoGymTask::ALL`]: a new task is one module (its world included, built
+//! with `worlds.rs`'s layout helpers), its `mod` line and its line there. Sources
 //! (commit `f63c649`): `evogym/envs/__init__.py` (names, episode lengths) and the task classes of
 //! `evogym/envs/*.py`; `docs/evogym-envs.md` has the details of each task and where the thesis
 //! differs, `docs/evogym-tasks-reference.md` the facts of all 32.
@@ -394,6 +393,52 @@ mod tests {
             let tail = &o[o.len() - bins.len()..];
             let close = tail.iter().zip(bins).all(|(a, b)| (a - b).abs() < 1e-12);
             assert!(close, "{name}: {tail:?} against EvoGym's {bins:?}");
+        }
+    }
+
+    /// The laid-out worlds have the files' cell counts (docs/evogym-tasks-reference.md §3, §5):
+    /// Jumper 60 + 2 × 7 = 74 fixed; Balancer-v0 30 + 3 × 2 + 2 × 2 = 40, v1 41; Climber-v0
+    /// 7 + 2 × 88 + 7 = 190; Climber-v1 42 soft and 108 fixed.
+    #[test]
+    fn laid_out_worlds_have_the_files_cells() {
+        use crate::kinds::evogym::{Material, World};
+        use std::collections::BTreeSet;
+        let world = |name: &str| EvoGymTask::from_name(name).unwrap().world();
+        let count =
+            |w: &World, name: &str, m: Material| w.object(name).unwrap().grid.present().filter(|c| c.2 == m).count();
+        assert_eq!(count(&world("Jumper-v0"), "ground", Material::Fixed), 74);
+        assert_eq!(count(&world("Balancer-v0"), "ground", Material::Fixed), 40);
+        assert_eq!(count(&world("Balancer-v1"), "ground", Material::Fixed), 41);
+        assert_eq!(count(&world("Climber-v0"), "pipe", Material::Fixed), 190);
+        let c = world("Climber-v1");
+        assert_eq!(
+            (count(&c, "pipe", Material::Soft), count(&c, "pipe", Material::Fixed)),
+            (42, 108)
+        );
+        let pole: BTreeSet<_> = world("Balancer-v1").object("ground").unwrap().world_cells().collect();
+        assert!(pole.contains(&(17, 3)) && !pole.contains(&(17, 4)) && pole.contains(&(29, 4)));
+        // ObstacleTraverser-v1's ground has 195 cells (reference sheet §3.5)
+        assert_eq!(count(&world("ObstacleTraverser-v1"), "ground", Material::Fixed), 195);
+        let names = |w: &World| w.objects().iter().map(|o| o.name.clone()).collect::<Vec<_>>();
+        assert_eq!(names(&world("GapJumper-v0")).len(), 5);
+        assert_eq!(names(&world("PlatformJumper-v0"))[6], "platform_7");
+        let every = [
+            world("Jumper-v0"),
+            world("Balancer-v0"),
+            world("Balancer-v1"),
+            world("Climber-v0"),
+            c,
+            world("Climber-v2"),
+            world("UpStepper-v0"),
+            world("DownStepper-v0"),
+            world("ObstacleTraverser-v0"),
+            world("ObstacleTraverser-v1"),
+            world("Hurdler-v0"),
+            world("GapJumper-v0"),
+            world("PlatformJumper-v0"),
+        ];
+        for w in every {
+            assert!(w.objects().iter().all(|o| o.grid.is_connected()), "{:?}", names(&w));
         }
     }
 

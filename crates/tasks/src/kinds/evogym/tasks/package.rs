@@ -36,7 +36,7 @@ pub const CARRIER_V0: PackageTask = PackageTask {
     basics: Basics {
         name: "Carrier-v0",
         short_name: "carrier",
-        world: worlds::carrier_v0,
+        world: carrier_v0,
         robot_origin: (1, 1),
         episode_steps: 500,
     },
@@ -53,7 +53,7 @@ pub const CARRIER_V1: PackageTask = PackageTask {
     basics: Basics {
         name: "Carrier-v1",
         short_name: "carrier-v1",
-        world: worlds::carrier_v1,
+        world: carrier_v1,
         robot_origin: (1, 4),
         episode_steps: 1000,
     },
@@ -76,7 +76,7 @@ pub const PUSHER_V0: PackageTask = PackageTask {
     basics: Basics {
         name: "Pusher-v0",
         short_name: "pusher",
-        world: worlds::pusher_v0,
+        world: pusher_v0,
         robot_origin: (1, 1),
         episode_steps: 500,
     },
@@ -92,7 +92,7 @@ pub const PUSHER_V1: PackageTask = PackageTask {
     basics: Basics {
         name: "Pusher-v1",
         short_name: "pusher-v1",
-        world: worlds::pusher_v1,
+        world: pusher_v1,
         robot_origin: (13, 1),
         episode_steps: 600,
     },
@@ -107,7 +107,7 @@ pub const THROWER: PackageTask = PackageTask {
     basics: Basics {
         name: "Thrower-v0",
         short_name: "thrower",
-        world: worlds::thrower_v0,
+        world: thrower_v0,
         robot_origin: (1, 1),
         episode_steps: 300,
     },
@@ -128,7 +128,7 @@ pub const LIFTER: PackageTask = PackageTask {
     basics: Basics {
         name: "Lifter-v0",
         short_name: "lifter",
-        world: worlds::lifter_v0,
+        world: lifter_v0,
         robot_origin: (2, 3),
         episode_steps: 300,
     },
@@ -157,7 +157,7 @@ pub const BEAM_SLIDER: PackageTask = PackageTask {
     basics: Basics {
         name: "BeamSlider-v0",
         short_name: "beam-slider",
-        world: worlds::beam_slider_v0,
+        world: beam_slider_v0,
         robot_origin: (1, 1),
         episode_steps: 1000,
     },
@@ -226,4 +226,84 @@ impl TaskDefinition for PackageTask {
         }
         Reward { value, ends }
     }
+}
+
+/// Carrier-v0's world (`Carrier-v0.json`, 100 × 8): `ground`, a row of 100 fixed cells, and
+/// `package`, 3 × 2 soft cells at (3, 6), on top of the robot.
+fn carrier_v0() -> worlds::World {
+    worlds::laid_out_objects(&[("ground", &[(0, 0, "0-99")]), ("package", &[(6, 7, "3-5[2]")])])
+}
+
+/// Carrier-v1's world (`Carrier-v1.json`, 60 × 12): `ground`, a shelf, a step, a lower floor and
+/// a table post, and `package`, 3 × 2 rigid cells at (3, 10), above the robot.
+fn carrier_v1() -> worlds::World {
+    worlds::laid_out_objects(&[
+        (
+            "ground",
+            &[
+                (1, 1, "26-59"),
+                (2, 2, "23-26, 48-49"),
+                (3, 3, "0-23, 48-49"),
+                (4, 4, "48-49"),
+            ],
+        ),
+        ("package", &[(10, 11, "3-5[1]")]),
+    ])
+}
+
+/// Pusher-v0's world (`Pusher-v0.json`, 100 × 3): `ground`, a row of 100 fixed cells, and
+/// `package`, 3 × 2 soft cells at (8, 1).
+fn pusher_v0() -> worlds::World {
+    worlds::laid_out_objects(&[("ground", &[(0, 0, "0-99")]), ("package", &[(1, 2, "8-10[2]")])])
+}
+
+/// Pusher-v1's world (`Pusher-v1.json`): as Pusher-v0's, the package rigid.
+fn pusher_v1() -> worlds::World {
+    worlds::laid_out_objects(&[("ground", &[(0, 0, "0-99")]), ("package", &[(1, 2, "8-10[1]")])])
+}
+
+/// Thrower-v0's world (`Thrower-v0.json`, 70 × 10): `ground`, a floor with posts of rising
+/// heights and an end wall, and `package`, 3 × 2 soft cells at (3, 7), above the robot.
+fn thrower_v0() -> worlds::World {
+    worlds::laid_out_objects(&[
+        (
+            "ground",
+            &[
+                (0, 0, "0-69"),
+                (1, 2, "10, 14, 18, 23, 28, 39, 69"),
+                (3, 3, "14, 18, 23, 28, 39, 69"),
+                (4, 4, "18, 23, 28, 39, 69"),
+                (5, 6, "23, 28, 39, 69"),
+                (7, 7, "28, 39, 69"),
+                (8, 9, "39, 69"),
+            ],
+        ),
+        ("package", &[(7, 8, "3-5[2]")]),
+    ])
+}
+
+/// Lifter-v0's world (`Lifter-v0.json`, 11 × 5): `ground`, a pit between two ledges, and
+/// `package`, 1 × 2 rigid cells standing in the pit at (5, 1).
+fn lifter_v0() -> worlds::World {
+    worlds::laid_out_objects(&[
+        (
+            "ground",
+            &[(0, 0, "3-7"), (1, 1, "3, 7"), (2, 2, "0-3, 7-10"), (3, 4, "0, 10")],
+        ),
+        ("package", &[(1, 2, "5[1]")]),
+    ])
+}
+
+/// BeamSlider-v0's world (`BeamSlider-v0.json`, 70 × 7): `ground`, five fixed pegs in row 4 and
+/// `beam`, 10 × 2 rigid cells at (22, 5) on the first peg.
+fn beam_slider_v0() -> worlds::World {
+    worlds::laid_out_objects(&[
+        ("beam", &[(5, 6, "22-31[1]")]),
+        ("ground", &[(0, 0, "0-69")]),
+        ("peg1", &[(4, 4, "20-24")]),
+        ("peg2", &[(4, 4, "29-31")]),
+        ("peg3", &[(4, 4, "35-37")]),
+        ("peg4", &[(4, 4, "41-43")]),
+        ("peg5", &[(4, 4, "49-51")]),
+    ])
 }

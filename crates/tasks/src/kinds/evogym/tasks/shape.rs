@@ -29,7 +29,7 @@ pub const AREA_MAXIMIZER: ShapeTask = ShapeTask {
     basics: Basics {
         name: "AreaMaximizer-v0",
         short_name: "area-maximizer",
-        world: worlds::shape_change,
+        world: shape_change,
         robot_origin: (7, 1),
         episode_steps: 600,
     },
@@ -41,7 +41,7 @@ pub const AREA_MINIMIZER: ShapeTask = ShapeTask {
     basics: Basics {
         name: "AreaMinimizer-v0",
         short_name: "area-minimizer",
-        world: worlds::shape_change,
+        world: shape_change,
         robot_origin: (7, 1),
         episode_steps: 600,
     },
@@ -53,7 +53,7 @@ pub const WINGSPAN_MAXIMIZER: ShapeTask = ShapeTask {
     basics: Basics {
         name: "WingspanMazimizer-v0",
         short_name: "wingspan-maximizer",
-        world: worlds::shape_change,
+        world: shape_change,
         robot_origin: (7, 1),
         episode_steps: 600,
     },
@@ -65,7 +65,7 @@ pub const HEIGHT_MAXIMIZER: ShapeTask = ShapeTask {
     basics: Basics {
         name: "HeightMaximizer-v0",
         short_name: "height-maximizer",
-        world: worlds::shape_change,
+        world: shape_change,
         robot_origin: (7, 1),
         episode_steps: 500,
     },
@@ -146,6 +146,12 @@ pub fn hull_area(xs: &[f64], ys: &[f64]) -> f64 {
         }
     }
     f64::NAN
+}
+
+/// The shape tasks' world (`ShapeChange.json`, 20 × 10): `new_object_4`, a floor with walls two
+/// cells thick at each end.
+fn shape_change() -> worlds::World {
+    worlds::laid_out("new_object_4", &[(0, 0, "0-19"), (1, 9, "0-1, 18-19")])
 }
 
 #[cfg(test)]

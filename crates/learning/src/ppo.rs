@@ -254,6 +254,15 @@ fn value_loss_of(value: f64, old: f64, target: f64, clip: Option<f64>) -> (f64, 
     }
 }
 
+/// The rollout's forward passes over every environment at once, kept from step to step so that
+/// their buffers are allocated once per rollout.
+#[derive(Debug, Default)]
+struct RolloutPasses {
+    inputs: Vec<f64>,
+    actor: BatchPass,
+    critic: BatchPass,
+}
+
 /// A seed from a base seed and two indices (SplitMix64 steps), for per-environment and
 /// per-iteration generators.
 fn mix(seed: u64, a: u64, b: u64) -> u64 {
@@ -469,9 +478,10 @@ impl Ppo {
             ObservationStatistics::EveryStep => (1, steps),
             ObservationStatistics::EveryIteration => (steps, 1),
         };
+        let mut passes = RolloutPasses::default();
         for _ in 0..rounds {
             for _ in 0..chunk {
-                self.step_all(environments, slots, &mut rngs, &mut rollouts)?;
+                self.step_all(environments, slots, &mut rngs, &mut rollouts, &mut passes)?;
             }
             if chunk == 1 {
                 self.observe(slots);
@@ -487,21 +497,36 @@ impl Ppo {
     }
 
     /// One step of every environment from its slot, recorded into its rollout: the actions
-    /// chosen in parallel, the environments stepped together ([`Environment::step_all`]), the
-    /// steps recorded in parallel. Each environment goes through the same calls as when it
-    /// stepped alone; the first failing environment (in order) stops the training.
+    /// chosen together (both networks' forward passes over every environment's observation at
+    /// once, [`Mlp::forward_batch`]: row by row the bits of one at a time), the environments
+    /// stepped together ([`Environment::step_all`]), the steps recorded in parallel. Each
+    /// environment goes through the same calls as when it stepped alone; the first failing
+    /// environment (in order) stops the training.
     fn step_all<E: Environment>(
         &self,
         environments: &mut [E],
         slots: &mut [Slot],
         rngs: &mut [ChaCha8Rng],
         rollouts: &mut [Rollout],
+        passes: &mut RolloutPasses,
     ) -> Result<(), PpoError> {
-        let actions: Vec<Vec<f64>> = slots
-            .par_iter()
-            .zip(rngs.par_iter_mut())
-            .zip(rollouts.par_iter_mut())
-            .map(|((slot, rng), r)| self.choose(slot, rng, r))
+        passes.inputs.clear();
+        let observations: Vec<Vec<f64>> = slots
+            .iter()
+            .map(|slot| self.normalizer.normalize(&slot.observation))
+            .inspect(|o| passes.inputs.extend_from_slice(o))
+            .collect();
+        let n = observations.len();
+        self.actor.forward_batch(&passes.inputs, n, &mut passes.actor);
+        self.critic.forward_batch(&passes.inputs, n, &mut passes.critic);
+        let actions: Vec<Vec<f64>> = observations
+            .into_iter()
+            .zip(rngs.iter_mut().zip(rollouts.iter_mut()))
+            .enumerate()
+            .map(|(e, (observation, (rng, r)))| {
+                let (mean, value) = (passes.actor.output(e), passes.critic.output(e)[0]);
+                self.choose(observation, mean, value, rng, r)
+            })
             .collect();
         let steps = E::step_all(environments, &actions);
         let recorded: Vec<Result<(), PpoError>> = environments
@@ -515,18 +540,24 @@ impl Ppo {
         recorded.into_iter().collect()
     }
 
-    /// The policy's action for a slot's observation, sampled with the environment's generator;
-    /// its log-probability, the value and the normalised observation go into `r`.
-    fn choose(&self, slot: &Slot, rng: &mut ChaCha8Rng, r: &mut Rollout) -> Vec<f64> {
-        let observation = self.normalizer.normalize(&slot.observation);
-        let mean = self.actor.forward(&observation).output().to_vec();
+    /// The action for a normalised observation whose policy mean and value are given, sampled
+    /// with the environment's generator; its log-probability, the value and the observation go
+    /// into `r`.
+    fn choose(
+        &self,
+        observation: Vec<f64>,
+        mean: &[f64],
+        value: f64,
+        rng: &mut ChaCha8Rng,
+        r: &mut Rollout,
+    ) -> Vec<f64> {
         let action: Vec<f64> = mean
             .iter()
             .zip(&self.log_std)
             .map(|(m, s)| m + s.exp() * standard_normal(rng))
             .collect();
-        r.log_probs.push(log_prob(&action, &mean, &self.log_std));
-        r.values.push(self.critic.forward(&observation).output()[0]);
+        r.log_probs.push(log_prob(&action, mean, &self.log_std));
+        r.values.push(value);
         r.observations.push(observation);
         action
     }

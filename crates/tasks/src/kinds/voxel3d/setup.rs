@@ -69,7 +69,9 @@ pub(crate) fn prepare_batch<'a>(robots: &[&'a dyn Robot], task_kind: &str) -> Op
     same.then_some(prepared)
 }
 
-/// Every voxel's readings in lane `lane` at time `t`, voxel after voxel.
+/// Every voxel's readings in lane `lane` at time `t`, voxel after voxel. A CPG reads the clock
+/// every voxel shares, so it is computed for the first voxel and copied to the others (the
+/// same value: one sine per step instead of one per voxel).
 pub(crate) fn sense<W: Worlds + ?Sized>(
     world: &W,
     lane: usize,
@@ -78,18 +80,80 @@ pub(crate) fn sense<W: Worlds + ?Sized>(
     t: f64,
     readings: &mut [f64],
 ) {
-    if sensors.is_empty() {
+    if sensors.is_empty() || body.is_empty() {
         return;
     }
-    for (&v, out) in body.iter().zip(readings.chunks_mut(sensors.len())) {
+    let n = sensors.len();
+    let (first, rest) = readings.split_at_mut(n);
+    let read_voxel = |v: VoxelId, out: &mut [f64], clock: Option<&[f64]>| {
         let sense = VoxelSense {
             time: t,
             touches_voxel: world.touches_voxel(v, lane),
             touches_floor: world.touches_floor(v, lane),
             velocity: world.velocity(v, lane),
         };
-        for (r, s) in out.iter_mut().zip(sensors) {
-            *r = s.read(&sense);
+        for (k, (r, s)) in out.iter_mut().zip(sensors).enumerate() {
+            *r = match (s, clock) {
+                (Sensor3::Cpg(_), Some(clock)) => clock[k],
+                _ => s.read(&sense),
+            };
         }
+    };
+    read_voxel(body[0], first, None);
+    for (&v, out) in body[1..].iter().zip(rest.chunks_mut(n)) {
+        read_voxel(v, out, Some(&*first));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vsrlab_physics3d::{Material, World, WorldSettings};
+
+    /// Three unlinked voxels pushed along z by different forces, a few steps on.
+    fn falling_world() -> (World, Vec<VoxelId>) {
+        let mut world = World::new(WorldSettings {
+            voxel_size: 0.01,
+            gravity: -9.81,
+            floor: true,
+            collisions: true,
+        })
+        .unwrap();
+        let m = world.add_material(Material::affordance()).unwrap();
+        let body: Vec<VoxelId> = [[0, 0, 0], [3, 0, 2], [6, 0, 5]]
+            .into_iter()
+            .map(|c| world.add_voxel(m, c).unwrap())
+            .collect();
+        for (i, &v) in body.iter().enumerate() {
+            world.set_external(v, glam::DVec3::new(0.0, 0.0, 0.01 * i as f64), glam::DVec3::ZERO);
+        }
+        let dt = world.recommended_time_step();
+        while world.time() < 0.05 {
+            world.step(dt).unwrap();
+        }
+        (world, body)
+    }
+
+    #[test]
+    fn every_voxel_reads_what_its_sensors_read_the_clock_shared() {
+        let (world, body) = falling_world();
+        let sensors = Sensor3::parse_list("cpg:2,vz,cpg,floor,touch").unwrap();
+        let t = 0.3;
+        let mut readings = vec![f64::NAN; body.len() * sensors.len()];
+        sense(&world, 0, &body, &sensors, t, &mut readings);
+        for (i, &v) in body.iter().enumerate() {
+            let alone = VoxelSense {
+                time: t,
+                touches_voxel: world.touches_voxel(v),
+                touches_floor: world.touches_floor(v),
+                velocity: world.velocity(v),
+            };
+            for (k, s) in sensors.iter().enumerate() {
+                let got = readings[i * sensors.len() + k];
+                assert_eq!(got.to_bits(), s.read(&alone).to_bits(), "voxel {i}, sensor {k}");
+            }
+        }
+        assert_ne!(readings[0], readings[2], "the two clocks have their own frequencies");
+        assert_ne!(readings[1], readings[1 + 5], "each voxel reads its own velocity");
     }
 }

@@ -20,6 +20,21 @@ import evogym.envs  # noqa: F401  (registers the environments)
 TASKS = ["Walker-v0", "BridgeWalker-v0", "BeamToppler-v0", "CaveCrawler-v0"]
 
 
+class FixedOffsets:
+    """Stands in for Python's global `random` in EvoGym's manipulate module: Catcher-v0 draws
+    its package's and pegs' offsets (x, then y) from it at every reset, unseeded. These are the
+    offsets vsrlab draws for seed 0 (`--example evogym_speed 1 Catcher` prints its world)."""
+
+    def __init__(self, ox, oy):
+        self.values, self.drawn = (ox, oy), 0
+
+    def randint(self, low, high):
+        value = self.values[self.drawn % 2]
+        self.drawn += 1
+        assert low <= value <= high, (low, value, high)
+        return value
+
+
 def gait(t, n):
     return np.array([1.6 if (t + 5 * (i % 5)) % 20 < 10 else 0.6 for i in range(n)])
 
@@ -52,7 +67,11 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--steps", type=int, default=1000, help="env steps timed per task")
     parser.add_argument("--tasks", default=",".join(TASKS), help="comma-separated EvoGym ids (default: ch. 5.2's four)")
+    parser.add_argument("--catcher-offsets", default="1,4", help="Catcher-v0's offsets ox,oy (vsrlab's seed 0: 1,4)")
     args = parser.parse_args()
+    import evogym.envs.manipulate as manipulate
+
+    manipulate.random = FixedOffsets(*(int(v) for v in args.catcher_offsets.split(",")))
     for name in args.tasks.split(","):
         length = gym.spec(name).max_episode_steps
         env, total, k = episode(name, length)

@@ -66,7 +66,7 @@ def test_a_square_wave_gait_earns_evogyms_reward_on_walker():
 def test_every_implemented_task_is_a_gym_id_with_its_class():
     tasks = vsrlab.evogym_tasks()
     assert {"Walker-v0", "Jumper-v0", "Balancer-v1", "Climber-v1", "WingspanMazimizer-v0"} <= set(tasks)
-    assert len(tasks) == 31
+    assert len(tasks) == 32
     assert {f"vsrlab-evogym/{t}" for t in tasks} <= set(EVOGYM_ENVIRONMENTS)
     assert vsrlab.envs.BalancerV1Env().unwrapped._env.observation_size == 73
     assert f"vsrlab/{tasks[-1]}" in gymnasium.registry
@@ -75,6 +75,16 @@ def test_every_implemented_task_is_a_gym_id_with_its_class():
     assert "vsrlab/Carrier-v0" not in EVOGYM_ENVIRONMENTS
     assert gymnasium.make("vsrlab-evogym/Carrier-v0").observation_space.shape == (78,)
     assert vsrlab.envs.CarrierEnv is not vsrlab.envs.EvoGymCarrierEnv
+
+
+def test_catchers_world_follows_the_seed():
+    env = gymnasium.make("vsrlab/Catcher-v0")
+    first = [env.reset(seed=s)[0] for s in range(4)]
+    again = [env.reset(seed=s)[0] for s in range(4)]
+    assert all(np.array_equal(a, b) for a, b in zip(first, again))
+    # the package's offset from the robot (the first two values) moves with the drawn world
+    assert len({tuple(o[:2]) for o in first}) > 1
+    assert env.observation_space.shape == (79,)
 
 
 def test_bad_bodies_and_actions_are_refused_naming_the_field():

@@ -25,7 +25,24 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         if only.as_deref().is_some_and(|o| !task.name().starts_with(o)) {
             continue;
         }
+        let built = Instant::now();
         let mut env = EvoGymEnv::new(task, &body)?;
+        if task.world_count() > 1 {
+            // a task that draws its world: seed 0's, and the time to build the environment
+            let placed: Vec<String> = task
+                .world()
+                .objects()
+                .iter()
+                .map(|o| format!("{} at {:?}", o.name, o.origin))
+                .collect();
+            println!(
+                "{:16} seed 0's world: {}; {} worlds built in {:.1} ms",
+                task.name(),
+                placed.join(", "),
+                task.world_count(),
+                built.elapsed().as_secs_f64() * 1e3
+            );
+        }
         let actions: Vec<Vec<f64>> = (0..20).map(|t| gait(t, env.action_count())).collect();
         // one episode of the task's own length: the reward to compare with EvoGym's
         let (mut reward, mut taken) = (0.0, 0);

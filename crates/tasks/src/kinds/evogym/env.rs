@@ -35,6 +35,10 @@ pub struct StepResult<'a> {
 #[derive(Debug, Clone)]
 pub struct EvoGymEnv {
     task: EvoGymTask,
+    /// The robot, for building the world of a task that draws it at reset.
+    grid: MaterialGrid,
+    /// Which of the task's worlds `start` is ([`EvoGymTask::world_of`]).
+    world_index: usize,
     start: MassSpringWorld,
     world: MassSpringWorld,
     robot: Range<usize>,
@@ -52,12 +56,22 @@ pub struct EvoGymEnv {
     over: bool,
 }
 
-impl EvoGymEnv {
-    /// The task's world with `robot` at the task's start cell. Refuses an invalid robot
-    /// (naming the field), one that overlaps the world, or a world the engine refuses.
-    pub fn new(task: EvoGymTask, robot: &MaterialGrid) -> Result<EvoGymEnv, EvoGymError> {
-        robot.validate_robot().map_err(EvoGymError::Robot)?;
-        let mut world = task.world();
+/// An episode's start: the task's world with the robot, built, and where its parts are.
+#[derive(Debug, Clone)]
+struct Start {
+    world: MassSpringWorld,
+    robot: Range<usize>,
+    object: Range<usize>,
+    others: Range<usize>,
+    robot_orientation: Option<Orientation>,
+    object_orientation: Option<Orientation>,
+}
+
+impl Start {
+    /// World `index` of `task` with `robot` at the task's start cell. Refuses a robot that
+    /// overlaps the world, or a world the engine refuses.
+    fn build(task: EvoGymTask, robot: &MaterialGrid, index: usize) -> Result<Start, EvoGymError> {
+        let mut world = task.world_at(index);
         world
             .add(WorldObject::new("robot", task.robot_origin(), robot.clone()))
             .map_err(EvoGymError::World)?;
@@ -71,28 +85,49 @@ impl EvoGymEnv {
                 object = placed.points();
             }
         }
-        let start = builder.build().map_err(EvoGymError::Physics)?;
-        let robot_points = placed_robot.points();
-        let others = robot_points.end..start.point_count();
+        let world = builder.build().map_err(EvoGymError::Physics)?;
+        let robot = placed_robot.points();
         let pieces = task.observation();
         let orientation = |piece: Piece, points: &Range<usize>| {
             pieces
                 .contains(&piece)
-                .then(|| Orientation::new(start.positions_x(), start.positions_y(), points.clone()))
+                .then(|| Orientation::new(world.positions_x(), world.positions_y(), points.clone()))
         };
-        let robot_orientation = orientation(Piece::RobotOrientation, &robot_points);
-        let object_orientation = orientation(Piece::ObjectOrientation, &object);
+        Ok(Start {
+            robot_orientation: orientation(Piece::RobotOrientation, &robot),
+            object_orientation: orientation(Piece::ObjectOrientation, &object),
+            others: robot.end..world.point_count(),
+            world,
+            robot,
+            object,
+        })
+    }
+}
+
+impl EvoGymEnv {
+    /// The task's world with `robot` at the task's start cell. Refuses an invalid robot
+    /// (naming the field), one that overlaps the world (any of the worlds of a task that draws
+    /// its world at every reset), or a world the engine refuses.
+    pub fn new(task: EvoGymTask, robot: &MaterialGrid) -> Result<EvoGymEnv, EvoGymError> {
+        robot.validate_robot().map_err(EvoGymError::Robot)?;
+        let first = task.world_of(0);
+        for index in (0..task.world_count()).filter(|&i| i != first) {
+            Start::build(task, robot, index)?;
+        }
+        let start = Start::build(task, robot, first)?;
         let mut env = EvoGymEnv {
             task,
-            world: start.clone(),
-            start,
+            grid: robot.clone(),
+            world_index: first,
+            world: start.world.clone(),
             actions: robot.actuator_count(),
-            observation: vec![0.0; task.observation_size(robot_points.len())],
-            robot: robot_points,
-            object,
-            others,
-            robot_orientation,
-            object_orientation,
+            observation: vec![0.0; task.observation_size(start.robot.len())],
+            robot: start.robot.clone(),
+            object: start.object.clone(),
+            others: start.others.clone(),
+            robot_orientation: start.robot_orientation.clone(),
+            object_orientation: start.object_orientation.clone(),
+            start: start.world,
             memory: Vec::new(),
             steps: 0,
             over: false,
@@ -102,8 +137,20 @@ impl EvoGymEnv {
     }
 
     /// Back to the start; returns the first observation. `seed` sets what the task draws at
-    /// reset (BidirectionalWalker's goals); the other tasks have no randomness.
+    /// reset (BidirectionalWalker's goals, Catcher's world); the other tasks have no
+    /// randomness.
     pub fn reset(&mut self, seed: u64) -> &[f64] {
+        let index = self.task.world_of(seed);
+        if index != self.world_index {
+            let start = Start::build(self.task, &self.grid, index).expect("every world of the task was built by `new`");
+            self.world_index = index;
+            self.robot = start.robot;
+            self.object = start.object;
+            self.others = start.others;
+            self.robot_orientation = start.robot_orientation;
+            self.object_orientation = start.object_orientation;
+            self.start = start.world;
+        }
         self.world.clone_from(&self.start);
         self.steps = 0;
         self.task.start(seed, &mut self.memory);
@@ -362,6 +409,7 @@ mod tests {
             ("BeamToppler-v0", 79),
             ("BeamSlider-v0", 79),
             ("Thrower-v0", 78),
+            ("Catcher-v0", 79),
             ("AreaMaximizer-v0", 72),
             ("AreaMinimizer-v0", 72),
             ("WingspanMazimizer-v0", 72),
@@ -372,6 +420,33 @@ mod tests {
             ("BidirectionalWalker-v0", 77),
         ];
         assert_eq!(sizes, expected);
+    }
+
+    /// Catcher-v0 draws its world at reset from the seed: the same seed, the same package; a
+    /// robot that would overlap a peg in any of its worlds is refused at once.
+    #[test]
+    fn a_drawn_world_follows_the_seed() {
+        let task = EvoGymTask::from_name("Catcher-v0").unwrap();
+        let mut e = env(task, FULL);
+        let package = |e: &EvoGymEnv| mean(e.world().positions_x(), e.object.clone());
+        let mut seen = Vec::new();
+        for seed in 0..6 {
+            e.reset(seed);
+            let x = package(&e);
+            assert!(all_finite(e.observation()));
+            let fresh = env(task, FULL);
+            let mut again = fresh.clone();
+            again.reset(seed);
+            assert_eq!(package(&again).to_bits(), x.to_bits(), "seed {seed}");
+            assert_eq!(again.observation(), e.observation(), "seed {seed}");
+            seen.push(x);
+        }
+        seen.sort_by(f64::total_cmp);
+        seen.dedup();
+        assert!(seen.len() > 1, "six seeds, one world: {seen:?}");
+        let tall = vec!["3"; 30].join("/");
+        let err = EvoGymEnv::new(task, &MaterialGrid::from_rows(&tall).unwrap()).unwrap_err();
+        assert!(err.to_string().contains("overlap"), "{err}");
     }
 
     /// "31240/22222/00400": actuators 3, 4 (row 0) and 4 (row 2): three actions.

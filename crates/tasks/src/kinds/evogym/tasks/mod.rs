@@ -10,6 +10,7 @@ mod balancer;
 mod beam_toppler;
 mod bidirectional_walker;
 mod bridge_walker;
+mod catcher;
 mod cave_crawler;
 mod climber;
 mod flipper;
@@ -108,6 +109,24 @@ pub trait TaskDefinition: Sync {
     /// The observation, piece by piece.
     fn observation(&self) -> &'static [Piece];
 
+    /// How many worlds the task's episodes start in: 1 for a task whose world is always
+    /// [`Basics::world`]; Catcher-v0 places its package and pegs at random, in one of 66.
+    fn world_count(&self) -> usize {
+        1
+    }
+
+    /// World `index` (below [`TaskDefinition::world_count`]), without the robot.
+    fn world_at(&self, index: usize) -> World {
+        let _ = index;
+        (self.basics().world)()
+    }
+
+    /// The world (its index) of the episode whose seed is `seed`: 0 unless the task draws it.
+    fn world_of(&self, seed: u64) -> usize {
+        let _ = seed;
+        0
+    }
+
     /// The task's own measure of the robot's shape (its points' `xs` and `ys`), read before and
     /// after every step into [`RobotAndBeam::own`]: the hull's area, a span. 0 by default.
     fn measure(&self, xs: &[f64], ys: &[f64]) -> f64 {
@@ -177,6 +196,7 @@ impl EvoGymTask {
         EvoGymTask::BeamToppler,
         EvoGymTask(&package::BEAM_SLIDER),
         EvoGymTask(&package::THROWER),
+        EvoGymTask(&catcher::Catcher),
         EvoGymTask(&shape::AREA_MAXIMIZER),
         EvoGymTask(&shape::AREA_MINIMIZER),
         EvoGymTask(&shape::WINGSPAN_MAXIMIZER),
@@ -216,9 +236,24 @@ impl EvoGymTask {
         self.0.basics().short_name
     }
 
-    /// Its world, without the robot.
+    /// Its world, without the robot (the first episode's, seed 0, for a task that draws it).
     pub fn world(self) -> World {
-        (self.0.basics().world)()
+        self.world_at(self.world_of(0))
+    }
+
+    /// How many worlds its episodes start in ([`TaskDefinition::world_count`]).
+    pub fn world_count(self) -> usize {
+        self.0.world_count()
+    }
+
+    /// World `index`, without the robot ([`TaskDefinition::world_at`]).
+    pub fn world_at(self, index: usize) -> World {
+        self.0.world_at(index)
+    }
+
+    /// The world of the episode with seed `seed` ([`TaskDefinition::world_of`]).
+    pub fn world_of(self, seed: u64) -> usize {
+        self.0.world_of(seed)
     }
 
     /// Cell of the robot's bottom-left corner.

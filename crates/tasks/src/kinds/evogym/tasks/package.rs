@@ -3,8 +3,8 @@
 //! (`PushSmallRect`), Pusher-v1 (`PushSmallRectOnOppositeSide`), Thrower-v0 (`ThrowSmallRect`),
 //! Lifter-v0 (`LiftSmallRect`) and BeamSlider-v0 (`SlideBeam`). Each is a table of constants
 //! and a reward formula on the centres of the robot (`c`) and the object (`p`) before (`⁻`) and
-//! after (`⁺`) a step. (BeamToppler-v0 has its own module; Catcher-v0, whose start is random, is
-//! not implemented yet.)
+//! after (`⁺`) a step. (BeamToppler-v0 and Catcher-v0, whose world is drawn at every reset, have
+//! their own modules.)
 
 use super::{Basics, Piece, TaskDefinition};
 use crate::kinds::evogym::rewards::{Reward, RobotAndBeam, GOAL_BONUS, UNSTABLE_PENALTY};

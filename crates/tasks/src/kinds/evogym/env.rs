@@ -343,6 +343,12 @@ impl EvoGymEnv {
         self.steps
     }
 
+    /// The task's world this episode started in, without the robot (the one its seed drew, in
+    /// a task that draws it).
+    pub fn task_world(&self) -> super::worlds::World {
+        self.task.world_at(self.world_index)
+    }
+
     /// The physics world (positions, velocities, springs).
     pub fn world(&self) -> &MassSpringWorld {
         &self.world

@@ -116,7 +116,7 @@ impl Task for EvoGym {
         let grid = evogym_robot(robot)?
             .grid()
             .map_err(|e| EpisodeError::Field(e.at("robot")))?;
-        let mut recorder = Recorder::new(level, env.task(), &grid);
+        let mut recorder = Recorder::new(level, env.task(), &grid, &env.task_world());
         recorder.record(&env, 0.0);
         while !episode.over {
             let result = env
@@ -356,7 +356,7 @@ struct Recorder {
 }
 
 impl Recorder {
-    fn new(level: TraceLevel, which: EvoGymTask, grid: &super::MaterialGrid) -> Recorder {
+    fn new(level: TraceLevel, which: EvoGymTask, grid: &super::MaterialGrid, world: &super::worlds::World) -> Recorder {
         let mut trace = Trace {
             dt: STEP_SECONDS,
             side_length: super::CELL,
@@ -377,7 +377,7 @@ impl Recorder {
         let mut first = robot.points.len();
         let mut quads: Vec<[usize; 4]> = robot.quads.iter().map(|q| q.corners).collect();
         let mut colours: Vec<f64> = grid.present().map(|(_, _, m)| colour_of(m)).collect();
-        for object in which.world().objects() {
+        for object in world.objects() {
             let plan = plan_object(&object.grid, object.origin);
             if !is_terrain(object) {
                 quads.extend(plan.quads.iter().map(|q| q.corners.map(|p| p + first)));
@@ -387,7 +387,7 @@ impl Recorder {
         }
         trace.fixed(&UNIT_FILL, 1, &colours);
         trace.outline_corners = vec![4; quads.len()];
-        describe_terrain(which, &mut trace);
+        describe_terrain(world, &mut trace);
         Recorder { level, trace, quads }
     }
 
@@ -414,13 +414,13 @@ impl Recorder {
     }
 }
 
-/// The cells of the task's terrain (objects whose cells are all fixed) as static squares. No
+/// The cells of the world's terrain (objects whose cells are all fixed) as static squares. No
 /// ground line: EvoGym's worlds have no ground besides their objects (a line at y = 0 was drawn
 /// as a slab under the start, and under BridgeWalker's bridge).
-fn describe_terrain(which: EvoGymTask, trace: &mut Trace) {
+fn describe_terrain(world: &super::worlds::World, trace: &mut Trace) {
     let cell = super::CELL;
     let mut squares = Vec::new();
-    for object in which.world().objects().iter().filter(|o| is_terrain(o)) {
+    for object in world.objects().iter().filter(|o| is_terrain(o)) {
         for (x, y, _) in object.grid.present() {
             let (ox, oy) = object.origin;
             let left = (ox + x) as f64 * cell;
@@ -482,6 +482,30 @@ mod tests {
         assert!(trace.terrain.is_empty(), "no ground line besides the ground's cells");
         let again = crate::episode::run(r.as_robot(), task.task(), 0, TraceLevel::None).unwrap();
         assert_eq!(again.metrics, o.metrics, "bit-identical");
+    }
+
+    /// A Catcher-v0 episode draws the pegs where its seed placed them.
+    #[test]
+    fn a_drawn_worlds_trace_shows_that_world() {
+        let task = TaskSpec::parse("evogym:catcher")
+            .unwrap()
+            .with_settings(&[("duration", serde_json::json!(0.05))])
+            .unwrap();
+        let which = EvoGymTask::from_name("Catcher-v0").unwrap();
+        let r = walkers("33333/33333/33333/33333/33333", "Catcher-v0", 1..2).remove(0);
+        let (a, b) = (0, (1..100).find(|&s| which.world_of(s) != which.world_of(0)).unwrap());
+        let obstacles = |seed: u64| {
+            let o = crate::episode::run(&r, task.task(), seed, TraceLevel::Full).unwrap();
+            o.trace.unwrap().fixed_values(OBSTACLES.name).to_vec()
+        };
+        let expected = |seed: u64| {
+            let mut trace = Trace::default();
+            describe_terrain(&which.world_at(which.world_of(seed)), &mut trace);
+            trace.fixed_values(OBSTACLES.name).to_vec()
+        };
+        assert_eq!(obstacles(a), expected(a));
+        assert_eq!(obstacles(b), expected(b));
+        assert_ne!(obstacles(a), obstacles(b));
     }
 
     /// EvoGym robots of one body, each with its own random MLP.

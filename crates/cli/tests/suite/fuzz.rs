@@ -1,4 +1,5 @@
-//! Malformed inputs thrown at the binary: generated experiment files, robot files, command-line
+//! Malformed inputs thrown at the binary: generated experiment files, robot files (vsrlab's and
+//! EvoGym's world-file format), command-line
 //! values, PSA bodies, sweeps, files read by `transfer.from` and `genotype.initial`, and requests
 //! to the viewer (seeded, so every run of the suite throws the same ones). For each: no panic, no abort,
 //! no timeout; a failure exits non-zero and names the field (or the line) it is about; nothing is
@@ -365,6 +366,54 @@ fn malformed_robot(rng: &mut ChaCha8Rng, robot: &serde_json::Value) -> (String, 
         text.as_bytes()[..cut].to_vec(),
         vec!["line".into(), "EOF".into()],
     )
+}
+
+/// A valid robot in EvoGym's own file format (a world file of one object): 2 × 2 horizontal
+/// actuators, every pair of neighbours connected.
+const EVOGYM_ROBOT: &str = r#"{"grid_width": 2, "grid_height": 2, "objects": {"robot": {
+    "indices": [0, 1, 2, 3], "types": [3, 3, 3, 3],
+    "neighbors": {"0": [1, 2], "1": [0, 3], "2": [0, 3], "3": [1, 2]}}}}"#;
+
+/// One malformed EvoGym world file (a robot file in EvoGym's format is one) and the names its
+/// error may give: the world file's own faults (unknown types, bad neighbours, repeated or
+/// overlapping cells, missing parts), or any of [`malformed_robot`]'s.
+fn malformed_evogym_file(rng: &mut ChaCha8Rng) -> (String, Vec<u8>, Vec<String>) {
+    let mut doc: serde_json::Value = serde_json::from_str(EVOGYM_ROBOT).unwrap();
+    let names = |list: &[&str]| list.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+    let (what, names) = match rng.random_range(0..8) {
+        0 => {
+            let (k, code) = (rng.random_range(0..4), *[0, 6, 7, 255].choose(rng).unwrap());
+            doc["objects"]["robot"]["types"][k] = code.into();
+            (format!("types[{k}] = {code}"), names(&["types"]))
+        }
+        1 => {
+            // a neighbour that is not next to the cell (3 is diagonal to 0), or not in the object
+            let (cell, neighbour) = *[("0", 3), ("1", 2), ("2", 9), ("3", 0)].choose(rng).unwrap();
+            doc["objects"]["robot"]["neighbors"][cell] = serde_json::json!([neighbour]);
+            (format!("neighbors.{cell} = [{neighbour}]"), names(&["neighbors"]))
+        }
+        2 => {
+            doc["objects"]["robot"]["indices"][3] = 1.into();
+            ("a cell listed twice".into(), names(&["indices"]))
+        }
+        3 => {
+            let other = serde_json::json!({"indices": [1], "types": [5], "neighbors": {"1": []}});
+            doc["objects"]["peg"] = other;
+            ("a second object on the robot's cell".into(), names(&["overlap", "objects"]))
+        }
+        4 => {
+            let part = *["objects", "grid_width", "grid_height"].choose(rng).unwrap();
+            doc.as_object_mut().unwrap().remove(part);
+            (format!("without {part}"), names(&[part, "format"]))
+        }
+        5 => {
+            let part = *["indices", "types", "neighbors"].choose(rng).unwrap();
+            doc["objects"]["robot"].as_object_mut().unwrap().remove(part);
+            (format!("without objects.robot.{part}"), names(&[part]))
+        }
+        _ => return malformed_robot(rng, &doc),
+    };
+    (what, serde_json::to_vec_pretty(&doc).unwrap(), names)
 }
 
 /// A random string of printable and odd characters.
@@ -797,6 +846,24 @@ fn malformed_inputs_never_crash_and_always_name_the_field() {
             &dir,
             &args,
             format!("robot file: {what}"),
+            &names,
+        );
+    }
+    let evogym = ["simulate", "--robot", "r.json", "--task", "evogym:walker", "--duration", "0.1"];
+    let dir = sandbox.case();
+    std::fs::write(dir.join("r.json"), EVOGYM_ROBOT).unwrap();
+    let (code, stderr, _) = run(&evogym, &dir);
+    assert_eq!(code, Some(0), "the EvoGym robot file is valid: {stderr}");
+    for _ in 0..60 {
+        let dir = sandbox.case();
+        let (what, bytes, names) = malformed_evogym_file(&mut rng);
+        std::fs::write(dir.join("r.json"), &bytes).unwrap();
+        throw(
+            &mut tallies,
+            "EvoGym world and robot files",
+            &dir,
+            &evogym,
+            format!("EvoGym robot file: {what}"),
             &names,
         );
     }

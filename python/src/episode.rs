@@ -206,19 +206,23 @@ impl PyEpisode {
             .episode
             .trace()
             .ok_or_else(|| value_error("render: this episode was made with render=False"))?;
-        let options = vsrlab_render::RenderOptions::default();
-        let step = trace.times.len().saturating_sub(1);
-        let pixmap = if trace.times.is_empty() {
-            // before the first step: a blank frame of the right size
-            vsrlab_render::Pixmap::new(options.width, options.height)
-                .ok_or_else(|| value_error("render: empty frame"))?
-        } else {
-            vsrlab_render::render_frame(trace, step, &options)
-        };
-        let (w, h) = (pixmap.width() as usize, pixmap.height() as usize);
-        let rgb: Vec<u8> = pixmap.data().chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect();
-        PyArray1::from_vec(py, rgb).reshape([h, w, 3])
+        rgb_frame(py, trace)
     }
+}
+
+/// The last frame of `trace` as an RGB array (height × width × 3, uint8), drawn like the CLI's
+/// videos; a blank frame of the right size before the first step.
+pub(crate) fn rgb_frame<'py>(py: Python<'py>, trace: &vsrlab_tasks::Trace) -> PyResult<Bound<'py, PyArray3<u8>>> {
+    let options = vsrlab_render::RenderOptions::default();
+    let step = trace.times.len().saturating_sub(1);
+    let pixmap = if trace.times.is_empty() {
+        vsrlab_render::Pixmap::new(options.width, options.height).ok_or_else(|| value_error("render: empty frame"))?
+    } else {
+        vsrlab_render::render_frame(trace, step, &options)
+    };
+    let (w, h) = (pixmap.width() as usize, pixmap.height() as usize);
+    let rgb: Vec<u8> = pixmap.data().chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect();
+    PyArray1::from_vec(py, rgb).reshape([h, w, 3])
 }
 
 /// Many episodes of one robot and task stepped together on Rust threads (the GIL released):

@@ -3,7 +3,7 @@
 //! actuator voxel), reward and ends, on vsrlab's mass-spring engine (docs/multimaterial.md).
 
 use crate::value_error;
-use numpy::{PyArray1, PyReadonlyArray1};
+use numpy::{PyArray1, PyArray3, PyReadonlyArray1};
 use pyo3::prelude::*;
 use std::sync::Mutex;
 use vsrlab_tasks::kinds::evogym::{EvoGymEnv, EvoGymTask, MaterialGrid};
@@ -64,8 +64,8 @@ impl PyEvoGymEnv {
         self.env().steps()
     }
 
-    /// Back to the start (EvoGym's tasks have no randomness; `seed` is accepted for the gym
-    /// signature); returns the first observation.
+    /// Back to the start; returns the first observation. `seed` draws what the task draws at
+    /// reset (BidirectionalWalker's goals, Catcher's world); the other tasks have no randomness.
     #[pyo3(signature = (seed = 0))]
     fn reset<'py>(&self, py: Python<'py>, seed: u64) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_slice(py, self.env().reset(seed))
@@ -93,5 +93,12 @@ impl PyEvoGymEnv {
         let r = env.step(a).map_err(|e| value_error(format!("actions: {e}")))?;
         let obs = PyArray1::from_slice(py, r.observation);
         Ok((obs, r.reward, r.done, r.truncated, r.unstable))
+    }
+
+    /// The current state as an RGB array (height × width × 3, uint8), drawn without OpenGL as
+    /// the CLI's videos are (Gymnasium's `render_mode="rgb_array"`).
+    fn render<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<u8>>> {
+        let trace = vsrlab_tasks::kinds::evogym::frame(&self.env());
+        crate::episode::rgb_frame(py, &trace)
     }
 }

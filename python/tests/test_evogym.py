@@ -87,6 +87,24 @@ def test_catchers_world_follows_the_seed():
     assert env.observation_space.shape == (79,)
 
 
+def test_rgb_array_frames_are_drawn_without_opengl():
+    env = gymnasium.make("vsrlab/Walker-v0", render_mode="rgb_array")
+    env.reset(seed=0)
+    first = env.render()
+    assert first.dtype == np.uint8 and first.ndim == 3 and first.shape[2] == 3
+    # the robot's horizontal actuators are drawn in EvoGym's orange (0xfd8e3e)
+    orange = np.all(np.abs(first.astype(int) - [0xFD, 0x8E, 0x3E]) < 8, axis=2)
+    assert orange.sum() > 100, orange.sum()
+    for t in range(40):
+        env.step(np.array([1.6 if (t + 5 * (i % 5)) % 20 < 10 else 0.6 for i in range(25)]))
+    assert not np.array_equal(env.render(), first)
+    plain = gymnasium.make("vsrlab/Walker-v0")
+    plain.reset(seed=0)
+    assert plain.render() is None
+    with pytest.raises(ValueError, match="render_mode"):
+        vsrlab.envs.WalkerEnv(render_mode="screen")
+
+
 def test_bad_bodies_and_actions_are_refused_naming_the_field():
     with pytest.raises(ValueError, match="body"):
         vsrlab.EvoGymEnv("Walker-v0", "1.3")

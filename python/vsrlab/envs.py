@@ -175,9 +175,23 @@ CarrierEnv, CarrierVectorEnv = _task_env("carrier", "psa")
 class EvoGymTaskEnv(gymnasium.Env):
     """One of EvoGym's tasks (``Walker-v0``, …) with one robot, on vsrlab's mass-spring engine."""
 
-    metadata = {"render_modes": []}
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 30}
 
-    def __init__(self, task: str = "Walker-v0", body: Any = "33333/33333/33333/33333/33333"):
+    def __init__(
+        self,
+        task: str = "Walker-v0",
+        body: Any = "33333/33333/33333/33333/33333",
+        render_mode: Optional[str] = None,
+        render_options: Optional[dict] = None,
+    ):
+        if render_mode not in (None, "rgb_array", "img"):
+            raise ValueError(
+                "render_mode: None, 'rgb_array' or 'img' (an image drawn without OpenGL); EvoGym's "
+                f"'screen' and 'human' windows are not offered, got {render_mode!r}"
+            )
+        # EvoGym's `render_options` (hidden grid, edges…) are accepted and not used: the frame
+        # is drawn as vsrlab's videos are
+        self.render_mode = render_mode
         if not isinstance(body, str):
             grid = np.asarray(body)
             if grid.ndim != 2:
@@ -198,11 +212,23 @@ class EvoGymTaskEnv(gymnasium.Env):
         obs, reward, terminated, truncated, unstable = self._env.step(np.ascontiguousarray(a))
         return obs, reward, terminated, truncated, {"unstable": unstable, "steps": self._env.steps}
 
+    def render(self):
+        """The current state as an RGB array (height × width × 3, uint8) with
+        ``render_mode="rgb_array"`` (or EvoGym's ``"img"``); ``None`` without a render mode."""
+        if self.render_mode in ("rgb_array", "img"):
+            return self._env.render()
+        return None
+
 
 def _evogym_env(task: str):
     class TaskEnv(EvoGymTaskEnv):
-        def __init__(self, body: Any = "33333/33333/33333/33333/33333"):
-            super().__init__(task=task, body=body)
+        def __init__(
+            self,
+            body: Any = "33333/33333/33333/33333/33333",
+            render_mode: Optional[str] = None,
+            render_options: Optional[dict] = None,
+        ):
+            super().__init__(task=task, body=body, render_mode=render_mode, render_options=render_options)
 
     TaskEnv.__name__ = TaskEnv.__qualname__ = _evogym_class_name(task)
     return TaskEnv

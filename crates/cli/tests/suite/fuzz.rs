@@ -399,7 +399,10 @@ fn malformed_evogym_file(rng: &mut ChaCha8Rng) -> (String, Vec<u8>, Vec<String>)
         3 => {
             let other = serde_json::json!({"indices": [1], "types": [5], "neighbors": {"1": []}});
             doc["objects"]["peg"] = other;
-            ("a second object on the robot's cell".into(), names(&["overlap", "objects"]))
+            (
+                "a second object on the robot's cell".into(),
+                names(&["overlap", "objects"]),
+            )
         }
         4 => {
             let part = *["objects", "grid_width", "grid_height"].choose(rng).unwrap();
@@ -849,7 +852,15 @@ fn malformed_inputs_never_crash_and_always_name_the_field() {
             &names,
         );
     }
-    let evogym = ["simulate", "--robot", "r.json", "--task", "evogym:walker", "--duration", "0.1"];
+    let evogym = [
+        "simulate",
+        "--robot",
+        "r.json",
+        "--task",
+        "evogym:walker",
+        "--duration",
+        "0.1",
+    ];
     let dir = sandbox.case();
     std::fs::write(dir.join("r.json"), EVOGYM_ROBOT).unwrap();
     let (code, stderr, _) = run(&evogym, &dir);

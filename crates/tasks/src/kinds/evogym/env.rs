@@ -343,6 +343,11 @@ impl EvoGymEnv {
         self.steps
     }
 
+    /// The robot's material grid.
+    pub fn robot_grid(&self) -> &MaterialGrid {
+        &self.grid
+    }
+
     /// The task's world this episode started in, without the robot (the one its seed drew, in
     /// a task that draws it).
     pub fn task_world(&self) -> super::worlds::World {

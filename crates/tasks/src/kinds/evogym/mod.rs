@@ -38,7 +38,7 @@ pub use npz_file::{is_npz, robot_from_npz, robot_to_npz, NpyArray};
 pub use observe::{numpy_sum, relative_positions, terrain_distances, Centre, Look, Orientation};
 pub use rewards::{forward, topple, Reward, RobotAndBeam, GOAL_BONUS, UNSTABLE_PENALTY};
 pub use robot::{action_of, EvoGymRobot, TARGET_CENTRE, TARGET_HALF_RANGE, TARGET_RANGE};
-pub use task::{EvoGym, STEP_SECONDS};
+pub use task::{frame, EvoGym, STEP_SECONDS};
 pub use tasks::{EvoGymTask, Piece, TaskDefinition, CAVE_SIGHT, SIGHT_RANGE};
 pub use world_file::{robot_from_json, robot_to_json, world_from_json};
 pub use worlds::{beam_toppler_v0, bridge_walker_v0, cave_crawler_v0, walker_v0, World, WorldObject};

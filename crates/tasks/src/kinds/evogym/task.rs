@@ -414,6 +414,15 @@ impl Recorder {
     }
 }
 
+/// One frame of `env` as it is now, drawn as an episode's trace draws it (the robot's voxels and
+/// the moving objects' cells filled with their materials' colours, the terrain's cells): for
+/// rendering a single state (Gymnasium's `render_mode="rgb_array"`).
+pub fn frame(env: &EvoGymEnv) -> Trace {
+    let mut recorder = Recorder::new(TraceLevel::Full, env.task(), env.robot_grid(), &env.task_world());
+    recorder.record(env, env.steps() as f64 * STEP_SECONDS);
+    recorder.trace
+}
+
 /// The cells of the world's terrain (objects whose cells are all fixed) as static squares. No
 /// ground line: EvoGym's worlds have no ground besides their objects (a line at y = 0 was drawn
 /// as a slab under the start, and under BridgeWalker's bridge).

@@ -423,6 +423,37 @@ pub fn frame(env: &EvoGymEnv) -> Trace {
     recorder.trace
 }
 
+/// One frame of a simulation of any world ([`super::EvoGymSim`]) as it is now: every object
+/// that moves drawn cell by cell in its materials' colours, the terrain's cells, the centre of
+/// the first robot (or of the first object).
+pub fn sim_frame(sim: &super::EvoGymSim) -> Trace {
+    let mut trace = Trace {
+        dt: STEP_SECONDS,
+        side_length: super::CELL,
+        ..Default::default()
+    };
+    let (px, py) = (sim.world().positions_x(), sim.world().positions_y());
+    let mut colours = Vec::new();
+    for placed in sim.objects() {
+        let Some(object) = sim.layout().object(&placed.name).filter(|o| !is_terrain(o)) else {
+            continue;
+        };
+        for quad in &plan_object(&object.grid, object.origin).quads {
+            let at = |p: usize| Vec2::new(px[placed.points.start + p], py[placed.points.start + p]);
+            trace.outlines.extend(quad.corners.map(at));
+        }
+        colours.extend(object.grid.present().map(|(_, _, m)| colour_of(m)));
+    }
+    trace.fixed(&UNIT_FILL, 1, &colours);
+    trace.outline_corners = vec![4; colours.len()];
+    describe_terrain(sim.layout(), &mut trace);
+    let first = &sim.objects()[0].points;
+    let mean = |v: &[f64]| v[first.clone()].iter().sum::<f64>() / first.len().max(1) as f64;
+    trace.times.push(sim.steps() as f64 * STEP_SECONDS);
+    trace.centers.push(Vec2::new(mean(px), mean(py)));
+    trace
+}
+
 /// The cells of the world's terrain (objects whose cells are all fixed) as static squares. No
 /// ground line: EvoGym's worlds have no ground besides their objects (a line at y = 0 was drawn
 /// as a slab under the start, and under BridgeWalker's bridge).
@@ -515,6 +546,30 @@ mod tests {
         assert_eq!(obstacles(a), expected(a));
         assert_eq!(obstacles(b), expected(b));
         assert_ne!(obstacles(a), obstacles(b));
+    }
+
+    /// A simulation of Walker-v0's world draws as the task's environment does.
+    #[test]
+    fn a_simulations_frame_is_its_environments() {
+        let grid = super::super::MaterialGrid::from_rows("33333/33333/33333").unwrap();
+        let mut env = EvoGymEnv::new(EvoGymTask::Walker, &grid).unwrap();
+        let mut world = EvoGymTask::Walker.world();
+        world
+            .add(super::super::WorldObject::new("robot", (1, 1), grid))
+            .unwrap();
+        let mut sim = super::super::EvoGymSim::new(&world).unwrap();
+        for t in 0..20 {
+            let action = vec![if t % 10 < 5 { 1.6 } else { 0.6 }; 15];
+            env.step(&action).unwrap();
+            sim.set_action("robot", &action).unwrap();
+            sim.step().unwrap();
+        }
+        let (a, b) = (frame(&env), sim_frame(&sim));
+        assert_eq!(a.outlines, b.outlines);
+        assert_eq!(a.outline_corners, b.outline_corners);
+        assert_eq!(a.fixed_values(UNIT_FILL.name), b.fixed_values(UNIT_FILL.name));
+        assert_eq!(a.fixed_values(OBSTACLES.name), b.fixed_values(OBSTACLES.name));
+        assert_eq!((a.times, a.centers), (b.times, b.centers));
     }
 
     /// EvoGym robots of one body, each with its own random MLP.

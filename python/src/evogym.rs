@@ -3,16 +3,24 @@
 //! actuator voxel), reward and ends, on vsrlab's mass-spring engine (docs/multimaterial.md).
 
 use crate::value_error;
-use numpy::{PyArray1, PyArray3, PyReadonlyArray1};
+use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 use std::sync::Mutex;
-use vsrlab_tasks::kinds::evogym::{EvoGymEnv, EvoGymTask, MaterialGrid};
+use vsrlab_tasks::kinds::evogym::{world_from_json, EvoGymEnv, EvoGymSim, EvoGymTask, MaterialGrid, Orientation, CELL};
 
 /// The EvoGym ids vsrlab implements, in EvoGym's registration order (the gym ids are these
 /// under `vsrlab/`).
 #[pyfunction]
 pub fn evogym_tasks() -> Vec<&'static str> {
     EvoGymTask::ALL.iter().map(|t| t.name()).collect()
+}
+
+/// The steps of an episode of EvoGym task `task` (its `max_episode_steps`).
+#[pyfunction]
+pub fn evogym_episode_steps(task: &str) -> PyResult<usize> {
+    EvoGymTask::from_name(task)
+        .map(|t| t.episode_steps())
+        .ok_or_else(|| value_error(format!("task: {}", EvoGymTask::unknown(task))))
 }
 
 /// One EvoGym task with one robot.
@@ -100,5 +108,142 @@ impl PyEvoGymEnv {
     fn render<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<u8>>> {
         let trace = vsrlab_tasks::kinds::evogym::frame(&self.env());
         crate::episode::rgb_frame(py, &trace)
+    }
+}
+
+/// Checks the text of an EvoGym world file (`EvoWorld.from_json`): a `ValueError` naming the
+/// field (`objects.ground.types[3]`, `grid_width`) when it is not a world vsrlab can build.
+#[pyfunction]
+pub fn evogym_check_world(text: &str) -> PyResult<()> {
+    world_from_json(text).map(|_| ()).map_err(value_error)
+}
+
+/// A world of EvoGym objects simulated as EvoGym's `EvoSim` (behind `vsrlab.evogym.EvoSim`):
+/// robots (objects with actuators) first, then the others, each group by name. Positions and
+/// velocities in metres (EvoGym's `EvoSim` divides them by the cell size, 0.1 m).
+#[pyclass(name = "EvoGymSim", module = "vsrlab")]
+pub struct PyEvoGymSim {
+    sim: Mutex<EvoGymSim>,
+    /// Each object's orientation reference at the start, by the simulation's object order.
+    orientations: Vec<Orientation>,
+}
+
+impl PyEvoGymSim {
+    fn sim(&self) -> std::sync::MutexGuard<'_, EvoGymSim> {
+        self.sim.lock().unwrap_or_else(|p| p.into_inner())
+    }
+}
+
+/// `values` of the points `range` as a 2 × n array (x row, then y row).
+fn rows<'py>(
+    py: Python<'py>,
+    xs: &[f64],
+    ys: &[f64],
+    range: std::ops::Range<usize>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let n = range.len();
+    let data: Vec<f64> = xs[range.clone()].iter().chain(&ys[range]).copied().collect();
+    PyArray1::from_vec(py, data).reshape([2, n])
+}
+
+#[pymethods]
+impl PyEvoGymSim {
+    /// The simulation of the world in `world_json` (EvoGym's world-file format).
+    #[new]
+    fn new(world_json: &str) -> PyResult<Self> {
+        let world = world_from_json(world_json).map_err(value_error)?;
+        let sim = EvoGymSim::new(&world).map_err(value_error)?;
+        let (xs, ys) = (sim.world().positions_x(), sim.world().positions_y());
+        let orientations = sim
+            .objects()
+            .iter()
+            .map(|o| Orientation::new(xs, ys, o.points.clone()))
+            .collect();
+        Ok(PyEvoGymSim {
+            sim: Mutex::new(sim),
+            orientations,
+        })
+    }
+
+    /// The objects in the simulation's order: (name, is a robot, points, actuators).
+    fn objects(&self) -> Vec<(String, bool, usize, usize)> {
+        self.sim()
+            .objects()
+            .iter()
+            .map(|o| (o.name.clone(), o.robot, o.points.len(), o.actuators.len()))
+            .collect()
+    }
+
+    /// Sets robot `name`'s targets (one per actuator) for the next steps.
+    fn set_action(&self, name: &str, action: PyReadonlyArray1<'_, f64>) -> PyResult<()> {
+        let a = action
+            .as_slice()
+            .map_err(|_| value_error("action: a contiguous 1-D float64 array is needed"))?;
+        self.sim().set_action(name, a).map_err(value_error)
+    }
+
+    /// One step; `True` when the simulation became unstable.
+    fn step(&self) -> PyResult<bool> {
+        self.sim().step().map_err(value_error)
+    }
+
+    /// Back to the start.
+    fn reset(&self) {
+        self.sim().reset()
+    }
+
+    /// Steps taken since the start.
+    #[getter]
+    fn steps(&self) -> usize {
+        self.sim().steps()
+    }
+
+    /// Positions of every point (`name` None) or of object `name`'s, 2 × n, in metres.
+    #[pyo3(signature = (name = None))]
+    fn positions<'py>(&self, py: Python<'py>, name: Option<&str>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let sim = self.sim();
+        let range = self.range(&sim, name)?;
+        rows(py, sim.world().positions_x(), sim.world().positions_y(), range)
+    }
+
+    /// Velocities of every point (`name` None) or of object `name`'s, 2 × n, in metres per second.
+    #[pyo3(signature = (name = None))]
+    fn velocities<'py>(&self, py: Python<'py>, name: Option<&str>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let sim = self.sim();
+        let range = self.range(&sim, name)?;
+        rows(py, sim.world().velocities_x(), sim.world().velocities_y(), range)
+    }
+
+    /// Object `name`'s orientation since the start (radians, EvoGym's measure).
+    fn orientation(&self, name: &str) -> PyResult<f64> {
+        let sim = self.sim();
+        let k = sim
+            .objects()
+            .iter()
+            .position(|o| o.name == name)
+            .ok_or_else(|| value_error(sim.object(name).err().map_or_else(String::new, |e| e.to_string())))?;
+        let (xs, ys) = (sim.world().positions_x(), sim.world().positions_y());
+        Ok(self.orientations[k].angle(xs, ys, sim.objects()[k].points.clone()))
+    }
+
+    /// The current state as an RGB array (height × width × 3, uint8), drawn without OpenGL.
+    fn render<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<u8>>> {
+        let trace = vsrlab_tasks::kinds::evogym::sim_frame(&self.sim());
+        crate::episode::rgb_frame(py, &trace)
+    }
+
+    /// The cell size (m): EvoGym's `EvoSim` reports positions in cells.
+    #[classattr]
+    fn cell() -> f64 {
+        CELL
+    }
+}
+
+impl PyEvoGymSim {
+    fn range(&self, sim: &EvoGymSim, name: Option<&str>) -> PyResult<std::ops::Range<usize>> {
+        match name {
+            None => Ok(0..sim.world().point_count()),
+            Some(n) => sim.object(n).map(|o| o.points.clone()).map_err(value_error),
+        }
     }
 }

@@ -33,6 +33,9 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<episode::PyVectorEpisode>()?;
     m.add_class::<evogym::PyEvoGymEnv>()?;
     m.add_function(wrap_pyfunction!(evogym::evogym_tasks, m)?)?;
+    m.add_class::<evogym::PyEvoGymSim>()?;
+    m.add_function(wrap_pyfunction!(evogym::evogym_check_world, m)?)?;
+    m.add_function(wrap_pyfunction!(evogym::evogym_episode_steps, m)?)?;
     m.add_class::<batch::PyBatchEvaluator>()?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
     m.add_function(wrap_pyfunction!(run::deterministic_files, m)?)?;

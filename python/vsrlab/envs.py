@@ -28,7 +28,7 @@ import numpy as np
 from gymnasium import spaces
 from gymnasium.vector.utils import batch_space
 
-from ._native import Episode, EvoGymEnv, Robot, VectorEpisode, evogym_tasks
+from ._native import Episode, EvoGymEnv, Robot, VectorEpisode, evogym_episode_steps, evogym_tasks
 
 # the robot's own brain is never called: the policy gives the actions
 _IDLE_BRAIN = "constant:0"
@@ -175,7 +175,7 @@ CarrierEnv, CarrierVectorEnv = _task_env("carrier", "psa")
 class EvoGymTaskEnv(gymnasium.Env):
     """One of EvoGym's tasks (``Walker-v0``, …) with one robot, on vsrlab's mass-spring engine."""
 
-    metadata = {"render_modes": ["rgb_array"], "render_fps": 30}
+    metadata = {"render_modes": ["rgb_array", "img"], "render_fps": 30}
 
     def __init__(
         self,
@@ -202,8 +202,12 @@ class EvoGymTaskEnv(gymnasium.Env):
         self.action_space = spaces.Box(0.6, 1.6, shape=(self._env.action_size,), dtype=np.float64)
 
     def reset(self, *, seed: Optional[int] = None, options: Optional[dict] = None):
+        # without a seed, the next episode's is drawn from the environment's generator (seeded
+        # by the last seed given), so tasks that draw at reset (Catcher's world,
+        # BidirectionalWalker's goals) start another episode each time, as EvoGym's do
         super().reset(seed=seed)
-        return self._env.reset(0 if seed is None else seed), {}
+        episode = seed if seed is not None else int(self.np_random.integers(0, 2**63))
+        return self._env.reset(episode), {}
 
     def step(self, action):
         a = np.asarray(action, dtype=np.float64)
@@ -282,4 +286,5 @@ def register_all() -> None:
         )
     for env_id, single in EVOGYM_ENVIRONMENTS.items():
         if env_id not in gymnasium.registry:
-            gymnasium.register(id=env_id, entry_point=f"vsrlab.envs:{single}")
+            steps = evogym_episode_steps(env_id.split("/", 1)[1])
+            gymnasium.register(id=env_id, entry_point=f"vsrlab.envs:{single}", max_episode_steps=steps)

@@ -39,15 +39,9 @@ pub struct EvoGymEnv {
     grid: MaterialGrid,
     /// Which of the task's worlds `start` is ([`EvoGymTask::world_of`]).
     world_index: usize,
-    start: MassSpringWorld,
+    /// The episode's start, and where the robot and the objects are.
+    start: Start,
     world: MassSpringWorld,
-    robot: Range<usize>,
-    /// The task's object (`TaskDefinition::object`), empty without one.
-    object: Range<usize>,
-    /// Every point but the robot's: what the floor and ceiling observations see.
-    others: Range<usize>,
-    robot_orientation: Option<Orientation>,
-    object_orientation: Option<Orientation>,
     /// The task's numbers kept across the episode (`TaskDefinition::start`).
     memory: Vec<f64>,
     actions: usize,
@@ -61,7 +55,9 @@ pub struct EvoGymEnv {
 struct Start {
     world: MassSpringWorld,
     robot: Range<usize>,
+    /// The task's object (`TaskDefinition::object`), empty without one.
     object: Range<usize>,
+    /// Every point but the robot's: what the floor and ceiling observations see.
     others: Range<usize>,
     robot_orientation: Option<Orientation>,
     object_orientation: Option<Orientation>,
@@ -122,12 +118,7 @@ impl EvoGymEnv {
             world: start.world.clone(),
             actions: robot.actuator_count(),
             observation: vec![0.0; task.observation_size(start.robot.len())],
-            robot: start.robot.clone(),
-            object: start.object.clone(),
-            others: start.others.clone(),
-            robot_orientation: start.robot_orientation.clone(),
-            object_orientation: start.object_orientation.clone(),
-            start: start.world,
+            start,
             memory: Vec::new(),
             steps: 0,
             over: false,
@@ -142,16 +133,11 @@ impl EvoGymEnv {
     pub fn reset(&mut self, seed: u64) -> &[f64] {
         let index = self.task.world_of(seed);
         if index != self.world_index {
-            let start = Start::build(self.task, &self.grid, index).expect("every world of the task was built by `new`");
+            self.start =
+                Start::build(self.task, &self.grid, index).expect("every world of the task was built by `new`");
             self.world_index = index;
-            self.robot = start.robot;
-            self.object = start.object;
-            self.others = start.others;
-            self.robot_orientation = start.robot_orientation;
-            self.object_orientation = start.object_orientation;
-            self.start = start.world;
         }
-        self.world.clone_from(&self.start);
+        self.world.clone_from(&self.start.world);
         self.steps = 0;
         self.task.start(seed, &mut self.memory);
         self.over = false;
@@ -241,13 +227,14 @@ impl EvoGymEnv {
             }
         };
         let robot_angle = self
+            .start
             .robot_orientation
             .as_ref()
-            .map_or(0.0, |a| a.angle(xs, ys, self.robot.clone()));
-        let r = self.robot.clone();
+            .map_or(0.0, |a| a.angle(xs, ys, self.start.robot.clone()));
+        let r = self.start.robot.clone();
         RobotAndBeam {
-            robot: centre(&self.robot),
-            beam: centre(&self.object),
+            robot: centre(&self.start.robot),
+            beam: centre(&self.start.object),
             robot_angle,
             own: self.task.measure(&xs[r.clone()], &ys[r]),
         }
@@ -257,7 +244,7 @@ impl EvoGymEnv {
     fn write_observation(&mut self) {
         let (xs, ys) = (self.world.positions_x(), self.world.positions_y());
         let (vx, vy) = (self.world.velocities_x(), self.world.velocities_y());
-        let (r, b) = (self.robot.clone(), self.object.clone());
+        let (r, b) = (self.start.robot.clone(), self.start.object.clone());
         let mut at = 0;
         for &piece in self.task.observation() {
             let size = piece.size(r.len());
@@ -267,6 +254,7 @@ impl EvoGymEnv {
                 Piece::RobotVelocity => o.copy_from_slice(&[mean(vx, r.clone()), mean(vy, r.clone())]),
                 Piece::RobotOrientation => {
                     o[0] = self
+                        .start
                         .robot_orientation
                         .as_ref()
                         .map_or(0.0, |a| a.angle(xs, ys, r.clone()))
@@ -282,6 +270,7 @@ impl EvoGymEnv {
                 Piece::ObjectVelocity => o.copy_from_slice(&[mean(vx, b.clone()), mean(vy, b.clone())]),
                 Piece::ObjectOrientation => {
                     o[0] = self
+                        .start
                         .object_orientation
                         .as_ref()
                         .map_or(0.0, |a| a.angle(xs, ys, b.clone()))
@@ -305,7 +294,7 @@ impl EvoGymEnv {
                         Piece::Floor(_) | Piece::Ceiling(_) => Centre::EvoGym,
                         _ => Centre::MeanFirst,
                     };
-                    let (t, range) = (self.others.clone(), (sight, SIGHT_RANGE));
+                    let (t, range) = (self.start.others.clone(), (sight, SIGHT_RANGE));
                     terrain_distances(xs, ys, t, r.clone(), centre, range, look, o);
                 }
             }
@@ -361,7 +350,7 @@ impl EvoGymEnv {
 
     /// World indices of the robot's points, in EvoGym's order.
     pub fn robot_points(&self) -> Range<usize> {
-        self.robot.clone()
+        self.start.robot.clone()
     }
 
     /// The robot's centre (mean of its points) now.
@@ -439,7 +428,7 @@ mod tests {
     fn a_drawn_world_follows_the_seed() {
         let task = EvoGymTask::from_name("Catcher-v0").unwrap();
         let mut e = env(task, FULL);
-        let package = |e: &EvoGymEnv| mean(e.world().positions_x(), e.object.clone());
+        let package = |e: &EvoGymEnv| mean(e.world().positions_x(), e.start.object.clone());
         let mut seen = Vec::new();
         for seed in 0..6 {
             e.reset(seed);
@@ -575,7 +564,7 @@ mod tests {
         for _ in 0..50 {
             e.step(&ones).unwrap();
         }
-        let beam_y = mean(e.world().positions_y(), e.object.clone());
+        let beam_y = mean(e.world().positions_y(), e.start.object.clone());
         assert!((beam_y - 0.6).abs() < 0.01, "{beam_y}");
         let o = e.observation();
         // Beam centre (3.4, 0.6) minus robot centre (≈ 0.35, ≈ 0.35).

@@ -1,6 +1,6 @@
 //! BeamToppler-v0 (`manipulate.py:609-726`, class `ToppleBeam`): push a beam off two pegs.
 
-use super::{Basics, Piece, TaskDefinition};
+use super::{Basics, Piece, TaskDefinition, OBJECT_THEN_ROBOT};
 use crate::kinds::evogym::rewards::{topple, Reward, RobotAndBeam};
 use crate::kinds::evogym::worlds;
 
@@ -28,13 +28,7 @@ impl TaskDefinition for BeamToppler {
     /// The beam's centre minus the robot's, both centre velocities, the beam's orientation,
     /// then the robot's relative positions (`manipulate.py:636-645`).
     fn observation(&self) -> &'static [Piece] {
-        &[
-            Piece::ObjectOffset,
-            Piece::RobotVelocity,
-            Piece::ObjectVelocity,
-            Piece::ObjectOrientation,
-            Piece::RobotPositions,
-        ]
+        OBJECT_THEN_ROBOT
     }
 
     /// Approach, the beam's displacement and drop; the goal when the beam's centre is below

@@ -8,7 +8,7 @@
 //! draws (ox, oy) from the episode's seed (ChaCha8): the same seed, the same world. The 66
 //! worlds are the task's world variants ([`TaskDefinition::world_count`]).
 
-use super::{Basics, Piece, TaskDefinition};
+use super::{Basics, Piece, TaskDefinition, OBJECT_THEN_ROBOT};
 use crate::kinds::evogym::grid::MaterialGrid;
 use crate::kinds::evogym::rewards::{Reward, RobotAndBeam, UNSTABLE_PENALTY};
 use crate::kinds::evogym::worlds::{self, World, WorldObject};
@@ -73,13 +73,7 @@ impl TaskDefinition for Catcher {
     /// The package's centre minus the robot's, the robot's and the package's velocities, the
     /// package's orientation, then the robot's relative positions (`manipulate.py:549-557`).
     fn observation(&self) -> &'static [Piece] {
-        &[
-            Piece::ObjectOffset,
-            Piece::RobotVelocity,
-            Piece::ObjectVelocity,
-            Piece::ObjectOrientation,
-            Piece::RobotPositions,
-        ]
+        OBJECT_THEN_ROBOT
     }
 
     /// One world per pair of offsets.

@@ -79,6 +79,17 @@ impl Piece {
     }
 }
 
+/// The observation of the tasks about a free object (BeamToppler-v0, BeamSlider-v0, Catcher-v0):
+/// the object's centre minus the robot's, both centre velocities, the object's orientation, then
+/// the robot's relative positions (`manipulate.py:636-645`).
+pub const OBJECT_THEN_ROBOT: &[Piece] = &[
+    Piece::ObjectOffset,
+    Piece::RobotVelocity,
+    Piece::ObjectVelocity,
+    Piece::ObjectOrientation,
+    Piece::RobotPositions,
+];
+
 /// What every task states: its names, its world, where the robot starts and how long an episode
 /// lasts.
 #[derive(Debug, Clone, Copy)]

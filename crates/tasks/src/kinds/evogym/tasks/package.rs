@@ -6,7 +6,7 @@
 //! after (`⁺`) a step. (BeamToppler-v0 and Catcher-v0, whose world is drawn at every reset, have
 //! their own modules.)
 
-use super::{Basics, Piece, TaskDefinition};
+use super::{Basics, Piece, TaskDefinition, OBJECT_THEN_ROBOT};
 use crate::kinds::evogym::rewards::{Reward, RobotAndBeam, GOAL_BONUS, UNSTABLE_PENALTY};
 use crate::kinds::evogym::worlds;
 
@@ -162,13 +162,7 @@ pub const BEAM_SLIDER: PackageTask = PackageTask {
         episode_steps: 1000,
     },
     object: "beam",
-    observation: &[
-        Piece::ObjectOffset,
-        Piece::RobotVelocity,
-        Piece::ObjectVelocity,
-        Piece::ObjectOrientation,
-        Piece::RobotPositions,
-    ],
+    observation: OBJECT_THEN_ROBOT,
     reward: |b, a| {
         let mut value = (b.beam.0 - b.robot.0).abs() - (a.beam.0 - a.robot.0).abs();
         value += (a.beam.0 - b.beam.0) * 1.0;

@@ -121,7 +121,7 @@ pub trait TaskDefinition: Sync {
     fn observation(&self) -> &'static [Piece];
 
     /// How many worlds the task's episodes start in: 1 for a task whose world is always
-    /// [`Basics::world`]; Catcher-v0 places its package and pegs at random, in one of 66.
+    /// `Basics::world`; Catcher-v0 places its package and pegs at random, in one of 66.
     fn world_count(&self) -> usize {
         1
     }

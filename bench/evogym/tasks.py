@@ -35,6 +35,21 @@ class FixedOffsets:
         return value
 
 
+class FixedGoals:
+    """Stands in for Python's global `random` in EvoGym's multi_goal module: BidirectionalWalker-v0
+    draws its goals from it at every reset, unseeded. These are the goals vsrlab draws for a seed,
+    given in order; every draw of the sequence gives them again."""
+
+    def __init__(self, goals):
+        self.goals, self.drawn = goals, 0
+
+    def randrange(self, low, high):
+        goal = self.goals[self.drawn % len(self.goals)]
+        self.drawn += 1
+        assert low <= goal < high, (low, goal, high)
+        return goal
+
+
 def gait(t, n):
     return np.array([1.6 if (t + 5 * (i % 5)) % 20 < 10 else 0.6 for i in range(n)])
 
@@ -68,10 +83,18 @@ def main():
     parser.add_argument("--steps", type=int, default=1000, help="env steps timed per task")
     parser.add_argument("--tasks", default=",".join(TASKS), help="comma-separated EvoGym ids (default: ch. 5.2's four)")
     parser.add_argument("--catcher-offsets", default="1,4", help="Catcher-v0's offsets ox,oy (vsrlab's seed 0: 1,4)")
+    parser.add_argument(
+        "--bidirectional-goals",
+        default=None,
+        help="BidirectionalWalker-v0's goals in cells, comma-separated (vsrlab's seed 0: `--example evogym_speed 1 Bidirectional` prints them)",
+    )
     args = parser.parse_args()
     import evogym.envs.manipulate as manipulate
+    import evogym.envs.multi_goal as multi_goal
 
     manipulate.random = FixedOffsets(*(int(v) for v in args.catcher_offsets.split(",")))
+    if args.bidirectional_goals:
+        multi_goal.random = FixedGoals([int(float(g)) for g in args.bidirectional_goals.split(",")])
     for name in args.tasks.split(","):
         length = gym.spec(name).max_episode_steps
         env, total, k = episode(name, length)

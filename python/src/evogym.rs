@@ -4,9 +4,13 @@
 
 use crate::value_error;
 use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1};
+use numpy::{PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
+use rayon::prelude::*;
 use std::sync::Mutex;
-use vsrlab_tasks::kinds::evogym::{world_from_json, EvoGymEnv, EvoGymSim, EvoGymTask, MaterialGrid, Orientation, CELL};
+use vsrlab_tasks::kinds::evogym::{
+    world_from_json, EnvLanes, EvoGymEnv, EvoGymError, EvoGymSim, EvoGymTask, MaterialGrid, Orientation, CELL, LANES,
+};
 
 /// The EvoGym ids vsrlab implements, in EvoGym's registration order (the gym ids are these
 /// under `vsrlab/`).
@@ -246,4 +250,216 @@ impl PyEvoGymSim {
             Some(n) => sim.object(n).map(|o| o.points.clone()).map_err(value_error),
         }
     }
+}
+
+/// One environment of a vector: its episode, the seed of its next reset, and whether its episode
+/// ended at the last step.
+struct Slot {
+    env: EvoGymEnv,
+    next_seed: u64,
+    ended: bool,
+}
+
+/// What a vector's step gave one environment.
+#[derive(Clone, Copy, Default)]
+struct SlotStep {
+    reward: f64,
+    terminated: bool,
+    truncated: bool,
+    unstable: bool,
+}
+
+/// `count` environments of one EvoGym task and body stepped together on every core (the GIL
+/// released), each group of four in population lanes (the bits of each stepped alone): the core
+/// of the vectorised Gymnasium environment. An environment whose episode ended is reset at the
+/// next step, which ignores its action and returns its first observation (Gymnasium's next-step
+/// autoreset); environment i's episodes take seeds `seed + i`, then `+ count` each time.
+#[pyclass(name = "EvoGymVectorEnv", module = "vsrlab")]
+pub struct PyEvoGymVectorEnv {
+    slots: Mutex<(Vec<Slot>, Vec<Option<EnvLanes>>)>,
+    observation_size: usize,
+    action_size: usize,
+}
+
+#[pymethods]
+impl PyEvoGymVectorEnv {
+    /// `count` environments of `task` with the robot `body` (rows of digits joined by `/`).
+    #[new]
+    fn new(task: &str, body: &str, count: usize) -> PyResult<Self> {
+        if count == 0 {
+            return Err(value_error("num_envs: at least one environment"));
+        }
+        let which =
+            EvoGymTask::from_name(task).ok_or_else(|| value_error(format!("task: {}", EvoGymTask::unknown(task))))?;
+        let grid = MaterialGrid::from_rows(body).map_err(|e| value_error(e.at("body")))?;
+        let env = EvoGymEnv::new(which, &grid).map_err(|e| value_error(format!("body: {e}")))?;
+        let (observation_size, action_size) = (env.observation_size(), env.action_count());
+        let slots = (0..count as u64)
+            .map(|i| Slot {
+                env: env.clone(),
+                next_seed: i,
+                ended: false,
+            })
+            .collect();
+        let lanes = (0..count.div_ceil(LANES)).map(|_| None).collect();
+        Ok(PyEvoGymVectorEnv {
+            slots: Mutex::new((slots, lanes)),
+            observation_size,
+            action_size,
+        })
+    }
+
+    /// Number of environments.
+    #[getter]
+    fn count(&self) -> usize {
+        self.slots.lock().map(|s| s.0.len()).unwrap_or(0)
+    }
+
+    /// Values per observation.
+    #[getter]
+    fn observation_size(&self) -> usize {
+        self.observation_size
+    }
+
+    /// Actions per environment: one per actuator voxel.
+    #[getter]
+    fn action_size(&self) -> usize {
+        self.action_size
+    }
+
+    /// Starts every environment anew, environment i with seed `seed + i`; returns the
+    /// observations (count × observation_size).
+    fn reset<'py>(&self, py: Python<'py>, seed: u64) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let mut guard = self.slots.lock().unwrap_or_else(|p| p.into_inner());
+        let slots = &mut guard.0;
+        let n = slots.len() as u64;
+        py.detach(|| {
+            slots.par_iter_mut().enumerate().for_each(|(i, slot)| {
+                slot.env.reset(seed.wrapping_add(i as u64));
+                slot.next_seed = seed.wrapping_add(i as u64).wrapping_add(n);
+                slot.ended = false;
+            })
+        });
+        self.observations(py, slots)
+    }
+
+    /// One step of every environment: `actions` is (count, action_size); returns
+    /// (observations, rewards, terminated, truncated, unstable) as arrays.
+    #[allow(clippy::type_complexity)]
+    fn step<'py>(
+        &self,
+        py: Python<'py>,
+        actions: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<(
+        Bound<'py, PyArray2<f64>>,
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray1<bool>>,
+        Bound<'py, PyArray1<bool>>,
+        Bound<'py, PyArray1<bool>>,
+    )> {
+        let mut guard = self.slots.lock().unwrap_or_else(|p| p.into_inner());
+        let (slots, lanes) = &mut *guard;
+        let n = slots.len();
+        if actions.shape() != [n, self.action_size] {
+            return Err(value_error(format!(
+                "actions: shape ({n}, {}) expected, got {:?}",
+                self.action_size,
+                actions.shape()
+            )));
+        }
+        let a = actions
+            .as_slice()
+            .map_err(|_| value_error("actions: a C-contiguous float64 array is needed"))?;
+        if let Some(i) = a.iter().position(|v| !v.is_finite()) {
+            return Err(value_error(format!(
+                "actions: environment {}, action {} is not finite ({})",
+                i / self.action_size,
+                i % self.action_size,
+                a[i]
+            )));
+        }
+        let width = self.action_size;
+        let groups: Result<Vec<Vec<SlotStep>>, EvoGymError> = py.detach(|| {
+            slots
+                .par_chunks_mut(LANES)
+                .zip(lanes.par_iter_mut())
+                .zip(a.par_chunks(LANES * width))
+                .map(|((group, lanes), actions)| step_group(group, lanes, actions, width, n as u64))
+                .collect()
+        });
+        let steps: Vec<SlotStep> = groups.map_err(|e| value_error(format!("actions: {e}")))?.concat();
+        let obs = self.observations(py, slots)?;
+        let column = |f: fn(&SlotStep) -> bool| PyArray1::from_vec(py, steps.iter().map(f).collect());
+        Ok((
+            obs,
+            PyArray1::from_vec(py, steps.iter().map(|s| s.reward).collect()),
+            column(|s| s.terminated),
+            column(|s| s.truncated),
+            column(|s| s.unstable),
+        ))
+    }
+}
+
+impl PyEvoGymVectorEnv {
+    fn observations<'py>(&self, py: Python<'py>, slots: &[Slot]) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let data: Vec<f64> = slots.iter().flat_map(|s| s.env.observation().iter().copied()).collect();
+        PyArray1::from_vec(py, data).reshape([slots.len(), self.observation_size])
+    }
+}
+
+/// One step of a group of at most [`LANES`] environments: those whose episode ended are reset
+/// (their action ignored), the others step together in the group's lanes (alone when fewer
+/// than three step).
+fn step_group(
+    group: &mut [Slot],
+    lanes: &mut Option<EnvLanes>,
+    actions: &[f64],
+    width: usize,
+    count: u64,
+) -> Result<Vec<SlotStep>, EvoGymError> {
+    let mut stepping = Vec::with_capacity(group.len());
+    for (k, slot) in group.iter_mut().enumerate() {
+        if slot.ended {
+            slot.env.reset(slot.next_seed);
+            slot.next_seed = slot.next_seed.wrapping_add(count);
+            slot.ended = false;
+        } else {
+            stepping.push(k);
+        }
+    }
+    let chunk = |k: usize| &actions[k * width..(k + 1) * width];
+    let mut out = vec![SlotStep::default(); group.len()];
+    if stepping.len() >= 3 {
+        let lanes = lanes.get_or_insert_with(|| EnvLanes::new(&group[stepping[0]].env));
+        let mut envs: Vec<&mut EvoGymEnv> = group
+            .iter_mut()
+            .enumerate()
+            .filter(|(k, _)| stepping.contains(k))
+            .map(|(_, s)| &mut s.env)
+            .collect();
+        let targets: Vec<&[f64]> = stepping.iter().map(|&k| chunk(k)).collect();
+        for (&k, step) in stepping.iter().zip(lanes.step(&mut envs, &targets)?) {
+            let s = step?;
+            out[k] = SlotStep {
+                reward: s.reward,
+                terminated: s.done,
+                truncated: s.truncated,
+                unstable: s.unstable,
+            };
+        }
+    } else {
+        for &k in &stepping {
+            let r = group[k].env.step(chunk(k))?;
+            out[k] = SlotStep {
+                reward: r.reward,
+                terminated: r.done,
+                truncated: r.truncated,
+                unstable: r.unstable,
+            };
+        }
+    }
+    for &k in &stepping {
+        group[k].ended = out[k].terminated || out[k].truncated;
+    }
+    Ok(out)
 }

@@ -34,6 +34,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<evogym::PyEvoGymEnv>()?;
     m.add_function(wrap_pyfunction!(evogym::evogym_tasks, m)?)?;
     m.add_class::<evogym::PyEvoGymSim>()?;
+    m.add_class::<evogym::PyEvoGymVectorEnv>()?;
     m.add_function(wrap_pyfunction!(evogym::evogym_check_world, m)?)?;
     m.add_function(wrap_pyfunction!(evogym::evogym_episode_steps, m)?)?;
     m.add_class::<batch::PyBatchEvaluator>()?;

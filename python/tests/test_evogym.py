@@ -105,6 +105,32 @@ def test_rgb_array_frames_are_drawn_without_opengl():
         vsrlab.envs.WalkerEnv(render_mode="screen")
 
 
+def test_vector_environments_step_every_core_with_the_bits_of_single_ones():
+    n, body = 6, "33333/33333/33333"
+    vec = gymnasium.make_vec("vsrlab-evogym/Catcher-v0", num_envs=n, vectorization_mode="vector_entry_point", body=body)
+    assert type(vec).__name__ == "CatcherVectorEnv"
+    singles = [gymnasium.make("vsrlab-evogym/Catcher-v0", body=body).unwrapped for _ in range(n)]
+    obs, _ = vec.reset(seed=10)
+    for i, env in enumerate(singles):
+        assert np.array_equal(obs[i], env.reset(seed=10 + i)[0])
+    rng = np.random.default_rng(0)
+    for t in range(400):
+        actions = rng.uniform(0.6, 1.6, size=(n, 15))
+        obs, rewards, terminated, truncated, info = vec.step(actions)
+        for i, env in enumerate(singles):
+            o, r, term, trunc, single_info = env.step(actions[i])
+            assert np.array_equal(obs[i], o) and rewards[i] == r, (t, i)
+            assert (terminated[i], truncated[i], info["unstable"][i]) == (term, trunc, single_info["unstable"])
+    assert truncated.all(), "Catcher's episodes last 400 steps"
+    # next-step autoreset: the action is ignored, each environment starts its next episode
+    obs, rewards, terminated, truncated, _ = vec.step(np.ones((n, 15)))
+    assert (rewards == 0).all() and not truncated.any()
+    for i, env in enumerate(singles):
+        assert np.array_equal(obs[i], env.reset(seed=10 + i + n)[0])
+    with pytest.raises(ValueError, match="actions: shape"):
+        vec.step(np.ones((n, 3)))
+
+
 def test_bad_bodies_and_actions_are_refused_naming_the_field():
     with pytest.raises(ValueError, match="body"):
         vsrlab.EvoGymEnv("Walker-v0", "1.3")

@@ -28,7 +28,7 @@ import numpy as np
 from gymnasium import spaces
 from gymnasium.vector.utils import batch_space
 
-from ._native import Episode, EvoGymEnv, Robot, VectorEpisode, evogym_episode_steps, evogym_tasks
+from ._native import Episode, EvoGymEnv, EvoGymVectorEnv, Robot, VectorEpisode, evogym_episode_steps, evogym_tasks
 
 # the robot's own brain is never called: the policy gives the actions
 _IDLE_BRAIN = "constant:0"
@@ -192,12 +192,7 @@ class EvoGymTaskEnv(gymnasium.Env):
         # EvoGym's `render_options` (hidden grid, edges…) are accepted and not used: the frame
         # is drawn as vsrlab's videos are
         self.render_mode = render_mode
-        if not isinstance(body, str):
-            grid = np.asarray(body)
-            if grid.ndim != 2:
-                raise ValueError(f"body: a 2-D array of material codes expected, got shape {grid.shape}")
-            body = "/".join("".join(str(int(c)) for c in row) for row in grid)
-        self._env = EvoGymEnv(task, body)
+        self._env = EvoGymEnv(task, _body_rows(body))
         self.observation_space = spaces.Box(-np.inf, np.inf, shape=(self._env.observation_size,), dtype=np.float64)
         self.action_space = spaces.Box(0.6, 1.6, shape=(self._env.action_size,), dtype=np.float64)
 
@@ -224,6 +219,57 @@ class EvoGymTaskEnv(gymnasium.Env):
         return None
 
 
+def _body_rows(body: Any) -> str:
+    """A material grid as rows of digits joined by ``/`` (a string, or a 2-D array of codes)."""
+    if isinstance(body, str):
+        return body
+    grid = np.asarray(body)
+    if grid.ndim != 2:
+        raise ValueError(f"body: a 2-D array of material codes expected, got shape {grid.shape}")
+    return "/".join("".join(str(int(c)) for c in row) for row in grid)
+
+
+class EvoGymTaskVectorEnv(gymnasium.vector.VectorEnv):
+    """``num_envs`` copies of an EvoGym task with one body, stepped together on every core in one
+    call per step (each group of four in population lanes, the bits of each stepped alone); an
+    episode that ended is reset at the next step (next-step autoreset). ``info["unstable"]``
+    says which environments became unstable."""
+
+    metadata = {"render_modes": [], "autoreset_mode": gymnasium.vector.AutoresetMode.NEXT_STEP}
+
+    def __init__(
+        self,
+        num_envs: int = 8,
+        task: str = "Walker-v0",
+        body: Any = "33333/33333/33333/33333/33333",
+        render_mode: Optional[str] = None,
+        max_episode_steps: Optional[int] = None,
+    ):
+        if render_mode is not None:
+            raise ValueError("render_mode: the vectorised environment does not render; use the single environment")
+        length = evogym_episode_steps(task)
+        if max_episode_steps is not None and max_episode_steps != length:
+            raise ValueError(f"max_episode_steps: {task}'s episodes last its own {length} steps, got {max_episode_steps}")
+        self.num_envs = int(num_envs)
+        self._envs = EvoGymVectorEnv(task, _body_rows(body), self.num_envs)
+        self.single_observation_space = spaces.Box(-np.inf, np.inf, shape=(self._envs.observation_size,), dtype=np.float64)
+        self.single_action_space = spaces.Box(0.6, 1.6, shape=(self._envs.action_size,), dtype=np.float64)
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
+
+    def reset(self, *, seed: Optional[int] = None, options: Optional[dict] = None):
+        super().reset(seed=seed)
+        base = int(self.np_random.integers(0, 2**62)) if seed is None else int(seed)
+        return self._envs.reset(base), {}
+
+    def step(self, actions):
+        a = np.ascontiguousarray(np.asarray(actions, dtype=np.float64))
+        if a.shape != self.action_space.shape:
+            raise ValueError(f"actions: shape {self.action_space.shape} expected, got {a.shape}")
+        obs, rewards, terminated, truncated, unstable = self._envs.step(a)
+        return obs, rewards, terminated, truncated, {"unstable": unstable}
+
+
 def _evogym_env(task: str):
     class TaskEnv(EvoGymTaskEnv):
         def __init__(
@@ -234,8 +280,20 @@ def _evogym_env(task: str):
         ):
             super().__init__(task=task, body=body, render_mode=render_mode, render_options=render_options)
 
+    class TaskVectorEnv(EvoGymTaskVectorEnv):
+        def __init__(
+            self,
+            num_envs: int = 8,
+            body: Any = "33333/33333/33333/33333/33333",
+            render_mode: Optional[str] = None,
+            max_episode_steps: Optional[int] = None,
+        ):
+            super().__init__(num_envs, task, body, render_mode, max_episode_steps)
+
     TaskEnv.__name__ = TaskEnv.__qualname__ = _evogym_class_name(task)
-    return TaskEnv
+    vector = _evogym_class_name(task)[: -len("Env")] + "VectorEnv"
+    TaskVectorEnv.__name__ = TaskVectorEnv.__qualname__ = vector
+    return TaskEnv, TaskVectorEnv
 
 
 def _evogym_class_name(task: str) -> str:
@@ -259,7 +317,8 @@ _OWN_IDS = {"vsrlab/Locomotion-v0", "vsrlab/Jump-v0", "vsrlab/Escape-v0", "vsrla
 EVOGYM_ENVIRONMENTS = {}
 for _task in evogym_tasks():
     _class = _evogym_class_name(_task)
-    globals()[_class] = _evogym_env(_task)
+    globals()[_class], _vector = _evogym_env(_task)
+    globals()[_vector.__name__] = _vector
     EVOGYM_ENVIRONMENTS[f"vsrlab-evogym/{_task}"] = _class
     if f"vsrlab/{_task}" not in _OWN_IDS:
         EVOGYM_ENVIRONMENTS[f"vsrlab/{_task}"] = _class
@@ -287,4 +346,10 @@ def register_all() -> None:
     for env_id, single in EVOGYM_ENVIRONMENTS.items():
         if env_id not in gymnasium.registry:
             steps = evogym_episode_steps(env_id.split("/", 1)[1])
-            gymnasium.register(id=env_id, entry_point=f"vsrlab.envs:{single}", max_episode_steps=steps)
+            vector = single[: -len("Env")] + "VectorEnv"
+            gymnasium.register(
+                id=env_id,
+                entry_point=f"vsrlab.envs:{single}",
+                vector_entry_point=f"vsrlab.envs:{vector}",
+                max_episode_steps=steps,
+            )

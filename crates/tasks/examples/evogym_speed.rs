@@ -43,6 +43,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 built.elapsed().as_secs_f64() * 1e3
             );
         }
+        if task.name() == "BidirectionalWalker-v0" {
+            // the goals seed 0 draws (cells), for bench/evogym/tasks.py's --bidirectional-goals
+            let goals: Vec<String> = env.task_memory()[1..].iter().map(|g| g.to_string()).collect();
+            println!("{:16} seed 0's goals: {}", task.name(), goals.join(","));
+        }
         let actions: Vec<Vec<f64>> = (0..20).map(|t| gait(t, env.action_count())).collect();
         // one episode of the task's own length: the reward to compare with EvoGym's
         let (mut reward, mut taken) = (0.0, 0);

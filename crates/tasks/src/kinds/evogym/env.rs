@@ -332,6 +332,12 @@ impl EvoGymEnv {
         self.steps
     }
 
+    /// The task's numbers kept across the episode (`TaskDefinition::start`: BidirectionalWalker's
+    /// current goal and its goals).
+    pub fn task_memory(&self) -> &[f64] {
+        &self.memory
+    }
+
     /// The robot's material grid.
     pub fn robot_grid(&self) -> &MaterialGrid {
         &self.grid

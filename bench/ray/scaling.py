@@ -1,8 +1,13 @@
 """Ray scaling on one machine: a loopback cluster of 1 then 2 worker nodes (1 CPU each).
 
     .venv/bin/python bench/ray/scaling.py batches [EVALUATIONS]   # quickstart genotypes in batches of 40
-    .venv/bin/python bench/ray/scaling.py codesign                # a small co-design run (PPO per body)
-    .venv/bin/python bench/ray/scaling.py campaign [FILES]        # a campaign of many small runs
+    .venv/bin/python bench/ray/scaling.py codesign [ITERATIONS]   # a small co-design run (PPO per body)
+    .venv/bin/python bench/ray/scaling.py campaign [FILES] [SECONDS]  # a campaign of many small runs
+
+ITERATIONS (default 2) is each body's PPO iterations, SECONDS (default 10) each campaign
+episode's duration: larger values make each evaluation heavier (closer to the thesis's, where a
+body trains for 1,000 iterations and episodes last 30-60 s), so that the fixed costs (start-up,
+the driver's share of this machine's cores) weigh less.
 
 `batches` also times local evaluate_batch on 1 and 2 threads. Needs ray in the environment
 (python/requirements-test.txt). Prints seconds per setting and the ratio to Ray on 1 node.
@@ -40,7 +45,7 @@ width = 5
 height = 5
 mutation_rate = 0.1
 [genotype.ppo]
-iterations = 2
+iterations = {iterations}
 environments = 2
 steps_per_environment = 64
 [task]
@@ -68,7 +73,7 @@ sensors = "uniform-vxy+a+t-0"
 brain = {{ kind = "distributed-mlp", layout = "homogeneous", signals = 1, hidden = [] }}
 [task]
 terrain = "flat"
-duration = 10.0
+duration = {duration}
 fitness = "velocity"
 [optimizer]
 kind = "ga"
@@ -142,11 +147,11 @@ def evaluation_seconds(out: Path) -> float:
     return total
 
 
-def codesign() -> list:
+def codesign(iterations: int) -> list:
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         config = Path(tmp) / "codesign.toml"
-        config.write_text(CODESIGN)
+        config.write_text(CODESIGN.format(iterations=iterations))
         for nodes in (1, 2):
             out = Path(tmp) / f"out-{nodes}"
             wall = on_cluster(nodes, lambda address: vsrlab.run(config, out, ray=address))
@@ -155,13 +160,13 @@ def codesign() -> list:
     return rows
 
 
-def campaign(files: int) -> list:
+def campaign(files: int, duration: float) -> list:
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         paths = []
         for i in range(files):
             path = Path(tmp) / f"small-{i}.toml"
-            path.write_text(SMALL_RUN.format(name=f"small-{i}", seed=i + 1))
+            path.write_text(SMALL_RUN.format(name=f"small-{i}", seed=i + 1, duration=duration))
             paths.append(path)
         for nodes in (1, 2):
             out = Path(tmp) / f"out-{nodes}"
@@ -177,13 +182,14 @@ def main() -> None:
         n = int(sys.argv[2]) if len(sys.argv) > 2 else 2000
         rows, base = batches(n), 2
     elif mode == "codesign":
-        rows = codesign()
+        rows = codesign(int(sys.argv[2]) if len(sys.argv) > 2 else 2)
         for name, seconds in rows:
             reference = rows[0][1] if "batches only" not in name else rows[1][1]
             print(f"{name:44s} {seconds:8.2f} s  ({reference / seconds:.2f}x Ray on 1 node)")
         return
     elif mode == "campaign":
-        rows, base = campaign(int(sys.argv[2]) if len(sys.argv) > 2 else 8), 0
+        files = int(sys.argv[2]) if len(sys.argv) > 2 else 8
+        rows, base = campaign(files, float(sys.argv[3]) if len(sys.argv) > 3 else 10.0), 0
     else:
         sys.exit(f"unknown mode {mode}: batches, codesign or campaign")
     reference = rows[base][1]

@@ -27,6 +27,15 @@ pub fn evogym_episode_steps(task: &str) -> PyResult<usize> {
         .ok_or_else(|| value_error(format!("task: {}", EvoGymTask::unknown(task))))
 }
 
+/// The environment of EvoGym task `task` with the robot `body` (rows of digits joined by `/`);
+/// errors name `task` or `body`.
+fn make_env(task: &str, body: &str) -> PyResult<EvoGymEnv> {
+    let which =
+        EvoGymTask::from_name(task).ok_or_else(|| value_error(format!("task: {}", EvoGymTask::unknown(task))))?;
+    let grid = MaterialGrid::from_rows(body).map_err(|e| value_error(e.at("body")))?;
+    EvoGymEnv::new(which, &grid).map_err(|e| value_error(format!("body: {e}")))
+}
+
 /// One EvoGym task with one robot.
 #[pyclass(name = "EvoGymEnv", module = "vsrlab")]
 pub struct PyEvoGymEnv {
@@ -47,10 +56,7 @@ impl PyEvoGymEnv {
     /// the material grid as rows of digits 0-4 joined by `/`, top row first.
     #[new]
     fn new(task: &str, body: &str) -> PyResult<Self> {
-        let which =
-            EvoGymTask::from_name(task).ok_or_else(|| value_error(format!("task: {}", EvoGymTask::unknown(task))))?;
-        let grid = MaterialGrid::from_rows(body).map_err(|e| value_error(e.at("body")))?;
-        let env = EvoGymEnv::new(which, &grid).map_err(|e| value_error(format!("body: {e}")))?;
+        let env = make_env(task, body)?;
         Ok(PyEvoGymEnv {
             observation_size: env.observation_size(),
             action_size: env.action_count(),
@@ -289,10 +295,7 @@ impl PyEvoGymVectorEnv {
         if count == 0 {
             return Err(value_error("num_envs: at least one environment"));
         }
-        let which =
-            EvoGymTask::from_name(task).ok_or_else(|| value_error(format!("task: {}", EvoGymTask::unknown(task))))?;
-        let grid = MaterialGrid::from_rows(body).map_err(|e| value_error(e.at("body")))?;
-        let env = EvoGymEnv::new(which, &grid).map_err(|e| value_error(format!("body: {e}")))?;
+        let env = make_env(task, body)?;
         let (observation_size, action_size) = (env.observation_size(), env.action_count());
         let slots = (0..count as u64)
             .map(|i| Slot {

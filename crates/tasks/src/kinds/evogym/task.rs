@@ -357,34 +357,42 @@ struct Recorder {
 
 impl Recorder {
     fn new(level: TraceLevel, which: EvoGymTask, grid: &super::MaterialGrid, world: &super::worlds::World) -> Recorder {
-        let mut trace = Trace {
-            dt: STEP_SECONDS,
-            side_length: super::CELL,
-            ..Default::default()
-        };
         if level != TraceLevel::Full {
             // an evaluation's episode: only times and centres, no geometry to plan
             return Recorder {
                 level,
-                trace,
+                trace: empty_trace(),
                 quads: Vec::new(),
             };
         }
         // the robot's cells, then those of every object that moves (the bridge, the beam), with
         // their points numbered as the environment adds them: the robot first, then the
         // world's objects in order
-        let robot = plan_object(grid, which.robot_origin());
-        let mut first = robot.points.len();
-        let mut quads: Vec<[usize; 4]> = robot.quads.iter().map(|q| q.corners).collect();
-        let mut colours: Vec<f64> = grid.present().map(|(_, _, m)| colour_of(m)).collect();
+        let mut parts = vec![(grid, which.robot_origin(), 0)];
+        let mut first = plan_object(grid, which.robot_origin()).points.len();
         for object in world.objects() {
-            let plan = plan_object(&object.grid, object.origin);
             if !is_terrain(object) {
-                quads.extend(plan.quads.iter().map(|q| q.corners.map(|p| p + first)));
-                colours.extend(object.grid.present().map(|(_, _, m)| colour_of(m)));
+                parts.push((&object.grid, object.origin, first));
             }
-            first += plan.points.len();
+            first += plan_object(&object.grid, object.origin).points.len();
         }
+        Recorder::drawing(level, parts, world)
+    }
+
+    /// A recorder drawing the cells of `parts` (each a grid at its origin, its points numbered
+    /// from a world index) in their materials' colours, over the terrain of `world`.
+    fn drawing(
+        level: TraceLevel,
+        parts: Vec<(&super::MaterialGrid, (usize, usize), usize)>,
+        world: &super::worlds::World,
+    ) -> Recorder {
+        let (mut quads, mut colours) = (Vec::new(), Vec::new());
+        for (grid, origin, first) in parts {
+            let plan = plan_object(grid, origin);
+            quads.extend(plan.quads.iter().map(|q| q.corners.map(|p| p + first)));
+            colours.extend(grid.present().map(|(_, _, m)| colour_of(m)));
+        }
+        let mut trace = empty_trace();
         trace.fixed(&UNIT_FILL, 1, &colours);
         trace.outline_corners = vec![4; quads.len()];
         describe_terrain(world, &mut trace);
@@ -392,16 +400,21 @@ impl Recorder {
     }
 
     fn record(&mut self, env: &EvoGymEnv, t: f64) {
+        let (x, y) = env.robot_centre();
+        self.record_points(env.world(), Vec2::new(x, y), t);
+    }
+
+    /// Records the time, the centre and (in a full trace) every drawn cell's outline in `world`.
+    fn record_points(&mut self, world: &vsrlab_physics::mass_spring::MassSpringWorld, centre: Vec2, t: f64) {
         if self.level == TraceLevel::None {
             return;
         }
-        let (x, y) = env.robot_centre();
         self.trace.times.push(t);
-        self.trace.centers.push(Vec2::new(x, y));
+        self.trace.centers.push(centre);
         if self.level != TraceLevel::Full {
             return;
         }
-        let (px, py) = (env.world().positions_x(), env.world().positions_y());
+        let (px, py) = (world.positions_x(), world.positions_y());
         for quad in &self.quads {
             self.trace
                 .outlines
@@ -411,6 +424,15 @@ impl Recorder {
 
     fn finish(self) -> Option<Trace> {
         (self.level != TraceLevel::None).then_some(self.trace)
+    }
+}
+
+/// A trace of EvoGym's step and cell size, nothing recorded yet.
+fn empty_trace() -> Trace {
+    Trace {
+        dt: STEP_SECONDS,
+        side_length: super::CELL,
+        ..Default::default()
     }
 }
 
@@ -427,31 +449,24 @@ pub fn frame(env: &EvoGymEnv) -> Trace {
 /// that moves drawn cell by cell in its materials' colours, the terrain's cells, the centre of
 /// the first robot (or of the first object).
 pub fn sim_frame(sim: &super::EvoGymSim) -> Trace {
-    let mut trace = Trace {
-        dt: STEP_SECONDS,
-        side_length: super::CELL,
-        ..Default::default()
-    };
+    let layout = sim.layout();
+    let parts = sim
+        .objects()
+        .iter()
+        .filter_map(|placed| layout.object(&placed.name).map(|o| (o, placed.points.start)))
+        .filter(|(o, _)| !is_terrain(o))
+        .map(|(o, first)| (&o.grid, o.origin, first))
+        .collect();
+    let mut recorder = Recorder::drawing(TraceLevel::Full, parts, layout);
     let (px, py) = (sim.world().positions_x(), sim.world().positions_y());
-    let mut colours = Vec::new();
-    for placed in sim.objects() {
-        let Some(object) = sim.layout().object(&placed.name).filter(|o| !is_terrain(o)) else {
-            continue;
-        };
-        for quad in &plan_object(&object.grid, object.origin).quads {
-            let at = |p: usize| Vec2::new(px[placed.points.start + p], py[placed.points.start + p]);
-            trace.outlines.extend(quad.corners.map(at));
-        }
-        colours.extend(object.grid.present().map(|(_, _, m)| colour_of(m)));
-    }
-    trace.fixed(&UNIT_FILL, 1, &colours);
-    trace.outline_corners = vec![4; colours.len()];
-    describe_terrain(sim.layout(), &mut trace);
     let first = &sim.objects()[0].points;
     let mean = |v: &[f64]| v[first.clone()].iter().sum::<f64>() / first.len().max(1) as f64;
-    trace.times.push(sim.steps() as f64 * STEP_SECONDS);
-    trace.centers.push(Vec2::new(mean(px), mean(py)));
-    trace
+    recorder.record_points(
+        sim.world(),
+        Vec2::new(mean(px), mean(py)),
+        sim.steps() as f64 * STEP_SECONDS,
+    );
+    recorder.trace
 }
 
 /// The cells of the world's terrain (objects whose cells are all fixed) as static squares. No

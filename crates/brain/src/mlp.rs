@@ -20,6 +20,7 @@
 use crate::validation::check_finite;
 use crate::BrainError;
 use serde::{Deserialize, Serialize};
+use vsrlab_lanes::{fdlibm_tanh, fdlibm_tanh_in_place};
 
 /// Largest layer of any network (neurons); larger ones are refused, naming `hidden`.
 pub const MAX_LAYER_SIZE: usize = 100_000;
@@ -67,11 +68,21 @@ impl Activation {
     #[inline]
     pub fn apply(self, x: f64) -> f64 {
         match self {
-            Activation::Tanh => x.tanh(),
+            Activation::Tanh => fdlibm_tanh(x),
             Activation::Sigmoid => 1.0 / (1.0 + (-x).exp()),
             Activation::Relu => x.max(0.0),
             Activation::Sin => x.sin(),
             Activation::Identity => x,
+        }
+    }
+
+    /// Applies the function to every value: tanh four or eight at a time in vector lanes, the
+    /// bits of [`Activation::apply`] one at a time.
+    #[inline]
+    pub fn apply_in_place(self, values: &mut [f64]) {
+        match self {
+            Activation::Tanh => fdlibm_tanh_in_place(values),
+            _ => values.iter_mut().for_each(|v| *v = self.apply(*v)),
         }
     }
 
@@ -218,29 +229,37 @@ impl Mlp {
         );
         let act = self.activation;
         let (mut current, mut next) = scratch[..2 * widest].split_at_mut(widest);
+        current[..n_in].copy_from_slice(&inputs[..n_in]);
         if self.input_activation {
-            for (c, &x) in current.iter_mut().zip(&inputs[..n_in]) {
-                *c = act.apply(x);
-            }
-        } else {
-            current[..n_in].copy_from_slice(&inputs[..n_in]);
+            act.apply_in_place(&mut current[..n_in]);
         }
-        let mut offset = 0;
-        for pair in self.sizes.windows(2) {
+        for (layer, pair) in self.sizes.windows(2).enumerate() {
             let (n_src, n_dst) = (pair[0], pair[1]);
-            let src = &current[..n_src];
-            for dst in next[..n_dst].iter_mut() {
-                let w = &self.weights[offset..offset + n_src + 1];
-                offset += n_src + 1;
-                let mut sum = w[0];
-                for (wi, xi) in w[1..].iter().zip(src) {
-                    sum += wi * xi;
-                }
-                *dst = act.apply(sum);
-            }
+            self.layer_sums(layer, &current[..n_src], &mut next[..n_dst]);
+            act.apply_in_place(&mut next[..n_dst]);
             std::mem::swap(&mut current, &mut next);
         }
         outputs[..n_out].copy_from_slice(&current[..n_out]);
+    }
+
+    /// Layer `layer`'s neurons before their activation: `dst[o] = b + Σᵢ wᵢ·src[i]`, summed from
+    /// the bias in the sources' order (the sums of [`Mlp::apply`]). Lets a caller with many
+    /// networks of one shape apply the activation to all their neurons at once.
+    ///
+    /// # Panics
+    /// If `layer` is not a layer or a slice is shorter than the layer.
+    pub fn layer_sums(&self, layer: usize, src: &[f64], dst: &mut [f64]) {
+        let offset: usize = self.sizes[..layer + 1].windows(2).map(|p| p[1] * (p[0] + 1)).sum();
+        let (n_src, n_dst) = (self.sizes[layer], self.sizes[layer + 1]);
+        let src = &src[..n_src];
+        let rows = self.weights[offset..offset + n_dst * (n_src + 1)].chunks_exact(n_src + 1);
+        for (out, w) in dst[..n_dst].iter_mut().zip(rows) {
+            let mut sum = w[0];
+            for (wi, xi) in w[1..].iter().zip(src) {
+                sum += wi * xi;
+            }
+            *out = sum;
+        }
     }
 }
 

@@ -5,7 +5,7 @@
 //! the IEEE operation of the scalar engine, so every lane keeps the scalar bits.
 //!
 //! Values of these types run AVX2 instructions in their operations (making one, reading and
-//! setting a lane do not): only code that checked the CPU first ([`available`]) may compute with
+//! setting a lane do not; [`Lanes::mul_add`] runs FMA's): only code that checked the CPU first ([`available`]) may compute with
 //! them (the 3D engine's `WorldLanes::of`, the Elman brain, the tests). The module is hidden
 //! from the documentation for that reason: it is the workspace's, not a public interface.
 
@@ -23,9 +23,10 @@ pub struct Avx<const N: usize>([f64; N]);
 #[repr(C, align(32))]
 pub struct AvxMask<const N: usize>([f64; N]);
 
-/// Whether this CPU can run [`Avx`] values.
+/// Whether this CPU can run [`Avx`] values: AVX2, and FMA for [`Lanes::mul_add`] (every CPU
+/// with AVX2 has it; a virtual machine may hide it).
 pub fn available() -> bool {
-    is_x86_feature_detected!("avx2")
+    is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma")
 }
 
 impl<const N: usize> Avx<N> {
@@ -226,6 +227,28 @@ impl<const N: usize> Lanes for Avx<N> {
     #[inline(always)]
     fn sign_mask(self) -> AvxMask<N> {
         AvxMask(self.0)
+    }
+
+    #[inline(always)]
+    fn mul_add(self, a: Self, b: Self) -> Self {
+        let mut out = Avx([0.0; N]);
+        for c in 0..Self::CHUNKS {
+            // SAFETY: the CPU has AVX2 and FMA (module doc)
+            out.store(c, unsafe { _mm256_fmadd_pd(self.load(c), a.load(c), b.load(c)) });
+        }
+        out
+    }
+
+    #[inline(always)]
+    fn trunc(self) -> Self {
+        let mut out = Avx([0.0; N]);
+        for c in 0..Self::CHUNKS {
+            // SAFETY: the CPU has AVX2 (module doc)
+            out.store(c, unsafe {
+                _mm256_round_pd::<{ _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC }>(self.load(c))
+            });
+        }
+        out
     }
 }
 

@@ -1,7 +1,7 @@
 //! N f64 lanes in AVX-512 instructions, eight per 512-bit register (N a multiple of 8): the
 //! laned engines' number type on CPUs that have AVX-512F, twice the lanes per instruction of
 //! [`Avx`](crate::avx::Avx). Masks are the CPU's own mask registers, one bit per lane. Each
-//! operation is the IEEE operation of the scalar engine (no fused multiply–add), so every lane
+//! operation is the IEEE operation of the scalar engine (no fused multiply–add but `mul_add`), so every lane
 //! keeps the scalar bits.
 //!
 //! As with `Avx`, only code that checked the CPU first ([`available`]) may compute with these
@@ -250,6 +250,28 @@ impl<const N: usize> Lanes for Avx512<N> {
             bits |= (m as u64) << (8 * c);
         }
         Avx512Mask(bits)
+    }
+
+    #[inline(always)]
+    fn mul_add(self, a: Self, b: Self) -> Self {
+        let mut out = Avx512([0.0; N]);
+        for c in 0..Self::CHUNKS {
+            // SAFETY: the CPU has AVX-512F (module doc), whose fused multiply–add this is
+            out.store(c, unsafe { _mm512_fmadd_pd(self.load(c), a.load(c), b.load(c)) });
+        }
+        out
+    }
+
+    #[inline(always)]
+    fn trunc(self) -> Self {
+        let mut out = Avx512([0.0; N]);
+        for c in 0..Self::CHUNKS {
+            // SAFETY: the CPU has AVX-512F (module doc)
+            out.store(c, unsafe {
+                _mm512_roundscale_pd::<{ _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC }>(self.load(c))
+            });
+        }
+        out
     }
 }
 

@@ -59,6 +59,13 @@ pub(crate) fn every_operation_gives_the_portable_bits<L: Lanes, const N: usize>(
         same(pa.cos(), va.cos(), "cos");
         same(pa.acos(), va.acos(), "acos");
         same(pa.tanh(), va.tanh(), "tanh");
+        same(pa.mul_add(pb, pa), va.mul_add(vb, va), "mul_add");
+        same(pa.trunc(), va.trunc(), "trunc");
+        same(
+            crate::fdlibm_tanh::tanh_lanes(pa),
+            crate::fdlibm_tanh::tanh_lanes(va),
+            "fdlibm tanh",
+        );
         let (pm, vm) = (pa.lt(pb), va.lt(vb));
         same_mask(pm, vm, "lt");
         same_mask(pa.gt(pb), va.gt(vb), "gt");

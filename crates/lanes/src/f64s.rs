@@ -1,6 +1,6 @@
 //! N f64 lanes: one value per episode of a population that steps together (population lanes,
 //! stored `[element][field][lane]`). Every operation is the scalar IEEE operation lane by
-//! lane (no fused multiply–add, no approximations), so lane `l` of a computation gives the bits of
+//! lane (no fused multiply–add but the explicit `mul_add`, no approximations), so lane `l` of a computation gives the bits of
 //! the same computation in scalar f64. The arrays are plain, the portable form of [`Lanes`]: a
 //! kernel compiled with AVX2 enabled has them vectorised by the compiler, only partly (the 3D
 //! engine has its own AVX2 form for that, `physics3d/src/avx.rs`).
@@ -103,6 +103,16 @@ impl<const N: usize> Lanes for F64s<N> {
     #[inline(always)]
     fn sign_mask(self) -> Mask<N> {
         self.0.map(f64::is_sign_negative)
+    }
+
+    #[inline(always)]
+    fn mul_add(self, a: Self, b: Self) -> Self {
+        F64s(std::array::from_fn(|l| self.0[l].mul_add(a.0[l], b.0[l])))
+    }
+
+    #[inline(always)]
+    fn trunc(self) -> Self {
+        F64s(self.0.map(f64::trunc))
     }
 }
 

@@ -85,6 +85,14 @@ pub trait Lanes:
     /// The lanes whose sign bit is set (negative numbers, −0, NaN with the sign bit).
     fn sign_mask(self) -> Self::Mask;
 
+    /// `self · a + b` rounded once (a fused multiply–add), lane by lane. The engines never use it;
+    /// [`fdlibm_tanh`](crate::fdlibm_tanh) does, to give the bits of a libm built with FMA. The
+    /// vector forms need a CPU with FMA ([`avx::available`](crate::avx::available) checks it).
+    fn mul_add(self, a: Self, b: Self) -> Self;
+
+    /// Each lane rounded toward zero.
+    fn trunc(self) -> Self;
+
     /// `(sin x, cos x)` lane by lane: each lane gives the bits of the scalar [`sin_cos`](crate::sin_cos).
     #[inline(always)]
     fn sin_cos(self) -> (Self, Self) {

@@ -4,6 +4,7 @@
 
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
+use vsrlab_lanes::fdlibm_tanh;
 
 /// A multilayer perceptron: `sizes[0]` inputs, tanh hidden layers, `sizes[last]` linear outputs.
 #[derive(Debug, Clone, PartialEq)]
@@ -81,7 +82,7 @@ impl Mlp {
                     if l == last {
                         z
                     } else {
-                        z.tanh()
+                        fdlibm_tanh(z)
                     }
                 })
                 .collect();

@@ -9,6 +9,7 @@
 //! allocation once the buffers have grown.
 
 use crate::mlp::Mlp;
+use vsrlab_lanes::fdlibm_tanh_in_place;
 
 /// Lanes side by side.
 const LANES: usize = 4;
@@ -62,10 +63,12 @@ impl Mlp {
             let (x, y) = (&done[l], &mut rest[0]);
             y.clear();
             y.resize(rows * outputs, 0.0);
-            let tanh = l + 2 < depth;
             for s in 0..rows {
                 let xs = &x[s * inputs..(s + 1) * inputs];
-                layer_row(&pass.transposed, b, xs, &mut y[s * outputs..(s + 1) * outputs], tanh);
+                layer_row(&pass.transposed, b, xs, &mut y[s * outputs..(s + 1) * outputs]);
+            }
+            if l + 2 < depth {
+                fdlibm_tanh_in_place(y);
             }
         }
     }
@@ -119,13 +122,12 @@ fn transpose(w: &[f64], rows: usize, columns: usize, out: &mut Vec<f64>) {
     }
 }
 
-/// One sample through one layer: y[o] = b[o] + Σᵢ w[o][i]·x[i] (tanh'd for a hidden layer), from
-/// the transposed weights `wt`.
-fn layer_row(wt: &[f64], b: &[f64], x: &[f64], y: &mut [f64], tanh: bool) {
+/// One sample through one layer before its activation: y[o] = b[o] + Σᵢ w[o][i]·x[i], from the
+/// transposed weights `wt`.
+fn layer_row(wt: &[f64], b: &[f64], x: &[f64], y: &mut [f64]) {
     row_times_matrix(x, wt, y);
     for (out, bias) in y.iter_mut().zip(b) {
-        let z = bias + *out;
-        *out = if tanh { z.tanh() } else { z };
+        *out += bias;
     }
 }
 

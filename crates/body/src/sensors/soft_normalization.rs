@@ -11,6 +11,7 @@ use super::normalization::linear;
 use super::spec::SensorSpec;
 use super::wrapper::{Transform, Wrapped, WrapperKind};
 use serde::{Deserialize, Serialize};
+use vsrlab_lanes::fdlibm_tanh;
 
 /// tanh(2(2v − 1))/2 + 1/2 of `x` mapped linearly from `domain` to v, clipping v to [0, 1] first
 /// if `clip`.
@@ -19,7 +20,7 @@ pub(crate) fn soft_normalize(x: f64, domain: (f64, f64), clip: bool) -> f64 {
     if clip {
         v = v.clamp(0.0, 1.0);
     }
-    (2.0 * (2.0 * v - 1.0)).tanh() / 2.0 + 0.5
+    fdlibm_tanh(2.0 * (2.0 * v - 1.0)) / 2.0 + 0.5
 }
 
 /// S-curve normalisation of every inner reading.

@@ -40,6 +40,7 @@ use crate::validation::{check_count, check_finite, check_units, set_finite};
 use crate::{BrainError, BrainKind, BrainShape, BrainSpec, Controller, Layout};
 use serde::{Deserialize, Serialize};
 use vsrlab_body::{Channel, Probe};
+use vsrlab_lanes::fdlibm_tanh;
 
 /// Largest `d_k`.
 pub const MAX_D_K: usize = 10_000;
@@ -330,7 +331,7 @@ impl AttentionController {
         for a in 0..r {
             for b in 0..r {
                 let dot: f64 = (0..d).map(|j| self.q[a * d + j] * self.k[b * d + j]).sum();
-                let fresh = (dot * scale).tanh();
+                let fresh = fdlibm_tanh(dot * scale);
                 let slot = &mut matrix[a * r + b];
                 *slot = if started {
                     m.alpha * fresh + m.eta * *slot
@@ -349,9 +350,9 @@ impl AttentionController {
         let mut sum = m.downstream[0];
         for a in 0..r {
             let y: f64 = (0..r).map(|b| matrix[a * r + b] * s[b]).sum();
-            sum += m.downstream[1 + a * n + v] * y.tanh();
+            sum += m.downstream[1 + a * n + v] * fdlibm_tanh(y);
         }
-        sum.tanh()
+        fdlibm_tanh(sum)
     }
 }
 

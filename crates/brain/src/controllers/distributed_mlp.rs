@@ -186,8 +186,10 @@ pub struct DistributedMlpController {
     emitted: Vec<f64>,
     /// Per voxel: the n_in inputs of the last call.
     inputs: Vec<f64>,
-    outputs: Vec<f64>,
-    scratch: Vec<f64>,
+    /// Every voxel's values of one layer (voxel-major), then of the next: the layers of all
+    /// networks go through the activation together (in vector lanes).
+    current: Vec<f64>,
+    next: Vec<f64>,
 }
 
 impl DistributedMlpController {
@@ -228,7 +230,7 @@ impl DistributedMlpController {
             ),
         };
         let (n_in, n_out) = (sizes[0], sizes[sizes.len() - 1]);
-        let scratch = vec![0.0; networks[0].scratch_len()];
+        let layer_values = units * networks[0].scratch_len() / 2;
         Ok(DistributedMlpController {
             signals,
             directions,
@@ -243,8 +245,8 @@ impl DistributedMlpController {
             neighbours,
             emitted: vec![0.0; units * directions * signals],
             inputs: vec![0.0; units * n_in],
-            outputs: vec![0.0; n_out],
-            scratch,
+            current: vec![0.0; layer_values],
+            next: vec![0.0; layer_values],
         })
     }
 
@@ -274,6 +276,31 @@ impl DistributedMlpController {
     pub fn emitted(&self, voxel: usize) -> &[f64] {
         let all = self.directions * self.signals;
         &self.emitted[voxel * all..(voxel + 1) * all]
+    }
+}
+
+impl DistributedMlpController {
+    /// Every voxel's network on its inputs, layer by layer, into `current` (voxel-major, n_out
+    /// per voxel): the bits of each network's [`Mlp::apply`], with each layer's activation applied
+    /// to all voxels' neurons at once.
+    fn forward_all(&mut self) {
+        let units = self.network_of.len();
+        let first = &self.networks[0];
+        let (sizes, act) = (first.sizes(), first.activation());
+        let values = units * self.n_in;
+        self.current[..values].copy_from_slice(&self.inputs);
+        if first.input_activation() {
+            act.apply_in_place(&mut self.current[..values]);
+        }
+        for layer in 0..sizes.len() - 1 {
+            let (n_src, n_dst) = (sizes[layer], sizes[layer + 1]);
+            for (v, &network) in self.network_of.iter().enumerate() {
+                let src = &self.current[v * n_src..(v + 1) * n_src];
+                self.networks[network].layer_sums(layer, src, &mut self.next[v * n_dst..(v + 1) * n_dst]);
+            }
+            act.apply_in_place(&mut self.next[..units * n_dst]);
+            std::mem::swap(&mut self.current, &mut self.next);
+        }
     }
 }
 
@@ -308,15 +335,12 @@ impl Controller for DistributedMlpController {
                 }
             }
         }
+        self.forward_all();
+        let n_out = self.n_out;
         for (v, a) in actuations.iter_mut().enumerate() {
-            let network = &self.networks[self.network_of[v]];
-            network.apply(
-                &self.inputs[v * n_in..(v + 1) * n_in],
-                &mut self.outputs,
-                &mut self.scratch,
-            );
-            *a = self.outputs[0].clamp(-1.0, 1.0);
-            self.emitted[v * all..(v + 1) * all].copy_from_slice(&self.outputs[1..self.n_out]);
+            let outputs = &self.current[v * n_out..(v + 1) * n_out];
+            *a = outputs[0].clamp(-1.0, 1.0);
+            self.emitted[v * all..(v + 1) * all].copy_from_slice(&outputs[1..]);
         }
     }
 }
@@ -662,6 +686,53 @@ mod tests {
             he.control(t, &readings, &mut a2);
             assert_eq!(a1, a2, "step {k}");
             assert!(a1.iter().all(|a| (-1.0..=1.0).contains(a)));
+        }
+    }
+
+    #[test]
+    fn all_voxels_at_once_give_each_network_s_own_bits() {
+        // 15 voxels with their own weights and a hidden layer: each layer's tanh runs over every
+        // voxel's neurons together, and must give what each voxel's network gives alone
+        let m = Morphology::named("comb-5x3").unwrap();
+        let (r, s, hidden) = (3, 2, [7]);
+        let sizes = network_sizes(r, 4, s, &hidden);
+        let n_w = Mlp::parameter_count(&sizes);
+        let n = m.voxel_count();
+        let rpv = vec![r; n];
+        let shape = BrainShape::grid(&m, &rpv);
+        let grid = shape.layout();
+        let all: Vec<f64> = (0..grid.slots() * n_w)
+            .map(|i| ((i * 7919 % 1013) as f64 / 250.0) - 2.0)
+            .collect();
+        let mut c = DistributedMlpController::new(
+            &BrainShape::grid(&m, &rpv),
+            &config(s, &hidden, Activation::Tanh, true, Layout::Heterogeneous),
+            &all,
+        )
+        .unwrap();
+        let mut actuations = vec![0.0; n];
+        let mut scratch = vec![0.0; 64];
+        for k in 1..=20 {
+            let t = k as f64 / 60.0;
+            let readings: Vec<f64> = (0..n * r).map(|i| 3.0 * (t * (i + 1) as f64).sin()).collect();
+            c.control(t, &readings, &mut actuations);
+            for v in 0..n {
+                let block = &all[grid.slot(v) * n_w..(grid.slot(v) + 1) * n_w];
+                let alone = Mlp::new(sizes.clone(), Activation::Tanh, true, block.to_vec()).unwrap();
+                let inputs: Vec<f64> = readings[v * r..(v + 1) * r]
+                    .iter()
+                    .chain(c.incoming(v))
+                    .copied()
+                    .collect();
+                let mut out = vec![0.0; 1 + 4 * s];
+                alone.apply(&inputs, &mut out, &mut scratch);
+                assert_eq!(
+                    actuations[v].to_bits(),
+                    out[0].clamp(-1.0, 1.0).to_bits(),
+                    "step {k}, voxel {v}"
+                );
+                assert_eq!(c.emitted(v), &out[1..], "step {k}, voxel {v}");
+            }
         }
     }
 

@@ -34,6 +34,7 @@ use crate::validation::{check_count, check_units, set_finite};
 use crate::{BrainError, BrainKind, BrainShape, BrainSpec, Controller};
 use serde::{Deserialize, Serialize};
 use vsrlab_body::{Channel, Probe};
+use vsrlab_lanes::fdlibm_tanh;
 
 /// Largest output of a neuron in absolute value: feedback loops through unbounded activations
 /// (identity, relu) would otherwise overflow to infinity and then NaN.
@@ -430,7 +431,7 @@ impl Controller for GraphController {
     fn control(&mut self, _t: f64, readings: &[f64], actuations: &mut [f64]) {
         for (i, role) in self.roles.iter().enumerate() {
             self.current[i] = match *role {
-                Role::Sensing(r) => readings[r].tanh(),
+                Role::Sensing(r) => fdlibm_tanh(readings[r]),
                 Role::Computing(f) => {
                     let sum: f64 = self.incoming[self.starts[i]..self.starts[i + 1]]
                         .iter()

@@ -11,6 +11,7 @@ use crate::short_form::{self, ShortForm};
 use crate::validation::{check_count, check_units, set_finite};
 use crate::{BrainError, BrainKind, BrainShape, BrainSpec, Controller};
 use serde::{Deserialize, Serialize};
+use vsrlab_lanes::fdlibm_tanh_in_place;
 
 /// The heads controller: a one-layer network whose last outputs skip the tanh.
 #[derive(Debug, Clone)]
@@ -26,9 +27,7 @@ impl Controller for HeadsController {
     fn control(&mut self, _t: f64, readings: &[f64], actuations: &mut [f64]) {
         self.mlp.apply(readings, actuations, &mut self.scratch);
         let n = self.mlp.outputs();
-        for a in &mut actuations[..n - self.linear_outputs] {
-            *a = a.tanh();
-        }
+        fdlibm_tanh_in_place(&mut actuations[..n - self.linear_outputs]);
     }
 }
 

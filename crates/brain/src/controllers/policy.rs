@@ -18,6 +18,7 @@
 use crate::validation::{check_count, check_finite, check_units, finite, set_finite};
 use crate::{BrainError, BrainKind, BrainShape, Controller};
 use serde::{Deserialize, Serialize};
+use vsrlab_lanes::fdlibm_tanh_in_place;
 
 /// Added to the variance before its root.
 const EPSILON: f64 = 1e-8;
@@ -227,7 +228,10 @@ impl Controller for PolicyController {
                         .zip(&input[..inputs])
                         .map(|(a, b)| a * b)
                         .sum::<f64>();
-                output[o] = if l == last { z } else { z.tanh() };
+                output[o] = z;
+            }
+            if l != last {
+                fdlibm_tanh_in_place(&mut output[..outputs]);
             }
             offset += inputs * outputs + outputs;
             std::mem::swap(input, output);

@@ -2,6 +2,7 @@
 //! CPPN-NEAT used).
 
 use serde::{Deserialize, Serialize};
+use vsrlab_lanes::fdlibm_tanh;
 
 /// A node's activation function.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -40,7 +41,7 @@ impl Activation {
     pub fn apply(self, x: f64) -> f64 {
         match self {
             Activation::Sigmoid => 1.0 / (1.0 + (-5.0 * x.clamp(-60.0, 60.0)).exp()),
-            Activation::Tanh => (2.5 * x.clamp(-60.0, 60.0)).tanh(),
+            Activation::Tanh => fdlibm_tanh(2.5 * x.clamp(-60.0, 60.0)),
             Activation::Sin => (5.0 * x.clamp(-60.0, 60.0)).sin(),
             Activation::Gauss => (-5.0 * x.clamp(-3.4, 3.4).powi(2)).exp(),
             Activation::Relu => x.max(0.0),

@@ -7,6 +7,7 @@ use super::broad_phase::BroadPhase;
 use super::points::Points;
 use super::quad_geometry::{line_distance, norm, point_in_quad, segments_intersect, MIN_SIDE};
 use super::settings::ContactSettings;
+use vsrlab_lanes::fdlibm_tanh;
 
 /// Recomputes the contact forces of this substep into `points.contact_fx/fy` for the candidate
 /// pairs of `broad`; returns how many point-in-quad contacts produced a force.
@@ -148,7 +149,7 @@ fn push_out(
     let (tx, ty) = (-ny, nx);
     let vt = tx * points.moved_vx[p] + ty * points.moved_vy[p];
     let scale = c.friction * push;
-    let friction = -c.friction_gain * scale * (vt.abs() / scale).tanh() * vt.signum();
+    let friction = -c.friction_gain * scale * fdlibm_tanh(vt.abs() / scale) * vt.signum();
     let (ffx, ffy) = (tx * friction, ty * friction);
     let side = |i: usize, d: f64| {
         (

@@ -1,6 +1,7 @@
 //! The ground half-plane: a penalty spring along y and regularised Coulomb friction along x.
 
 use super::settings::GroundPlane;
+use vsrlab_lanes::fdlibm_tanh;
 
 /// The force `(fx, fy)` the ground puts on a point at height `y` moving at `vx` along the ground:
 /// nothing above the surface; below it a normal force `stiffness × depth` and a friction
@@ -11,7 +12,7 @@ pub(crate) fn ground_force(g: &GroundPlane, y: f64, vx: f64) -> (f64, f64) {
         return (0.0, 0.0);
     }
     let normal = depth * g.stiffness;
-    let friction = -g.friction * normal * (g.friction_sharpness * vx * normal).tanh();
+    let friction = -g.friction * normal * fdlibm_tanh(g.friction_sharpness * vx * normal);
     (friction, normal)
 }
 

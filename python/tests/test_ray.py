@@ -17,7 +17,7 @@ import ray
 
 import vsrlab
 from vsrlab import _native
-from vsrlab.cluster import check_versions
+from vsrlab.cluster import RayEvaluator, check_versions
 
 CONFIG = """
 name = "ray-small"
@@ -83,7 +83,8 @@ def test_a_run_whose_worker_dies_mid_batch_ends_like_the_local_run(cluster, tmp_
             seen["killed"] = evaluator.pids[1]
         seen["resubmitted"] = evaluator.resubmitted
 
-    remote = vsrlab.run(config, tmp_path / "ray", ray=cluster, on_submit=kill_second_actor)
+    remote = vsrlab.run(config, tmp_path / "ray", ray=cluster, on_submit=kill_second_actor,
+                        min_chunk_seconds=0)
     assert seen["nodes"] == 2 and seen["actors"] == 2
     assert "killed" in seen and seen["resubmitted"] >= 1, seen
     assert [s["best_fitness"] for s in remote] == [s["best_fitness"] for s in local]
@@ -235,7 +236,8 @@ def test_every_genotype_kind_runs_on_ray_with_a_worker_killed_and_ends_like_the_
             # on whether it had finished (the vector run above asserts the resending)
             seen["restarted"] = ray.get(evaluator.actors[1].ready.remote())[0] != evaluator.pids[1]
 
-    remote = vsrlab.run(config, tmp_path / "ray", ray=cluster, on_submit=kill_second_actor)
+    remote = vsrlab.run(config, tmp_path / "ray", ray=cluster, on_submit=kill_second_actor,
+                        min_chunk_seconds=0)
     assert seen.get("restarted"), seen
     assert [s["best_fitness"] for s in remote] == [s["best_fitness"] for s in local]
     ours = dict(_native.deterministic_files(str(tmp_path / "ray")))
@@ -296,3 +298,30 @@ def test_a_campaign_on_ray_whose_driver_is_killed_resumes_to_the_local_campaigns
         assert sorted(ours) == sorted(theirs) and len(ours) >= 6
         for file in ours:
             assert ours[file] == theirs[file], f"{name}/{file}"
+
+
+def test_quick_evaluations_go_in_few_chunks_and_give_the_same_answers(cluster, tmp_path):
+    # a campaign's many small runs should send few Ray tasks: once a batch's evaluations are
+    # known to be quick, a chunk holds at least `min_chunk_seconds` of them
+    config = tmp_path / "quick.toml"
+    config.write_text(CONFIG)
+    text = _native.experiment_text(str(config))
+    rows = np.random.default_rng(3).uniform(-1, 1, (16, vsrlab.genotype_length(config)))
+    genotypes = [json.dumps(list(map(float, row))) for row in rows]
+    seeds = np.arange(16, dtype=np.uint64)
+    answers = {}
+    for floor in (0.0, 1000.0):
+        evaluator = RayEvaluator(text, address=cluster, origin=str(config), min_chunk_seconds=floor)
+        first = evaluator(genotypes, seeds)
+        assert evaluator.chunks == 8, "no estimate yet: 4 chunks per actor"
+        second = evaluator(genotypes, seeds)
+        answers[floor] = (evaluator.chunks, first, second)
+        evaluator.close()
+    assert answers[0.0][0] == 8, "no lower bound: chunks as before"
+    assert answers[1000.0][0] == 1, "a floor above the batch's seconds: the batch goes whole"
+
+    def without_times(answer: str) -> list:
+        return [{k: v for k, v in e.items() if k != "seconds"} for e in json.loads(answer)]
+
+    rounds = [without_times(a) for floor in answers for a in answers[floor][1:]]
+    assert len(rounds[0]) == 16 and all(r == rounds[0] for r in rounds)

@@ -33,6 +33,10 @@ from ._native import Worker, __version__
 
 #: seconds of evaluations a chunk aims at once evaluations are known to be slow
 CHUNK_SECONDS = 0.5
+#: seconds of evaluations a chunk holds at least once evaluations are known to be quick: a Ray
+#: task costs about a millisecond of the driver's and the node's time, so that many small runs
+#: (a campaign's) send few tasks, and the actors take them from all runs
+MIN_CHUNK_SECONDS = 0.05
 
 
 class _Worker:
@@ -120,6 +124,21 @@ class RayPool:
         check_versions(found)
         #: each actor's worker process id, as it started (tests kill one)
         self.pids = [pid for pid, _ in found]
+        #: chunks in flight on each actor, from every evaluator sharing the pool
+        self.busy = [0] * len(self.actors)
+        self._lock = threading.Lock()
+
+    def take(self, allowed: list) -> int:
+        """The least busy actor among ``allowed`` (indices), counted busy by one more chunk."""
+        with self._lock:
+            actor = min(allowed, key=lambda k: (self.busy[k], k))
+            self.busy[actor] += 1
+            return actor
+
+    def release(self, actor: int) -> None:
+        """One chunk of ``actor`` is done (answered or failed)."""
+        with self._lock:
+            self.busy[actor] -= 1
 
     def close(self) -> None:
         """Ends the actors (and the connection, when this pool made it)."""
@@ -138,9 +157,11 @@ class RayEvaluator:
     """Sends one experiment's batches of evaluations to the actors of a :class:`RayPool` (its
     own, made with ``pool_options``, or ``pool``, shared).
 
-    ``chunks_per_actor`` splits a batch finer for load balance; ``attempts`` is how many times one
-    chunk may be sent before the batch fails; ``on_submit`` (tests) is called with this evaluator
-    after each batch is sent.
+    ``chunks_per_actor`` splits a batch finer for load balance; ``min_chunk_seconds`` keeps chunks
+    of quick evaluations at least that long (from the previous batch's seconds per evaluation), so
+    that a campaign's many small runs send few Ray tasks (0: no lower bound); ``attempts`` is how
+    many times one chunk may be sent before the batch fails; ``on_submit`` (tests) is called with
+    this evaluator after each batch is sent.
     """
 
     def __init__(
@@ -153,6 +174,7 @@ class RayEvaluator:
         timeout: float = 3600.0,
         on_submit: Optional[Callable[["RayEvaluator"], Any]] = None,
         pool: Optional[RayPool] = None,
+        min_chunk_seconds: float = MIN_CHUNK_SECONDS,
         **pool_options: Any,
     ):
         # a local check first: a bad file fails here, with its field named, not on a worker
@@ -167,6 +189,9 @@ class RayEvaluator:
         self.attempts = max(1, int(attempts))
         self.timeout = float(timeout)
         self.on_submit = on_submit
+        self.min_chunk_seconds = float(min_chunk_seconds)
+        #: the last batch's number of chunks
+        self.chunks = 0
         self.batches = 0
         self.resubmitted = 0
         #: the last batch's mean seconds per evaluation, which sizes the next batch's chunks
@@ -195,23 +220,26 @@ class RayEvaluator:
         raise RuntimeError("ray: no attempt")
 
     def __call__(self, genotypes: list, seeds: np.ndarray) -> str:
-        ray = self._ray
-        exceptions = (ray.exceptions.RayActorError, ray.exceptions.WorkerCrashedError)
         rows = len(genotypes)
         actors = len(self.actors)
         parts = min(rows, actors * self.chunks_per_actor)
         # cheap chunks: two in flight per actor, so that it never waits for the next one
         in_flight = 2
         if self.seconds_per_evaluation is not None:
+            seconds = max(self.seconds_per_evaluation, 1e-9)
             # evaluations that take long (a co-design body's PPO training) go in smaller chunks,
             # down to one each, so that a batch's last chunk is short: about CHUNK_SECONDS each;
             # one in flight per actor, the next to whichever actor frees up first
-            per_chunk = max(1, int(CHUNK_SECONDS / max(self.seconds_per_evaluation, 1e-9)))
+            per_chunk = max(1, int(CHUNK_SECONDS / seconds))
             if per_chunk < -(-rows // parts):
                 parts = min(rows, -(-rows // per_chunk))
                 in_flight = 1
+            # quick ones: no chunk under `min_chunk_seconds` (a small batch goes whole)
+            if self.min_chunk_seconds > 0:
+                parts = max(1, min(parts, int(rows * seconds / self.min_chunk_seconds)))
         bounds = np.linspace(0, rows, parts + 1).astype(int)
         chunks = [(int(a), int(b)) for a, b in zip(bounds[:-1], bounds[1:]) if b > a]
+        self.chunks = len(chunks)
         results: list = [None] * len(chunks)
         tries = [0] * len(chunks)
         waiting = deque(range(len(chunks)))
@@ -226,18 +254,38 @@ class RayEvaluator:
             pending[ref] = (i, actor)
 
         def feed() -> None:
-            # each actor holds at most `in_flight` chunks: the next chunk goes to whichever frees
-            # up first, so that slow chunks do not hold up a batch (dynamic load balance)
+            # each actor holds at most `in_flight` of this batch's chunks: the next chunk goes to
+            # whichever frees up first, so that slow chunks do not hold up a batch (dynamic load
+            # balance); among those, to the actor with the fewest chunks of every evaluator
+            # sharing the pool (a campaign's other runs)
             while waiting:
-                actor = min(range(actors), key=lambda k: busy[k])
-                if busy[actor] >= in_flight:
+                allowed = [k for k in range(actors) if busy[k] < in_flight]
+                if not allowed:
                     return
-                submit(waiting.popleft(), actor)
+                submit(waiting.popleft(), self.pool.take(allowed))
 
         feed()
         self.batches += 1
         if self.on_submit is not None:
             self.on_submit(self)
+        try:
+            self._collect(pending, results, tries, waiting, busy, chunks, feed)
+        finally:
+            # a batch that failed leaves no chunk counted on the shared pool
+            for _, actor in pending.values():
+                self.pool.release(actor)
+        # each part is the JSON list of its chunk's evaluations: join them in order
+        inner = [r.strip()[1:-1] for r in results]
+        joined = "[" + ",".join(p for p in inner if p) + "]"
+        seconds = [e.get("seconds", 0.0) for e in json.loads(joined)]
+        if seconds:
+            self.seconds_per_evaluation = sum(seconds) / len(seconds)
+        return joined
+
+    def _collect(self, pending: dict, results: list, tries: list, waiting: deque, busy: list, chunks: list, feed) -> None:
+        """Waits for the batch's chunks, sending failed ones again, until every chunk answered."""
+        ray = self._ray
+        exceptions = (ray.exceptions.RayActorError, ray.exceptions.WorkerCrashedError)
         deadline = time.monotonic() + self.timeout
         while pending:
             left = deadline - time.monotonic()
@@ -247,6 +295,7 @@ class RayEvaluator:
             for ref in done:
                 i, actor = pending.pop(ref)
                 busy[actor] -= 1
+                self.pool.release(actor)
                 try:
                     results[i] = ray.get(ref)
                 except exceptions as e:
@@ -256,13 +305,6 @@ class RayEvaluator:
                     self.resubmitted += 1
                     waiting.appendleft(i)
             feed()
-        # each part is the JSON list of its chunk's evaluations: join them in order
-        inner = [r.strip()[1:-1] for r in results]
-        joined = "[" + ",".join(p for p in inner if p) + "]"
-        seconds = [e.get("seconds", 0.0) for e in json.loads(joined)]
-        if seconds:
-            self.seconds_per_evaluation = sum(seconds) / len(seconds)
-        return joined
 
     def close(self) -> None:
         """Ends its own pool's actors (a shared pool is closed by its owner)."""

@@ -7,6 +7,7 @@
 
 pub mod curves;
 pub mod diversity;
+pub mod equivalence;
 pub mod features;
 pub mod footprint;
 pub mod forest;

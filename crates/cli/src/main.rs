@@ -8,6 +8,7 @@ mod bench;
 mod campaign;
 mod codesign;
 mod evaluate;
+mod fidelity;
 mod inflate;
 mod label;
 mod modules;
@@ -50,6 +51,9 @@ enum Command {
     Evaluate(evaluate::EvaluateArgs),
     /// Check experiment files: print each resolved configuration, its sizes and a time estimate.
     Validate(validate::ValidateArgs),
+    /// The 2D fidelity protocol: vsrlab's start-shift ensembles against the original
+    /// simulator's, case by case, with the tests' verdicts (docs/fidelity.md, "The protocol").
+    Fidelity(fidelity::FidelityArgs),
     /// Figures and a summary table from the output of `vsrlab run` (docs/analysis.md).
     Analyze(analyze::AnalyzeArgs),
     /// Render a stratified sample of evolved robots into an HTML page for labelling species.
@@ -90,6 +94,7 @@ fn main() -> ExitCode {
         Command::Campaign(a) => campaign::run(a),
         Command::Evaluate(a) => evaluate::run(a),
         Command::Validate(a) => validate::run(a),
+        Command::Fidelity(a) => fidelity::run(a),
         Command::Analyze(a) => analyze::run(a),
         Command::Label(a) => label::run(a),
         Command::Reassess(a) => reassess::run(a),

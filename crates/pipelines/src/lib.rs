@@ -18,6 +18,7 @@ mod classes;
 mod classifiers;
 pub mod codesign;
 pub mod error;
+pub mod fidelity;
 mod figures;
 pub mod inflation;
 pub mod label;

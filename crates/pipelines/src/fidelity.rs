@@ -1,0 +1,348 @@
+//! The 2D fidelity protocol behind `vsrlab fidelity` (docs/fidelity.md, "The protocol"): for
+//! every reference case (preset, body, terrain, brain), vsrlab's start-shift ensemble against the
+//! original simulator's, stored as data (`assets/fidelity/original-2d.csv`: one row per start,
+//! measured with the instrument docs/fidelity.md describes). Each case gets a two-sample
+//! Kolmogorov–Smirnov test, a Mann–Whitney test, the bootstrap interval of the median difference
+//! and the equivalence test of the medians against the original's own split-half variability
+//! ([`vsrlab_analysis::equivalence`]).
+//!
+//! A case passes when the medians are shown equivalent and the KS test does not reject the same
+//! distribution at 0.1 %; a sample of the original's own distribution passes about 97 % of the
+//! time (the equivalence module's calibration), so a faithful solver is expected to fail a few
+//! cases in a hundred by chance.
+
+use rayon::prelude::*;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::time::Instant;
+use vsrlab_analysis::equivalence::{kolmogorov_smirnov, median_equivalence, KolmogorovSmirnov, MedianEquivalence};
+use vsrlab_analysis::stats::{mann_whitney_u, quantile};
+use vsrlab_tasks::ensemble;
+use vsrlab_tasks::{RobotSpec, TaskSpec};
+
+/// The original's ensembles shipped with vsrlab: `preset,body,terrain,brain,k,velocity`.
+pub const ORIGINAL_2D: &str = include_str!("../../../assets/fidelity/original-2d.csv");
+
+/// The distance between neighbouring starts of every ensemble (the robot's left edge moves by
+/// k·δ).
+pub const SHIFT: f64 = 1e-6;
+
+/// Below this KS p-value a case fails on the shape of its distribution.
+pub const KS_LEVEL: f64 = 0.001;
+
+/// The sensors of every case's robot: the brains of the cases read none.
+const SENSORS: &str = "uniform-a+vxy+t-0";
+
+/// One reference case: the original's velocities from starts shifted by k·[`SHIFT`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Case {
+    /// Physical preset: 2021 (2D-VSR-Sim v1.10.0) or 2022 (its HEAD, e569066).
+    pub preset: String,
+    /// Body short form (`biped-4x3`).
+    pub body: String,
+    /// Terrain (`flat`, `hilly-1-10-0`, …).
+    pub terrain: String,
+    /// Brain short form (`phase`, `constant:1`).
+    pub brain: String,
+    /// Start offsets k (the start is shifted by k·[`SHIFT`]) and the original's velocity from each.
+    pub starts: Vec<(i64, f64)>,
+}
+
+impl Case {
+    /// `preset/body/terrain/brain`, as `--cases` filters match it.
+    pub fn name(&self) -> String {
+        format!("{}/{}/{}/{}", self.preset, self.body, self.terrain, self.brain)
+    }
+}
+
+/// A reference file that cannot be read, or a case vsrlab cannot run.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum FidelityError {
+    /// A line of the reference is malformed.
+    #[error("reference, line {line}: {msg}")]
+    Reference {
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong.
+        msg: String,
+    },
+    /// A case's robot or task cannot be built or run.
+    #[error("case {case}: {msg}")]
+    Case {
+        /// The case's name.
+        case: String,
+        /// What failed.
+        msg: String,
+    },
+}
+
+/// The cases of a reference CSV (`preset,body,terrain,brain,k,velocity` with a header), in file
+/// order.
+pub fn read_cases(text: &str) -> Result<Vec<Case>, FidelityError> {
+    let mut cases: Vec<Case> = Vec::new();
+    let mut index: BTreeMap<[String; 4], usize> = BTreeMap::new();
+    for (i, line) in text.lines().enumerate().skip(1) {
+        let line_no = i + 1;
+        if line.trim().is_empty() {
+            continue;
+        }
+        let bad = |msg: String| FidelityError::Reference { line: line_no, msg };
+        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
+        let [preset, body, terrain, brain, k, velocity] = fields[..] else {
+            return Err(bad(format!(
+                "6 fields expected (preset,body,terrain,brain,k,velocity), got {}",
+                fields.len()
+            )));
+        };
+        let k: i64 = k.parse().map_err(|_| bad(format!("k: not a whole number: {k:?}")))?;
+        let v: f64 = velocity
+            .parse()
+            .map_err(|_| bad(format!("velocity: not a number: {velocity:?}")))?;
+        if !v.is_finite() {
+            return Err(bad(format!("velocity: not finite: {v}")));
+        }
+        let key = [preset, body, terrain, brain].map(str::to_string);
+        let at = *index.entry(key).or_insert_with(|| {
+            cases.push(Case {
+                preset: preset.into(),
+                body: body.into(),
+                terrain: terrain.into(),
+                brain: brain.into(),
+                starts: Vec::new(),
+            });
+            cases.len() - 1
+        });
+        cases[at].starts.push((k, v));
+    }
+    Ok(cases)
+}
+
+/// Quartiles and median of an ensemble (NumPy's linear interpolation).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Spread {
+    /// First quartile.
+    pub q1: f64,
+    /// Median.
+    pub median: f64,
+    /// Third quartile.
+    pub q3: f64,
+}
+
+impl Spread {
+    fn of(values: &[f64]) -> Spread {
+        Spread {
+            q1: quantile(values, 0.25),
+            median: quantile(values, 0.5),
+            q3: quantile(values, 0.75),
+        }
+    }
+}
+
+/// One case's row of the protocol's table.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CaseResult {
+    /// `preset/body/terrain/brain`.
+    pub case: String,
+    /// Starts on each side.
+    pub n: usize,
+    /// The original's ensemble.
+    pub original: Spread,
+    /// vsrlab's ensemble from the same starts.
+    pub ours: Spread,
+    /// The medians' equivalence test.
+    pub equivalence: MedianEquivalence,
+    /// Two-sided Mann–Whitney p-value.
+    pub mann_whitney_p: f64,
+    /// The Kolmogorov–Smirnov test.
+    pub ks: KolmogorovSmirnov,
+    /// Equivalent medians and KS p ≥ [`KS_LEVEL`].
+    pub passed: bool,
+    /// vsrlab's velocities, in the order of the starts.
+    pub values: Vec<f64>,
+    /// Simulated steps and the CPU seconds they took, summed over the ensemble's episodes.
+    pub steps: u64,
+    /// CPU seconds of the ensemble's episodes.
+    pub seconds: f64,
+}
+
+/// Options of [`run_case`].
+#[derive(Debug, Clone, Default)]
+pub struct FidelityOptions {
+    /// The 2D solver (`soft-substeps`, `sequential-impulses`); None: the task's default.
+    pub solver: Option<String>,
+    /// Use only the starts with |k| ≤ this (the reference's own: all).
+    pub max_k: Option<i64>,
+}
+
+/// vsrlab's ensemble for `case` and the protocol's tests against the original's.
+pub fn run_case(case: &Case, options: &FidelityOptions) -> Result<CaseResult, FidelityError> {
+    let fail = |msg: String| FidelityError::Case { case: case.name(), msg };
+    let starts: Vec<(i64, f64)> = case
+        .starts
+        .iter()
+        .copied()
+        .filter(|(k, _)| options.max_k.is_none_or(|m| k.abs() <= m))
+        .collect();
+    if starts.len() < 4 {
+        return Err(fail(format!("{} starts: the tests need at least 4", starts.len())));
+    }
+    let robot = RobotSpec::from_short_forms(&case.body, &case.preset, SENSORS, &case.brain)
+        .map_err(|e| fail(format!("--{}: {}", e.part(), e.message())))?;
+    let mut task = TaskSpec::parse(&format!("locomotion:{}", case.terrain)).map_err(|e| fail(e.to_string()))?;
+    if let Some(solver) = &options.solver {
+        task = task
+            .with_settings(&[("physics.solver", serde_json::json!(solver))])
+            .map_err(|e| fail(e.to_string()))?;
+    }
+    let tasks = starts
+        .iter()
+        .map(|&(k, _)| ensemble::shifted_task(&task, k as f64 * SHIFT))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| fail(e.to_string()))?;
+    let episodes = tasks
+        .par_iter()
+        .map(|t| {
+            let clock = cpu_clock();
+            let outcome = vsrlab_tasks::episode::run(&robot, t.task(), 0, vsrlab_tasks::TraceLevel::None);
+            outcome.map(|o| (o.metric("velocity"), o.steps, cpu_clock() - clock))
+        })
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| fail(e.to_string()))?;
+    let values: Vec<f64> = episodes.iter().map(|e| e.0).collect();
+    let original: Vec<f64> = starts.iter().map(|s| s.1).collect();
+    let equivalence = median_equivalence(&values, &original, seed_of(&case.name()));
+    let ks = kolmogorov_smirnov(&values, &original).ok_or_else(|| fail("a NaN velocity".into()))?;
+    let mann_whitney_p = mann_whitney_u(&values, &original).map_or(f64::NAN, |m| m.p);
+    Ok(CaseResult {
+        case: case.name(),
+        n: values.len(),
+        original: Spread::of(&original),
+        ours: Spread::of(&values),
+        passed: equivalence.equivalent && ks.p >= KS_LEVEL,
+        equivalence,
+        mann_whitney_p,
+        ks,
+        steps: episodes.iter().map(|e| e.1).sum(),
+        seconds: episodes.iter().map(|e| e.2).sum(),
+        values,
+    })
+}
+
+/// The resampling seed of a case: its name hashed (FNV-1a), so that a case's table does not
+/// depend on which other cases run.
+fn seed_of(name: &str) -> u64 {
+    name.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+        (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+/// This thread's CPU time in seconds (wall time where the platform has no per-thread clock).
+fn cpu_clock() -> f64 {
+    thread_cpu_seconds().unwrap_or_else(|| {
+        static START: std::sync::OnceLock<Instant> = std::sync::OnceLock::new();
+        START.get_or_init(Instant::now).elapsed().as_secs_f64()
+    })
+}
+
+#[cfg(target_os = "linux")]
+fn thread_cpu_seconds() -> Option<f64> {
+    // utime + stime of this thread, in clock ticks (fields 14 and 15 of its stat line)
+    let stat = std::fs::read_to_string("/proc/thread-self/stat").ok()?;
+    let after = &stat[stat.rfind(')')? + 2..];
+    let fields: Vec<&str> = after.split_whitespace().collect();
+    let ticks: f64 = fields.get(11)?.parse::<f64>().ok()? + fields.get(12)?.parse::<f64>().ok()?;
+    Some(ticks / 100.0)
+}
+
+#[cfg(not(target_os = "linux"))]
+fn thread_cpu_seconds() -> Option<f64> {
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_shipped_reference_reads_into_cases_of_whole_ensembles() {
+        let cases = read_cases(ORIGINAL_2D).unwrap();
+        assert!(!cases.is_empty());
+        for case in &cases {
+            assert!(case.starts.len() >= 30, "{}: {}", case.name(), case.starts.len());
+            assert!(
+                !case.starts.iter().any(|&(k, _)| k == 0),
+                "{}: no unshifted start",
+                case.name()
+            );
+        }
+        let names: std::collections::BTreeSet<String> = cases.iter().map(Case::name).collect();
+        assert_eq!(names.len(), cases.len(), "each case once");
+    }
+
+    #[test]
+    fn bad_reference_lines_name_the_line_and_the_field() {
+        let header = "preset,body,terrain,brain,k,velocity\n";
+        let err = read_cases(&format!("{header}2021,biped-4x3,flat,phase,1\n")).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "reference, line 2: 6 fields expected (preset,body,terrain,brain,k,velocity), got 5"
+        );
+        let err = read_cases(&format!("{header}2021,biped-4x3,flat,phase,one,0.5\n")).unwrap_err();
+        assert!(err.to_string().starts_with("reference, line 2: k: "), "{err}");
+        let err = read_cases(&format!("{header}\n2021,biped-4x3,flat,phase,1,NaN\n")).unwrap_err();
+        assert!(
+            err.to_string().starts_with("reference, line 3: velocity: not finite"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn a_case_vsrlab_cannot_build_is_an_error_naming_it() {
+        let case = Case {
+            preset: "2021".into(),
+            body: "biped-4x3".into(),
+            terrain: "marsh".into(),
+            brain: "phase".into(),
+            starts: (1..=4).map(|k| (k, 0.1)).collect(),
+        };
+        let err = run_case(&case, &FidelityOptions::default()).unwrap_err();
+        assert!(
+            err.to_string().starts_with("case 2021/biped-4x3/marsh/phase: "),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn a_case_against_its_own_velocities_passes_and_against_shifted_ones_fails() {
+        // vsrlab's own ensemble as the reference: equivalent by construction; moved up by far
+        // more than its spread: not
+        let mut case = Case {
+            preset: "2022".into(),
+            body: "worm-4x2".into(),
+            terrain: "flat".into(),
+            brain: "phase".into(),
+            starts: (-8..=8).filter(|&k| k != 0).map(|k| (k, 0.0)).collect(),
+        };
+        let options = FidelityOptions {
+            solver: Some("soft-substeps".into()),
+            max_k: None,
+        };
+        let first = run_case(&case, &options).unwrap();
+        case.starts = case
+            .starts
+            .iter()
+            .zip(&first.values)
+            .map(|(&(k, _), &v)| (k, v))
+            .collect();
+        let same = run_case(&case, &options).unwrap();
+        assert!(
+            same.passed && same.equivalence.difference == 0.0 && same.ks.d == 0.0,
+            "{same:?}"
+        );
+        let spread = (first.ours.q3 - first.ours.q1).max(1e-3);
+        case.starts.iter_mut().for_each(|s| s.1 += 20.0 * spread);
+        let moved = run_case(&case, &options).unwrap();
+        assert!(!moved.passed && !moved.equivalence.equivalent, "{moved:?}");
+        assert_eq!(moved.n, 16);
+    }
+}

@@ -23,9 +23,22 @@ pub struct FidelityArgs {
     /// of the ones shipped with vsrlab.
     #[arg(long)]
     pub reference: Option<PathBuf>,
+    /// A task setting to change, `KEY=VALUE` (repeatable), e.g. `physics.contact_hertz=30`: a
+    /// solver variant under the protocol. VALUE is read as JSON, else as a string.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub settings: Vec<String>,
     /// Print JSON (every case's tests and velocities) instead of a table.
     #[arg(long)]
     pub json: bool,
+}
+
+/// `KEY=VALUE` into a key and a JSON value (a string when VALUE is not JSON).
+fn setting(text: &str) -> Result<(String, serde_json::Value), String> {
+    let (key, value) = text
+        .split_once('=')
+        .ok_or_else(|| format!("--set {text:?}: KEY=VALUE expected"))?;
+    let value = serde_json::from_str(value).unwrap_or_else(|_| serde_json::Value::String(value.to_string()));
+    Ok((key.trim().to_string(), value))
 }
 
 /// Runs `vsrlab fidelity`.
@@ -55,6 +68,7 @@ pub fn run(a: FidelityArgs) -> Result<(), String> {
     let options = FidelityOptions {
         solver: a.solver.clone(),
         max_k: a.starts.map(|n| (n / 2) as i64),
+        settings: a.settings.iter().map(|s| setting(s)).collect::<Result<_, _>>()?,
     };
     let mut results = Vec::with_capacity(cases.len());
     if !a.json {
@@ -72,6 +86,7 @@ pub fn run(a: FidelityArgs) -> Result<(), String> {
     if a.json {
         let answer = serde_json::json!({
             "solver": a.solver.as_deref().unwrap_or("default"),
+            "settings": a.settings,
             "passed": passed,
             "cases": results,
             "steps": steps,
@@ -82,9 +97,10 @@ pub fn run(a: FidelityArgs) -> Result<(), String> {
         let share = 100.0 * passed as f64 / results.len() as f64;
         println!();
         println!(
-            "passed {passed} of {} cases ({share:.0} %), solver {}",
+            "passed {passed} of {} cases ({share:.0} %), solver {}{}",
             results.len(),
-            a.solver.as_deref().unwrap_or("default")
+            a.solver.as_deref().unwrap_or("default"),
+            a.settings.iter().map(|s| format!(", {s}")).collect::<String>()
         );
         println!(
             "{} episodes, {steps} steps in {seconds:.1} CPU-s: {:.0} steps per CPU-second",

@@ -30,8 +30,9 @@ pub const SHIFT: f64 = 1e-6;
 /// Below this KS p-value a case fails on the shape of its distribution.
 pub const KS_LEVEL: f64 = 0.001;
 
-/// The sensors of every case's robot: the brains of the cases read none.
-const SENSORS: &str = "uniform-a+vxy+t-0";
+/// The sensors of every case's robot: its brain reads none, and the instrument's robots have
+/// none (the same work on both sides when their speeds are compared).
+const SENSORS: &str = "empty";
 
 /// One reference case: the original's velocities from starts shifted by k·[`SHIFT`].
 #[derive(Debug, Clone, PartialEq)]
@@ -172,6 +173,9 @@ pub struct FidelityOptions {
     pub solver: Option<String>,
     /// Use only the starts with |k| ≤ this (the reference's own: all).
     pub max_k: Option<i64>,
+    /// Task settings to change (`physics.contact_hertz`, …), as `vsrlab run`'s overrides: a
+    /// solver variant to put under the protocol.
+    pub settings: Vec<(String, serde_json::Value)>,
 }
 
 /// vsrlab's ensemble for `case` and the protocol's tests against the original's.
@@ -189,10 +193,13 @@ pub fn run_case(case: &Case, options: &FidelityOptions) -> Result<CaseResult, Fi
     let robot = RobotSpec::from_short_forms(&case.body, &case.preset, SENSORS, &case.brain)
         .map_err(|e| fail(format!("--{}: {}", e.part(), e.message())))?;
     let mut task = TaskSpec::parse(&format!("locomotion:{}", case.terrain)).map_err(|e| fail(e.to_string()))?;
+    let mut settings: Vec<(&str, serde_json::Value)> = Vec::new();
     if let Some(solver) = &options.solver {
-        task = task
-            .with_settings(&[("physics.solver", serde_json::json!(solver))])
-            .map_err(|e| fail(e.to_string()))?;
+        settings.push(("physics.solver", serde_json::json!(solver)));
+    }
+    settings.extend(options.settings.iter().map(|(k, v)| (k.as_str(), v.clone())));
+    if !settings.is_empty() {
+        task = task.with_settings(&settings).map_err(|e| fail(e.to_string()))?;
     }
     let tasks = starts
         .iter()
@@ -325,7 +332,7 @@ mod tests {
         };
         let options = FidelityOptions {
             solver: Some("soft-substeps".into()),
-            max_k: None,
+            ..FidelityOptions::default()
         };
         let first = run_case(&case, &options).unwrap();
         case.starts = case

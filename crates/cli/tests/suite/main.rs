@@ -9,6 +9,7 @@ mod codesign;
 mod common;
 mod ensemble;
 mod evaluate;
+mod fidelity;
 mod fuzz;
 mod graph;
 mod hebbian;

@@ -316,6 +316,9 @@ def test_quick_evaluations_go_in_few_chunks_and_give_the_same_answers(cluster, t
         assert evaluator.chunks == 8, "no estimate yet: 4 chunks per actor"
         second = evaluator(genotypes, seeds)
         answers[floor] = (evaluator.chunks, first, second)
+        robot = json.loads(evaluator.robot_file(genotypes[0], None, "test"))
+        assert robot, "a best robot's file comes back"
+        assert evaluator.pool.busy == [0, 0], "every chunk and file released on the shared pool"
         evaluator.close()
     assert answers[0.0][0] == 8, "no lower bound: chunks as before"
     assert answers[1000.0][0] == 1, "a floor above the batch's seconds: the batch goes whole"

@@ -206,17 +206,23 @@ class RayEvaluator:
         return self.pool.pids
 
     def robot_file(self, genotype: str, record: Optional[str], note: str) -> bytes:
-        """A run's best robot file, made on an actor (the next one if it dies)."""
+        """A run's best robot file, made on the least busy actor (a campaign's runs end at about
+        the same time: their files spread over the nodes), another one if it dies."""
         ray = self._ray
         exceptions = (ray.exceptions.RayActorError, ray.exceptions.WorkerCrashedError)
+        failed: set = set()
         for attempt in range(self.attempts):
-            actor = self.actors[attempt % len(self.actors)]
+            allowed = [k for k in range(len(self.actors)) if k not in failed] or list(range(len(self.actors)))
+            actor = self.pool.take(allowed)
             try:
-                ref = actor.robot_file.remote(self.key, self.text, self.origin, genotype, record, note)
+                ref = self.actors[actor].robot_file.remote(self.key, self.text, self.origin, genotype, record, note)
                 return ray.get(ref, timeout=self.timeout)
             except exceptions as e:
+                failed.add(actor)
                 if attempt + 1 == self.attempts:
                     raise RuntimeError(f"ray: the best robot's file failed {self.attempts} times: {e}") from e
+            finally:
+                self.pool.release(actor)
         raise RuntimeError("ray: no attempt")
 
     def __call__(self, genotypes: list, seeds: np.ndarray) -> str:

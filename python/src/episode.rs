@@ -6,8 +6,8 @@
 //! stopped the episode; truncated: its duration is over.
 
 use crate::robot::{task_spec, PyRobot};
-use crate::value_error;
-use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use crate::{action_rows, value_error};
+use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use rayon::prelude::*;
 use std::sync::Mutex;
@@ -306,16 +306,7 @@ impl PyVectorEpisode {
         let mut guard = self.envs.lock().unwrap_or_else(|p| p.into_inner());
         let envs: &mut Vec<Env> = &mut guard;
         let n = envs.len();
-        let shape = actions.shape();
-        if shape != [n, self.action_size] {
-            return Err(value_error(format!(
-                "actions: shape ({}, {}) expected, got {shape:?}",
-                n, self.action_size
-            )));
-        }
-        let a = actions
-            .as_slice()
-            .map_err(|_| value_error("actions: a C-contiguous float64 array is needed"))?;
+        let a = action_rows(&actions, n, self.action_size)?;
         let width = self.action_size;
         let results: Vec<StepResult> = py
             .detach(|| {

@@ -2,9 +2,9 @@
 //! and every other task of [`evogym_tasks`]): EvoGym's observation, action (one target length ratio in [0.6, 1.6] per
 //! actuator voxel), reward and ends, on vsrlab's mass-spring engine (docs/multimaterial.md).
 
-use crate::value_error;
+use crate::{action_rows, value_error};
+use numpy::PyReadonlyArray2;
 use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1};
-use numpy::{PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use rayon::prelude::*;
 use std::sync::Mutex;
@@ -363,16 +363,7 @@ impl PyEvoGymVectorEnv {
         let mut guard = self.slots.lock().unwrap_or_else(|p| p.into_inner());
         let (slots, lanes) = &mut *guard;
         let n = slots.len();
-        if actions.shape() != [n, self.action_size] {
-            return Err(value_error(format!(
-                "actions: shape ({n}, {}) expected, got {:?}",
-                self.action_size,
-                actions.shape()
-            )));
-        }
-        let a = actions
-            .as_slice()
-            .map_err(|_| value_error("actions: a C-contiguous float64 array is needed"))?;
+        let a = action_rows(&actions, n, self.action_size)?;
         if let Some(i) = a.iter().position(|v| !v.is_finite()) {
             return Err(value_error(format!(
                 "actions: environment {}, action {} is not finite ({})",

@@ -22,6 +22,25 @@ pub(crate) fn value_error(message: impl std::fmt::Display) -> PyErr {
     PyValueError::new_err(message.to_string())
 }
 
+/// The rows of a vector environment's `actions` array: (rows, width) and C-contiguous, or an
+/// error naming `actions`.
+pub(crate) fn action_rows<'a>(
+    actions: &'a numpy::PyReadonlyArray2<'_, f64>,
+    rows: usize,
+    width: usize,
+) -> PyResult<&'a [f64]> {
+    use numpy::PyUntypedArrayMethods;
+    if actions.shape() != [rows, width] {
+        return Err(value_error(format!(
+            "actions: shape ({rows}, {width}) expected, got {:?}",
+            actions.shape()
+        )));
+    }
+    actions
+        .as_slice()
+        .map_err(|_| value_error("actions: a C-contiguous float64 array is needed"))
+}
+
 /// The extension module.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {

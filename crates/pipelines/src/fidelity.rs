@@ -14,9 +14,9 @@
 use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::BTreeMap;
-use std::time::Instant;
 use vsrlab_analysis::equivalence::{kolmogorov_smirnov, median_equivalence, KolmogorovSmirnov, MedianEquivalence};
 use vsrlab_analysis::stats::{mann_whitney_u, quantile};
+use vsrlab_experiment::cpu_time::thread_cpu_seconds;
 use vsrlab_tasks::ensemble;
 use vsrlab_tasks::{RobotSpec, TaskSpec};
 
@@ -209,9 +209,9 @@ pub fn run_case(case: &Case, options: &FidelityOptions) -> Result<CaseResult, Fi
     let episodes = tasks
         .par_iter()
         .map(|t| {
-            let clock = cpu_clock();
+            let clock = thread_cpu_seconds();
             let outcome = vsrlab_tasks::episode::run(&robot, t.task(), 0, vsrlab_tasks::TraceLevel::None);
-            outcome.map(|o| (o.metric("velocity"), o.steps, cpu_clock() - clock))
+            outcome.map(|o| (o.metric("velocity"), o.steps, thread_cpu_seconds() - clock))
         })
         .collect::<Result<Vec<_>, _>>()
         .map_err(|e| fail(e.to_string()))?;
@@ -241,29 +241,6 @@ fn seed_of(name: &str) -> u64 {
     name.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
         (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
     })
-}
-
-/// This thread's CPU time in seconds (wall time where the platform has no per-thread clock).
-fn cpu_clock() -> f64 {
-    thread_cpu_seconds().unwrap_or_else(|| {
-        static START: std::sync::OnceLock<Instant> = std::sync::OnceLock::new();
-        START.get_or_init(Instant::now).elapsed().as_secs_f64()
-    })
-}
-
-#[cfg(target_os = "linux")]
-fn thread_cpu_seconds() -> Option<f64> {
-    // utime + stime of this thread, in clock ticks (fields 14 and 15 of its stat line)
-    let stat = std::fs::read_to_string("/proc/thread-self/stat").ok()?;
-    let after = &stat[stat.rfind(')')? + 2..];
-    let fields: Vec<&str> = after.split_whitespace().collect();
-    let ticks: f64 = fields.get(11)?.parse::<f64>().ok()? + fields.get(12)?.parse::<f64>().ok()?;
-    Some(ticks / 100.0)
-}
-
-#[cfg(not(target_os = "linux"))]
-fn thread_cpu_seconds() -> Option<f64> {
-    None
 }
 
 #[cfg(test)]

@@ -65,6 +65,15 @@ impl<L: Lanes> CollisionLanes<L> {
         }
     }
 
+    /// Forgets lane `lane`'s contacts and list, as a world that has not stepped has none (a
+    /// lane restarted): its list is rebuilt at the next step.
+    pub fn forget_lane(&mut self, lane: usize) {
+        self.built_size.set(lane, 0.0);
+        self.forces.iter_mut().for_each(|f| f.set_lane(lane, glam::DVec3::ZERO));
+        self.touching.iter_mut().for_each(|t| t.set(lane, false));
+        self.contacts.iter_mut().for_each(|(_, _, hit)| hit.set(lane, false));
+    }
+
     /// Sets every voxel's contact force of this step (`forces`) and which voxels touch.
     #[inline(always)]
     pub fn add_forces(&mut self, colliders: &[ColliderLanes<L>], lattice: f64) {

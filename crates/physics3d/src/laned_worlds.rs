@@ -84,6 +84,11 @@ impl LanedWorlds {
         each!(&self.0, w => w.diverged(lane))
     }
 
+    /// Starts lane `lane` over from the world's first state ([`WorldLanes::restart`]).
+    pub fn restart(&mut self, lane: usize) {
+        each!(&mut self.0, w => w.restart(lane))
+    }
+
     /// Sets voxel `v`'s temperature in lane `lane`.
     pub fn set_temperature(&mut self, v: VoxelId, lane: usize, temperature: f64) {
         each!(&mut self.0, w => w.set_temperature(v, lane, temperature))

@@ -98,6 +98,26 @@ impl<L: Lanes> LinkLanes<L> {
         laned
     }
 
+    /// Sets lane `lane`'s rest length, carried state and results to `from`'s lane `lane` (a lane
+    /// restarted from the world's first state).
+    pub fn copy_lane(&mut self, lane: usize, from: &Self) {
+        self.rest.set(lane, from.rest.get(lane));
+        self.small_angle.set(lane, from.small_angle.get(lane));
+        self.velocity_valid.set(lane, from.velocity_valid.get(lane));
+        for (to, from) in [
+            (&mut self.d_old, &from.d_old),
+            (&mut self.theta1_old, &from.theta1_old),
+            (&mut self.theta2_old, &from.theta2_old),
+            (&mut self.force_neg, &from.force_neg),
+            (&mut self.force_pos, &from.force_pos),
+            (&mut self.moment_neg, &from.moment_neg),
+            (&mut self.moment_pos, &from.moment_pos),
+        ] {
+            to.set_lane(lane, from.lane(lane));
+        }
+        self.strain.set(lane, from.strain.get(lane));
+    }
+
     /// Writes lane `lane`'s results and carried state back to its link.
     #[inline(always)]
     pub fn scatter(&self, lane: usize, link: &mut Link) {

@@ -64,6 +64,17 @@ impl<L: Lanes> VoxelLanes<L> {
         self.size.set(lane, v.size);
     }
 
+    /// Sets lane `lane` to `from`'s lane `lane` (a lane restarted from the world's first state).
+    pub fn copy_lane(&mut self, lane: usize, from: &Self) {
+        self.pos.set_lane(lane, from.pos.lane(lane));
+        self.orient.set_lane(lane, from.orient.lane(lane));
+        self.momentum.set_lane(lane, from.momentum.lane(lane));
+        self.angular_momentum.set_lane(lane, from.angular_momentum.lane(lane));
+        self.is_static.set(lane, from.is_static.get(lane));
+        self.dt_prev.set(lane, from.dt_prev.get(lane));
+        self.size.set(lane, from.size.get(lane));
+    }
+
     /// Writes lane `lane`'s state back to a voxel of the scalar world.
     #[inline(always)]
     pub fn write_lane(&self, lane: usize, v: &mut crate::voxel::Voxel) {

@@ -15,6 +15,7 @@ use crate::voxel_lanes::{VoxelLanes, VoxelShared};
 use crate::world::{VoxelId, World, DIVERGED_STRAIN};
 use crate::Physics3dError;
 use glam::DVec3;
+use std::sync::Arc;
 #[cfg(target_arch = "x86_64")]
 use vsrlab_lanes::avx::Avx;
 #[cfg(target_arch = "x86_64")]
@@ -63,8 +64,21 @@ struct Laned<L: Lanes> {
     /// Voxel–voxel collisions, when the world has them, and each voxel as they see it.
     collisions: Option<CollisionLanes<L>>,
     colliders: Vec<ColliderLanes<L>>,
-    /// Each lane's divergence, the first: (steps taken before, voxel), as `World::step` names it.
+    /// Each lane's divergence, the first: (steps its episode took before, voxel), as
+    /// `World::step` names it.
     diverged: Vec<Option<(u64, usize)>>,
+    /// The step at which each lane's episode started (0, or when it was restarted).
+    started: Vec<u64>,
+    /// Every lane's voxels and links as they were before the first step, which a restarted lane
+    /// copies.
+    first: Arc<FirstState<L>>,
+}
+
+/// A laned world's voxel and link states before its first step.
+#[derive(Debug)]
+struct FirstState<L: Lanes> {
+    voxels: Vec<VoxelLanes<L>>,
+    links: Vec<LinkLanes<L>>,
 }
 
 impl<const N: usize> WorldLanes<N> {
@@ -150,6 +164,13 @@ impl<const N: usize> WorldLanes<N> {
         diverged.map(|(step, voxel)| Physics3dError::Diverged { step, voxel })
     }
 
+    /// Starts lane `lane` over: its state becomes the world's before the first step (temperatures
+    /// included), as a fresh episode of the same world, while the other lanes step on. This is
+    /// how a population refills a lane whose episode ended early.
+    pub fn restart(&mut self, lane: usize) {
+        self.state_mut().restart(lane);
+    }
+
     /// Voxel `v`'s centre in lane `lane` (m).
     pub fn position(&self, v: VoxelId, lane: usize) -> DVec3 {
         self.state().position(v, lane)
@@ -216,6 +237,7 @@ impl<const N: usize> WorldLanes<N> {
 trait LaneState {
     fn set_temperature(&mut self, v: VoxelId, lane: usize, temperature: f64);
     fn diverged(&self, lane: usize) -> Option<(u64, usize)>;
+    fn restart(&mut self, lane: usize);
     fn position(&self, v: VoxelId, lane: usize) -> DVec3;
     fn velocity(&self, v: VoxelId, lane: usize) -> DVec3;
     fn touches_floor(&self, v: VoxelId, lane: usize) -> bool;
@@ -276,7 +298,7 @@ impl<L: Lanes> Laned<L> {
             })
             .collect();
         let ends_of: Vec<(usize, usize)> = links.iter().map(|l| (l.0, l.1)).collect();
-        let links = links
+        let links: Vec<LinkLanes<L>> = links
             .into_iter()
             .map(|(neg, pos, axis, k, area)| {
                 let rest = (voxels[neg].lanes.size + voxels[pos].lanes.size) * 0.5;
@@ -309,6 +331,10 @@ impl<L: Lanes> Laned<L> {
                 damping: v.shared.material.collision_damping * v.shared.constants.linear_damping,
             })
             .collect();
+        let first = Arc::new(FirstState {
+            voxels: voxels.iter().map(|v| v.lanes.clone()).collect(),
+            links: links.clone(),
+        });
         Ok(Laned {
             voxels,
             links,
@@ -320,6 +346,8 @@ impl<L: Lanes> Laned<L> {
             collisions,
             colliders,
             diverged: vec![None; L::LANES],
+            started: vec![0; L::LANES],
+            first,
         })
     }
 
@@ -426,7 +454,7 @@ impl<L: Lanes> Laned<L> {
     fn mark_diverged(&mut self, bad: L::Mask, voxel: usize) {
         for (lane, diverged) in self.diverged.iter_mut().enumerate() {
             if bad.get(lane) && diverged.is_none() {
-                *diverged = Some((self.steps, voxel));
+                *diverged = Some((self.steps - self.started[lane], voxel));
             }
         }
     }
@@ -444,6 +472,20 @@ impl<L: Lanes> LaneState for Laned<L> {
 
     fn diverged(&self, lane: usize) -> Option<(u64, usize)> {
         self.diverged[lane]
+    }
+
+    fn restart(&mut self, lane: usize) {
+        for (voxel, first) in self.voxels.iter_mut().zip(&self.first.voxels) {
+            voxel.lanes.copy_lane(lane, first);
+        }
+        for (link, first) in self.links.iter_mut().zip(&self.first.links) {
+            link.copy_lane(lane, first);
+        }
+        if let Some(collisions) = &mut self.collisions {
+            collisions.forget_lane(lane);
+        }
+        self.diverged[lane] = None;
+        self.started[lane] = self.steps;
     }
 
     fn position(&self, v: VoxelId, lane: usize) -> DVec3 {
@@ -735,6 +777,82 @@ mod tests {
         assert!(matches!(errors[2], Some(Physics3dError::Diverged { .. })), "{errors:?}");
         assert!(errors.iter().filter(|e| e.is_some()).count() == 1, "{errors:?}");
         assert!(laned.step(0.0).is_err() && laned.step(f64::NAN).is_err());
+    }
+
+    #[test]
+    fn a_restarted_lane_steps_as_a_fresh_world_and_the_others_step_on() {
+        in_every_form(a_restarted_lane_steps_as_a_fresh_world_and_the_others_step_on_in);
+    }
+
+    /// Lane 2 heats a voxel without bound 100 steps into each of its episodes and is restarted
+    /// whenever it diverges; lane 1 is restarted once, mid-stride and in contact. Every lane must
+    /// keep the bits of its own scalar world (a fresh one from each restart), contacts and
+    /// divergences included.
+    fn a_restarted_lane_steps_as_a_fresh_world_and_the_others_step_on_in(make: Make) {
+        let mut scalar: Vec<World> = (0..LANES).map(|_| block_and_falling_voxel()).collect();
+        let mut laned = make(&scalar[0]).unwrap();
+        let dt = scalar[0].recommended_time_step();
+        let n = laned.voxel_count();
+        let mut errors: Vec<Option<Physics3dError>> = vec![None; LANES];
+        let mut started = [0usize; LANES];
+        let (mut restarts, mut touches) = (0, 0);
+        for step in 0..3000 {
+            let t = step as f64 * dt;
+            for (lane, w) in scalar.iter_mut().enumerate() {
+                let own = step - started[lane];
+                for v in 0..n {
+                    let runaway = lane == 2 && v == 3 && own >= 100;
+                    let temperature = match runaway {
+                        true => 1e3 * own as f64,
+                        false => 1.5 * gait(v, lane, t) + 10.0 * lane as f64,
+                    };
+                    laned.set_temperature(VoxelId(v), lane, temperature);
+                    w.set_temperature(VoxelId(v), temperature);
+                }
+                errors[lane] = w.step(dt).err();
+            }
+            laned.step(dt).unwrap();
+            for (lane, w) in scalar.iter().enumerate() {
+                let what = format!("step {step}, lane {lane}");
+                assert_eq!(laned.diverged(lane), errors[lane], "{what}");
+                if errors[lane].is_some() {
+                    continue;
+                }
+                let contacts: Vec<_> = laned.contacts(lane).collect();
+                assert_eq!(contacts, w.contacts().collect::<Vec<_>>(), "{what}");
+                touches += contacts.len();
+                for v in 0..n {
+                    assert_eq!(
+                        laned.touches_voxel(VoxelId(v), lane),
+                        w.touches_voxel(VoxelId(v)),
+                        "{what}"
+                    );
+                    assert_eq!(
+                        laned.position(VoxelId(v), lane).to_array().map(f64::to_bits),
+                        w.position(VoxelId(v)).to_array().map(f64::to_bits),
+                        "{what}, voxel {v}"
+                    );
+                    assert_eq!(
+                        laned.orientation(VoxelId(v), lane).to_array().map(f64::to_bits),
+                        w.orientation(VoxelId(v)).to_array().map(f64::to_bits),
+                        "{what}, voxel {v}"
+                    );
+                }
+            }
+            for lane in [1, 2] {
+                if errors[lane].is_some() || (lane == 1 && step == 1500) {
+                    laned.restart(lane);
+                    scalar[lane] = block_and_falling_voxel();
+                    started[lane] = step + 1;
+                    restarts += 1;
+                }
+            }
+        }
+        // lane 2 diverged and restarted again and again; lanes touched
+        assert!(
+            restarts >= 3 && touches > 100,
+            "{restarts} restarts, {touches} contacts"
+        );
     }
 
     /// Property: random connected bodies (2³ to 5³ boxes, 60 % filled, collisions on), each lane

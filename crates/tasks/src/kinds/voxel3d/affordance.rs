@@ -27,6 +27,7 @@
 
 use super::aperture::{aperture_world, random_aperture_world, shape_length, ApertureWorld, Environment};
 use super::physics::{Built, Physics3d, MAX_STEPS};
+use super::population::{run_population, LaneEpisode};
 use super::recorder::Recorder;
 use super::robot::Voxel3dRobot;
 use super::setup::{lanes, prepare, prepare_batch, sense, Prepared};
@@ -205,104 +206,110 @@ impl Affordance {
         }
     }
 
-    /// One environment's episodes, one per voter, in `world` (one world, or lanes of them):
-    /// each steps, senses, checks the penalties, controls, actuates and votes as the study's
-    /// loop; `record(world, actuation, votes, t)` after every step of the first voter.
-    fn episodes<W: WorldView>(
+    /// One environment's episode of `voter` in `world`, the study's loop: every step the world
+    /// steps, then the robot senses, is checked for the penalties, controls, actuates and votes;
+    /// `record(world, actuation, votes, t)` after every step.
+    fn episode(
+        &self,
+        env: Environment,
+        world: &mut World,
+        setting: &Setting,
+        sensors: &[super::Sensor3],
+        voter: &mut Voter,
+        record: &mut Record<World>,
+    ) {
+        for k in 1..=setting.steps {
+            if let Err(e) = world.step(setting.dt) {
+                voter.result = Some(Err(failure(env, k, setting.dt, &e)));
+                return;
+            }
+            if !self.step_voter(env, world, 0, voter, setting, sensors, k) {
+                return;
+            }
+            let votes = match self.evolved {
+                Evolved::Locomotion => &voter.random_votes[..],
+                _ => voter.capture.get(VOTE.name).unwrap_or_default(),
+            };
+            record(world, &voter.actuation, votes, k as f64 * setting.dt);
+        }
+        voter.result = Some(Ok(self.scores(world, 0, voter, setting)));
+    }
+
+    /// Step `k` (from 1) of `voter`'s episode in lane `lane`, after the world stepped. False
+    /// when the episode failed (its result is then set).
+    #[allow(clippy::too_many_arguments)]
+    fn step_voter<W: WorldView>(
         &self,
         env: Environment,
         world: &mut W,
+        lane: usize,
+        v: &mut Voter,
         setting: &Setting,
         sensors: &[super::Sensor3],
-        voters: &mut [Voter],
-        record: &mut Record<W>,
-    ) {
+        k: u64,
+    ) -> bool {
         let (dt, body) = (setting.dt, &setting.body);
         let (min_x, max_x, top) = setting.bounds;
         let flying_steps = (self.flying_seconds / dt).round() as u64;
-        let failure = |k: u64, e: &vsrlab_physics3d::Physics3dError| {
-            EpisodeError::Invalid(format!(
-                "{}: episode failed at t = {:.4} s: {e}",
-                env.name(),
-                k as f64 * dt
-            ))
-        };
-        for k in 1..=setting.steps {
-            if let Err(e) = world.step(dt) {
-                voters
-                    .iter_mut()
-                    .filter(|v| v.result.is_none())
-                    .for_each(|v| v.result = Some(Err(failure(k, &e))));
-                return;
-            }
-            let t = k as f64 * dt;
-            for (l, v) in voters.iter_mut().enumerate() {
-                if v.result.is_some() {
-                    continue;
-                }
-                if let Some(e) = world.diverged(l) {
-                    v.result = Some(Err(failure(k, &e)));
-                    continue;
-                }
-                sense(world, l, body, sensors, t, &mut v.readings);
-                v.airborne = if flying(world, l, &setting.bottom) {
-                    v.airborne + 1
-                } else {
-                    0
-                };
-                if self.penalties && !v.penalised {
-                    let flown = self.flying && v.airborne > flying_steps;
-                    v.penalised = flown || out_of_bounds(world, l, body, min_x, max_x, top);
-                }
-                v.brain.control(t, &v.readings, &mut v.actuation);
-                if self.evolved == Evolved::Affordance {
-                    v.actuation
-                        .iter_mut()
-                        .for_each(|a| *a = v.noise.random_range(-1.0..=1.0));
-                }
-                for (&voxel, a) in body.iter().zip(&mut v.actuation) {
-                    *a = a.clamp(-1.0, 1.0);
-                    world.set_temperature(voxel, l, self.physics.amplitude * *a);
-                }
-                v.brain.publish(&mut v.capture);
-                let Some(mut votes) = v.capture.get(VOTE.name) else {
-                    v.result = Some(Err(EpisodeError::Field(FieldError::new(
-                        "robot.brain",
-                        "the affordance task needs a brain that votes (elman)",
-                    ))));
-                    continue;
-                };
-                if self.evolved == Evolved::Locomotion {
-                    v.random_votes
-                        .iter_mut()
-                        .for_each(|r| *r = v.noise.random_range(-1.0..=1.0));
-                    votes = &v.random_votes;
-                }
-                v.touched = v.touched || touches_wall(world, l, &setting.pieces);
-                if v.touched && decision(votes) == env.passable() {
-                    v.correct += 1;
-                }
-                if l == 0 {
-                    record(world, &v.actuation, votes, t);
-                }
-            }
-            if voters.iter().all(|v| v.result.is_some()) {
-                return;
-            }
+        if let Some(e) = world.diverged(lane) {
+            v.result = Some(Err(failure(env, k, dt, &e)));
+            return false;
         }
-        for (l, v) in voters.iter_mut().enumerate().filter(|(_, v)| v.result.is_none()) {
-            let target = world.position(setting.target, l);
-            let centre = super::task::centre(world, body, l);
-            v.result = Some(Ok(match v.penalised {
-                true => Scores {
-                    distance: self.d_max,
-                    accuracy: 0.0,
-                },
-                false => Scores {
-                    distance: centre.distance(target).min(self.d_max),
-                    accuracy: v.correct as f64 / setting.steps as f64,
-                },
-            }));
+        let t = k as f64 * dt;
+        sense(world, lane, body, sensors, t, &mut v.readings);
+        v.airborne = if flying(world, lane, &setting.bottom) {
+            v.airborne + 1
+        } else {
+            0
+        };
+        if self.penalties && !v.penalised {
+            let flown = self.flying && v.airborne > flying_steps;
+            v.penalised = flown || out_of_bounds(world, lane, body, min_x, max_x, top);
+        }
+        v.brain.control(t, &v.readings, &mut v.actuation);
+        if self.evolved == Evolved::Affordance {
+            v.actuation
+                .iter_mut()
+                .for_each(|a| *a = v.noise.random_range(-1.0..=1.0));
+        }
+        for (&voxel, a) in body.iter().zip(&mut v.actuation) {
+            *a = a.clamp(-1.0, 1.0);
+            world.set_temperature(voxel, lane, self.physics.amplitude * *a);
+        }
+        v.brain.publish(&mut v.capture);
+        let Some(mut votes) = v.capture.get(VOTE.name) else {
+            v.result = Some(Err(EpisodeError::Field(FieldError::new(
+                "robot.brain",
+                "the affordance task needs a brain that votes (elman)",
+            ))));
+            return false;
+        };
+        if self.evolved == Evolved::Locomotion {
+            v.random_votes
+                .iter_mut()
+                .for_each(|r| *r = v.noise.random_range(-1.0..=1.0));
+            votes = &v.random_votes;
+        }
+        v.touched = v.touched || touches_wall(world, lane, &setting.pieces);
+        if v.touched && decision(votes) == env.passable() {
+            v.correct += 1;
+        }
+        true
+    }
+
+    /// The scores of `v`'s episode, which ran its last step in lane `lane`.
+    fn scores<W: WorldView>(&self, world: &W, lane: usize, v: &Voter, setting: &Setting) -> Scores {
+        let target = world.position(setting.target, lane);
+        let centre = super::task::centre(world, &setting.body, lane);
+        match v.penalised {
+            true => Scores {
+                distance: self.d_max,
+                accuracy: 0.0,
+            },
+            false => Scores {
+                distance: centre.distance(target).min(self.d_max),
+                accuracy: v.correct as f64 / setting.steps as f64,
+            },
         }
     }
 
@@ -415,6 +422,47 @@ fn flying<W: WorldView>(world: &W, lane: usize, bottom: &[VoxelId]) -> bool {
 
 /// What a scalar episode records after every step: the world, the actuation and the votes, at
 /// time t.
+/// The error that ends an episode in `env` at its step `k`.
+fn failure(env: Environment, k: u64, dt: f64, e: &vsrlab_physics3d::Physics3dError) -> EpisodeError {
+    EpisodeError::Invalid(format!(
+        "{}: episode failed at t = {:.4} s: {e}",
+        env.name(),
+        k as f64 * dt
+    ))
+}
+
+/// A [`Voter`]'s episode in one environment, in a laned population ([`run_population`]).
+struct Vote<'a, 'b> {
+    task: &'b Affordance,
+    env: Environment,
+    setting: &'b Setting,
+    sensors: &'b [super::Sensor3],
+    voter: Voter<'a>,
+}
+
+impl LaneEpisode for Vote<'_, '_> {
+    type Result = Result<Scores, EpisodeError>;
+
+    fn start(&mut self, _world: &LanedWorlds, _lane: usize) {}
+
+    fn advance(&mut self, world: &mut LanedWorlds, lane: usize, k: u64) -> bool {
+        let (env, setting, sensors) = (self.env, self.setting, self.sensors);
+        self.task
+            .step_voter(env, world, lane, &mut self.voter, setting, sensors, k)
+    }
+
+    fn finish(self, world: &LanedWorlds, lane: usize) -> Self::Result {
+        match self.voter.result {
+            Some(result) => result,
+            None => Ok(self.task.scores(world, lane, &self.voter, self.setting)),
+        }
+    }
+
+    fn refused(self, k: u64, error: &vsrlab_physics3d::Physics3dError) -> Self::Result {
+        Err(failure(self.env, k, self.setting.dt, error))
+    }
+}
+
 type Record<'a, W> = dyn FnMut(&W, &[f64], &[f64], f64) + 'a;
 
 /// What the episodes of one environment share (`Affordance::setting`).
@@ -569,19 +617,18 @@ impl Task for Affordance {
             recorder.record(&built.world, &built.body, &vec![0.0; n], 0.0);
             recorder.record_channel(&VOTE, &vec![0.0; n]);
             let mut world = built.world;
-            let mut voters = [Voter::new(brain.as_mut(), &mut noise, n, sensors.len())];
-            self.episodes(
+            let mut voter = Voter::new(brain.as_mut(), &mut noise, n, sensors.len());
+            self.episode(
                 env,
                 &mut world,
                 &setting,
                 &sensors,
-                &mut voters,
+                &mut voter,
                 &mut |world, actuation, votes, t| {
                     recorder.record(world, &setting.body, actuation, t);
                     recorder.record_channel(&VOTE, votes);
                 },
             );
-            let [voter] = voters;
             scores.push((env, voter.result.expect("every episode ends")?));
             steps += setting.steps;
             trace = trace.or(recorder.finish());
@@ -630,28 +677,28 @@ impl Task for Affordance {
             let setting = self.setting(&built);
             let n = setting.body.len();
             let running: Vec<usize> = (0..robots.len()).filter(|&r| ended[r].is_none()).collect();
-            let mut brains: Vec<(usize, &mut Prepared, &mut ChaCha8Rng)> = prepared
+            let Ok(mut world) = LanedWorlds::of(&built.world) else {
+                return one_by_one();
+            };
+            // the robots that did not fail in an earlier environment
+            let queue: Vec<Vote> = prepared
                 .iter_mut()
                 .zip(noises.iter_mut())
-                .enumerate()
-                .filter(|(r, _)| running.contains(r))
-                .map(|(r, (p, noise))| (r, p, noise))
+                .zip(&ended)
+                .filter(|(_, ended)| ended.is_none())
+                .map(|((p, noise), _)| Vote {
+                    task: self,
+                    env,
+                    setting: &setting,
+                    sensors: &sensors,
+                    voter: Voter::new(p.brain.as_mut(), noise, n, sensors.len()),
+                })
                 .collect();
-            for chunk in brains.chunks_mut(lanes()) {
-                let Ok(mut world) = LanedWorlds::of(&built.world) else {
-                    return one_by_one();
-                };
-                let robots_of_chunk: Vec<usize> = chunk.iter().map(|(r, _, _)| *r).collect();
-                let mut voters: Vec<Voter> = chunk
-                    .iter_mut()
-                    .map(|(_, p, noise)| Voter::new(p.brain.as_mut(), noise, n, sensors.len()))
-                    .collect();
-                self.episodes(env, &mut world, &setting, &sensors, &mut voters, &mut |_, _, _, _| {});
-                for (r, voter) in robots_of_chunk.into_iter().zip(voters) {
-                    match voter.result.expect("every episode ends") {
-                        Ok(s) => scores[r].push((env, s)),
-                        Err(e) => ended[r] = Some(e),
-                    }
+            let results = run_population(&mut world, queue, setting.steps, setting.dt);
+            for (&r, result) in running.iter().zip(results) {
+                match result {
+                    Ok(s) => scores[r].push((env, s)),
+                    Err(e) => ended[r] = Some(e),
                 }
             }
             steps += setting.steps;
@@ -989,6 +1036,49 @@ mod tests {
         };
         let o = episode(&lenient, &tower, 0, TraceLevel::None);
         assert!(o.metric("locomotion") < 0.1, "{:?}", o.metrics);
+    }
+
+    #[test]
+    fn a_batch_refills_the_lanes_of_robots_that_fail_and_each_keeps_its_own_evaluation() {
+        // 11 robots of one body in 8 (or 4) lanes; four have brains that do not vote, whose
+        // episodes fail at their first step: their lanes go to the robots still waiting
+        let mut robots = random_elmans("3d:starfish", 1..12);
+        let phase = from_short_forms(&RobotArgs {
+            body: "3d:starfish",
+            brain: Some("phase"),
+            sensors: None,
+            preset: None,
+        })
+        .unwrap();
+        let phase = phase.downcast_ref::<Voxel3dRobot>().unwrap().brain.clone();
+        for i in [0, 4, 5, 9] {
+            robots[i].brain = phase.clone();
+        }
+        let refs: Vec<&dyn Robot> = robots.iter().map(|r| r as &dyn Robot).collect();
+        assert!(prepare_batch(&refs, "the affordance task").is_some(), "one batch");
+        let task = Affordance {
+            duration: 0.04,
+            ..Affordance::default()
+        };
+        let seeds: Vec<u64> = (20..31).collect();
+        let batch = task.run_episodes(&refs, &seeds);
+        let mut failed = 0;
+        for (i, ((robot, &seed), laned)) in refs.iter().zip(&seeds).zip(&batch).enumerate() {
+            let alone = task.run_episode(*robot, seed, TraceLevel::None, &mut |_, _| {});
+            match (alone, laned) {
+                (Ok(alone), Ok(laned)) => {
+                    for (name, value) in &alone.metrics {
+                        assert_eq!(laned.metrics[name].to_bits(), value.to_bits(), "robot {i}, {name}");
+                    }
+                }
+                (Err(alone), Err(laned)) => {
+                    assert_eq!(alone.to_string(), laned.to_string(), "robot {i}");
+                    failed += 1;
+                }
+                (alone, laned) => panic!("robot {i}: alone {alone:?}, in lanes {laned:?}"),
+            }
+        }
+        assert_eq!(failed, 4);
     }
 
     #[test]

@@ -10,6 +10,7 @@ mod aperture;
 mod grid;
 mod kind;
 mod physics;
+mod population;
 mod recorder;
 mod robot;
 mod sensors;

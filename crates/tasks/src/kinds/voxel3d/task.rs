@@ -6,6 +6,7 @@
 //! (voxcraft-sim evaluates its controller every physics step too).
 
 use super::physics::{Built, Physics3d, MAX_STEPS};
+use super::population::{run_population, LaneEpisode};
 use super::recorder::Recorder;
 use super::robot::Voxel3dRobot;
 use super::setup::{lanes, prepare, prepare_batch, sense, Prepared};
@@ -132,16 +133,15 @@ impl Task for Locomotion3d {
         } = built;
         recorder.record(&world, &body, &vec![0.0; body.len()], 0.0);
         let steps = crate::task::episode_steps(self.duration, dt);
-        let mut lanes = [Lane::new(brain.as_mut(), &body, &sensors)];
-        self.episodes(
+        let mut lane = Lane::new(brain.as_mut(), &body, &sensors);
+        self.episode(
             &mut world,
             &body,
             &sensors,
-            &mut lanes,
+            &mut lane,
             dt,
             &mut |world, actuation, t| recorder.record(world, &body, actuation, t),
         );
-        let [lane] = lanes;
         lane.result
             .map(|moved| self.outcome(moved, steps, dt, body.len(), recorder.finish()))
     }
@@ -165,32 +165,25 @@ impl Task for Locomotion3d {
         let Ok(built) = self.physics.build(&prepared[0].grid, &self.obstacles) else {
             return one_by_one();
         };
+        let Ok(mut world) = LanedWorlds::of(&built.world) else {
+            return one_by_one();
+        };
         let (sensors, steps) = (prepared[0].sensors.clone(), episode_steps(self.duration, built.dt));
-        let mut results = Vec::with_capacity(robots.len());
-        for chunk in prepared.chunks_mut(lanes()) {
-            let Ok(mut world) = LanedWorlds::of(&built.world) else {
-                return one_by_one();
-            };
-            let mut lanes: Vec<Lane> = chunk
-                .iter_mut()
-                .map(|p| Lane::new(p.brain.as_mut(), &built.body, &sensors))
-                .collect();
-            self.episodes(
-                &mut world,
-                &built.body,
-                &sensors,
-                &mut lanes,
-                built.dt,
-                &mut |_, _, _| {},
-            );
-            let n = built.body.len();
-            results.extend(
-                lanes
-                    .into_iter()
-                    .map(|lane| lane.result.map(|moved| self.outcome(moved, steps, built.dt, n, None))),
-            );
-        }
-        results
+        let queue: Vec<Walk> = prepared
+            .iter_mut()
+            .map(|p| Walk {
+                task: self,
+                body: &built.body,
+                sensors: &sensors,
+                dt: built.dt,
+                lane: Lane::new(p.brain.as_mut(), &built.body, &sensors),
+            })
+            .collect();
+        let n = built.body.len();
+        run_population(&mut world, queue, steps, built.dt)
+            .into_iter()
+            .map(|result| result.map(|moved| self.outcome(moved, steps, built.dt, n, None)))
+            .collect()
     }
 }
 
@@ -234,51 +227,91 @@ impl<'a> Lane<'a> {
     }
 }
 
+/// A [`Lane`]'s episode in a laned population ([`run_population`]).
+struct Walk<'a, 'b> {
+    task: &'b Locomotion3d,
+    body: &'b [VoxelId],
+    sensors: &'b [super::Sensor3],
+    dt: f64,
+    lane: Lane<'a>,
+}
+
+impl LaneEpisode for Walk<'_, '_> {
+    type Result = Result<DVec3, EpisodeError>;
+
+    fn start(&mut self, world: &LanedWorlds, lane: usize) {
+        self.lane.start = centre(world, self.body, lane);
+    }
+
+    fn advance(&mut self, world: &mut LanedWorlds, lane: usize, k: u64) -> bool {
+        let (body, sensors) = (self.body, self.sensors);
+        self.task
+            .advance(world, lane, &mut self.lane, body, sensors, k, self.dt)
+    }
+
+    fn finish(mut self, world: &LanedWorlds, lane: usize) -> Self::Result {
+        if self.lane.running {
+            self.lane.result = Ok(centre(world, self.body, lane) - self.lane.start);
+        }
+        self.lane.result
+    }
+
+    fn refused(mut self, k: u64, error: &vsrlab_physics3d::Physics3dError) -> Self::Result {
+        self.lane.fail(k, self.dt, error);
+        self.lane.result
+    }
+}
+
 impl Locomotion3d {
-    /// The episode loop over one world or lanes of worlds: every lane steps, senses, controls
-    /// and actuates as one episode; `record(world, lane 0's actuation, t)` after every step.
-    /// Lanes beyond `lanes.len()` are idle.
-    fn episodes<W: Worlds>(
+    /// One episode in `world`: every step the world steps, then the robot senses, controls and
+    /// actuates; `record(world, actuation, t)` after every step.
+    fn episode(
         &self,
-        world: &mut W,
+        world: &mut vsrlab_physics3d::World,
         body: &[VoxelId],
         sensors: &[super::Sensor3],
-        lanes: &mut [Lane],
+        lane: &mut Lane,
         dt: f64,
-        record: &mut dyn FnMut(&W, &[f64], f64),
+        record: &mut dyn FnMut(&vsrlab_physics3d::World, &[f64], f64),
     ) {
-        for (l, lane) in lanes.iter_mut().enumerate() {
-            lane.start = centre(world, body, l);
-        }
+        lane.start = centre(world, body, 0);
         let steps = episode_steps(self.duration, dt);
         for k in 1..=steps {
             if let Err(e) = world.step(dt) {
-                lanes.iter_mut().filter(|l| l.running).for_each(|l| l.fail(k, dt, &e));
-                return;
+                return lane.fail(k, dt, &e);
             }
-            let t = k as f64 * dt;
-            for (l, lane) in lanes.iter_mut().enumerate().filter(|(_, lane)| lane.running) {
-                if let Some(e) = world.diverged(l) {
-                    lane.fail(k, dt, &e);
-                    continue;
-                }
-                sense(world, l, body, sensors, t, &mut lane.readings);
-                lane.brain.control(t, &lane.readings, &mut lane.actuation);
-                for (&v, a) in body.iter().zip(&mut lane.actuation) {
-                    *a = a.clamp(-1.0, 1.0);
-                    world.set_temperature(v, l, self.physics.amplitude * *a);
-                }
-            }
-            if let Some(first) = lanes.first() {
-                record(world, &first.actuation, t);
-            }
-            if lanes.iter().all(|l| !l.running) {
-                return;
-            }
+            self.advance(world, 0, lane, body, sensors, k, dt);
+            record(world, &lane.actuation, k as f64 * dt);
         }
-        for (l, lane) in lanes.iter_mut().enumerate().filter(|(_, lane)| lane.running) {
-            lane.result = Ok(centre(world, body, l) - lane.start);
+        lane.result = Ok(centre(world, body, 0) - lane.start);
+    }
+
+    /// Lane `l`'s `k`-th step of its episode, after the world stepped: the lane fails if it
+    /// diverged, else the robot senses, controls, and sets its voxels' temperatures. Whether the
+    /// lane still runs.
+    #[allow(clippy::too_many_arguments)]
+    fn advance<W: Worlds>(
+        &self,
+        world: &mut W,
+        l: usize,
+        lane: &mut Lane,
+        body: &[VoxelId],
+        sensors: &[super::Sensor3],
+        k: u64,
+        dt: f64,
+    ) -> bool {
+        if let Some(e) = world.diverged(l) {
+            lane.fail(k, dt, &e);
+            return false;
         }
+        let t = k as f64 * dt;
+        sense(world, l, body, sensors, t, &mut lane.readings);
+        lane.brain.control(t, &lane.readings, &mut lane.actuation);
+        for (&v, a) in body.iter().zip(&mut lane.actuation) {
+            *a = a.clamp(-1.0, 1.0);
+            world.set_temperature(v, l, self.physics.amplitude * *a);
+        }
+        true
     }
 
     /// The outcome of an episode whose body moved by `moved`.
@@ -364,6 +397,100 @@ mod tests {
         // another body is another group
         let other = robot("3d:worm", "mlp");
         assert_ne!(task.episode_group(other.as_robot()), groups[0]);
+    }
+
+    /// A travelling sine on every voxel that turns to NaN (a broken brain) from `fails_at` s.
+    struct Breaking {
+        phase: f64,
+        fails_at: f64,
+    }
+
+    impl Controller for Breaking {
+        fn reset(&mut self) {}
+
+        fn control(&mut self, t: f64, _readings: &[f64], actuations: &mut [f64]) {
+            for (i, a) in actuations.iter_mut().enumerate() {
+                let wave = (2.0 * std::f64::consts::PI * 2.0 * t + self.phase + 0.5 * i as f64).sin();
+                *a = if t >= self.fails_at { f64::NAN } else { wave };
+            }
+        }
+    }
+
+    #[test]
+    fn lanes_whose_episodes_fail_are_refilled_and_every_episode_keeps_its_own_bits() {
+        let task = Locomotion3d {
+            duration: 0.1,
+            ..Locomotion3d::default()
+        };
+        let r = robot("3d:quadruped", "phase");
+        let Prepared { grid, sensors, .. } = prepare(r.as_robot(), "locomotion3d").unwrap();
+        let built = task.physics.build(&grid, &[]).unwrap();
+        let fails = [
+            f64::INFINITY,
+            0.0,
+            0.03,
+            f64::INFINITY,
+            0.011,
+            0.07,
+            0.002,
+            f64::INFINITY,
+        ];
+        let mut brains: Vec<Breaking> = (0..19)
+            .map(|i| Breaking {
+                phase: 0.37 * i as f64,
+                fails_at: fails[i % fails.len()],
+            })
+            .collect();
+        let alone: Vec<Result<DVec3, EpisodeError>> = brains
+            .iter_mut()
+            .map(|brain| {
+                let mut lane = Lane::new(brain, &built.body, &sensors);
+                let mut world = built.world.clone();
+                task.episode(
+                    &mut world,
+                    &built.body,
+                    &sensors,
+                    &mut lane,
+                    built.dt,
+                    &mut |_, _, _| {},
+                );
+                lane.result
+            })
+            .collect();
+        let queue = brains
+            .iter_mut()
+            .map(|brain| Walk {
+                task: &task,
+                body: &built.body,
+                sensors: &sensors,
+                dt: built.dt,
+                lane: Lane::new(brain as &mut dyn Controller, &built.body, &sensors),
+            })
+            .collect();
+        let mut world = LanedWorlds::of(&built.world).unwrap();
+        let steps = episode_steps(task.duration, built.dt);
+        let laned = run_population(&mut world, queue, steps, built.dt);
+        let key = |r: &Result<DVec3, EpisodeError>| match r {
+            Ok(moved) => Ok(moved.to_array().map(f64::to_bits)),
+            Err(e) => Err(e.to_string()),
+        };
+        for (i, (a, b)) in alone.iter().zip(&laned).enumerate() {
+            assert_eq!(key(a), key(b), "episode {i}");
+        }
+        // failures at many steps, and walkers that moved their own ways
+        let failed = alone.iter().filter(|r| r.is_err()).count();
+        let mut moved: Vec<u64> = alone
+            .iter()
+            .filter_map(|r| r.as_ref().ok())
+            .map(|m| m.x.to_bits())
+            .collect();
+        moved.sort_unstable();
+        moved.dedup();
+        assert_eq!((failed, moved.len()), (12, 7), "{alone:?}");
+        assert!(
+            alone[4].as_ref().unwrap_err().to_string().contains("t = 0.01"),
+            "{alone:?}"
+        );
     }
 
     #[test]

@@ -8,9 +8,6 @@ use vsrlab_physics3d::{Physics3dError, VoxelId, World};
 
 /// One or several episodes of one body in one world.
 pub(crate) trait Worlds {
-    /// One step of every episode; an error fails every episode (a lane that diverges alone is
-    /// reported by [`Worlds::diverged`]).
-    fn step(&mut self, dt: f64) -> Result<(), Physics3dError>;
     /// Lane `lane`'s divergence, if it diverged while the others stepped on.
     fn diverged(&self, lane: usize) -> Option<Physics3dError>;
     /// Voxel `v`'s centre in lane `lane`.
@@ -28,10 +25,6 @@ pub(crate) trait Worlds {
 }
 
 impl Worlds for World {
-    fn step(&mut self, dt: f64) -> Result<(), Physics3dError> {
-        World::step(self, dt)
-    }
-
     fn diverged(&self, _lane: usize) -> Option<Physics3dError> {
         None
     }
@@ -62,10 +55,6 @@ impl Worlds for World {
 }
 
 impl Worlds for LanedWorlds {
-    fn step(&mut self, dt: f64) -> Result<(), Physics3dError> {
-        LanedWorlds::step(self, dt)
-    }
-
     fn diverged(&self, lane: usize) -> Option<Physics3dError> {
         LanedWorlds::diverged(self, lane)
     }

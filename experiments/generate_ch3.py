@@ -78,6 +78,11 @@ transient = 0.0
 fitness = "velocity"
 random_terrain_per_evaluation = false
 
+# the original's dynamics (dyn4j's pipeline): the solver closest to 2D-VSR-Sim under the fidelity
+# protocol (docs/fidelity.md); `vsrlab run --solver soft-substeps` runs this file 4-6x faster
+[task.physics]
+solver = "sequential-impulses"
+
 [optimizer]
 {optimizer}
 

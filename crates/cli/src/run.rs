@@ -32,6 +32,11 @@ pub struct RunArgs {
     /// (the interpreter in $VSRLAB_PYTHON, or python3); a sweep goes as a campaign.
     #[arg(long, value_name = "ADDRESS")]
     pub ray: Option<String>,
+    /// Physics solver of 2D voxel tasks, replacing the experiment file's: soft-substeps
+    /// (vsrlab's, fast) or sequential-impulses (dyn4j's pipeline, the original's dynamics;
+    /// docs/fidelity.md).
+    #[arg(long)]
+    pub solver: Option<String>,
 }
 
 /// Positions per run on the progress bars.
@@ -222,7 +227,17 @@ pub fn run(a: RunArgs) -> Result<(), String> {
             a.log_every
         ));
     }
-    let experiments = config::load_all(&a.experiment).map_err(|e| e.to_string())?;
+    let mut experiments = config::load_all(&a.experiment).map_err(|e| e.to_string())?;
+    if let Some(solver) = &a.solver {
+        if a.ray.is_some() {
+            return Err("--solver: not with --ray (name the solver in the experiment file: \
+                        [task.physics] solver = \"…\")"
+                .into());
+        }
+        for experiment in &mut experiments {
+            with_solver(experiment, solver)?;
+        }
+    }
     if let [experiment] = experiments.as_slice() {
         let name = experiment.name.clone().unwrap_or_else(|| "experiment".to_string());
         let out = a.out.clone().unwrap_or_else(|| PathBuf::from("out").join(&name));
@@ -249,6 +264,21 @@ pub fn run(a: RunArgs) -> Result<(), String> {
         let name = experiment.name.clone().unwrap_or_else(|| "experiment".to_string());
         run_one(experiment, &base.join(name), &a)?;
     }
+    Ok(())
+}
+
+/// Replaces the experiment's physics solver (`--solver`); an error names the option, and says
+/// when the task has no 2D solver.
+fn with_solver(experiment: &mut Experiment, solver: &str) -> Result<(), String> {
+    solver
+        .parse::<vsrlab_physics::Solver>()
+        .map_err(|e| format!("--solver: {e}"))?;
+    let setting = [("physics.solver", serde_json::json!(solver))];
+    let spec = experiment.task.spec.with_settings(&setting).map_err(|_| {
+        let kind = experiment.task.spec.task().kind();
+        format!("--solver: the {kind} task has no 2D physics solver to choose")
+    })?;
+    experiment.task.spec = spec;
     Ok(())
 }
 

@@ -278,6 +278,82 @@ fn shipped_toml_files(dirs: &[&str]) -> Vec<String> {
 }
 
 #[test]
+fn every_2d_voxel_chapter_file_names_its_solver_and_run_solver_replaces_it() {
+    // the thesis files run the original's dynamics, the reduced ones vsrlab's fast solver
+    let mut files = shipped_toml_files(&[
+        "experiments/ch3",
+        "experiments/ch4.1",
+        "experiments/ch4.2",
+        "experiments/ch5.3",
+    ]);
+    files.push(format!("{}/../../experiments/ch3.toml", env!("CARGO_MANIFEST_DIR")));
+    assert!(files.len() > 90, "{}", files.len());
+    for file in &files {
+        let text = std::fs::read_to_string(file).unwrap();
+        let name = file.rsplit('/').next().unwrap();
+        let solver = match name.starts_with("reduced") {
+            true => "soft-substeps",
+            false => "sequential-impulses",
+        };
+        assert!(
+            text.contains(&format!("[task.physics]\nsolver = \"{solver}\"")),
+            "{file}"
+        );
+    }
+    // `--solver` replaces the file's (the resolved file says so, and the results differ)
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("e.toml");
+    let text = EXPERIMENT
+        .replace("generations = 60", "generations = 1")
+        .replace("duration = 3.0", "duration = 2.0");
+    std::fs::write(&file, text).unwrap();
+    let mut best = Vec::new();
+    for solver in [None, Some("sequential-impulses")] {
+        let out = dir.path().join(solver.unwrap_or("default"));
+        let mut args = vec!["run", file.to_str().unwrap(), "--out", out.to_str().unwrap()];
+        args.extend(solver.map(|s| ["--solver", s]).into_iter().flatten());
+        let run = vsrlab(&args);
+        assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+        let resolved = std::fs::read_to_string(out.join("experiment.toml")).unwrap();
+        let expected = solver.unwrap_or("soft-substeps");
+        assert!(resolved.contains(&format!("solver = \"{expected}\"")), "{resolved}");
+        best.push(std::fs::read_to_string(out.join("run-00/best.robot.json")).unwrap());
+    }
+    assert_ne!(best[0], best[1], "the solver changes the results");
+    // a bad solver, or a task without a 2D solver, is refused naming the option; nothing written
+    let out = dir.path().join("bad");
+    let bad = vsrlab(&[
+        "run",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--solver",
+        "dyn4j",
+    ]);
+    let err = String::from_utf8_lossy(&bad.stderr);
+    assert!(
+        !bad.status.success() && err.contains("--solver: expected soft-substeps"),
+        "{err}"
+    );
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let three_d = root.join("experiments/ch5.1/reduced.toml");
+    let refused = vsrlab(&[
+        "run",
+        three_d.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--solver",
+        "soft-substeps",
+    ]);
+    let err = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        !refused.status.success() && err.contains("--solver: the affordance task has no 2D"),
+        "{err}"
+    );
+    assert!(!out.exists());
+}
+
+#[test]
 fn the_chapter_experiments_validate_and_transfers_name_their_missing_source() {
     // transfer files read the best robots of runs not made yet
     let (transfers, mut files): (Vec<String>, Vec<String>) =

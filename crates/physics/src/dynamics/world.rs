@@ -583,6 +583,7 @@ impl World {
                 .collect();
             let counts = [si.joints.springs.len(), si.joints.ropes.len(), si.joints.welds.len()];
             si.island = sequential::Island::new(n_bodies, &joints, counts);
+            si.rest = sequential::Rest::new(n_bodies);
             let polygons: Vec<Polygon> = statics.iter().map(|s| s.polygon).collect();
             let locals: Vec<(u32, Polygon)> = shapes.iter().map(|s| (s.body, s.local)).collect();
             si.ccd = sequential::Ccd::new(&polygons, &locals, n_bodies);
@@ -696,6 +697,15 @@ impl World {
             si.ccd.remember_start(&self.bodies);
         }
         self.integrate_velocities();
+        if let Some(si) = &self.sequential {
+            // a sleeping body is left out of the step: no gravity, no forces (dyn4j 4.2.1)
+            for (i, s) in self.bodies.state.iter_mut().enumerate().skip(1) {
+                if si.rest.asleep(i) {
+                    s.vel = Vec2::ZERO;
+                    s.omega = 0.0;
+                }
+            }
+        }
         let params = sequential::Params::of(&self.settings);
         if let Some(si) = &mut self.sequential {
             si.solve(&mut self.bodies, &self.contacts, static_of_key, &params);
@@ -1043,8 +1053,18 @@ impl World {
         if slot == NONE {
             return;
         }
+        let wakes = self.settings.dyn4j_version() == Dyn4jVersion::V4_2_1;
         match &mut self.sequential {
-            Some(si) => si.joints.springs[slot as usize].rest = rest,
+            Some(si) => {
+                let spring = &mut si.joints.springs[slot as usize];
+                // dyn4j 4.2.1's setRestDistance wakes both bodies on a new value only
+                if wakes && spring.rest != rest {
+                    let (a, b) = (spring.a as usize, spring.b as usize);
+                    si.rest.wake(a);
+                    si.rest.wake(b);
+                }
+                spring.rest = rest;
+            }
             None => self.springs.set_rest(slot, rest),
         }
     }

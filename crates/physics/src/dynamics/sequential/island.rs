@@ -5,6 +5,10 @@
 //! from. dyn4j 3.3.0 pushes a body only once (when first reached); 4.x pushes it again each time
 //! it is reached before its visit, so it is visited from the last reach. Gauss–Seidel sweeps
 //! depend on this order, so following it brings the trajectories closer to the original's.
+//! With dyn4j 4.2.1's at-rest detection ([`Rest`]), a sleeping body does not start a walk, and a
+//! body the walk reaches wakes up; the walk also lists each island's bodies.
+
+use super::rest::Rest;
 
 /// A joint of the solver by kind and index in its kind's list.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -35,6 +39,10 @@ pub(crate) struct Island {
     /// The walk's result: joints and contacts in solving order.
     pub joints: Vec<Joint>,
     pub contacts: Vec<u32>,
+    /// The dynamic bodies of each island, one island after the other: island k's are
+    /// `bodies[island_start[k]..island_start[k + 1]]`.
+    pub bodies: Vec<u32>,
+    pub island_start: Vec<u32>,
     /// Index of each joint in `joint_done` (springs, then ropes, then welds).
     base: [u32; 3],
 }
@@ -74,8 +82,13 @@ impl Island {
     }
 
     /// Orders this step's constraints; `contacts` are the contacts' (body a, body b), body 0 being
-    /// the static world.
-    pub fn walk(&mut self, contacts: impl Iterator<Item = (u32, u32)> + Clone, push_again: bool) {
+    /// the static world. With `rest`, sleeping bodies start no walk and the bodies walked wake up.
+    pub fn walk(
+        &mut self,
+        contacts: impl Iterator<Item = (u32, u32)> + Clone,
+        push_again: bool,
+        mut rest: Option<&mut Rest>,
+    ) {
         let n = self.reached.len();
         // contacts per body, in detection order (a counting sort)
         self.contact_start.clear();
@@ -108,9 +121,12 @@ impl Island {
         self.joint_done.iter_mut().for_each(|d| *d = false);
         self.joints.clear();
         self.contacts.clear();
+        self.bodies.clear();
+        self.island_start.clear();
+        self.island_start.push(0);
         self.push_again = push_again;
         for seed in 1..n {
-            if self.reached[seed] {
+            if self.reached[seed] || rest.as_ref().is_some_and(|r| r.asleep(seed)) {
                 continue;
             }
             self.stack.clear();
@@ -128,6 +144,10 @@ impl Island {
                 if body == 0 {
                     continue; // static geometry is visited but not walked from
                 }
+                if let Some(rest) = rest.as_deref_mut() {
+                    rest.wake(body);
+                }
+                self.bodies.push(body as u32);
                 let (lo, hi) = (self.contact_start[body] as usize, self.contact_start[body + 1] as usize);
                 for e in lo..hi {
                     let (c, other) = self.contact_edges[e];
@@ -150,7 +170,15 @@ impl Island {
                     self.reach(other);
                 }
             }
+            self.island_start.push(self.bodies.len() as u32);
         }
+    }
+
+    /// The dynamic bodies of each island of the last walk.
+    pub fn islands(&self) -> impl Iterator<Item = &[u32]> {
+        self.island_start
+            .windows(2)
+            .map(|w| &self.bodies[w[0] as usize..w[1] as usize])
     }
 
     fn reach(&mut self, body: u32) {
@@ -182,7 +210,7 @@ mod tests {
             (Joint::Spring(2), 1, 4),
         ];
         let mut island = Island::new(5, &joints, [3, 0, 1]);
-        island.walk([(0u32, 3u32)].into_iter(), false);
+        island.walk([(0u32, 3u32)].into_iter(), false, None);
         // at 1: springs 0 (to 2) and 2 (to 4); 4 was reached last, so it is visited first: its
         // weld to 3; then 3: its contact, then spring 1 to 2; then 2: nothing new
         assert_eq!(
@@ -207,10 +235,10 @@ mod tests {
             (s(5), 4, 6),
         ];
         let mut old = Island::new(7, &joints, [6, 0, 0]);
-        old.walk(std::iter::empty(), false);
+        old.walk(std::iter::empty(), false, None);
         assert_eq!(old.joints, vec![s(0), s(1), s(2), s(3), s(5), s(4)]);
         let mut new = Island::new(7, &joints, [6, 0, 0]);
-        new.walk(std::iter::empty(), true);
+        new.walk(std::iter::empty(), true, None);
         assert_eq!(new.joints, vec![s(0), s(1), s(2), s(3), s(4), s(5)]);
     }
 }

@@ -15,11 +15,13 @@ mod contacts;
 mod distance;
 mod island;
 mod joints;
+mod rest;
 
 pub(crate) use ccd::Ccd;
 pub(crate) use contacts::Contacts;
 pub(crate) use island::{Island, Joint};
 pub(crate) use joints::{Joints, Rope, Spring, Weld};
+pub(crate) use rest::Rest;
 
 use super::contact::ContactConstraint;
 use super::settings::{Dyn4jVersion, WorldSettings};
@@ -75,6 +77,8 @@ pub(crate) struct SequentialSolver {
     pub contacts: Contacts,
     pub ccd: Ccd,
     pub island: Island,
+    /// dyn4j 4.2.1's at-rest detection: each body's time at rest and sleep.
+    pub rest: Rest,
 }
 
 impl SequentialSolver {
@@ -89,8 +93,9 @@ impl SequentialSolver {
         static_of: fn(u64) -> u32,
         p: &Params,
     ) {
-        self.island
-            .walk(self.contacts.pairs(), p.version == Dyn4jVersion::V4_2_1);
+        let sleeps = p.version == Dyn4jVersion::V4_2_1;
+        let rest = sleeps.then_some(&mut self.rest);
+        self.island.walk(self.contacts.pairs(), sleeps, rest);
         let (joints, contacts) = (&self.island.joints, &self.island.contacts);
         self.contacts.initialize(bodies, p, contacts);
         self.joints.initialize(bodies, p, joints);
@@ -99,11 +104,18 @@ impl SequentialSolver {
             self.contacts.solve_velocities(bodies, contacts);
         }
         integrate_positions(bodies, p);
+        let mut positions_solved = false;
         for _ in 0..p.position_iterations {
             let contacts_done = self.contacts.solve_positions(bodies, p, contacts);
             let joints_done = self.joints.solve_positions(bodies, p, joints);
             if contacts_done && joints_done {
+                positions_solved = true;
                 break;
+            }
+        }
+        if sleeps {
+            for island in self.island.islands() {
+                self.rest.settle(bodies, island, p.dt, positions_solved);
             }
         }
         if p.continuous_collision {

@@ -152,3 +152,56 @@ fn the_same_world_stepped_twice_gives_the_same_bits() {
         assert_eq!(w1.part_angle(*a), w2.part_angle(*b));
     }
 }
+
+/// Two squares joined by a spring, resting on the ground, in a world of dyn4j `version`.
+fn resting_pair(version: crate::Dyn4jVersion) -> (World, [crate::PartHandle; 2], crate::SpringHandle) {
+    let mut b = WorldBuilder::new(WorldSettings {
+        dyn4j: Some(version),
+        ..settings()
+    });
+    with_ground(&mut b);
+    let a = b.add_part(square(Vec2::new(0.0, 5.6), 1.2));
+    let c = b.add_part(square(Vec2::new(2.0, 5.6), 1.2));
+    let spring = b.add_spring(SpringDesc {
+        part_a: a,
+        part_b: c,
+        anchor_a: Vec2::ZERO,
+        anchor_b: Vec2::ZERO,
+        rest_length: 2.0,
+        frequency: 8.0,
+        damping_ratio: 0.3,
+        mass_model: crate::SpringMassModel::EffectiveMass,
+        collide_connected: false,
+    });
+    (b.build().unwrap(), [a, c], spring)
+}
+
+#[test]
+fn dyn4j_4_puts_an_island_at_rest_and_a_new_rest_length_wakes_it() {
+    use crate::Dyn4jVersion::{V3_3_0, V4_2_1};
+    let (mut w, parts, spring) = resting_pair(V4_2_1);
+    run(&mut w, 120);
+    // asleep: velocities exactly 0, and the island stays where it is, gravity or not
+    let still: Vec<Vec2> = parts.iter().map(|&p| w.part_position(p)).collect();
+    for &p in &parts {
+        assert_eq!((w.part_velocity(p), w.part_angular_velocity(p)), (Vec2::ZERO, 0.0));
+    }
+    // the same rest length again does not wake it (dyn4j's setRestDistance)
+    w.set_spring_rest_length(spring, 2.0);
+    run(&mut w, 60);
+    assert_eq!(parts.map(|p| w.part_position(p)).to_vec(), still);
+    // a new rest length does: the spring pulls the parts together again
+    w.set_spring_rest_length(spring, 1.5);
+    run(&mut w, 1);
+    assert!(w.part_velocity(parts[0]).x > 0.0 && w.part_velocity(parts[1]).x < 0.0);
+    run(&mut w, 300);
+    let d = (w.part_position(parts[1]) - w.part_position(parts[0])).length();
+    assert!((d - 1.5).abs() < 0.05, "distance {d}");
+    // dyn4j 3.3.0 worlds never sleep: their resting parts keep their tiny speeds
+    let (mut old, parts, _) = resting_pair(V3_3_0);
+    run(&mut old, 120);
+    let moving = parts
+        .iter()
+        .any(|&p| old.part_velocity(p) != Vec2::ZERO || old.part_angular_velocity(p) != 0.0);
+    assert!(moving, "a 3.3.0 world has no at-rest detection");
+}

@@ -322,34 +322,25 @@ fn every_2d_voxel_chapter_file_names_its_solver_and_run_solver_replaces_it() {
     assert_ne!(best[0], best[1], "the solver changes the results");
     // a bad solver, or a task without a 2D solver, is refused naming the option; nothing written
     let out = dir.path().join("bad");
-    let bad = vsrlab(&[
-        "run",
-        file.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--solver",
-        "dyn4j",
-    ]);
-    let err = String::from_utf8_lossy(&bad.stderr);
-    assert!(
-        !bad.status.success() && err.contains("--solver: expected soft-substeps"),
-        "{err}"
-    );
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let three_d = root.join("experiments/ch5.1/reduced.toml");
-    let refused = vsrlab(&[
-        "run",
-        three_d.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--solver",
-        "soft-substeps",
-    ]);
-    let err = String::from_utf8_lossy(&refused.stderr);
-    assert!(
-        !refused.status.success() && err.contains("--solver: the affordance task has no 2D"),
-        "{err}"
-    );
+    let refused = [
+        (file.clone(), "dyn4j", "--solver: expected soft-substeps"),
+        (three_d, "soft-substeps", "--solver: the affordance task has no 2D"),
+    ];
+    for (experiment, solver, message) in refused {
+        let args = [
+            "run",
+            experiment.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--solver",
+            solver,
+        ];
+        let run = vsrlab(&args);
+        let err = String::from_utf8_lossy(&run.stderr);
+        assert!(!run.status.success() && err.contains(message), "{err}");
+    }
     assert!(!out.exists());
 }
 

@@ -24,6 +24,21 @@ fn square(centre: Vec2, side: f64) -> PartDesc {
         .damping(0.1, 0.1)
 }
 
+/// A spring of rest length `rest` between the centres of parts `a` and `c` (8 Hz, ζ = 0.3).
+fn centre_spring(a: crate::PartHandle, c: crate::PartHandle, rest: f64) -> SpringDesc {
+    SpringDesc {
+        part_a: a,
+        part_b: c,
+        anchor_a: Vec2::ZERO,
+        anchor_b: Vec2::ZERO,
+        rest_length: rest,
+        frequency: 8.0,
+        damping_ratio: 0.3,
+        mass_model: crate::SpringMassModel::EffectiveMass,
+        collide_connected: false,
+    }
+}
+
 fn run(world: &mut World, steps: usize) {
     for _ in 0..steps {
         world.step().expect("finite");
@@ -114,17 +129,7 @@ fn a_stretched_spring_pulls_its_parts_back_to_rest_length() {
     });
     let a = b.add_part(square(Vec2::new(0.0, 0.0), 1.0));
     let c = b.add_part(square(Vec2::new(3.0, 0.0), 1.0));
-    b.add_spring(SpringDesc {
-        part_a: a,
-        part_b: c,
-        anchor_a: Vec2::ZERO,
-        anchor_b: Vec2::ZERO,
-        rest_length: 2.0,
-        frequency: 8.0,
-        damping_ratio: 0.3,
-        mass_model: crate::SpringMassModel::EffectiveMass,
-        collide_connected: false,
-    });
+    b.add_spring(centre_spring(a, c, 2.0));
     let mut w = b.build().unwrap();
     run(&mut w, 300);
     let d = (w.part_position(c) - w.part_position(a)).length();
@@ -162,17 +167,7 @@ fn resting_pair(version: crate::Dyn4jVersion) -> (World, [crate::PartHandle; 2],
     with_ground(&mut b);
     let a = b.add_part(square(Vec2::new(0.0, 5.6), 1.2));
     let c = b.add_part(square(Vec2::new(2.0, 5.6), 1.2));
-    let spring = b.add_spring(SpringDesc {
-        part_a: a,
-        part_b: c,
-        anchor_a: Vec2::ZERO,
-        anchor_b: Vec2::ZERO,
-        rest_length: 2.0,
-        frequency: 8.0,
-        damping_ratio: 0.3,
-        mass_model: crate::SpringMassModel::EffectiveMass,
-        collide_connected: false,
-    });
+    let spring = b.add_spring(centre_spring(a, c, 2.0));
     (b.build().unwrap(), [a, c], spring)
 }
 

@@ -171,13 +171,7 @@ impl Task for Locomotion3d {
         let (sensors, steps) = (prepared[0].sensors.clone(), episode_steps(self.duration, built.dt));
         let queue: Vec<Walk> = prepared
             .iter_mut()
-            .map(|p| Walk {
-                task: self,
-                body: &built.body,
-                sensors: &sensors,
-                dt: built.dt,
-                lane: Lane::new(p.brain.as_mut(), &built.body, &sensors),
-            })
+            .map(|p| Walk::new(self, &built.body, &sensors, built.dt, p.brain.as_mut()))
             .collect();
         let n = built.body.len();
         run_population(&mut world, queue, steps, built.dt)
@@ -234,6 +228,25 @@ struct Walk<'a, 'b> {
     sensors: &'b [super::Sensor3],
     dt: f64,
     lane: Lane<'a>,
+}
+
+impl<'a, 'b> Walk<'a, 'b> {
+    /// `brain`'s episode of `task` with this body and its sensors.
+    fn new(
+        task: &'b Locomotion3d,
+        body: &'b [VoxelId],
+        sensors: &'b [super::Sensor3],
+        dt: f64,
+        brain: &'a mut dyn Controller,
+    ) -> Self {
+        Walk {
+            task,
+            body,
+            sensors,
+            dt,
+            lane: Lane::new(brain, body, sensors),
+        }
+    }
 }
 
 impl LaneEpisode for Walk<'_, '_> {
@@ -459,13 +472,7 @@ mod tests {
             .collect();
         let queue = brains
             .iter_mut()
-            .map(|brain| Walk {
-                task: &task,
-                body: &built.body,
-                sensors: &sensors,
-                dt: built.dt,
-                lane: Lane::new(brain as &mut dyn Controller, &built.body, &sensors),
-            })
+            .map(|brain| Walk::new(&task, &built.body, &sensors, built.dt, brain))
             .collect();
         let mut world = LanedWorlds::of(&built.world).unwrap();
         let steps = episode_steps(task.duration, built.dt);

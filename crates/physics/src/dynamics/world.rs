@@ -698,13 +698,7 @@ impl World {
         }
         self.integrate_velocities();
         if let Some(si) = &self.sequential {
-            // a sleeping body is left out of the step: no gravity, no forces (dyn4j 4.2.1)
-            for (i, s) in self.bodies.state.iter_mut().enumerate().skip(1) {
-                if si.rest.asleep(i) {
-                    s.vel = Vec2::ZERO;
-                    s.omega = 0.0;
-                }
-            }
+            si.rest.hold(&mut self.bodies);
         }
         let params = sequential::Params::of(&self.settings);
         if let Some(si) = &mut self.sequential {

@@ -23,6 +23,8 @@ pub(crate) const MIN_REST_TIME: f64 = 0.5;
 pub(crate) struct Rest {
     time: Vec<f64>,
     asleep: Vec<bool>,
+    /// How many bodies sleep (0: [`Rest::hold`] has nothing to do).
+    sleeping: usize,
 }
 
 impl Rest {
@@ -31,6 +33,7 @@ impl Rest {
         Rest {
             time: vec![0.0; n_bodies],
             asleep: vec![false; n_bodies],
+            sleeping: 0,
         }
     }
 
@@ -46,13 +49,26 @@ impl Rest {
         if self.asleep(b) {
             self.asleep[b] = false;
             self.time[b] = 0.0;
+            self.sleeping -= 1;
+        }
+    }
+
+    /// Keeps sleeping bodies out of a step once its velocities were integrated: no gravity, no
+    /// forces (their velocities were exactly 0 and their forces cleared when they fell asleep).
+    pub fn hold(&self, bodies: &mut Bodies) {
+        if self.sleeping == 0 {
+            return;
+        }
+        for (s, _) in bodies.state.iter_mut().zip(&self.asleep).filter(|(_, &asleep)| asleep) {
+            s.vel = crate::math::Vec2::ZERO;
+            s.omega = 0.0;
         }
     }
 
     /// After a step of `dt`: updates the time at rest of the bodies of one island (`island`,
     /// static world excluded) and puts them all at rest when each has been for
-    /// [`MIN_REST_TIME`] and the island's position pass converged. Whether it did.
-    pub fn settle(&mut self, bodies: &mut Bodies, island: &[u32], dt: f64, positions_solved: bool) -> bool {
+    /// [`MIN_REST_TIME`] and the island's position pass converged.
+    pub fn settle(&mut self, bodies: &mut Bodies, island: &[u32], dt: f64, positions_solved: bool) {
         let mut least = f64::MAX;
         for &b in island {
             let (b, s) = (b as usize, &bodies.state[b as usize]);
@@ -62,7 +78,7 @@ impl Rest {
             least = least.min(self.time[b]);
         }
         if island.is_empty() || least < MIN_REST_TIME || !positions_solved {
-            return false;
+            return;
         }
         for &b in island {
             let s = &mut bodies.state[b as usize];
@@ -72,6 +88,6 @@ impl Rest {
             bodies.torque[b as usize] = 0.0;
             self.asleep[b as usize] = true;
         }
-        true
+        self.sleeping += island.len();
     }
 }

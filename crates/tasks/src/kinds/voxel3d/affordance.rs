@@ -226,11 +226,7 @@ impl Affordance {
             if !self.step_voter(env, world, 0, voter, setting, sensors, k) {
                 return;
             }
-            let votes = match self.evolved {
-                Evolved::Locomotion => &voter.random_votes[..],
-                _ => voter.capture.get(VOTE.name).unwrap_or_default(),
-            };
-            record(world, &voter.actuation, votes, k as f64 * setting.dt);
+            record(world, &voter.actuation, self.votes(voter), k as f64 * setting.dt);
         }
         voter.result = Some(Ok(self.scores(world, 0, voter, setting)));
     }
@@ -277,24 +273,32 @@ impl Affordance {
             world.set_temperature(voxel, lane, self.physics.amplitude * *a);
         }
         v.brain.publish(&mut v.capture);
-        let Some(mut votes) = v.capture.get(VOTE.name) else {
+        if v.capture.get(VOTE.name).is_none() {
             v.result = Some(Err(EpisodeError::Field(FieldError::new(
                 "robot.brain",
                 "the affordance task needs a brain that votes (elman)",
             ))));
             return false;
-        };
+        }
         if self.evolved == Evolved::Locomotion {
             v.random_votes
                 .iter_mut()
                 .for_each(|r| *r = v.noise.random_range(-1.0..=1.0));
-            votes = &v.random_votes;
         }
         v.touched = v.touched || touches_wall(world, lane, &setting.pieces);
-        if v.touched && decision(votes) == env.passable() {
+        if v.touched && decision(self.votes(v)) == env.passable() {
             v.correct += 1;
         }
         true
+    }
+
+    /// The votes of this step that count: the brain's, or random ones when only locomotion was
+    /// evolved (the study's control).
+    fn votes<'v>(&self, v: &'v Voter) -> &'v [f64] {
+        match self.evolved {
+            Evolved::Locomotion => &v.random_votes,
+            _ => v.capture.get(VOTE.name).unwrap_or_default(),
+        }
     }
 
     /// The scores of `v`'s episode, which ran its last step in lane `lane`.

@@ -29,7 +29,7 @@ mod math;
 pub use dynamics::{
     builder::{PartDesc, PressureRingDesc, RopeDesc, SpringDesc, WorldBuilder},
     pressure::EdgeLength,
-    settings::{Dyn4jVersion, Solver, SpringMassModel, WorldSettings},
+    settings::{ContactModel, Dyn4jVersion, Solver, SpringMassModel, WorldSettings},
     world::{PartHandle, RingHandle, RopeHandle, SpringHandle, World},
 };
 pub use geometry::shape::Polygon;

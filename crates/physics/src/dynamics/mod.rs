@@ -8,6 +8,7 @@ pub(crate) mod broad_phase;
 pub mod builder;
 pub(crate) mod contact;
 pub(crate) mod contact_batch;
+pub(crate) mod dyn4j_contacts;
 pub mod pressure;
 pub(crate) mod rope;
 pub(crate) mod sequential;

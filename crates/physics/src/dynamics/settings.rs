@@ -45,6 +45,18 @@ pub enum Solver {
     SequentialImpulses,
 }
 
+/// How the soft solver's contacts behave.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum ContactModel {
+    /// Soft contacts with a speculative margin, solved in every sub-step (vsrlab's).
+    #[default]
+    Soft,
+    /// The original's (dyn4j's): contacts between overlapping shapes only, rigid and warm started,
+    /// a position pass and continuous collision (the `dyn4j` version's); a fidelity candidate.
+    Dyn4j,
+}
+
 /// Which dyn4j the sequential-impulse solver follows where the two versions behind 2D-VSR-Sim
 /// differ: the contact position pass's masses, continuous collision detection and its distance
 /// routine (docs/physics.md).
@@ -90,6 +102,11 @@ pub struct WorldSettings {
     pub speculative_distance: f64,
     /// Gap (length) under which a shape counts as touching another.
     pub touch_tolerance: f64,
+    /// How the soft solver's contacts behave (`soft-substeps` only). `dyn4j` contacts are swept
+    /// `iterations` times per sub-step, after the springs, and read `warm_starting`,
+    /// `position_iterations`, `baumgarte`, `linear_slop`, `max_linear_correction`, `dyn4j` and
+    /// `continuous_collision` below.
+    pub contact_model: ContactModel,
     /// Which solver steps the world; the fields below apply to `sequential-impulses` only.
     pub solver: Solver,
     /// Velocity iterations per step (joints, then contacts, each iteration).
@@ -113,6 +130,13 @@ pub struct WorldSettings {
     /// Whether bodies that would pass into static geometry within a step are stopped at the time
     /// of impact (dyn4j's continuous collision detection, mode ALL).
     pub continuous_collision: bool,
+    /// Whole sequential-impulse steps taken per step, each of `dt / sequential_substeps` (1 =
+    /// dyn4j's pipeline; more is the "sub-stepped" variant of docs/fidelity.md).
+    pub sequential_substeps: u32,
+    /// Whether each velocity and position sweep takes the joints grouped by greedy colour (no two
+    /// joints of a colour share a body, the island walk's order kept within a colour), the order a
+    /// vectorised sweep needs; off, the island walk's order (dyn4j's).
+    pub coloured_joints: bool,
 }
 
 impl Default for WorldSettings {
@@ -131,6 +155,7 @@ impl Default for WorldSettings {
             restitution_threshold: 1.0,
             speculative_distance: 0.1,
             touch_tolerance: 0.005,
+            contact_model: ContactModel::Soft,
             solver: Solver::SoftSubsteps,
             velocity_iterations: 10,
             position_iterations: 10,
@@ -141,6 +166,8 @@ impl Default for WorldSettings {
             max_linear_correction: 0.2,
             dyn4j: None,
             continuous_collision: true,
+            sequential_substeps: 1,
+            coloured_joints: false,
         }
     }
 }
@@ -197,6 +224,12 @@ impl WorldSettings {
             return Err(FieldError::sentence(
                 "iterations",
                 format!("must be in 1..=64, got {}", self.iterations),
+            ));
+        }
+        if self.sequential_substeps == 0 || self.sequential_substeps > 64 {
+            return Err(FieldError::sentence(
+                "sequential_substeps",
+                format!("must be in 1..=64, got {}", self.sequential_substeps),
             ));
         }
         if self.velocity_iterations == 0 || self.velocity_iterations > 1000 {

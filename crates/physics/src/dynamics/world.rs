@@ -4,10 +4,11 @@ use super::broad_phase::{ExcludedPairs, StaticIndex, SweepAndPrune};
 use super::builder::{JointRef, WorldBuilder};
 use super::contact::{apply_restitution, ContactConstraint, ContactPass, ContactSchedule};
 use super::contact_batch::ContactBatches;
+use super::dyn4j_contacts::Dyn4jContacts;
 use super::pressure::PressureRing;
 use super::rope::{rope_batches, solve_ropes, Rope, RopeBatch};
 use super::sequential::{self, Joint, Rope as SequentialRope, SequentialSolver, Spring as SequentialSpring, Weld};
-use super::settings::{Dyn4jVersion, Solver, WorldSettings};
+use super::settings::{ContactModel, Dyn4jVersion, Solver, WorldSettings};
 use super::soft::Softness;
 use super::spring::{Spring, SpringModel, SpringSet};
 use crate::geometry::aabb::Aabb;
@@ -168,6 +169,8 @@ pub struct World {
     time: f64,
     /// The joints and contacts of the sequential-impulse solver, when the world uses it.
     sequential: Option<SequentialSolver>,
+    /// The soft solver's contacts when they follow dyn4j (`contact_model = "dyn4j"`).
+    dyn4j_contacts: Option<Dyn4jContacts>,
     /// Whether `contacts` hold the present positions' contacts (the sequential-impulse solver
     /// detects them at the end of each step, for the next one).
     contacts_fresh: bool,
@@ -557,6 +560,13 @@ impl World {
             })
             .collect();
         let n_bodies = bodies.len();
+        let ccd = || {
+            let polygons: Vec<Polygon> = statics.iter().map(|s| s.polygon).collect();
+            let locals: Vec<(u32, Polygon)> = shapes.iter().map(|s| (s.body, s.local)).collect();
+            sequential::Ccd::new(&polygons, &locals, n_bodies)
+        };
+        let dyn4j_contacts = (sequential.is_none() && b.settings.contact_model == ContactModel::Dyn4j)
+            .then(|| Dyn4jContacts::new(ccd()));
         if let Some(si) = &mut sequential {
             let joints: Vec<(Joint, u32, u32)> = b
                 .joint_order
@@ -584,9 +594,7 @@ impl World {
             let counts = [si.joints.springs.len(), si.joints.ropes.len(), si.joints.welds.len()];
             si.island = sequential::Island::new(n_bodies, &joints, counts);
             si.rest = sequential::Rest::new(n_bodies);
-            let polygons: Vec<Polygon> = statics.iter().map(|s| s.polygon).collect();
-            let locals: Vec<(u32, Polygon)> = shapes.iter().map(|s| (s.body, s.local)).collect();
-            si.ccd = sequential::Ccd::new(&polygons, &locals, n_bodies);
+            si.ccd = ccd();
         }
         World {
             settings: b.settings,
@@ -634,6 +642,7 @@ impl World {
             step_count: 0,
             time: 0.0,
             sequential,
+            dyn4j_contacts,
             contacts_fresh: false,
         }
     }
@@ -668,8 +677,11 @@ impl World {
         if self.sequential.is_some() {
             return self.step_sequential();
         }
+        if self.dyn4j_contacts.is_some() {
+            return self.step_soft_dyn4j_contacts();
+        }
         self.apply_pressure();
-        self.integrate_velocities();
+        self.integrate_velocities(self.settings.dt, true);
         self.detect_contacts();
         self.contact_schedule.build(&self.contacts, self.bodies.len());
         self.contact_batches
@@ -687,28 +699,92 @@ impl World {
         self.check_finite()
     }
 
-    /// One step of the sequential-impulse solver (dyn4j's order, see [`sequential`]).
+    /// One step of the sequential-impulse solver (dyn4j's order, see [`sequential`]): one whole
+    /// pipeline of `dt`, or `sequential_substeps` of them of `dt / sequential_substeps` each.
     fn step_sequential(&mut self) -> Result<(), PhysicsError> {
-        self.apply_pressure();
-        if !self.contacts_fresh {
+        let params = sequential::Params::of(&self.settings);
+        let n = self.settings.sequential_substeps;
+        for sub in 0..n {
+            self.apply_pressure();
+            if !self.contacts_fresh {
+                self.detect_sequential_contacts();
+            }
+            if let Some(si) = &mut self.sequential {
+                si.ccd.remember_start(&self.bodies);
+            }
+            // external forces act on every sub-step and are cleared after the last
+            self.integrate_velocities(params.dt, sub + 1 == n);
+            if let Some(si) = &mut self.sequential {
+                si.rest.hold(&mut self.bodies);
+                si.solve(&mut self.bodies, &self.contacts, static_of_key, &params);
+            }
             self.detect_sequential_contacts();
         }
-        if let Some(si) = &mut self.sequential {
-            si.ccd.remember_start(&self.bodies);
-        }
-        self.integrate_velocities();
-        if let Some(si) = &self.sequential {
-            si.rest.hold(&mut self.bodies);
-        }
-        let params = sequential::Params::of(&self.settings);
-        if let Some(si) = &mut self.sequential {
-            si.solve(&mut self.bodies, &self.contacts, static_of_key, &params);
-        }
-        self.detect_sequential_contacts();
         self.update_touching();
         self.step_count += 1;
         self.time += self.settings.dt;
         self.check_finite()
+    }
+
+    /// One step of the soft solver with dyn4j's contacts ([`Dyn4jContacts`]): the contacts
+    /// detected at the end of the last step are warm started, swept with the springs in every
+    /// sub-step, then pushed apart by the position pass; continuous collision last.
+    fn step_soft_dyn4j_contacts(&mut self) -> Result<(), PhysicsError> {
+        let params = sequential::Params::of(&self.settings);
+        self.apply_pressure();
+        if !self.contacts_fresh {
+            self.detect_dyn4j_contacts(&params);
+        }
+        let n = self.substep_count();
+        // taken out for the step (the springs and bodies are borrowed beside it), put back below
+        let Some(mut dc) = self.dyn4j_contacts.take() else {
+            unreachable!("called only with dyn4j contacts")
+        };
+        dc.remember_start(&self.bodies);
+        self.integrate_velocities(self.settings.dt, true);
+        dc.initialize(&mut self.bodies, &params);
+        let s = &self.settings;
+        let h = s.dt / n as f64;
+        let soft = Softness::new(s.contact_hertz.min(0.25 / h), s.contact_damping_ratio, h);
+        let (max_v, max_w) = (s.max_translation / s.dt, s.max_rotation / s.dt);
+        for sub in 0..n {
+            self.springs.prepare(&self.bodies, h, sub == 0);
+            for _ in 0..s.iterations {
+                self.springs.solve(&mut self.bodies);
+            }
+            let (ropes, batches) = (&mut self.ropes, &self.rope_batches);
+            solve_ropes(
+                ropes,
+                batches,
+                &mut self.bodies,
+                soft,
+                h,
+                s.dt,
+                s.contact_push_max,
+                true,
+                sub == 0,
+            );
+            for _ in 0..s.iterations {
+                dc.solve_velocities(&mut self.bodies);
+            }
+            integrate_positions(&mut self.bodies, h, max_v, max_w);
+        }
+        dc.finish(&mut self.bodies, &self.contacts, static_of_key, &params);
+        self.dyn4j_contacts = Some(dc);
+        self.detect_dyn4j_contacts(&params);
+        self.update_touching();
+        self.step_count += 1;
+        self.time += self.settings.dt;
+        self.check_finite()
+    }
+
+    /// Detects the contacts of the present positions and hands them to [`Dyn4jContacts`].
+    fn detect_dyn4j_contacts(&mut self, params: &sequential::Params) {
+        self.detect_contacts();
+        if let Some(dc) = &mut self.dyn4j_contacts {
+            dc.collect(&self.contacts, &self.bodies, params);
+        }
+        self.contacts_fresh = true;
     }
 
     /// Detects the contacts of the present positions and hands them to the sequential solver.
@@ -733,10 +809,10 @@ impl World {
         }
     }
 
-    /// Gravity, external forces and damping, once per step (semi-implicit Euler).
+    /// Gravity, external forces and damping over `dt` (semi-implicit Euler); `clear` resets the
+    /// external forces afterwards.
     #[inline(never)]
-    fn integrate_velocities(&mut self) {
-        let dt = self.settings.dt;
+    fn integrate_velocities(&mut self, dt: f64, clear: bool) {
         let g = self.settings.gravity;
         let b = &mut self.bodies;
         for i in 1..b.len() {
@@ -744,8 +820,10 @@ impl World {
             let ang = (1.0 - dt * b.ang_damp[i]).clamp(0.0, 1.0);
             b.state[i].vel = (b.state[i].vel + (g + b.force[i] * b.state[i].inv_mass) * dt) * lin;
             b.state[i].omega = (b.state[i].omega + b.torque[i] * b.state[i].inv_inertia * dt) * ang;
-            b.force[i] = Vec2::ZERO;
-            b.torque[i] = 0.0;
+            if clear {
+                b.force[i] = Vec2::ZERO;
+                b.torque[i] = 0.0;
+            }
         }
     }
 
@@ -756,7 +834,7 @@ impl World {
         // speculative margin of each shape: the base gap plus how far its body may travel this
         // step, so fast bodies meet contacts before they overlap (no tunnelling or deep overlaps)
         // the sequential-impulse solver (like dyn4j) only knows shapes that overlap
-        let speculative = self.settings.solver == Solver::SoftSubsteps;
+        let speculative = self.settings.solver == Solver::SoftSubsteps && self.dyn4j_contacts.is_none();
         let collide = if speculative {
             collide_polygons
         } else {

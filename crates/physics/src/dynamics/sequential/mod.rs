@@ -11,6 +11,7 @@
 //! ported from its code; where dyn4j has a quirk that changes motion, the quirk is kept and named.
 
 mod ccd;
+mod colour;
 mod contacts;
 mod distance;
 mod island;
@@ -46,13 +47,15 @@ pub(crate) struct Params {
     pub unit_position_mass: bool,
     pub version: Dyn4jVersion,
     pub continuous_collision: bool,
+    /// Sweep the joints grouped by colour ([`WorldSettings::coloured_joints`]).
+    pub coloured_joints: bool,
 }
 
 impl Params {
     pub fn of(s: &WorldSettings) -> Params {
         let version = s.dyn4j_version();
         Params {
-            dt: s.dt,
+            dt: s.dt / f64::from(s.sequential_substeps),
             velocity_iterations: s.velocity_iterations,
             position_iterations: s.position_iterations,
             warm_starting: s.warm_starting,
@@ -66,6 +69,7 @@ impl Params {
             unit_position_mass: version == Dyn4jVersion::V3_3_0,
             version,
             continuous_collision: s.continuous_collision,
+            coloured_joints: s.coloured_joints,
         }
     }
 }
@@ -79,6 +83,8 @@ pub(crate) struct SequentialSolver {
     pub island: Island,
     /// dyn4j 4.2.1's at-rest detection: each body's time at rest and sleep.
     pub rest: Rest,
+    /// Buffers of the coloured joint order ([`Params::coloured_joints`]).
+    colours: colour::JointColours,
 }
 
 impl SequentialSolver {
@@ -96,6 +102,15 @@ impl SequentialSolver {
         let sleeps = p.version == Dyn4jVersion::V4_2_1;
         let rest = sleeps.then_some(&mut self.rest);
         self.island.walk(self.contacts.pairs(), sleeps, rest);
+        if p.coloured_joints {
+            let j = &self.joints;
+            let ends = |joint| match joint {
+                Joint::Spring(i) => (j.springs[i as usize].a, j.springs[i as usize].b),
+                Joint::Rope(i) => (j.ropes[i as usize].a, j.ropes[i as usize].b),
+                Joint::Weld(i) => (j.welds[i as usize].a, j.welds[i as usize].b),
+            };
+            self.colours.group(&mut self.island.joints, bodies.len(), ends);
+        }
         let (joints, contacts) = (&self.island.joints, &self.island.contacts);
         self.contacts.initialize(bodies, p, contacts);
         self.joints.initialize(bodies, p, joints);

@@ -137,6 +137,9 @@ pub struct WorldSettings {
     /// joints of a colour share a body, the island walk's order kept within a colour), the order a
     /// vectorised sweep needs; off, the island walk's order (dyn4j's).
     pub coloured_joints: bool,
+    /// Whether welded parts become one rigid body, as in the soft solver, instead of bodies joined
+    /// by weld joints (dyn4j's); a fidelity candidate of docs/fidelity.md.
+    pub merge_welds: bool,
 }
 
 impl Default for WorldSettings {
@@ -168,6 +171,7 @@ impl Default for WorldSettings {
             continuous_collision: true,
             sequential_substeps: 1,
             coloured_joints: false,
+            merge_welds: false,
         }
     }
 }

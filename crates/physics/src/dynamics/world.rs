@@ -358,15 +358,23 @@ impl Joining<'_> {
 
     /// The sequential-impulse solver's weld joints: welded parts never collide; the weld's anchor
     /// is the first part's centre of mass (2D-VSR-Sim's, vsr-model.md §1.8).
-    fn welds(&self, si: &mut SequentialSolver, excluded: &mut Vec<(u32, u32)>) {
+    /// Each builder weld's slot (`NONE` where `merge_welds` made its parts one body).
+    fn welds(&self, si: &mut SequentialSolver, excluded: &mut Vec<(u32, u32)>) -> Vec<u32> {
+        let mut slots = Vec::with_capacity(self.b.welds.len());
         for &(x, y) in &self.b.welds {
             excluded.push((x.0, y.0));
             let (ba, bb) = (self.part_body[x.0 as usize], self.part_body[y.0 as usize]);
+            if ba == bb {
+                slots.push(NONE);
+                continue;
+            }
+            slots.push(si.joints.welds.len() as u32);
             let anchor = self.bodies.state[ba as usize].pos;
             si.joints
                 .welds
                 .push(Weld::new(ba, bb, Vec2::ZERO, self.local(anchor, bb), 0.0));
         }
+        slots
     }
 }
 
@@ -499,8 +507,10 @@ impl World {
     pub(crate) fn from_builder(b: WorldBuilder) -> World {
         let n = b.parts.len();
         // the sequential-impulse solver keeps every part a body of its own, joined by weld joints
-        let merge_welds = b.settings.solver == Solver::SoftSubsteps;
-        let mut sequential = (!merge_welds).then(SequentialSolver::default);
+        // (unless told to merge them, a fidelity candidate)
+        let soft = b.settings.solver == Solver::SoftSubsteps;
+        let merge_welds = soft || b.settings.merge_welds;
+        let mut sequential = (!soft).then(SequentialSolver::default);
         let roots = weld_groups(&b, merge_welds);
         let props = part_mass_properties(&b);
         let (bodies, part_body) = bodies_of_groups(&b, &roots, &props);
@@ -517,9 +527,10 @@ impl World {
         };
         let (springs, spring_models, mut spring_slot) = joining.springs(&mut sequential, &mut excluded);
         let (ropes, mut rope_slot) = joining.ropes(&mut sequential, &mut excluded);
-        if let Some(si) = &mut sequential {
-            joining.welds(si, &mut excluded);
-        }
+        let weld_slot = match &mut sequential {
+            Some(si) => joining.welds(si, &mut excluded),
+            None => Vec::new(),
+        };
         let excluded = ExcludedPairs::new(n, excluded);
         // order constraints so that neighbours in the solver loop touch different bodies: the
         // result is the same Gauss–Seidel sweep, but the CPU can overlap independent constraints
@@ -584,8 +595,9 @@ impl World {
                             (Joint::Rope(slot), r.a, r.b)
                         }
                         JointRef::Weld(i) => {
-                            let w = &si.joints.welds[i as usize];
-                            (Joint::Weld(i), w.a, w.b)
+                            let slot = weld_slot[i as usize];
+                            let w = si.joints.welds.get(slot as usize)?;
+                            (Joint::Weld(slot), w.a, w.b)
                         }
                     };
                     Some((joint, a, c))

@@ -258,3 +258,29 @@ fn sub_stepped_and_coloured_sweeps_land_welded_squares_and_change_the_motion() {
     assert_ne!(plain, sub);
     assert_ne!(plain, coloured);
 }
+
+#[test]
+fn merged_welds_make_one_body_that_lands_and_rests() {
+    let mut b = WorldBuilder::new(WorldSettings {
+        merge_welds: true,
+        ..settings()
+    });
+    with_ground(&mut b);
+    let l = b.add_part(square(Vec2::new(0.0, 8.0), 1.2));
+    let r = b.add_part(square(Vec2::new(1.2, 8.0), 1.2));
+    let free = b.add_part(square(Vec2::new(4.0, 8.0), 1.2));
+    b.weld(l, r);
+    b.add_spring(centre_spring(r, free, 2.8));
+    let mut w = b.build().unwrap();
+    assert!(w.same_body(l, r) && !w.same_body(r, free));
+    assert_eq!(w.body_count(), 2);
+    let start = w.part_position(r) - w.part_position(l);
+    run(&mut w, 240);
+    // one rigid body: the parts keep their offset exactly (up to the rotation)
+    let gap = (w.part_position(r) - w.part_position(l)) - rotated(start, w.part_angle(l));
+    assert!(gap.length() < 1e-9, "{gap:?}");
+    for p in [l, r, free] {
+        assert!((5.0 - (w.part_position(p).y - 0.6)).abs() < 0.05);
+        assert!(w.part_velocity(p).length() < 0.05);
+    }
+}

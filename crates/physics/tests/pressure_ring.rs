@@ -12,6 +12,11 @@ fn ring(n: usize, r: f64, gravity: Vec2, length: EdgeLength) -> (World, Vec<Part
         gravity,
         ..WorldSettings::default()
     };
+    ring_in(settings, n, r, length)
+}
+
+/// [`ring`] in a world of the given settings.
+fn ring_in(settings: WorldSettings, n: usize, r: f64, length: EdgeLength) -> (World, Vec<PartHandle>, RingHandle) {
     let mut b = WorldBuilder::new(settings);
     let parts: Vec<PartHandle> = (0..n)
         .map(|i| {
@@ -76,6 +81,29 @@ fn ring_area_is_the_inscribed_polygon_and_grows_with_pressure() {
     }
     assert!((areas[0] - inscribed).abs() < 1e-6, "no pressure, no change: {areas:?}");
     assert!(areas[1] > areas[0] * 1.02 && areas[2] > areas[1] * 1.02, "{areas:?}");
+}
+
+#[test]
+fn sequential_sub_steps_hold_the_pressure_of_the_step_once() {
+    // the pressure force is computed once per step and held over the sub-steps, as external
+    // forces are: two sub-steps inflate the ring as far as one (not as twice the pressure would)
+    let area = |sequential_substeps: u32, pressure: f64| {
+        let settings = WorldSettings {
+            gravity: Vec2::ZERO,
+            solver: vsrlab_physics::Solver::SequentialImpulses,
+            sequential_substeps,
+            ..WorldSettings::default()
+        };
+        let (mut w, _, h) = ring_in(settings, 15, 7.5, EdgeLength::Actual);
+        w.set_ring_pressure(h, pressure);
+        for _ in 0..300 {
+            w.step().unwrap();
+        }
+        w.ring_area(h)
+    };
+    let (one, two, double) = (area(1, 20_000.0), area(2, 20_000.0), area(1, 40_000.0));
+    assert!((two - one).abs() < 0.005 * one, "{one} {two}");
+    assert!(double > one * 1.02, "{one} {double}");
 }
 
 #[test]

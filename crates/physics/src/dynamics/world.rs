@@ -716,8 +716,10 @@ impl World {
     fn step_sequential(&mut self) -> Result<(), PhysicsError> {
         let params = sequential::Params::of(&self.settings);
         let n = self.settings.sequential_substeps;
+        // pressure is a force of the step's start positions, held (like external forces) over
+        // every sub-step
+        self.apply_pressure();
         for sub in 0..n {
-            self.apply_pressure();
             if !self.contacts_fresh {
                 self.detect_sequential_contacts();
             }

@@ -6,6 +6,7 @@
 
 pub(crate) mod broad_phase;
 pub mod builder;
+pub(crate) mod colour;
 pub(crate) mod contact;
 pub(crate) mod contact_batch;
 pub(crate) mod dyn4j_contacts;

@@ -2,6 +2,7 @@
 
 use super::broad_phase::{ExcludedPairs, StaticIndex, SweepAndPrune};
 use super::builder::{JointRef, WorldBuilder};
+use super::colour::colour_order;
 use super::contact::{apply_restitution, ContactConstraint, ContactPass, ContactSchedule};
 use super::contact_batch::ContactBatches;
 use super::dyn4j_contacts::Dyn4jContacts;
@@ -174,47 +175,6 @@ pub struct World {
     /// Whether `contacts` hold the present positions' contacts (the sequential-impulse solver
     /// detects them at the end of each step, for the next one).
     contacts_fresh: bool,
-}
-
-/// A permutation of constraints (given as body pairs) grouped by greedy colour, and the range of
-/// each colour in it: within a colour no two constraints share a dynamic body. Colours keep the
-/// original order inside them.
-fn color_order(pairs: &[(u32, u32)]) -> (Vec<usize>, Vec<(u32, u32)>) {
-    let n_bodies = pairs.iter().map(|&(a, b)| a.max(b) as usize + 1).max().unwrap_or(0);
-    // used[body] = bitset of colours already taken at that body (up to 64·k colours)
-    let mut used: Vec<Vec<u64>> = vec![Vec::new(); n_bodies];
-    let mut colors = Vec::with_capacity(pairs.len());
-    for &(a, b) in pairs {
-        let (a, b) = (a as usize, b as usize);
-        let mut c = 0;
-        loop {
-            let (w, bit) = (c / 64, 1u64 << (c % 64));
-            let taken = |v: &Vec<u64>| v.get(w).is_some_and(|x| x & bit != 0);
-            // the static world (body 0) never moves, so it does not constrain the order
-            if !(a != 0 && taken(&used[a]) || b != 0 && taken(&used[b])) {
-                break;
-            }
-            c += 1;
-        }
-        for body in [a, b] {
-            let v = &mut used[body];
-            if v.len() <= c / 64 {
-                v.resize(c / 64 + 1, 0);
-            }
-            v[c / 64] |= 1 << (c % 64);
-        }
-        colors.push(c);
-    }
-    let mut order: Vec<usize> = (0..pairs.len()).collect();
-    order.sort_by_key(|&i| colors[i]);
-    let mut ranges: Vec<(u32, u32)> = Vec::new();
-    for (k, &i) in order.iter().enumerate() {
-        match ranges.last_mut() {
-            Some(r) if colors[order[r.0 as usize]] == colors[i] => r.1 = k as u32 + 1,
-            _ => ranges.push((k as u32, k as u32 + 1)),
-        }
-    }
-    (order, ranges)
 }
 
 /// Rewrites handle → slot maps after constraints were permuted by `order` (new → old).
@@ -534,7 +494,7 @@ impl World {
         let excluded = ExcludedPairs::new(n, excluded);
         // order constraints so that neighbours in the solver loop touch different bodies: the
         // result is the same Gauss–Seidel sweep, but the CPU can overlap independent constraints
-        let (order, ranges) = color_order(&springs.iter().map(|s| (s.a, s.b)).collect::<Vec<_>>());
+        let (order, ranges) = colour_order(&springs.iter().map(|s| (s.a, s.b)).collect::<Vec<_>>());
         let springs: Vec<Spring> = order.iter().map(|&i| springs[i]).collect();
         let spring_models: Vec<SpringModel> = order.iter().map(|&i| spring_models[i]).collect();
         let (springs, batch_slot) = SpringSet::new(&springs, &spring_models, &ranges, &bodies);
@@ -545,7 +505,7 @@ impl World {
                 *s = batch_slot[*s as usize];
             }
         }
-        let (order, rope_ranges) = color_order(&ropes.iter().map(|r| (r.a, r.b)).collect::<Vec<_>>());
+        let (order, rope_ranges) = colour_order(&ropes.iter().map(|r| (r.a, r.b)).collect::<Vec<_>>());
         let ropes: Vec<Rope> = order.iter().map(|&i| ropes[i].clone()).collect();
         if sequential.is_none() {
             remap_slots(&mut rope_slot, &order);
@@ -705,10 +665,7 @@ impl World {
             &mut self.bodies,
             self.settings.restitution_threshold,
         );
-        self.update_touching();
-        self.step_count += 1;
-        self.time += self.settings.dt;
-        self.check_finite()
+        self.end_step()
     }
 
     /// One step of the sequential-impulse solver (dyn4j's order, see [`sequential`]): one whole
@@ -734,10 +691,7 @@ impl World {
             }
             self.detect_sequential_contacts();
         }
-        self.update_touching();
-        self.step_count += 1;
-        self.time += self.settings.dt;
-        self.check_finite()
+        self.end_step()
     }
 
     /// One step of the soft solver with dyn4j's contacts ([`Dyn4jContacts`]): the contacts
@@ -786,10 +740,7 @@ impl World {
         dc.finish(&mut self.bodies, &self.contacts, static_of_key, &params);
         self.dyn4j_contacts = Some(dc);
         self.detect_dyn4j_contacts(&params);
-        self.update_touching();
-        self.step_count += 1;
-        self.time += self.settings.dt;
-        self.check_finite()
+        self.end_step()
     }
 
     /// Detects the contacts of the present positions and hands them to [`Dyn4jContacts`].
@@ -1056,6 +1007,15 @@ impl World {
                 }
             }
         }
+    }
+
+    /// What every solver's step ends with: touching flags, the clock, the check for non-finite
+    /// state.
+    fn end_step(&mut self) -> Result<(), PhysicsError> {
+        self.update_touching();
+        self.step_count += 1;
+        self.time += self.settings.dt;
+        self.check_finite()
     }
 
     #[inline(never)]

@@ -4,43 +4,23 @@
 //! dyn4j's island walk; docs/fidelity.md measures by how much.
 
 use super::island::Joint;
+use crate::dynamics::colour::{greedy_colours, ColourBuffers};
 
 /// Reusable buffers of the colouring (nothing is allocated once warm).
 #[derive(Debug, Clone, Default)]
 pub(crate) struct JointColours {
-    /// Colours already taken at each body, as a bit set (64 colours at most).
-    taken: Vec<u64>,
-    colour: Vec<u8>,
+    colouring: ColourBuffers,
     sorted: Vec<Joint>,
 }
 
 impl JointColours {
-    /// Reorders `joints` by colour, each joint taking the first colour free at both its bodies
-    /// (in the given order), and keeps the given order within a colour. `ends` gives a joint's
-    /// two bodies; body 0 is the static world, which never moves and so takes no colour.
+    /// Reorders `joints` by greedy colour ([`greedy_colours`], in the given order) and keeps the
+    /// given order within a colour. `ends` gives a joint's two bodies.
     pub fn group(&mut self, joints: &mut [Joint], n_bodies: usize, ends: impl Fn(Joint) -> (u32, u32)) {
-        self.taken.clear();
-        self.taken.resize(n_bodies, 0);
-        self.colour.clear();
-        let mut colours = 0;
-        for &j in joints.iter() {
-            let (a, b) = ends(j);
-            let mask = |body: u32| if body == 0 { 0 } else { self.taken[body as usize] };
-            let free = !(mask(a) | mask(b));
-            // a joint with every colour taken at its bodies shares the last one (never in voxel
-            // bodies, whose squares have a dozen joints at most)
-            let c = free.trailing_zeros().min(63);
-            for body in [a, b] {
-                if body != 0 {
-                    self.taken[body as usize] |= 1 << c;
-                }
-            }
-            self.colour.push(c as u8);
-            colours = colours.max(c + 1);
-        }
+        let count = greedy_colours(joints.iter().map(|&j| ends(j)), n_bodies, &mut self.colouring);
         self.sorted.clear();
-        for c in 0..colours as u8 {
-            let same = joints.iter().zip(&self.colour).filter(|(_, &k)| k == c);
+        for c in 0..count {
+            let same = joints.iter().zip(&self.colouring.colours).filter(|(_, &k)| k == c);
             self.sorted.extend(same.map(|(&j, _)| j));
         }
         joints.copy_from_slice(&self.sorted);

@@ -5,7 +5,7 @@
 use crate::run::PyTransport;
 use crate::value_error;
 use pyo3::prelude::*;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{channel, RecvTimeoutError};
 use std::sync::{Arc, Mutex, MutexGuard};
@@ -17,8 +17,9 @@ use vsrlab_experiment::runner::{Flow, Progress, RunOptions, RunSummary};
 /// Every setting of the files, as `[{"name", "out", "text"}]` JSON: the text is the resolved
 /// experiment a cluster's workers build their evaluator from.
 #[pyfunction]
-pub fn campaign_settings(files: Vec<PathBuf>, out: PathBuf) -> PyResult<String> {
-    let settings = campaigns::settings(&files, &out).map_err(value_error)?;
+#[pyo3(signature = (files, out, solver = None))]
+pub fn campaign_settings(files: Vec<PathBuf>, out: PathBuf, solver: Option<&str>) -> PyResult<String> {
+    let settings = settings(&files, &out, solver)?;
     let list: Vec<serde_json::Value> = settings
         .iter()
         .map(|s| {
@@ -84,7 +85,8 @@ fn result_json(r: &SettingResult) -> serde_json::Value {
 /// `evaluators` (one callable per setting, in `campaign_settings`' order), each setting's batches
 /// go to its callable; the results are the same bit for bit.
 #[pyfunction]
-#[pyo3(signature = (files, out, resume = false, threads = 0, evaluators = None, verbose = false))]
+#[pyo3(signature = (files, out, resume = false, threads = 0, evaluators = None, verbose = false, solver = None))]
+#[allow(clippy::too_many_arguments)]
 pub fn campaign(
     py: Python<'_>,
     files: Vec<PathBuf>,
@@ -93,8 +95,9 @@ pub fn campaign(
     threads: usize,
     evaluators: Option<Vec<Py<PyAny>>>,
     verbose: bool,
+    solver: Option<&str>,
 ) -> PyResult<String> {
-    let mut settings = campaigns::settings(&files, &out).map_err(value_error)?;
+    let mut settings = settings(&files, &out, solver)?;
     if let Some(evaluators) = evaluators {
         if evaluators.len() != settings.len() {
             return Err(value_error(format!(
@@ -160,4 +163,20 @@ pub fn campaign(
 
 fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+/// The campaign's settings, under `solver` if given (the task's 2D physics solver replaced in
+/// every setting); the error names the argument.
+fn settings(files: &[PathBuf], out: &Path, solver: Option<&str>) -> PyResult<Vec<campaigns::Setting>> {
+    let mut settings = campaigns::settings(files, out).map_err(value_error)?;
+    if let Some(solver) = solver {
+        for setting in &mut settings {
+            setting
+                .experiment
+                .task
+                .set_solver(solver)
+                .map_err(|e| value_error(e.at("solver")))?;
+        }
+    }
+    Ok(settings)
 }

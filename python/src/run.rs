@@ -5,7 +5,7 @@
 use crate::value_error;
 use numpy::PyArray1;
 use pyo3::prelude::*;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use vsrlab_experiment::evaluator::{Evaluated, EvaluatorError, Record};
 use vsrlab_experiment::remote::{Evaluations, Transport};
@@ -98,7 +98,8 @@ impl Observer for Reporter {
 /// text. With `evaluate`, every batch goes to that callable (see [`PyTransport`]), whatever the genotype kind; the results are
 /// the same bit for bit, since each evaluation is a pure function of (genotype, seed).
 #[pyfunction]
-#[pyo3(signature = (config, out, resume = false, threads = 0, evaluate = None, verbose = false))]
+#[pyo3(signature = (config, out, resume = false, threads = 0, evaluate = None, verbose = false, solver = None))]
+#[allow(clippy::too_many_arguments)]
 pub fn run(
     py: Python<'_>,
     config: PathBuf,
@@ -107,8 +108,9 @@ pub fn run(
     threads: usize,
     evaluate: Option<Py<PyAny>>,
     verbose: bool,
+    solver: Option<&str>,
 ) -> PyResult<String> {
-    let experiments = config::load_all(&config).map_err(value_error)?;
+    let experiments = load(&config, solver)?;
     let [experiment]: [Experiment; 1] = experiments.try_into().map_err(|e: Vec<Experiment>| {
         value_error(format!(
             "config: {} is a sweep of {} settings; run each setting's file, or the CLI's `vsrlab run`",
@@ -154,8 +156,9 @@ pub fn deterministic_files(out: PathBuf) -> PyResult<Vec<(String, Vec<u8>)>> {
 /// (the text a cluster's workers build their evaluator from, with nothing to find on their disk).
 /// A sweep of several settings is refused: each setting is its own run.
 #[pyfunction]
-pub fn experiment_text(config: PathBuf) -> PyResult<String> {
-    let experiments = config::load_all(&config).map_err(value_error)?;
+#[pyo3(signature = (config, solver = None))]
+pub fn experiment_text(config: PathBuf, solver: Option<&str>) -> PyResult<String> {
+    let experiments = load(&config, solver)?;
     match experiments.as_slice() {
         [experiment] => Ok(experiment.to_toml()),
         many => Err(value_error(format!(
@@ -164,4 +167,19 @@ pub fn experiment_text(config: PathBuf) -> PyResult<String> {
             many.len()
         ))),
     }
+}
+
+/// Every setting of an experiment file, under `solver` if given (the CLI's `--solver`: the
+/// task's 2D physics solver replaced); the error names the argument.
+pub(crate) fn load(config: &Path, solver: Option<&str>) -> PyResult<Vec<Experiment>> {
+    let mut experiments = config::load_all(config).map_err(value_error)?;
+    if let Some(solver) = solver {
+        for experiment in &mut experiments {
+            experiment
+                .task
+                .set_solver(solver)
+                .map_err(|e| value_error(e.at("solver")))?;
+        }
+    }
+    Ok(experiments)
 }

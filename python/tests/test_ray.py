@@ -40,6 +40,7 @@ evaluations = 112
 """
 
 RAY = str(Path(sys.executable).parent / "ray")
+ROOT = Path(__file__).resolve().parents[2]
 # loopback tests only: Ray 2.60's token authentication off for head, worker and this driver
 ENV = dict(os.environ, RAY_AUTH_MODE="disabled", RAY_USAGE_STATS_ENABLED="0")
 
@@ -298,6 +299,39 @@ def test_a_campaign_on_ray_whose_driver_is_killed_resumes_to_the_local_campaigns
         assert sorted(ours) == sorted(theirs) and len(ours) >= 6
         for file in ours:
             assert ours[file] == theirs[file], f"{name}/{file}"
+
+
+def test_the_cli_s_solver_reaches_the_cluster_and_ends_like_the_local_run(cluster, tmp_path, vsrlab_bin):
+    config = tmp_path / "ray.toml"
+    config.write_text(CONFIG.replace("evaluations = 112", "evaluations = 48"))
+    solver = ["--solver", "sequential-impulses"]
+    local = subprocess.run([str(vsrlab_bin), "run", str(config), "--out", str(tmp_path / "local"), *solver],
+                           capture_output=True, text=True, timeout=600)
+    assert local.returncode == 0, local.stderr
+    env = dict(ENV, VSRLAB_PYTHON=sys.executable)
+    remote = subprocess.run([str(vsrlab_bin), "run", str(config), "--out", str(tmp_path / "ray"), "--ray", cluster,
+                             *solver], capture_output=True, text=True, env=env, timeout=600)
+    assert remote.returncode == 0, remote.stderr
+    resolved = (tmp_path / "ray" / "experiment.toml").read_text()
+    assert 'solver = "sequential-impulses"' in resolved, resolved
+    ours = dict(_native.deterministic_files(str(tmp_path / "ray")))
+    theirs = dict(_native.deterministic_files(str(tmp_path / "local")))
+    assert sorted(ours) == sorted(theirs) and len(ours) >= 3
+    for name in ours:
+        assert ours[name] == theirs[name], name
+    # the default solver gives other results: the option was not dropped on the way
+    plain = vsrlab.run(config, tmp_path / "plain")
+    assert plain[0]["best_fitness"] != json.loads((tmp_path / "ray" / "summary.json").read_text())[0]["best_fitness"]
+
+
+def test_a_bad_solver_is_refused_naming_the_argument_before_anything_is_written(tmp_path):
+    config = tmp_path / "ray.toml"
+    config.write_text(CONFIG)
+    with pytest.raises(ValueError, match="solver: expected soft-substeps"):
+        vsrlab.run(config, tmp_path / "out", solver="dyn4j")
+    with pytest.raises(ValueError, match="solver: the affordance task has no 2D"):
+        vsrlab.campaign([ROOT / "experiments/ch5.1/reduced.toml"], tmp_path / "out", solver="soft-substeps")
+    assert not (tmp_path / "out").exists()
 
 
 def test_quick_evaluations_go_in_few_chunks_and_give_the_same_answers(cluster, tmp_path):

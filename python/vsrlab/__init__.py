@@ -186,6 +186,7 @@ def run(
     threads: int = 0,
     ray: Optional[str] = None,
     verbose: bool = False,
+    solver: Optional[str] = None,
     **ray_options: Any,
 ) -> list:
     """Runs an experiment file like ``vsrlab run`` (same files, checkpoints and ``resume``) and
@@ -194,7 +195,8 @@ def run(
     ``ray`` sends every batch of evaluations to a Ray cluster instead of local threads: ``"auto"``
     (a cluster started with ``ray start``), ``"local"`` (a new one on this machine) or an address
     such as ``"10.0.0.1:6379"``; the results are identical bit for bit (docs/cluster.md).
-    ``ray_options`` go to :class:`vsrlab.cluster.RayEvaluator`.
+    ``ray_options`` go to :class:`vsrlab.cluster.RayEvaluator`. ``solver`` replaces the file's 2D
+    physics solver (``"soft-substeps"`` or ``"sequential-impulses"``), like ``vsrlab run --solver``.
     """
     path = Path(config)
     if not path.is_file():
@@ -203,10 +205,10 @@ def run(
     if ray is not None:
         from .cluster import RayEvaluator
 
-        text = _native.experiment_text(os.fspath(path))
+        text = _native.experiment_text(os.fspath(path), solver)
         evaluate = RayEvaluator(text, address=ray, origin=str(path), **ray_options)
     try:
-        text = _native.run(os.fspath(path), os.fspath(out), resume, int(threads), evaluate, verbose)
+        text = _native.run(os.fspath(path), os.fspath(out), resume, int(threads), evaluate, verbose, solver)
     finally:
         if evaluate is not None:
             evaluate.close()
@@ -220,6 +222,7 @@ def campaign(
     threads: int = 0,
     ray: Optional[str] = None,
     verbose: bool = False,
+    solver: Optional[str] = None,
     **ray_options: Any,
 ) -> dict:
     """Runs many experiment files (every setting of a sweep file, every run) side by side, each
@@ -229,7 +232,8 @@ def campaign(
     Locally the runs share one pool of ``threads``; with ``ray`` (as in :func:`run`) every
     setting's batches go to one shared pool of Ray actors, so a cluster stays busy even when each
     run's batch is small. ``resume=True`` continues every unfinished run from its checkpoint.
-    The files are the same bit for bit as running each file alone (docs/cluster.md).
+    The files are the same bit for bit as running each file alone (docs/cluster.md). ``solver``
+    replaces every file's 2D physics solver, as in :func:`run`.
     """
     paths = [os.fspath(files)] if isinstance(files, (str, os.PathLike)) else [os.fspath(f) for f in files]
     for path in paths:
@@ -240,13 +244,13 @@ def campaign(
     if ray is not None:
         from .cluster import RayEvaluator, RayPool
 
-        settings = json.loads(_native.campaign_settings(paths, os.fspath(out)))
+        settings = json.loads(_native.campaign_settings(paths, os.fspath(out), solver))
         pool_keys = ("actors", "cpus_per_actor", "concurrency", "timeout")
         pool = RayPool(ray, **{k: v for k, v in ray_options.items() if k in pool_keys})
         rest = {k: v for k, v in ray_options.items() if k not in pool_keys or k == "timeout"}
         evaluators = [RayEvaluator(s["text"], origin=s["name"], pool=pool, **rest) for s in settings]
     try:
-        text = _native.campaign(paths, os.fspath(out), resume, int(threads), evaluators, verbose)
+        text = _native.campaign(paths, os.fspath(out), resume, int(threads), evaluators, verbose, solver)
     finally:
         if pool is not None:
             pool.close()

@@ -1,6 +1,6 @@
-"""``python -m vsrlab run CONFIG --out DIR [--ray ADDRESS] [--resume]``: an experiment from Python,
+"""``python -m vsrlab run CONFIG --out DIR [--ray ADDRESS] [--resume] [--solver S]``: an experiment from Python,
 its evaluations optionally on a Ray cluster (docs/cluster.md); ``python -m vsrlab campaign FILES…
---out DIR [--ray ADDRESS] [--resume]``: many files' settings and runs side by side. Every other
+--out DIR [--ray ADDRESS] [--resume] [--solver S]``: many files' settings and runs side by side. Every other
 command is the ``vsrlab`` binary's."""
 
 from __future__ import annotations
@@ -22,6 +22,7 @@ def main(argv=None) -> int:
     r.add_argument("--resume", action="store_true", help="continue from the checkpoints")
     r.add_argument("--threads", type=int, default=0, help="local worker threads (0: every core)")
     r.add_argument("--quiet", action="store_true", help="no progress lines")
+    r.add_argument("--solver", help="2D physics solver replacing the files': soft-substeps or sequential-impulses")
     c = commands.add_parser("campaign", help="run many experiment files side by side, optionally on Ray")
     c.add_argument("files", nargs="+", help="experiment files (TOML); a sweep gives each setting")
     c.add_argument("--out", required=True, help="output folder: one folder per setting in it")
@@ -29,11 +30,18 @@ def main(argv=None) -> int:
     c.add_argument("--resume", action="store_true", help="continue every unfinished run")
     c.add_argument("--threads", type=int, default=0, help="local worker threads (0: every core)")
     c.add_argument("--quiet", action="store_true", help="no progress lines")
+    c.add_argument("--solver", help="2D physics solver replacing the files': soft-substeps or sequential-impulses")
     args = parser.parse_args(argv)
     if args.command == "campaign":
         try:
             result = campaign(
-                args.files, args.out, resume=args.resume, threads=args.threads, ray=args.ray, verbose=not args.quiet
+                args.files,
+                args.out,
+                resume=args.resume,
+                threads=args.threads,
+                ray=args.ray,
+                verbose=not args.quiet,
+                solver=args.solver,
             )
         except ValueError as e:
             print(f"error: {e}", file=sys.stderr)
@@ -42,7 +50,13 @@ def main(argv=None) -> int:
         return 0
     try:
         summaries = run(
-            args.config, args.out, resume=args.resume, threads=args.threads, ray=args.ray, verbose=not args.quiet
+            args.config,
+            args.out,
+            resume=args.resume,
+            threads=args.threads,
+            ray=args.ray,
+            verbose=not args.quiet,
+            solver=args.solver,
         )
     except ValueError as e:
         print(f"error: {e}", file=sys.stderr)

@@ -34,6 +34,9 @@ pub struct CampaignArgs {
     /// (the interpreter in $VSRLAB_PYTHON, or python3).
     #[arg(long, value_name = "ADDRESS")]
     pub ray: Option<String>,
+    /// Physics solver of 2D voxel tasks, replacing every file's (as `vsrlab run --solver`).
+    #[arg(long)]
+    pub solver: Option<String>,
 }
 
 /// Progress lines: each finished run, and the campaign's share done with an ETA every
@@ -124,7 +127,16 @@ pub fn run(a: CampaignArgs) -> Result<(), String> {
             a.log_every
         ));
     }
-    let settings = campaign::settings(&a.experiments, &a.out).map_err(|e| e.to_string())?;
+    let mut settings = campaign::settings(&a.experiments, &a.out).map_err(|e| e.to_string())?;
+    if let Some(solver) = &a.solver {
+        for setting in &mut settings {
+            setting
+                .experiment
+                .task
+                .set_solver(solver)
+                .map_err(|e| e.at("--solver").to_string())?;
+        }
+    }
     if let Some(address) = &a.ray {
         let request = crate::python::RayRequest {
             command: "campaign",
@@ -133,6 +145,7 @@ pub fn run(a: CampaignArgs) -> Result<(), String> {
             address,
             resume: a.resume,
             threads: a.threads,
+            solver: a.solver.as_deref(),
         };
         return crate::python::hand_over(&request.arguments());
     }

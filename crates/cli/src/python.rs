@@ -52,6 +52,8 @@ pub struct RayRequest<'a> {
     pub resume: bool,
     /// Local worker threads, if given.
     pub threads: Option<usize>,
+    /// The 2D physics solver replacing the files', if given (`--solver`).
+    pub solver: Option<&'a str>,
 }
 
 impl RayRequest<'_> {
@@ -71,6 +73,9 @@ impl RayRequest<'_> {
         if let Some(threads) = self.threads {
             args.extend(["--threads".into(), threads.to_string()]);
         }
+        if let Some(solver) = self.solver {
+            args.extend(["--solver".into(), solver.into()]);
+        }
         args
     }
 }
@@ -89,14 +94,17 @@ mod tests {
             address: "10.0.0.1:6379",
             resume: true,
             threads: Some(3),
+            solver: Some("sequential-impulses"),
         };
         assert_eq!(
             request.arguments().join(" "),
-            "campaign a.toml b.toml --out out/ab --ray 10.0.0.1:6379 --resume --threads 3"
+            "campaign a.toml b.toml --out out/ab --ray 10.0.0.1:6379 --resume --threads 3 \
+             --solver sequential-impulses"
         );
         let plain = RayRequest {
             resume: false,
             threads: None,
+            solver: None,
             ..request
         };
         assert_eq!(plain.arguments().len(), 7);

@@ -229,13 +229,11 @@ pub fn run(a: RunArgs) -> Result<(), String> {
     }
     let mut experiments = config::load_all(&a.experiment).map_err(|e| e.to_string())?;
     if let Some(solver) = &a.solver {
-        if a.ray.is_some() {
-            return Err("--solver: not with --ray (name the solver in the experiment file: \
-                        [task.physics] solver = \"…\")"
-                .into());
-        }
         for experiment in &mut experiments {
-            with_solver(experiment, solver)?;
+            experiment
+                .task
+                .set_solver(solver)
+                .map_err(|e| e.at("--solver").to_string())?;
         }
     }
     if let [experiment] = experiments.as_slice() {
@@ -264,21 +262,6 @@ pub fn run(a: RunArgs) -> Result<(), String> {
         let name = experiment.name.clone().unwrap_or_else(|| "experiment".to_string());
         run_one(experiment, &base.join(name), &a)?;
     }
-    Ok(())
-}
-
-/// Replaces the experiment's physics solver (`--solver`); an error names the option, and says
-/// when the task has no 2D solver.
-fn with_solver(experiment: &mut Experiment, solver: &str) -> Result<(), String> {
-    solver
-        .parse::<vsrlab_physics::Solver>()
-        .map_err(|e| format!("--solver: {e}"))?;
-    let setting = [("physics.solver", serde_json::json!(solver))];
-    let spec = experiment.task.spec.with_settings(&setting).map_err(|_| {
-        let kind = experiment.task.spec.task().kind();
-        format!("--solver: the {kind} task has no 2D physics solver to choose")
-    })?;
-    experiment.task.spec = spec;
     Ok(())
 }
 
@@ -337,5 +320,6 @@ fn ray_request<'a>(
         address,
         resume: a.resume,
         threads: a.threads,
+        solver: a.solver.as_deref(),
     }
 }

@@ -91,49 +91,49 @@ pub const TASKS: &[TaskKind] = &[
         name: "locomotion",
         usage: "locomotion:<terrain>",
         parse: parse_locomotion,
-        decode: |v| decode::<Locomotion>(v).map(TaskSpec::Locomotion),
+        decode: |v| decode_task::<Locomotion>(v).map(TaskSpec::Locomotion),
         alias: no_alias,
     },
     TaskKind {
         name: "jump",
         usage: "jump",
         parse: parse_jump,
-        decode: |v| decode::<Jump>(v).map(TaskSpec::Jump),
+        decode: |v| decode_task::<Jump>(v).map(TaskSpec::Jump),
         alias: no_alias,
     },
     TaskKind {
         name: "escape",
         usage: "escape[:<cage side>]",
         parse: parse_escape,
-        decode: |v| decode::<Escape>(v).map(TaskSpec::Escape),
+        decode: |v| decode_task::<Escape>(v).map(TaskSpec::Escape),
         alias: no_alias,
     },
     TaskKind {
         name: "carrier",
         usage: "carrier",
         parse: parse_carrier,
-        decode: |v| decode::<Carrier>(v).map(TaskSpec::Carrier),
+        decode: |v| decode_task::<Carrier>(v).map(TaskSpec::Carrier),
         alias: no_alias,
     },
     TaskKind {
         name: "evogym",
         usage: "evogym[:<Walker-v0|BridgeWalker-v0|BeamToppler-v0|CaveCrawler-v0>] (or walker, bridge-walker, beam-toppler, cave-crawler)",
         parse: parse_evogym,
-        decode: |v| decode::<EvoGym>(v).map(TaskSpec::Evogym),
+        decode: |v| decode_task::<EvoGym>(v).map(TaskSpec::Evogym),
         alias: evogym_alias,
     },
     TaskKind {
         name: "locomotion3d",
         usage: "locomotion3d[:<seconds>]",
         parse: parse_locomotion3d,
-        decode: |v| decode::<Locomotion3d>(v).map(TaskSpec::Locomotion3d),
+        decode: |v| decode_task::<Locomotion3d>(v).map(TaskSpec::Locomotion3d),
         alias: no_alias,
     },
     TaskKind {
         name: "affordance",
         usage: "affordance[:<impassable|passable-left|passable-right>] (one environment; all three by default)",
         parse: parse_affordance,
-        decode: |v| decode::<Affordance>(v).map(TaskSpec::Affordance),
+        decode: |v| decode_task::<Affordance>(v).map(TaskSpec::Affordance),
         alias: no_alias,
     },
 ];
@@ -214,6 +214,22 @@ fn parse_jump(arg: Option<&str>) -> Result<TaskSpec, FieldError> {
             "the jump task takes no argument, got '{a}'"
         ))),
     }
+}
+
+/// Deserializes a task's settings from its table like [`decode`], a partial `physics` table
+/// being completed field by field from the task kind's own physics (a PSA task's gravity of −10,
+/// not the default world's −9.8), not from the physics type's defaults.
+fn decode_task<T: DeserializeOwned + Serialize + Default>(mut value: serde_json::Value) -> Result<T, FieldError> {
+    if let Some(serde_json::Value::Object(given)) = value.get_mut("physics") {
+        let defaults = serde_json::to_value(T::default()).ok();
+        if let Some(serde_json::Value::Object(mut physics)) =
+            defaults.and_then(|mut d| d.get_mut("physics").map(serde_json::Value::take))
+        {
+            physics.extend(std::mem::take(given));
+            *given = physics;
+        }
+    }
+    decode(value)
 }
 
 /// Deserializes a settings struct from its table, keeping the dotted path of a failing field
@@ -419,6 +435,23 @@ mod tests {
         let err = TaskSpec::parse("bridge-walker:x").unwrap_err().to_string();
         assert!(err.contains("unknown task 'bridge-walker'"), "{err}");
         assert!(TaskSpec::parse("bridge-runner").is_err());
+    }
+
+    /// A partial `[task.physics]` table keeps the task kind's other physics settings: a PSA
+    /// task's gravity and time step, not the default world's.
+    #[test]
+    fn a_partial_physics_table_keeps_the_task_kind_s_physics() {
+        let psa = crate::kinds::psa::inflation::psa_physics();
+        assert_ne!(psa.gravity, vsrlab_physics::WorldSettings::default().gravity);
+        for kind in ["carrier", "escape"] {
+            let table = json!({"kind": kind, "physics": {"solver": "sequential-impulses"}});
+            let task = TaskSpec::from_json(table).unwrap();
+            let physics = task.task().rigid().unwrap().physics();
+            assert_eq!(physics.gravity, psa.gravity, "{kind}");
+            assert_eq!(physics.solver, vsrlab_physics::Solver::SequentialImpulses, "{kind}");
+        }
+        let e = TaskSpec::from_json(json!({"kind": "carrier", "physics": {"substeps": "x"}})).unwrap_err();
+        assert_eq!(e.path, "physics.substeps");
     }
 
     #[test]

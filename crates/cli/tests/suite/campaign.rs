@@ -83,3 +83,19 @@ fn ray_without_pythons_package_says_how_to_install_it() {
     }
     assert!(!dir.path().join("o").exists(), "nothing written");
 }
+
+#[test]
+fn solver_replaces_every_file_s_and_a_bad_one_is_refused_before_anything_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let (a, b) = (file(dir.path(), "first", 1), file(dir.path(), "second", 2));
+    let out = dir.path().join("out");
+    let out = out.to_str().unwrap();
+    let (success, text) = vsrlab(&["campaign", &a, &b, "--out", out, "--solver", "dyn4j"]);
+    assert!(!success && text.contains("--solver: expected soft-substeps"), "{text}");
+    assert!(!dir.path().join("out").exists(), "nothing written");
+    ok(&["campaign", &a, &b, "--out", out, "--solver", "sequential-impulses"]);
+    for name in ["first", "second"] {
+        let resolved = std::fs::read_to_string(dir.path().join("out").join(name).join("experiment.toml")).unwrap();
+        assert!(resolved.contains("solver = \"sequential-impulses\""), "{resolved}");
+    }
+}

@@ -57,6 +57,21 @@ impl TaskConfig {
             other => FieldError::new("task", other.to_string()),
         })
     }
+
+    /// The same task under another 2D physics solver (`vsrlab run --solver`, Python's
+    /// `solver=`): its `physics.solver` replaced. The error (no path: the caller names its
+    /// option) says when the name is not a solver or the task has no 2D solver to choose.
+    pub fn set_solver(&mut self, solver: &str) -> Result<(), FieldError> {
+        solver
+            .parse::<vsrlab_physics::Solver>()
+            .map_err(|e| FieldError::message(e.to_string()))?;
+        let setting = [("physics.solver", serde_json::json!(solver))];
+        self.spec = self.spec.with_settings(&setting).map_err(|_| {
+            let kind = self.spec.task().kind();
+            FieldError::message(format!("the {kind} task has no 2D physics solver to choose"))
+        })?;
+        Ok(())
+    }
 }
 
 impl Serialize for TaskConfig {

@@ -32,32 +32,12 @@ def main(argv=None) -> int:
     c.add_argument("--quiet", action="store_true", help="no progress lines")
     c.add_argument("--solver", help="2D physics solver replacing the files': soft-substeps or sequential-impulses")
     args = parser.parse_args(argv)
-    if args.command == "campaign":
-        try:
-            result = campaign(
-                args.files,
-                args.out,
-                resume=args.resume,
-                threads=args.threads,
-                ray=args.ray,
-                verbose=not args.quiet,
-                solver=args.solver,
-            )
-        except ValueError as e:
-            print(f"error: {e}", file=sys.stderr)
-            return 1
-        print(result["table"], end="")
-        return 0
+    options = dict(resume=args.resume, threads=args.threads, ray=args.ray, verbose=not args.quiet, solver=args.solver)
     try:
-        summaries = run(
-            args.config,
-            args.out,
-            resume=args.resume,
-            threads=args.threads,
-            ray=args.ray,
-            verbose=not args.quiet,
-            solver=args.solver,
-        )
+        if args.command == "campaign":
+            print(campaign(args.files, args.out, **options)["table"], end="")
+            return 0
+        summaries = run(args.config, args.out, **options)
     except ValueError as e:
         print(f"error: {e}", file=sys.stderr)
         return 1

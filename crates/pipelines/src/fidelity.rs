@@ -34,6 +34,20 @@ pub const KS_LEVEL: f64 = 0.001;
 /// none (the same work on both sides when their speeds are compared).
 const SENSORS: &str = "empty";
 
+/// The evolved robots of the cases whose brain is `robot:NAME`: vsrlab robot files (body,
+/// sensors, MLP weights), the same weights the instrument's driver gave the original
+/// (`assets/fidelity/robots/`, evolved by `mlp-biped.toml` there).
+const ROBOTS: &[(&str, &str)] = &[
+    (
+        "mlp-biped-2021",
+        include_str!("../../../assets/fidelity/robots/mlp-biped-2021.robot.json"),
+    ),
+    (
+        "mlp-biped-2022",
+        include_str!("../../../assets/fidelity/robots/mlp-biped-2022.robot.json"),
+    ),
+];
+
 /// One reference case: the original's velocities from starts shifted by k·[`SHIFT`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct Case {
@@ -43,7 +57,8 @@ pub struct Case {
     pub body: String,
     /// Terrain (`flat`, `hilly-1-10-0`, …).
     pub terrain: String,
-    /// Brain short form (`phase`, `constant:1`).
+    /// Brain short form (`phase`, `constant:1`), or `robot:NAME`, an evolved robot of
+    /// `assets/fidelity/robots/` (its own sensors and brain, on this case's body and preset).
     pub brain: String,
     /// Start offsets k (the start is shifted by k·[`SHIFT`]) and the original's velocity from each.
     pub starts: Vec<(i64, f64)>,
@@ -190,8 +205,7 @@ pub fn run_case(case: &Case, options: &FidelityOptions) -> Result<CaseResult, Fi
     if starts.len() < 4 {
         return Err(fail(format!("{} starts: the tests need at least 4", starts.len())));
     }
-    let robot = RobotSpec::from_short_forms(&case.body, &case.preset, SENSORS, &case.brain)
-        .map_err(|e| fail(format!("--{}: {}", e.part(), e.message())))?;
+    let robot = case_robot(case).map_err(fail)?;
     let mut task = TaskSpec::parse(&format!("locomotion:{}", case.terrain)).map_err(|e| fail(e.to_string()))?;
     let mut settings: Vec<(&str, serde_json::Value)> = Vec::new();
     if let Some(solver) = &options.solver {
@@ -235,6 +249,30 @@ pub fn run_case(case: &Case, options: &FidelityOptions) -> Result<CaseResult, Fi
     })
 }
 
+/// The robot of `case`: its body and preset with no sensors and the brain's short form, or, for
+/// `robot:NAME`, the shipped evolved robot, which must have the case's body and preset.
+fn case_robot(case: &Case) -> Result<RobotSpec, String> {
+    let Some(name) = case.brain.strip_prefix("robot:") else {
+        return RobotSpec::from_short_forms(&case.body, &case.preset, SENSORS, &case.brain)
+            .map_err(|e| format!("--{}: {}", e.part(), e.message()));
+    };
+    let names = || ROBOTS.iter().map(|r| r.0).collect::<Vec<_>>().join(", ");
+    let (_, text) = ROBOTS
+        .iter()
+        .find(|r| r.0 == name)
+        .ok_or_else(|| format!("brain: no shipped robot '{name}' (there are: {})", names()))?;
+    let robot = vsrlab_tasks::kinds::voxel::robot_from_json(text, name).map_err(|e| e.to_string())?;
+    let expected = RobotSpec::from_short_forms(&case.body, &case.preset, SENSORS, "phase")
+        .map_err(|e| format!("--{}: {}", e.part(), e.message()))?;
+    if robot.body != expected.body || robot.preset != expected.preset {
+        return Err(format!(
+            "brain: robot '{name}' has another body or preset than the case's {} {}",
+            case.body, case.preset
+        ));
+    }
+    Ok(robot)
+}
+
 /// The resampling seed of a case: its name hashed (FNV-1a), so that a case's table does not
 /// depend on which other cases run.
 fn seed_of(name: &str) -> u64 {
@@ -261,6 +299,18 @@ mod tests {
         }
         let names: std::collections::BTreeSet<String> = cases.iter().map(Case::name).collect();
         assert_eq!(names.len(), cases.len(), "each case once");
+    }
+
+    #[test]
+    fn every_shipped_case_builds_its_robot_and_task() {
+        let cases = read_cases(ORIGINAL_2D).unwrap();
+        for case in &cases {
+            let robot = case_robot(case).unwrap_or_else(|e| panic!("{}: {e}", case.name()));
+            assert_eq!(robot.preset.to_string(), case.preset, "{}", case.name());
+            TaskSpec::parse(&format!("locomotion:{}", case.terrain)).unwrap();
+        }
+        let evolved = cases.iter().filter(|c| c.brain.starts_with("robot:")).count();
+        assert_eq!(evolved, 6, "the evolved brains' cases");
     }
 
     #[test]
@@ -294,6 +344,28 @@ mod tests {
             err.to_string().starts_with("case 2021/biped-4x3/marsh/phase: "),
             "{err}"
         );
+    }
+
+    #[test]
+    fn an_evolved_robot_case_runs_the_shipped_robot_and_a_mismatch_is_named() {
+        let mut case = Case {
+            preset: "2021".into(),
+            body: "biped-4x3".into(),
+            terrain: "flat".into(),
+            brain: "robot:mlp-biped-2021".into(),
+            starts: (1..=4).map(|k| (k, 0.1)).collect(),
+        };
+        let options = FidelityOptions::default();
+        let result = run_case(&case, &options).unwrap();
+        // the evolved gait walks (the original's ensemble of this case: median 2.4); a body
+        // without its brain stands still
+        assert!(result.ours.median > 1.0, "{result:?}");
+        case.preset = "2022".into();
+        let err = run_case(&case, &options).unwrap_err().to_string();
+        assert!(err.contains("another body or preset"), "{err}");
+        case.brain = "robot:nobody".into();
+        let err = run_case(&case, &options).unwrap_err().to_string();
+        assert!(err.contains("no shipped robot 'nobody'"), "{err}");
     }
 
     #[test]

@@ -15,8 +15,17 @@ pub trait Body: Send + Sync {
     /// Applies one actuation per actuator (values in [-1, 1]); takes effect at the next step.
     fn actuate(&self, world: &mut World, values: &[f64]);
 
-    /// The point whose motion tasks measure (a VSR: the unweighted mean of its voxel centres).
+    /// The body's centre (a VSR: the unweighted mean of its voxel centres, each the mean of its
+    /// corner bodies: the mass centre, as 2D-VSR-Sim's `Robot.center`).
     fn center(&self, world: &World) -> Vec2;
+
+    /// The point whose displacement locomotion measures: [`Body::center`] unless a body says
+    /// otherwise. A VSR measures, as 2D-VSR-Sim's `Outcome` does (v1.10 on), the mean of its
+    /// voxels' outer-polygon centres, which moves when corners turn even if the mass centre
+    /// does not.
+    fn outcome_center(&self, world: &World) -> Vec2 {
+        self.center(world)
+    }
 
     /// Number of sensing units: the places sensors sit on (a VSR: its voxels).
     fn sensing_units(&self) -> usize;

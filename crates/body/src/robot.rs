@@ -237,6 +237,16 @@ impl Vsr {
         }
     }
 
+    /// Mean over the voxels of their outer-polygon centres (the mean of each polygon's four
+    /// corners): the point 2D-VSR-Sim's `Outcome` measures distance with (vsr-model.md §5.1).
+    pub fn polygon_center(&self, world: &World) -> Vec2 {
+        let sum = (0..self.voxels.len()).fold(Vec2::ZERO, |acc, i| {
+            let polygon = self.voxel_polygon(world, i);
+            acc + (polygon[0] + polygon[1] + polygon[2] + polygon[3]) * 0.25
+        });
+        sum / self.voxels.len() as f64
+    }
+
     /// Centre of the robot: unweighted mean of the voxel centres.
     pub fn center(&self, world: &World) -> Vec2 {
         let sum = (0..self.voxels.len()).fold(Vec2::ZERO, |acc, i| {
@@ -258,6 +268,10 @@ impl Body for Vsr {
 
     fn center(&self, world: &World) -> Vec2 {
         Vsr::center(self, world)
+    }
+
+    fn outcome_center(&self, world: &World) -> Vec2 {
+        Vsr::polygon_center(self, world)
     }
 
     fn sensing_units(&self) -> usize {

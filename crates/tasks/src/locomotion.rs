@@ -1,7 +1,8 @@
 //! The locomotion task (vsr-model.md §5.1): walk as far right as possible in a given time.
 //!
-//! Metrics: `distance` (x displacement of the centre over the evaluated window, which starts
-//! after `transient` seconds), `velocity` (distance ÷ the window's duration), `elapsed` (the
+//! Metrics: `distance` (x displacement over the evaluated window, which starts after `transient`
+//! seconds, of the body's [`Body::outcome_center`](vsrlab_body::Body::outcome_center): a voxel
+//! robot's mean voxel-polygon centre, as 2D-VSR-Sim's `Outcome` measures it), `velocity` (distance ÷ the window's duration), `elapsed` (the
 //! window's duration) and `voxels` (actuated units of the body). Fitness: `velocity` unless
 //! `fitness` says otherwise.
 
@@ -155,13 +156,14 @@ impl TaskEpisode for LocomotionEpisode {
             self.voxels = step.body.actuator_count();
         }
         if step.t >= self.transient {
+            let x = step.body.outcome_center(step.world).x;
             if !self.started {
                 self.started = true;
                 self.first_t = step.t;
-                self.first_x = step.center.x;
+                self.first_x = x;
             }
             self.last_t = step.t;
-            self.last_x = step.center.x;
+            self.last_x = x;
         }
         Flow::Continue
     }

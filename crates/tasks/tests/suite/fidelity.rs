@@ -244,3 +244,19 @@ fn sequential_impulses_reproduce_the_original_2022_worm_ensemble() {
     assert!((0.44..=0.50).contains(&sequential), "{sequential}");
     assert!(!(0.44..=0.50).contains(&soft), "{soft}");
 }
+
+/// 2D-VSR-Sim (v1.10 on) measures distance with the mean of the voxels' outer-polygon centres,
+/// which moves when corners turn although the mass centre does not. The 2022 biped's phase gait
+/// falls for its first 0.1 s (no contact yet): the original measures −0.011575535210397449 per
+/// second (the instrument, e569066, docs/fidelity.md); the mass centre does not move at all.
+#[test]
+fn locomotion_measures_the_original_s_polygon_centre() {
+    let robot = robot("biped-4x3", Preset::Y2022, BrainSpec::parse("phase").unwrap());
+    let t = solver_task(Solver::SequentialImpulses, 0.1);
+    let o = episode::run(&robot, &t, 0, TraceLevel::Center).unwrap();
+    let v = o.metric("velocity");
+    assert!((v - -0.011575535210397449).abs() < 1e-9, "velocity {v}");
+    let centers = &o.trace.unwrap().centers;
+    let moved = centers[centers.len() - 1].x - centers[0].x;
+    assert!(moved.abs() < 1e-9, "the mass centre moved by {moved}");
+}

@@ -2,8 +2,9 @@
 //! many at once in Rust threads ([`PyVectorEpisode`], behind the vectorised environment).
 //!
 //! Observation: the robot's sensor readings; action: one value in [-1, 1] per actuator, applied
-//! for the next physics step; reward: the step's Δx of the body's centre; terminated: the task
-//! stopped the episode; truncated: its duration is over.
+//! for the next physics step; reward: the step's Δx of the point locomotion measures (a voxel
+//! robot's mean voxel-polygon centre, `Body::outcome_center`), so that the rewards add up to the
+//! task's distance; terminated: the task stopped the episode; truncated: its duration is over.
 
 use crate::robot::{task_spec, PyRobot};
 use crate::{action_rows, value_error};
@@ -20,7 +21,10 @@ struct Env {
     task: TaskSpec,
     level: TraceLevel,
     episode: Episode,
-    last_x: f64,
+    /// Where the measured point was after the last step; none before the first step, which earns
+    /// nothing: the task's distance counts from the first observation, after the first step (as
+    /// the original's `Outcome`), and the rewards add up to it.
+    last_x: Option<f64>,
     /// The seed of the running episode (automatic resets derive the next one from it).
     seed: u64,
 }
@@ -35,20 +39,19 @@ struct StepResult {
 impl Env {
     fn new(robot: AnyRobot, task: TaskSpec, seed: u64, level: TraceLevel) -> Result<Env, EpisodeError> {
         let episode = start(&robot, &task, seed, level)?;
-        let last_x = episode.center().x;
         Ok(Env {
             robot,
             task,
             level,
             episode,
-            last_x,
+            last_x: None,
             seed,
         })
     }
 
     fn reset(&mut self, seed: u64) -> Result<(), EpisodeError> {
         self.episode = start(&self.robot, &self.task, seed, self.level)?;
-        self.last_x = self.episode.center().x;
+        self.last_x = None;
         self.seed = seed;
         Ok(())
     }
@@ -61,9 +64,9 @@ impl Env {
             )));
         }
         self.episode.step(Some(actions))?;
-        let x = self.episode.center().x;
-        let reward = x - self.last_x;
-        self.last_x = x;
+        let x = self.episode.outcome_center().x;
+        let reward = self.last_x.map_or(0.0, |last| x - last);
+        self.last_x = Some(x);
         let terminated = self.episode.stopped_by_task();
         Ok(StepResult {
             reward,

@@ -2,7 +2,8 @@
 
 Observation: the robot's sensor readings (a ``Box`` of float64); action: one actuation in
 [-1, 1] per actuator (voxel, or PSA spring/pressure output), applied for the next physics step;
-reward: the step's Δx of the body's centre; ``terminated`` when the task stops the episode (a PSA
+reward: the step's Δx of the point locomotion measures (a voxel robot's mean voxel-polygon
+centre); ``terminated`` when the task stops the episode (a PSA
 that escaped its cage), ``truncated`` when its duration is over. ``render_mode="rgb_array"``
 draws frames like the CLI's videos.
 

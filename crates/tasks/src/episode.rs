@@ -211,6 +211,12 @@ impl Episode {
         self.center
     }
 
+    /// The point whose displacement locomotion measures, after the last step
+    /// ([`vsrlab_body::Body::outcome_center`]).
+    pub fn outcome_center(&self) -> Vec2 {
+        self.agent.body().outcome_center(&self.world)
+    }
+
     /// The robot in its world.
     pub fn agent(&self) -> &dyn Agent {
         self.agent.as_ref()

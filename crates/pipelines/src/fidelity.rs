@@ -16,6 +16,7 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 use vsrlab_analysis::equivalence::{kolmogorov_smirnov, median_equivalence, KolmogorovSmirnov, MedianEquivalence};
 use vsrlab_analysis::stats::{mann_whitney_u, quantile};
+use vsrlab_body::Morphology;
 use vsrlab_experiment::cpu_time::thread_cpu_seconds;
 use vsrlab_tasks::ensemble;
 use vsrlab_tasks::{RobotSpec, TaskSpec};
@@ -262,9 +263,8 @@ fn case_robot(case: &Case) -> Result<RobotSpec, String> {
         .find(|r| r.0 == name)
         .ok_or_else(|| format!("brain: no shipped robot '{name}' (there are: {})", names()))?;
     let robot = vsrlab_tasks::kinds::voxel::robot_from_json(text, name).map_err(|e| e.to_string())?;
-    let expected = RobotSpec::from_short_forms(&case.body, &case.preset, SENSORS, "phase")
-        .map_err(|e| format!("--{}: {}", e.part(), e.message()))?;
-    if robot.body != expected.body || robot.preset != expected.preset {
+    let body = Morphology::parse(&case.body).map_err(|e| format!("body: {e}"))?;
+    if robot.body != body || robot.preset.to_string() != case.preset {
         return Err(format!(
             "brain: robot '{name}' has another body or preset than the case's {} {}",
             case.body, case.preset

@@ -2,8 +2,8 @@
 //!
 //! Metrics: `distance` (x displacement over the evaluated window, which starts after `transient`
 //! seconds, of the body's [`Body::outcome_center`](vsrlab_body::Body::outcome_center): a voxel
-//! robot's mean voxel-polygon centre, as 2D-VSR-Sim's `Outcome` measures it), `velocity` (distance ÷ the window's duration), `elapsed` (the
-//! window's duration) and `voxels` (actuated units of the body). Fitness: `velocity` unless
+//! robot's mean voxel-polygon centre, as 2D-VSR-Sim's `Outcome` measures it), `velocity`
+//! (distance ÷ the window's duration), `elapsed` (the window's duration) and `voxels` (actuated units of the body). Fitness: `velocity` unless
 //! `fitness` says otherwise.
 
 use crate::damage::Damage;
